@@ -1,0 +1,3 @@
+//! wearsim-core: placeholder, filled in by the core dynamics commit.
+#![no_std]
+#![forbid(unsafe_code)]

@@ -1,0 +1,1 @@
+//! Measurement readers and output writers (filled in by the io work).
