@@ -1,0 +1,868 @@
+//! The dynamic model: validated configuration ([`Model`]) apart from the evolving state
+//! ([`State`]), in the style `model.step(&mut state)`.
+//!
+//! Equation of motion (thesis eq. 1–2, publication III eq. 2), single radial degree of
+//! freedom `y` (shaft/inner ring relative to the housing, positive into the load zone):
+//!
+//! `M y'' + C y' + K y = W + F_imb + F_s(y) + F_d + F_F`
+//!
+//! with `F_s = −Σ_i Q_i sin θ_i` the Hertz element forces (waviness, roughness and the
+//! five-step defect load function with its stiffness change `K_F` act through them),
+//! `F_d` the additive defect force of the Sassi or impulse formulations, `W` the static
+//! radial load. Output is decimated through [`crate::decimate::AntiAlias`].
+
+use crate::bearing::{BearingGeometry, MAX_ELEMENTS};
+use crate::contact::ElementContact;
+use crate::decimate::{AntiAlias, DelayLine};
+use crate::error::{check_range, ConfigError};
+use crate::forces::defect::{
+    DefectConfig, DefectLocation, DefectModel, DefectShape, StaticReference,
+};
+use crate::forces::imbalance::Imbalance;
+use crate::forces::slip::Slip;
+use crate::forces::surface::{Roughness, Waviness};
+use crate::forces::{ForceDiagram, Kinematics};
+use crate::integrate::{max_eigen_modulus, rk4, Discretization, IntegratorKind};
+use crate::kinematics::FaultOrders;
+use crate::load_zone::{equilibrium, Equilibrium};
+use crate::real::{angle_diff, cos, sin, sqrt, wrap_angle, Real, PI, STANDARD_GRAVITY, TAU};
+use crate::rng::Xoshiro128pp;
+use crate::speed::SpeedProfile;
+use crate::topography::Topography;
+
+/// Largest oversampling ratio (internal rate / output rate).
+pub const MAX_OVERSAMPLE: u32 = 16;
+/// Output-rate range (Hz).
+pub const OUTPUT_RATE_RANGE: (Real, Real) = (100.0, 1.0e6);
+
+/// Mass, stiffness and damping of the structure (thesis eq. 1: M, K, C).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Structure {
+    /// Vibrating mass `M` (kg).
+    pub mass: Real,
+    /// Structural (outer race/housing) stiffness `K` (N/m).
+    pub stiffness: Real,
+    /// Viscous damping `C` (N·s/m).
+    pub damping: Real,
+}
+
+/// Which channels go through the anti-alias filter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Channels {
+    /// Acceleration only (cheapest).
+    Acceleration,
+    /// Acceleration, velocity and displacement.
+    All,
+}
+
+/// Everything that defines a simulation run. Validate with [`Model::new_checked`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelConfig {
+    /// Bearing geometry and material.
+    pub bearing: BearingGeometry,
+    /// M, K, C.
+    pub structure: Structure,
+    /// Static radial load `W` (N), into the load zone.
+    pub radial_load: Real,
+    /// Radial clearance `γ` (m).
+    pub clearance: Real,
+    /// Shaft speed profile.
+    pub speed: SpeedProfile,
+    /// Imbalance (eq. 3), if any.
+    pub imbalance: Option<Imbalance>,
+    /// Outer-race waviness (eq. 4–10), if any.
+    pub waviness: Option<Waviness>,
+    /// Roughness, if any.
+    pub roughness: Option<Roughness>,
+    /// Localized defect, if any.
+    pub defect: Option<DefectConfig>,
+    /// Random slip of the element passes, if any.
+    pub slip: Option<Slip>,
+    /// Integrator.
+    pub integrator: IntegratorKind,
+    /// Output sample rate (Hz).
+    pub output_rate: Real,
+    /// Internal steps per output sample; `None` picks the smallest ratio ≥ 2 that the
+    /// step validation accepts.
+    pub oversample: Option<u32>,
+    /// Channels to filter and emit.
+    pub channels: Channels,
+}
+
+/// One output sample.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Sample {
+    /// Acceleration (m/s²).
+    pub accel: Real,
+    /// Velocity (m/s); 0 unless [`Channels::All`].
+    pub vel: Real,
+    /// Displacement about the static equilibrium (m); 0 unless [`Channels::All`].
+    pub disp: Real,
+}
+
+impl Sample {
+    /// Acceleration in units of standard gravity (g).
+    pub fn accel_g(&self) -> Real {
+        self.accel / STANDARD_GRAVITY
+    }
+}
+
+/// Contact figures of the last step, for wear accumulation (thesis §4.2).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct StepStats {
+    /// Largest element load in the step (N).
+    pub max_load: Real,
+    /// Largest load of an element over the defect (N), 0 when none is.
+    pub defect_load: Real,
+}
+
+/// Per-step rotation of the three phasors for a constant speed.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Rotations {
+    shaft: (Real, Real),
+    cage: (Real, Real),
+    wave: (Real, Real),
+    shaft_half: (Real, Real),
+    cage_half: (Real, Real),
+    wave_half: (Real, Real),
+}
+
+/// A validated model: immutable, shareable, everything derived once.
+#[derive(Debug, Clone)]
+pub struct Model {
+    cfg: ModelConfig,
+    contact: ElementContact,
+    orders: FaultOrders,
+    eq: Equilibrium,
+    h: Real,
+    ratio: u32,
+    disc: Discretization,
+    kl_m: Real,
+    c_m: Real,
+    inv_m: Real,
+    elem_cs: [(Real, Real); MAX_ELEMENTS],
+    elem_angle: [Real; MAX_ELEMENTS],
+    wave_elem_cs: [(Real, Real); MAX_ELEMENTS],
+    wave_order: u32,
+    aa: AntiAlias,
+    rot: Option<Rotations>,
+    defect_offset_cs: (Real, Real),
+}
+
+impl Model {
+    /// Validates `cfg` and derives everything the step needs. Every rejection names its
+    /// field and the allowed range.
+    pub fn new_checked(cfg: ModelConfig) -> Result<Self, ConfigError> {
+        let bearing = BearingGeometry::new_checked(cfg.bearing)?;
+        check_range("structure.mass", cfg.structure.mass, 1e-4, 1e5)?;
+        check_range("structure.stiffness", cfg.structure.stiffness, 1.0, 1e12)?;
+        check_range("structure.damping", cfg.structure.damping, 0.0, 1e9)?;
+        check_range("radial_load", cfg.radial_load, 0.0, 1e7)?;
+        check_range("clearance", cfg.clearance, 0.0, 1e-3)?;
+        SpeedProfile::new_checked(cfg.speed.clone())?;
+        if let Some(i) = cfg.imbalance {
+            Imbalance::new_checked(i)?;
+        }
+        if let Some(w) = cfg.waviness {
+            Waviness::new_checked(w)?;
+        }
+        if let Some(r) = cfg.roughness {
+            Roughness::new_checked(r)?;
+        }
+        if let Some(d) = cfg.defect {
+            DefectConfig::new_checked(d)?;
+        }
+        if let Some(s) = cfg.slip {
+            Slip::new_checked(s)?;
+        }
+        check_range(
+            "fs",
+            cfg.output_rate,
+            OUTPUT_RATE_RANGE.0,
+            OUTPUT_RATE_RANGE.1,
+        )?;
+        if let Some(r) = cfg.oversample {
+            check_range("oversample", r as Real, 2.0, MAX_OVERSAMPLE as Real)?;
+        }
+
+        let contact = ElementContact::of(&bearing);
+        let orders = FaultOrders::of(&bearing);
+        let s = &cfg.structure;
+        let eq = equilibrium(
+            &contact,
+            bearing.elements,
+            cfg.radial_load,
+            s.stiffness,
+            cfg.clearance,
+        );
+        let kl = s.stiffness + eq.contact_stiffness;
+        let wave_order = cfg
+            .waviness
+            .map(|w| w.order(bearing.outer_race_radius()))
+            .unwrap_or(0);
+
+        // Step validation: the stiffest frequency against the internal step.
+        let m = s.mass as f64;
+        let full_k = (kl + eq.contact_stiffness) as f64; // tangent of the contacts up to 2·k_c0
+        let omega = match cfg.integrator {
+            IntegratorKind::Rk4 => max_eigen_modulus(full_k / m, s.damping as f64 / m),
+            _ => libm::sqrt(2.0 * eq.contact_stiffness as f64 / m),
+        };
+        let limit = cfg.integrator.omega_h_limit() as f64;
+        let fs = cfg.output_rate as f64;
+        let max_cage_hz = (cfg.speed.max_hz() * orders.ftf) as f64;
+        let wave_hz = wave_order as f64 * max_cage_hz;
+        let accepts = |r: u32| -> bool {
+            let h = 1.0 / (fs * r as f64);
+            omega * h <= limit && wave_hz < 0.45 * fs * r as f64
+        };
+        let ratio = match cfg.oversample {
+            Some(r) => {
+                if !accepts(r) {
+                    let min_rate = if wave_hz >= 0.45 * fs * r as f64 {
+                        wave_hz / 0.45
+                    } else {
+                        omega / limit
+                    };
+                    return Err(ConfigError::StepTooLarge {
+                        field: "oversample",
+                        omega_h: omega / (fs * r as f64),
+                        limit,
+                        min_internal_rate_hz: min_rate,
+                    });
+                }
+                r
+            }
+            None => match (2..=MAX_OVERSAMPLE).find(|r| accepts(*r)) {
+                Some(r) => r,
+                None => {
+                    return Err(ConfigError::StepTooLarge {
+                        field: "fs",
+                        omega_h: omega / (fs * MAX_OVERSAMPLE as f64),
+                        limit,
+                        min_internal_rate_hz: (omega / limit).max(wave_hz / 0.45),
+                    })
+                }
+            },
+        };
+        let h = 1.0 / (fs * ratio as f64);
+        let disc = Discretization::new(kl as f64 / m, s.damping as f64 / m, h);
+
+        let n = bearing.elements;
+        let mut elem_cs = [(1.0, 0.0); MAX_ELEMENTS];
+        let mut elem_angle = [0.0; MAX_ELEMENTS];
+        let mut wave_elem_cs = [(1.0, 0.0); MAX_ELEMENTS];
+        for (j, ((cs, a), wcs)) in elem_cs
+            .iter_mut()
+            .zip(elem_angle.iter_mut())
+            .zip(wave_elem_cs.iter_mut())
+            .enumerate()
+            .take(n as usize)
+        {
+            let ang = TAU * j as Real / n as Real;
+            *cs = (cos(ang), sin(ang));
+            *a = ang;
+            let wa = wrap_angle(ang * wave_order as Real);
+            *wcs = (cos(wa), sin(wa));
+        }
+        let rot = if let SpeedProfile::Constant(f) = cfg.speed {
+            let ds = TAU * f * h as Real;
+            let dc = ds * orders.ftf;
+            let dw = wrap_angle(dc * wave_order as Real);
+            Some(Rotations {
+                shaft: (cos(ds), sin(ds)),
+                cage: (cos(dc), sin(dc)),
+                wave: (cos(dw), sin(dw)),
+                shaft_half: (cos(0.5 * ds), sin(0.5 * ds)),
+                cage_half: (cos(0.5 * dc), sin(0.5 * dc)),
+                wave_half: (cos(0.5 * dw), sin(0.5 * dw)),
+            })
+        } else {
+            None
+        };
+        let defect_offset_cs = match cfg.defect.map(|d| d.location) {
+            Some(DefectLocation::OuterRace { angle })
+            | Some(DefectLocation::InnerRace { angle }) => (cos(angle), sin(angle)),
+            _ => (1.0, 0.0),
+        };
+        Ok(Model {
+            contact,
+            orders,
+            eq,
+            h: h as Real,
+            ratio,
+            disc,
+            kl_m: kl / s.mass,
+            c_m: s.damping / s.mass,
+            inv_m: 1.0 / s.mass,
+            elem_cs,
+            elem_angle,
+            wave_elem_cs,
+            wave_order,
+            aa: AntiAlias::design(ratio),
+            rot,
+            defect_offset_cs,
+            cfg: ModelConfig { bearing, ..cfg },
+        })
+    }
+
+    /// The validated configuration.
+    pub fn config(&self) -> &ModelConfig {
+        &self.cfg
+    }
+    /// Kinematic orders of the bearing (eq. 17–20).
+    pub fn orders(&self) -> FaultOrders {
+        self.orders
+    }
+    /// Hertz constants of one element (both races in series).
+    pub fn contact(&self) -> &ElementContact {
+        &self.contact
+    }
+    /// Static equilibrium under the radial load.
+    pub fn equilibrium(&self) -> &Equilibrium {
+        &self.eq
+    }
+    /// Internal step `h` (s).
+    pub fn step_size(&self) -> Real {
+        self.h
+    }
+    /// Internal steps per output sample.
+    pub fn oversample(&self) -> u32 {
+        self.ratio
+    }
+    /// Outer-race waviness order `N_w` (0 without waviness).
+    pub fn waviness_order(&self) -> u32 {
+        self.wave_order
+    }
+    /// The anti-alias filter.
+    pub fn anti_alias(&self) -> &AntiAlias {
+        &self.aa
+    }
+    /// Linearised natural frequency `√((K + k_c0)/M)/2π` (Hz) about static equilibrium.
+    pub fn natural_frequency_hz(&self) -> Real {
+        sqrt(self.kl_m) / TAU
+    }
+    /// Damping ratio `ζ = C/(2√((K + k_c0)M))` (–).
+    pub fn damping_ratio(&self) -> Real {
+        0.5 * self.c_m / sqrt(self.kl_m)
+    }
+
+    /// Defect geometry derived for topography `t` (none without a configured defect).
+    pub fn defect_shape(&self, t: &Topography) -> DefectShape {
+        match self.cfg.defect {
+            Some(d) => DefectShape::derive(
+                t,
+                &d.location,
+                &self.cfg.bearing,
+                &self.eq.reference,
+                d.defect_sassi_k(),
+            ),
+            None => DefectShape::default(),
+        }
+    }
+
+    /// Static reference of the most loaded element.
+    pub fn static_reference(&self) -> &StaticReference {
+        &self.eq.reference
+    }
+
+    /// Kinematics at the state's current time, advanced by `frac·h` (0, ½ or 1).
+    #[inline(always)]
+    fn kinematics<const NB: usize>(&self, st: &State<NB>, frac: u8) -> Kinematics {
+        let f0 = st.shaft_hz;
+        let (shaft_hz, dshaft, rot) = match (frac, self.rot) {
+            (0, _) => (f0, 0.0, None),
+            (1, Some(r)) => (f0, 0.0, Some((r.shaft_half, r.cage_half, r.wave_half))),
+            (_, Some(r)) => (f0, 0.0, Some((r.shaft, r.cage, r.wave))),
+            (fr, None) => {
+                let dt = if fr == 1 { 0.5 * self.h } else { self.h };
+                let f1 = self.cfg.speed.shaft_hz(st.time + dt);
+                (f1, PI * (f0 + f1) * dt, None)
+            }
+        };
+        let omega = TAU * shaft_hz;
+        let alpha = match self.cfg.speed {
+            SpeedProfile::Constant(_) => 0.0,
+            _ => {
+                let f2 = self.cfg.speed.shaft_hz(st.time + self.h);
+                TAU * (f2 - f0) / self.h
+            }
+        };
+        let mut k = Kinematics {
+            shaft_angle: st.shaft_angle,
+            shaft_cs: st.shaft_cs,
+            shaft_omega: omega,
+            shaft_alpha: alpha,
+            cage_angle: st.cage_angle,
+            cage_cs: st.cage_cs,
+            cage_omega: omega * self.orders.ftf,
+            wave_cs: st.wave_cs,
+        };
+        if let Some((rs, rc, rw)) = rot {
+            let half = if frac == 1 { 0.5 } else { 1.0 };
+            let ds = TAU * f0 * self.h * half;
+            k.shaft_angle = wrap_angle(k.shaft_angle + ds);
+            k.cage_angle = wrap_angle(k.cage_angle + ds * self.orders.ftf);
+            k.shaft_cs = rotate(k.shaft_cs, rs);
+            k.cage_cs = rotate(k.cage_cs, rc);
+            k.wave_cs = rotate(k.wave_cs, rw);
+        } else if dshaft != 0.0 {
+            let dc = dshaft * self.orders.ftf;
+            k.shaft_angle = wrap_angle(k.shaft_angle + dshaft);
+            k.cage_angle = wrap_angle(k.cage_angle + dc);
+            k.shaft_cs = (cos(k.shaft_angle), sin(k.shaft_angle));
+            k.cage_cs = (cos(k.cage_angle), sin(k.cage_angle));
+            let wa = wrap_angle(k.cage_angle * self.wave_order as Real);
+            k.wave_cs = (cos(wa), sin(wa));
+        }
+        k
+    }
+
+    /// Sum of all force diagrams (N) at kinematics `k`, displacement `y`, velocity `v`.
+    #[inline(always)]
+    fn total_force<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        k: &Kinematics,
+        y: Real,
+        v: Real,
+        stats: &mut StepStats,
+    ) -> Real {
+        let mut f = self.cfg.radial_load;
+        if let Some(imb) = &self.cfg.imbalance {
+            f += imb.force(k, y, v);
+        }
+        f + self.element_forces(st, k, y, stats)
+    }
+
+    /// Hertz element forces with waviness, roughness and the defect (N).
+    #[inline(always)]
+    fn element_forces<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        k: &Kinematics,
+        y: Real,
+        stats: &mut StepStats,
+    ) -> Real {
+        let n = self.cfg.bearing.elements as usize;
+        let gamma = self.cfg.clearance;
+        let wave_amp = self.cfg.waviness.map(|w| w.amplitude).unwrap_or(0.0);
+        let (cc, sc) = k.cage_cs;
+        let (cw, sw) = k.wave_cs;
+        let defect = self.cfg.defect;
+        let shape = &st.shape;
+        // Defect phasor (position of defect 0) and the candidate window.
+        let (dc, ds) = match defect.map(|d| d.location) {
+            Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, self.defect_offset_cs),
+            _ => self.defect_offset_cs,
+        };
+        let mut fy = 0.0;
+        for (j, ((ecs, wcs), (rough, slip))) in self
+            .elem_cs
+            .iter()
+            .zip(self.wave_elem_cs.iter())
+            .zip(st.rough.iter().zip(st.slip.iter()))
+            .enumerate()
+            .take(n)
+        {
+            let (ce, se) = *ecs;
+            let sin_t = sc * ce + cc * se;
+            if sin_t <= 0.0 {
+                continue;
+            }
+            let mut delta = y * sin_t - gamma - *rough;
+            if wave_amp != 0.0 {
+                let (cwe, swe) = *wcs;
+                delta -= wave_amp * (sw * cwe + cw * swe);
+            }
+            let mut unload = 0.0;
+            let mut add = 0.0;
+            if let Some(d) = defect {
+                let cos_t = cc * ce - sc * se;
+                let cos_rel = cos_t * dc + sin_t * ds;
+                if cos_rel > st.window_cos {
+                    let theta =
+                        k.cage_angle + self.elem_angle.get(j).copied().unwrap_or(0.0) + *slip;
+                    let base = match d.location {
+                        DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
+                        DefectLocation::OuterRace { angle } => angle,
+                        DefectLocation::Ball { .. } => 0.0,
+                    };
+                    let inner = matches!(d.location, DefectLocation::InnerRace { .. });
+                    for kd in 0..shape.count {
+                        let centre = base + kd as Real * shape.spacing_angle;
+                        let mut psi = angle_diff(theta, centre);
+                        if inner {
+                            psi = -psi;
+                        }
+                        let xi = psi / shape.length_angle + 0.5;
+                        if xi < 0.0 || xi >= 1.0 + st.tail {
+                            continue;
+                        }
+                        match d.model {
+                            DefectModel::FiveStep => {
+                                let ls = shape.load.eval(xi);
+                                unload += ls.unload;
+                                delta += ls.extra_deflection;
+                            }
+                            DefectModel::Deflection => delta -= shape.geometric_drop(xi),
+                            DefectModel::Sassi => {
+                                add += shape.sassi(xi, angle_diff(theta, PI / 2.0))
+                            }
+                            DefectModel::Impulse => {
+                                let w_rel = if inner {
+                                    k.shaft_omega - k.cage_omega
+                                } else {
+                                    k.cage_omega
+                                };
+                                add += shape.impulse(xi, w_rel * shape.race_radius);
+                            }
+                        }
+                    }
+                }
+            }
+            let mut q = self.contact.load(delta);
+            if unload > 0.0 {
+                q *= if unload < 1.0 { 1.0 - unload } else { 0.0 };
+            }
+            if q > stats.max_load {
+                stats.max_load = q;
+            }
+            if (unload > 0.0 || add != 0.0) && q + add > stats.defect_load {
+                stats.defect_load = q + add;
+            }
+            fy -= (q + add) * sin_t;
+        }
+        fy
+    }
+
+    /// Advances the state by one internal step; returns a sample every
+    /// [`Model::oversample`] steps.
+    #[inline]
+    pub fn step<const NB: usize>(&self, st: &mut State<NB>) -> Option<Sample> {
+        self.draw_random(st);
+        let mut stats = StepStats::default();
+        let (y, v) = (st.y, st.v);
+        let kl_m = self.kl_m;
+        let c_m = self.c_m;
+        let k_c0 = self.eq.contact_stiffness;
+        let inv_m = self.inv_m;
+        let (y1, v1, a0) = match self.cfg.integrator {
+            IntegratorKind::Rk4 => {
+                let k0 = self.kinematics(st, 0);
+                let kh = self.kinematics(st, 1);
+                let k1 = self.kinematics(st, 2);
+                let mut first = true;
+                let stref: &State<NB> = st;
+                rk4::step(y, v, self.h, |stage, yy, vv| {
+                    let kin = match stage {
+                        rk4::Stage::Start => &k0,
+                        rk4::Stage::Mid => &kh,
+                        rk4::Stage::End => &k1,
+                    };
+                    let mut s = StepStats::default();
+                    let f = self.total_force(stref, kin, yy, vv, &mut s);
+                    if first {
+                        stats = s;
+                        first = false;
+                    }
+                    (f - self.cfg.structure.stiffness * yy - self.cfg.structure.damping * vv)
+                        * inv_m
+                })
+            }
+            kind => {
+                let k0 = self.kinematics(st, 0);
+                let g = (self.total_force(st, &k0, y, v, &mut stats) + k_c0 * y) * inv_m;
+                let slope = if st.has_prev && kind == IntegratorKind::ExactFoh {
+                    g - st.g_prev
+                } else {
+                    0.0
+                };
+                st.g_prev = g;
+                st.has_prev = true;
+                let (y1, v1) = self.disc.step(y, v, g, slope);
+                (y1, v1, -kl_m * y - c_m * v + g)
+            }
+        };
+        st.stats = stats;
+        self.update_slip(st);
+        self.advance_kinematics(st);
+        st.y = y1;
+        st.v = v1;
+        st.steps += 1;
+
+        st.lines[0].push(a0);
+        if self.cfg.channels == Channels::All {
+            if let Some(l) = st.lines.get_mut(1) {
+                l.push(v);
+            }
+            if let Some(l) = st.lines.get_mut(2) {
+                l.push(y - self.eq.y0);
+            }
+        }
+        st.phase += 1;
+        if st.phase < self.ratio {
+            return None;
+        }
+        st.phase = 0;
+        let accel = self.aa.output(&st.lines[0]);
+        let (vel, disp) = if self.cfg.channels == Channels::All {
+            (self.aa.output(&st.lines[1]), self.aa.output(&st.lines[2]))
+        } else {
+            (0.0, 0.0)
+        };
+        Some(Sample { accel, vel, disp })
+    }
+
+    /// Fills `out` with output samples; returns how many were written (all of them).
+    pub fn fill<const NB: usize>(&self, st: &mut State<NB>, out: &mut [Sample]) -> usize {
+        let mut written = 0;
+        for slot in out.iter_mut() {
+            loop {
+                if let Some(s) = self.step(st) {
+                    *slot = s;
+                    break;
+                }
+            }
+            written += 1;
+        }
+        written
+    }
+
+    /// Draws the per-step random quantities (roughness heights) once per step, so every
+    /// integrator stage sees the same surface.
+    #[inline(always)]
+    fn draw_random<const NB: usize>(&self, st: &mut State<NB>) {
+        let Some(r) = self.cfg.roughness else { return };
+        let v = TAU * st.shaft_hz * self.orders.ftf * self.cfg.bearing.outer_race_radius();
+        let debris = st.topography.map(|t| t.debris).unwrap_or(0.0);
+        let sigma = r.step_sigma(self.h, v, debris) * 1.732_050_807_568_877_2;
+        let (cc, sc) = st.cage_cs;
+        let n = self.cfg.bearing.elements as usize;
+        for (rough, (ce, se)) in st.rough.iter_mut().zip(self.elem_cs.iter()).take(n) {
+            let sin_t = sc * ce + cc * se;
+            *rough = if sin_t > -0.05 {
+                sigma * st.rng.uniform_pm1()
+            } else {
+                0.0
+            };
+        }
+    }
+
+    /// Redraws an element's slip offset once per pass, while it is opposite the defect.
+    #[inline(always)]
+    fn update_slip<const NB: usize>(&self, st: &mut State<NB>) {
+        let (Some(slip), Some(d)) = (self.cfg.slip, self.cfg.defect) else {
+            return;
+        };
+        let (dc, ds) = match d.location {
+            DefectLocation::InnerRace { .. } => rotate(st.shaft_cs, self.defect_offset_cs),
+            _ => self.defect_offset_cs,
+        };
+        let (cc, sc) = st.cage_cs;
+        let n = self.cfg.bearing.elements;
+        for j in 0..n as usize {
+            let Some((ce, se)) = self.elem_cs.get(j).copied() else {
+                break;
+            };
+            let cos_rel = (cc * ce - sc * se) * dc + (sc * ce + cc * se) * ds;
+            let bit = 1u32 << (j as u32 & 31);
+            if cos_rel > 0.5 {
+                st.armed |= bit;
+            } else if cos_rel < -0.5 && st.armed & bit != 0 {
+                st.armed &= !bit;
+                let draw = slip.draw(&mut st.rng, n);
+                if let Some(s) = st.slip.get_mut(j) {
+                    *s = draw;
+                }
+            }
+        }
+    }
+
+    /// Moves time, angles and phasors one step on.
+    #[inline(always)]
+    fn advance_kinematics<const NB: usize>(&self, st: &mut State<NB>) {
+        let f0 = st.shaft_hz;
+        st.time += self.h;
+        let (f1, ds) = match self.rot {
+            Some(_) => (f0, TAU * f0 * self.h),
+            None => {
+                let f1 = self.cfg.speed.shaft_hz(st.time);
+                (f1, PI * (f0 + f1) * self.h)
+            }
+        };
+        st.shaft_hz = f1;
+        let dc = ds * self.orders.ftf;
+        st.shaft_angle = wrap_angle(st.shaft_angle + ds);
+        st.cage_angle = wrap_angle(st.cage_angle + dc);
+        st.wave_angle = wrap_angle(st.wave_angle + wrap_angle(dc * self.wave_order as Real));
+        match self.rot {
+            Some(r) if st.steps % 1024 != 0 => {
+                st.shaft_cs = renorm(rotate(st.shaft_cs, r.shaft));
+                st.cage_cs = renorm(rotate(st.cage_cs, r.cage));
+                st.wave_cs = renorm(rotate(st.wave_cs, r.wave));
+            }
+            _ => {
+                st.shaft_cs = (cos(st.shaft_angle), sin(st.shaft_angle));
+                st.cage_cs = (cos(st.cage_angle), sin(st.cage_angle));
+                st.wave_cs = (cos(st.wave_angle), sin(st.wave_angle));
+            }
+        }
+    }
+}
+
+impl DefectConfig {
+    fn defect_sassi_k(&self) -> Real {
+        self.sassi_k_impact
+    }
+}
+
+#[inline(always)]
+fn rotate(a: (Real, Real), b: (Real, Real)) -> (Real, Real) {
+    (a.0 * b.0 - a.1 * b.1, a.1 * b.0 + a.0 * b.1)
+}
+
+#[inline(always)]
+fn renorm(a: (Real, Real)) -> (Real, Real) {
+    let k = 1.5 - 0.5 * (a.0 * a.0 + a.1 * a.1);
+    (a.0 * k, a.1 * k)
+}
+
+/// The evolving state of one run: motion, angles, random generator, per-element slip and
+/// roughness, the current defect topography and the anti-alias history. `NB` is the
+/// element capacity (≥ the bearing's element count). Its size is fixed at compile time:
+/// with `f64` and `NB = 16` it is about 6.6 KB (three filter delay lines of
+/// 2 × 128 samples dominate); see `size_of::<State<16>>()` in the tests.
+#[derive(Debug, Clone)]
+pub struct State<const NB: usize> {
+    y: Real,
+    v: Real,
+    g_prev: Real,
+    has_prev: bool,
+    steps: u64,
+    time: Real,
+    shaft_hz: Real,
+    shaft_angle: Real,
+    cage_angle: Real,
+    wave_angle: Real,
+    shaft_cs: (Real, Real),
+    cage_cs: (Real, Real),
+    wave_cs: (Real, Real),
+    rng: Xoshiro128pp,
+    rough: [Real; NB],
+    slip: [Real; NB],
+    armed: u32,
+    topography: Option<Topography>,
+    shape: DefectShape,
+    window_cos: Real,
+    tail: Real,
+    lines: [DelayLine; 3],
+    phase: u32,
+    stats: StepStats,
+}
+
+impl<const NB: usize> State<NB> {
+    /// Initial state at static equilibrium, at rest relative to it, with `seed` for the
+    /// random generator. Fails if `NB` is smaller than the bearing's element count.
+    pub fn new(model: &Model, seed: u64) -> Result<Self, ConfigError> {
+        let n = model.cfg.bearing.elements as usize;
+        if n > NB || NB > 32 {
+            return Err(ConfigError::TooMany {
+                field: "bearing.elements",
+                count: n,
+                max: if NB > 32 { 32 } else { NB },
+            });
+        }
+        let f0 = model.cfg.speed.shaft_hz(0.0);
+        let mut st = State {
+            y: model.eq.y0,
+            v: 0.0,
+            g_prev: 0.0,
+            has_prev: false,
+            steps: 0,
+            time: 0.0,
+            shaft_hz: f0,
+            shaft_angle: 0.0,
+            cage_angle: 0.0,
+            wave_angle: 0.0,
+            shaft_cs: (1.0, 0.0),
+            cage_cs: (1.0, 0.0),
+            wave_cs: (1.0, 0.0),
+            rng: Xoshiro128pp::from_u64(seed),
+            rough: [0.0; NB],
+            slip: [0.0; NB],
+            armed: 0,
+            topography: None,
+            shape: DefectShape::default(),
+            window_cos: 2.0,
+            tail: 0.0,
+            lines: [DelayLine::default(); 3],
+            phase: 0,
+            stats: StepStats::default(),
+        };
+        if let Some(d) = model.cfg.defect {
+            st.set_topography(model, d.topography)?;
+        }
+        Ok(st)
+    }
+
+    /// Replaces the defect topography (wear evolution) and re-derives its shape.
+    pub fn set_topography(&mut self, model: &Model, t: Topography) -> Result<(), ConfigError> {
+        let Some(d) = model.cfg.defect else {
+            return Err(ConfigError::Inconsistent {
+                field: "defect",
+                reason: "the model has no defect to give a topography to",
+            });
+        };
+        let t = Topography::new_checked(t)?;
+        let shape = model.defect_shape(&t);
+        let tail = shape.tail(d.model);
+        let slip_margin = model
+            .cfg
+            .slip
+            .map(|s| 3.5 * s.fraction * TAU / model.cfg.bearing.elements as Real)
+            .unwrap_or(0.0);
+        let span = shape.length_angle * (0.5 + tail)
+            + shape.spacing_angle * (shape.count.saturating_sub(1)) as Real
+            + slip_margin;
+        self.window_cos = if span >= PI { -2.0 } else { cos(span) };
+        self.tail = tail;
+        self.shape = shape;
+        self.topography = Some(t);
+        Ok(())
+    }
+
+    /// Current topography of the defect, if the model has one.
+    pub fn topography(&self) -> Option<Topography> {
+        self.topography
+    }
+    /// Contact figures of the last step.
+    pub fn stats(&self) -> StepStats {
+        self.stats
+    }
+    /// Simulated time (s).
+    pub fn time(&self) -> Real {
+        self.time
+    }
+    /// Internal steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    /// Current displacement `y` (m) and velocity (m/s).
+    pub fn motion(&self) -> (Real, Real) {
+        (self.y, self.v)
+    }
+    /// Current shaft frequency (Hz).
+    pub fn shaft_hz(&self) -> Real {
+        self.shaft_hz
+    }
+    /// Shaft revolutions so far (from the unwrapped count is not kept; this is the
+    /// wrapped shaft angle in rad).
+    pub fn shaft_angle(&self) -> Real {
+        self.shaft_angle
+    }
+}

@@ -1,0 +1,110 @@
+//! The scalar type of the model and the few transcendental functions it uses.
+//!
+//! `Real` is `f64` by default and `f32` with the `f32` feature (Cortex-M4F). All
+//! transcendental functions go through `libm` (pure Rust, identical results on every
+//! target for the same type), or through `micromath` with the `fast-math` feature, whose
+//! approximation error is measured by the tests in `tests/fast_math.rs`.
+
+/// Floating-point type of every physical quantity in the core (SI units throughout).
+#[cfg(not(feature = "f32"))]
+pub type Real = f64;
+/// Floating-point type of every physical quantity in the core (SI units throughout).
+#[cfg(feature = "f32")]
+pub type Real = f32;
+
+/// π in [`Real`].
+pub const PI: Real = core::f64::consts::PI as Real;
+/// 2π in [`Real`].
+pub const TAU: Real = core::f64::consts::TAU as Real;
+/// Standard gravity g₀ (m/s²), CGPM 1901, used to express acceleration in g.
+pub const STANDARD_GRAVITY: Real = 9.806_65;
+
+macro_rules! math_fns {
+    ($($(#[$doc:meta])* $name:ident($($arg:ident),+) => $f64:path, $f32:path, $fast:path;)*) => {
+        $(
+            $(#[$doc])*
+            #[inline(always)]
+            pub fn $name($($arg: Real),+) -> Real {
+                #[cfg(not(feature = "f32"))]
+                { $f64($($arg),+) }
+                #[cfg(all(feature = "f32", not(feature = "fast-math")))]
+                { $f32($($arg),+) }
+                #[cfg(feature = "fast-math")]
+                { $fast($($arg),+) }
+            }
+        )*
+    };
+}
+
+#[cfg(feature = "fast-math")]
+mod fast {
+    use super::Real;
+    use micromath::F32Ext;
+    pub fn sqrt(x: Real) -> Real {
+        F32Ext::sqrt(x)
+    }
+    pub fn sin(x: Real) -> Real {
+        F32Ext::sin(x)
+    }
+    pub fn cos(x: Real) -> Real {
+        F32Ext::cos(x)
+    }
+}
+
+math_fns! {
+    /// Square root.
+    sqrt(x) => libm::sqrt, libm::sqrtf, fast::sqrt;
+    /// Sine (argument in rad).
+    sin(x) => libm::sin, libm::sinf, fast::sin;
+    /// Cosine (argument in rad).
+    cos(x) => libm::cos, libm::cosf, fast::cos;
+    /// Exponential.
+    exp(x) => libm::exp, libm::expf, libm::expf;
+    /// Natural logarithm.
+    ln(x) => libm::log, libm::logf, libm::logf;
+    /// `x^y`.
+    pow(x, y) => libm::pow, libm::powf, libm::powf;
+    /// Cube root.
+    cbrt(x) => libm::cbrt, libm::cbrtf, libm::cbrtf;
+    /// Arc sine (rad).
+    asin(x) => libm::asin, libm::asinf, libm::asinf;
+    /// Largest integer not above `x`.
+    floor(x) => libm::floor, libm::floorf, libm::floorf;
+}
+
+/// `x^{3/2}` for `x ≥ 0` as `x·√x` (Hertz point contact), 0 for `x ≤ 0`.
+#[inline(always)]
+pub fn pow_3_2(x: Real) -> Real {
+    if x > 0.0 {
+        x * sqrt(x)
+    } else {
+        0.0
+    }
+}
+
+/// `x^{10/9}` for `x ≥ 0` as `x·∛(∛x)` (Lundberg/Palmgren line contact), 0 for `x ≤ 0`.
+#[inline(always)]
+pub fn pow_10_9(x: Real) -> Real {
+    if x > 0.0 {
+        x * cbrt(cbrt(x))
+    } else {
+        0.0
+    }
+}
+
+/// Wraps an angle (rad) into `[0, 2π)`; keeps accumulated angles exact enough in `f32`.
+#[inline(always)]
+pub fn wrap_angle(a: Real) -> Real {
+    let w = a - TAU * floor(a / TAU);
+    if w >= TAU || w < 0.0 {
+        0.0
+    } else {
+        w
+    }
+}
+
+/// Signed angular difference `a − b` wrapped into `[−π, π)` (rad).
+#[inline(always)]
+pub fn angle_diff(a: Real, b: Real) -> Real {
+    wrap_angle(a - b + PI) - PI
+}

@@ -1,0 +1,106 @@
+//! A small seeded no_std random generator behind the `rand_core` traits.
+//!
+//! xoshiro128++ (Blackman & Vigna 2018, "Scrambled linear pseudorandom number
+//! generators"): 128 bits of state, 32-bit operations only, so it runs as fast on a
+//! Cortex-M0/M3 as on the host and produces the same sequence everywhere.
+
+use crate::real::Real;
+use rand_core::{RngCore, SeedableRng};
+
+/// xoshiro128++ generator (period 2¹²⁸ − 1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Xoshiro128pp {
+    s: [u32; 4],
+}
+
+impl Xoshiro128pp {
+    /// Generator from a 64-bit seed, expanded with SplitMix64 (Vigna) so that nearby
+    /// seeds give unrelated streams and no seed gives the all-zero state.
+    pub fn from_u64(seed: u64) -> Self {
+        let mut z = seed;
+        let mut next = || {
+            z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut x = z;
+            x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            x ^ (x >> 31)
+        };
+        let a = next();
+        let b = next();
+        let mut s = [a as u32, (a >> 32) as u32, b as u32, (b >> 32) as u32];
+        if s == [0; 4] {
+            s[0] = 1;
+        }
+        Xoshiro128pp { s }
+    }
+
+    #[inline(always)]
+    fn step(&mut self) -> u32 {
+        let [s0, s1, s2, s3] = self.s;
+        let result = s0.wrapping_add(s3).rotate_left(7).wrapping_add(s0);
+        let t = s1 << 9;
+        let mut n2 = s2 ^ s0;
+        let mut n3 = s3 ^ s1;
+        let n1 = s1 ^ n2;
+        let n0 = s0 ^ n3;
+        n2 ^= t;
+        n3 = n3.rotate_left(11);
+        self.s = [n0, n1, n2, n3];
+        result
+    }
+
+    /// Uniform number in `[−1, 1)` built from the top 24 bits, so the value is exactly
+    /// representable and identical in `f32` and `f64`.
+    #[inline(always)]
+    pub fn uniform_pm1(&mut self) -> Real {
+        ((self.step() >> 8) as Real) * (2.0 / 16_777_216.0) - 1.0
+    }
+
+    /// Zero-mean, unit-variance approximately Gaussian number (Irwin–Hall sum of four
+    /// uniforms, rescaled): cheap, bounded (|x| ≤ 2√3), identical on every target.
+    #[inline(always)]
+    pub fn gauss_approx(&mut self) -> Real {
+        let s = self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1();
+        // Var(U[-1,1)) = 1/3, four of them: 4/3.
+        s * 0.866_025_403_784_438_6
+    }
+}
+
+impl RngCore for Xoshiro128pp {
+    fn next_u32(&mut self) -> u32 {
+        self.step()
+    }
+    fn next_u64(&mut self) -> u64 {
+        let lo = self.step() as u64;
+        let hi = self.step() as u64;
+        (hi << 32) | lo
+    }
+    fn fill_bytes(&mut self, dst: &mut [u8]) {
+        for chunk in dst.chunks_mut(4) {
+            let v = self.step().to_le_bytes();
+            for (d, s) in chunk.iter_mut().zip(v.iter()) {
+                *d = *s;
+            }
+        }
+    }
+}
+
+impl SeedableRng for Xoshiro128pp {
+    type Seed = [u8; 16];
+    fn from_seed(seed: [u8; 16]) -> Self {
+        let mut s = [0u32; 4];
+        for (i, c) in seed.chunks_exact(4).enumerate() {
+            if let (Some(d), [a, b, cc, dd]) = (s.get_mut(i), c) {
+                *d = u32::from_le_bytes([*a, *b, *cc, *dd]);
+            }
+        }
+        if s == [0; 4] {
+            s[0] = 1;
+        }
+        Xoshiro128pp { s }
+    }
+    fn seed_from_u64(state: u64) -> Self {
+        Self::from_u64(state)
+    }
+}
