@@ -31,7 +31,7 @@ use crate::speed::SpeedProfile;
 use crate::topography::Topography;
 
 /// Largest oversampling ratio (internal rate / output rate).
-pub const MAX_OVERSAMPLE: u32 = 16;
+pub const MAX_OVERSAMPLE: u32 = 8;
 /// Output-rate range (Hz).
 pub const OUTPUT_RATE_RANGE: (Real, Real) = (100.0, 1.0e6);
 
@@ -341,6 +341,14 @@ impl Model {
     /// The anti-alias filter.
     pub fn anti_alias(&self) -> &AntiAlias {
         &self.aa
+    }
+    /// Time (s) that output sample `k` (0-based) stands for: the sample leaves the
+    /// filter after internal step `kR + R − 1` and the linear-phase filter delays it by
+    /// `(taps − 1)/2` internal steps.
+    pub fn output_time(&self, k: u64) -> Real {
+        let r = self.ratio as u64;
+        let n = (k * r + r - 1) as Real - self.aa.delay() as Real;
+        n * self.h
     }
     /// Linearised natural frequency `√((K + k_c0)/M)/2π` (Hz) about static equilibrium.
     pub fn natural_frequency_hz(&self) -> Real {
@@ -701,7 +709,7 @@ impl Model {
         st.cage_angle = wrap_angle(st.cage_angle + dc);
         st.wave_angle = wrap_angle(st.wave_angle + wrap_angle(dc * self.wave_order as Real));
         match self.rot {
-            Some(r) if st.steps % 1024 != 0 => {
+            Some(r) if !st.steps.is_multiple_of(1024) => {
                 st.shaft_cs = renorm(rotate(st.shaft_cs, r.shaft));
                 st.cage_cs = renorm(rotate(st.cage_cs, r.cage));
                 st.wave_cs = renorm(rotate(st.wave_cs, r.wave));
@@ -735,8 +743,8 @@ fn renorm(a: (Real, Real)) -> (Real, Real) {
 /// The evolving state of one run: motion, angles, random generator, per-element slip and
 /// roughness, the current defect topography and the anti-alias history. `NB` is the
 /// element capacity (≥ the bearing's element count). Its size is fixed at compile time:
-/// with `f64` and `NB = 16` it is about 6.6 KB (three filter delay lines of
-/// 2 × 128 samples dominate); see `size_of::<State<16>>()` in the tests.
+/// with `f64` and `NB = 16` it is about 12.8 KB (three filter delay lines of
+/// 2 × 256 samples dominate; 6.4 KB with `f32`); see `size_of::<State<16>>()` in the tests.
 #[derive(Debug, Clone)]
 pub struct State<const NB: usize> {
     y: Real,
@@ -856,12 +864,17 @@ impl<const NB: usize> State<NB> {
     pub fn motion(&self) -> (Real, Real) {
         (self.y, self.v)
     }
+    /// Sets displacement `y` (m) and velocity (m/s), e.g. for a free-decay run.
+    pub fn set_motion(&mut self, y: Real, v: Real) {
+        self.y = y;
+        self.v = v;
+        self.has_prev = false;
+    }
     /// Current shaft frequency (Hz).
     pub fn shaft_hz(&self) -> Real {
         self.shaft_hz
     }
-    /// Shaft revolutions so far (from the unwrapped count is not kept; this is the
-    /// wrapped shaft angle in rad).
+    /// Shaft angle (rad), wrapped to [0, 2π).
     pub fn shaft_angle(&self) -> Real {
         self.shaft_angle
     }

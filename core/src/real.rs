@@ -96,7 +96,7 @@ pub fn pow_10_9(x: Real) -> Real {
 #[inline(always)]
 pub fn wrap_angle(a: Real) -> Real {
     let w = a - TAU * floor(a / TAU);
-    if w >= TAU || w < 0.0 {
+    if !(0.0..TAU).contains(&w) {
         0.0
     } else {
         w

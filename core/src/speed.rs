@@ -10,7 +10,7 @@ use heapless::Vec;
 /// Capacity of a speed table.
 pub const MAX_SPEED_POINTS: usize = 16;
 /// Highest shaft frequency accepted (Hz); 1000 Hz = 60 000 rpm.
-pub const MAX_SHAFT_HZ: f64 = 1000.0;
+pub const MAX_SHAFT_HZ: Real = 1000.0;
 
 /// One point of a speed table: time (s) and shaft frequency (Hz).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +24,7 @@ pub struct SpeedPoint {
 
 /// Shaft speed profile.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)] // fixed capacity on purpose: no heap
 pub enum SpeedProfile {
     /// Constant shaft frequency (Hz).
     Constant(Real),

@@ -1,0 +1,69 @@
+//! Helpers shared by the core's integration tests.
+#![allow(dead_code)]
+
+use wearsim_core::integrate::IntegratorKind;
+use wearsim_core::presets;
+use wearsim_core::speed::SpeedProfile;
+use wearsim_core::{Model, ModelConfig, Sample, State, Structure};
+
+/// A linear single-degree-of-freedom oscillator: no element contact (no load, large
+/// clearance), no surface, no defect; imbalance optional.
+pub fn linear_sdof(
+    m: f64,
+    k: f64,
+    c: f64,
+    fs: f64,
+    oversample: u32,
+    integrator: IntegratorKind,
+) -> ModelConfig {
+    ModelConfig {
+        structure: Structure {
+            mass: m,
+            stiffness: k,
+            damping: c,
+        },
+        radial_load: 0.0,
+        clearance: 1e-3,
+        imbalance: None,
+        waviness: None,
+        roughness: None,
+        defect: None,
+        slip: None,
+        integrator,
+        output_rate: fs,
+        oversample: Some(oversample),
+        ..presets::by_name("thesis-61810").unwrap()
+    }
+}
+
+/// Runs `model` for `n` output samples from a fresh state with `seed`.
+pub fn run(model: &Model, seed: u64, n: usize) -> Vec<Sample> {
+    let mut st: State<32> = State::new(model, seed).unwrap();
+    let mut out = vec![Sample::default(); n];
+    model.fill(&mut st, &mut out);
+    out
+}
+
+/// Amplitude and phase (of `A sin(ωt + φ)`) of `x` at `f` (Hz) by least squares on sine and
+/// cosine over the samples at times `t`.
+pub fn sine_fit(x: &[f64], t: &[f64], f: f64) -> (f64, f64) {
+    let w = std::f64::consts::TAU * f;
+    let (mut ss, mut sc, mut cc, mut xs, mut xc) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (xi, ti) in x.iter().zip(t) {
+        let (s, c) = (w * ti).sin_cos();
+        ss += s * s;
+        sc += s * c;
+        cc += c * c;
+        xs += xi * s;
+        xc += xi * c;
+    }
+    let det = ss * cc - sc * sc;
+    let a = (xs * cc - xc * sc) / det; // coefficient of sin
+    let b = (xc * ss - xs * sc) / det; // coefficient of cos
+    ((a * a + b * b).sqrt(), b.atan2(a))
+}
+
+/// Constant-speed profile helper.
+pub fn constant(hz: f64) -> SpeedProfile {
+    SpeedProfile::Constant(hz)
+}
