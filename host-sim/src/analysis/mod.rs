@@ -1,1 +1,22 @@
-//! Signal analysis (filled in by the analysis work).
+//! Signal analysis for bearing vibration: time-domain statistics, spectra
+//! (Welch PSD, amplitude spectrum), envelope analysis, spectral peaks.
+//!
+//! All functions validate their inputs and return [`AnalysisError`] rather
+//! than panicking. Frequencies are in Hz, sampling rates in samples/s,
+//! amplitudes in the signal's own units.
+
+pub mod envelope;
+pub mod error;
+mod fft;
+pub mod peaks;
+pub mod spectrum;
+pub mod stats;
+pub mod synth;
+pub mod window;
+
+pub use envelope::{bandpass_analytic_envelope, envelope_spectrum};
+pub use error::AnalysisError;
+pub use peaks::{noise_floor, peak_near, peak_over_floor_db, top_peaks, Peak};
+pub use spectrum::{amplitude_spectrum, welch_psd, Spectrum, SpectrumKind, WelchParams};
+pub use stats::{stats, Stats};
+pub use window::Window;
