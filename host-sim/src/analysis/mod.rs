@@ -1,5 +1,6 @@
 //! Signal analysis for bearing vibration: time-domain statistics, spectra
-//! (Welch PSD, amplitude spectrum), envelope analysis, spectral peaks.
+//! (Welch PSD, amplitude spectrum), envelope analysis, spectral kurtosis and the fast kurtogram,
+//! spectral peaks.
 //!
 //! All functions validate their inputs and return [`AnalysisError`] rather
 //! than panicking. Frequencies are in Hz, sampling rates in samples/s,
@@ -8,6 +9,7 @@
 pub mod envelope;
 pub mod error;
 mod fft;
+pub mod kurtogram;
 pub mod peaks;
 pub mod spectrum;
 pub mod stats;
@@ -16,6 +18,7 @@ pub mod window;
 
 pub use envelope::{bandpass_analytic_envelope, envelope_spectrum};
 pub use error::AnalysisError;
+pub use kurtogram::{fast_kurtogram, spectral_kurtosis, Kurtogram};
 pub use peaks::{noise_floor, peak_near, peak_over_floor_db, top_peaks, Peak};
 pub use spectrum::{amplitude_spectrum, welch_psd, Spectrum, SpectrumKind, WelchParams};
 pub use stats::{stats, Stats};
