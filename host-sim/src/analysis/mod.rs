@@ -1,6 +1,7 @@
 //! Signal analysis for bearing vibration: time-domain statistics, spectra
 //! (Welch PSD, amplitude spectrum), envelope analysis, spectral kurtosis and the fast kurtogram,
-//! spectral peaks, bearing fault-family detection.
+//! spectral peaks, bearing fault-family detection,
+//! frequency-zone levels.
 //!
 //! All functions validate their inputs and return [`AnalysisError`] rather
 //! than panicking. Frequencies are in Hz, sampling rates in samples/s,
@@ -16,6 +17,7 @@ pub mod spectrum;
 pub mod stats;
 pub mod synth;
 pub mod window;
+pub mod zones;
 
 pub use envelope::{bandpass_analytic_envelope, envelope_spectrum};
 pub use error::AnalysisError;
@@ -27,3 +29,4 @@ pub use peaks::{noise_floor, peak_near, peak_over_floor_db, top_peaks, Peak};
 pub use spectrum::{amplitude_spectrum, welch_psd, Spectrum, SpectrumKind, WelchParams};
 pub use stats::{stats, Stats};
 pub use window::Window;
+pub use zones::{zone_levels, ZoneBands, ZoneLevels};
