@@ -1,0 +1,170 @@
+//! Band levels in the four frequency zones of bearing-wear monitoring
+//! (El-Thalji 2016, "Dynamic modelling and vibration analysis of rolling
+//! element bearing wear", thesis, Linnaeus University): rotating, fault,
+//! natural (resonance) and high frequency.
+
+use super::error::{bad, check_fs, AnalysisError};
+use super::faults::FaultFrequencies;
+use super::spectrum::Spectrum;
+use serde::Serialize;
+
+/// Frequency bands `(lo, hi)` in Hz of the four zones. Zones may overlap
+/// (e.g. the fault zone starts below 5× shaft): each level is an independent
+/// band RMS, not a partition of the total.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ZoneBands {
+    /// Rotating-frequency zone: `[0.5, 5] × shaft`, Hz.
+    pub rotating: (f64, f64),
+    /// Fault-frequency zone: from half the lowest to 5× the highest of
+    /// BPFO, BPFI and 2×BSF (the first five harmonics of every family), Hz.
+    pub fault: (f64, f64),
+    /// Natural-frequency zone: resonance ± 30 %, Hz.
+    pub natural: (f64, f64),
+    /// High-frequency zone: from 1.3 × resonance to fs/2, Hz.
+    pub high: (f64, f64),
+}
+
+/// RMS levels (signal units) in each zone, from a PSD.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ZoneLevels {
+    /// RMS in the rotating zone, signal units.
+    pub rotating: f64,
+    /// RMS in the fault-frequency zone, signal units.
+    pub fault: f64,
+    /// RMS in the natural-frequency zone, signal units.
+    pub natural: f64,
+    /// RMS in the high-frequency zone, signal units.
+    pub high: f64,
+    /// RMS over the whole spectrum (the standard deviation), signal units.
+    pub total: f64,
+}
+
+impl ZoneBands {
+    /// Zones for a bearing with characteristic frequencies `ff` (the shaft
+    /// frequency is `ff.shaft_hz`), a structural resonance at `resonance_hz`
+    /// and sampling frequency `fs`, all in Hz. Upper edges are clipped to
+    /// fs/2. Errors: a non-positive or non-finite frequency, or a zone that
+    /// is empty after clipping (e.g. resonance too close to fs/2).
+    pub fn new(ff: &FaultFrequencies, resonance_hz: f64, fs: f64) -> Result<Self, AnalysisError> {
+        check_fs(fs)?;
+        let positive = [
+            ("shaft_hz", ff.shaft_hz),
+            ("bpfo", ff.bpfo),
+            ("bpfi", ff.bpfi),
+            ("bsf", ff.bsf),
+            ("resonance_hz", resonance_hz),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(bad(name, "finite and > 0", v));
+            }
+        }
+        let nyquist = fs / 2.0;
+        let family = [ff.bpfo, ff.bpfi, 2.0 * ff.bsf];
+        let fmin = family.iter().copied().fold(f64::INFINITY, f64::min);
+        let fmax = family.iter().copied().fold(0.0, f64::max);
+        let clip = |lo: f64, hi: f64| -> Result<(f64, f64), AnalysisError> {
+            let hi = hi.min(nyquist);
+            if lo < hi {
+                Ok((lo, hi))
+            } else {
+                Err(AnalysisError::BadBand {
+                    lo,
+                    hi,
+                    nyquist,
+                    extra: " (zone empty below fs/2)".to_string(),
+                })
+            }
+        };
+        Ok(ZoneBands {
+            rotating: clip(0.5 * ff.shaft_hz, 5.0 * ff.shaft_hz)?,
+            fault: clip(0.5 * fmin, 5.0 * fmax)?,
+            natural: clip(0.7 * resonance_hz, 1.3 * resonance_hz)?,
+            high: clip(1.3 * resonance_hz, nyquist)?,
+        })
+    }
+}
+
+/// RMS in `band` (Hz, edges inclusive) from a one-sided PSD:
+/// `sqrt(Σ PSD_k · df)` over the bins whose centre lies in the band.
+pub fn band_rms(psd: &Spectrum, band: (f64, f64)) -> f64 {
+    let power: f64 = psd
+        .values
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| {
+            let f = psd.freq(*k);
+            f >= band.0 && f <= band.1
+        })
+        .map(|(_, v)| v * psd.df)
+        .sum();
+    power.max(0.0).sqrt()
+}
+
+/// Zone levels (RMS, signal units) of `psd`, a one-sided PSD such as
+/// [`super::welch_psd`] returns (other spectrum kinds give meaningless levels).
+pub fn zone_levels(psd: &Spectrum, z: &ZoneBands) -> ZoneLevels {
+    ZoneLevels {
+        rotating: band_rms(psd, z.rotating),
+        fault: band_rms(psd, z.fault),
+        natural: band_rms(psd, z.natural),
+        high: band_rms(psd, z.high),
+        total: band_rms(psd, (0.0, f64::INFINITY)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::spectrum::{welch_psd, WelchParams};
+    use crate::analysis::synth::sine;
+
+    fn ff() -> FaultFrequencies {
+        FaultFrequencies {
+            shaft_hz: 30.0,
+            ftf: 12.0,
+            bpfo: 107.0,
+            bpfi: 162.0,
+            bsf: 70.0,
+        }
+    }
+
+    #[test]
+    fn bands_follow_the_definitions() {
+        let z = ZoneBands::new(&ff(), 3000.0, 12_000.0).unwrap();
+        assert_eq!(z.rotating, (15.0, 150.0));
+        assert_eq!(z.fault, (53.5, 810.0));
+        assert!((z.natural.0 - 2100.0).abs() < 1e-9 && (z.natural.1 - 3900.0).abs() < 1e-9);
+        assert_eq!(z.high, (3900.0, 6000.0));
+        assert!(ZoneBands::new(&ff(), 5000.0, 12_000.0).is_err());
+        assert!(ZoneBands::new(&ff(), 0.0, 12_000.0).is_err());
+        assert!(ZoneBands::new(&ff(), 3000.0, -1.0).is_err());
+        let mut bad = ff();
+        bad.bpfi = f64::NAN;
+        assert!(ZoneBands::new(&bad, 3000.0, 12_000.0).is_err());
+    }
+
+    #[test]
+    fn levels_of_one_tone_per_zone() {
+        let fs = 12_000.0;
+        let n = 120_000;
+        // 20 Hz: rotating only; 400 Hz: fault only; 3 kHz: natural; 5 kHz: high.
+        let tones = [(20.0, 1.0), (400.0, 2.0), (3000.0, 0.5), (5000.0, 0.25)];
+        let mut x = vec![0.0; n];
+        for (f, a) in tones {
+            for (xi, s) in x.iter_mut().zip(sine(n, fs, f, a, 0.3)) {
+                *xi += s;
+            }
+        }
+        let psd = welch_psd(&x, fs, &WelchParams::default()).unwrap();
+        let l = zone_levels(&psd, &ZoneBands::new(&ff(), 3000.0, fs).unwrap());
+        let rms = |a: f64| a / 2f64.sqrt();
+        let close = |got: f64, want: f64| (got / want - 1.0).abs() < 0.01;
+        assert!(close(l.rotating, rms(1.0)), "{l:?}");
+        assert!(close(l.fault, rms(2.0)), "{l:?}");
+        assert!(close(l.natural, rms(0.5)), "{l:?}");
+        assert!(close(l.high, rms(0.25)), "{l:?}");
+        let total = tones.iter().map(|(_, a)| a * a / 2.0).sum::<f64>().sqrt();
+        assert!(close(l.total, total), "{l:?}");
+    }
+}
