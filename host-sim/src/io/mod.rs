@@ -6,6 +6,7 @@
 //! * [`data_dir`]: where the measured data (`/work/shared/data` layout) lives, for tests.
 
 pub mod error;
+pub mod mat;
 pub mod record;
 pub mod write;
 
