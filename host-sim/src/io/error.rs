@@ -152,7 +152,6 @@ impl IoError {
     }
 
     /// Shorthand for [`IoError::Truncated`].
-    #[allow(dead_code)] // used by the readers (next commits)
     pub(crate) fn truncated(path: impl Into<PathBuf>, detail: impl Into<String>) -> Self {
         IoError::Truncated {
             path: path.into(),
