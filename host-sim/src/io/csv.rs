@@ -1,0 +1,403 @@
+//! Generic CSV reader: one or more numeric columns, optional header row.
+//!
+//! Format (RFC 4180 as read by the `csv` crate): comma-separated, or tab-separated when the
+//! first line has tabs and no commas; lines starting with `#` are comments; cells are trimmed.
+//! The first row is a header if any of its cells is not a number. Every data cell of the chosen
+//! column must parse as a finite `f64` (`NaN`/`inf` cells are [`IoError::NonFinite`]).
+//!
+//! Column choice ([`ReadOptions::channel`]): a header name (exact, then case-insensitive) or a
+//! zero-based index. Default: the sidecar's first column, else the first column that is not a
+//! time column (`time_s`, `time`, `t`), else column 0.
+//!
+//! Sample rate: argument, else sidecar `fs` (see [`crate::io::sidecar`]), else derived from a time
+//! column in seconds (uniform spacing required); a sidecar and a time column that disagree by more
+//! than 1 ppm are a contradiction. The CSV written by [`crate::io::write_outputs`] reads back
+//! exactly.
+
+use std::path::Path;
+
+use serde_json::json;
+
+use super::error::IoError;
+use super::record::{check_finite, Record};
+use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::write::unit_from_column_name;
+use super::ReadOptions;
+
+/// Header names recognised as a time axis in seconds.
+pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time [s]", "time(s)"];
+
+fn is_time_name(s: &str) -> bool {
+    TIME_NAMES.iter().any(|t| s.eq_ignore_ascii_case(t))
+}
+
+/// Read one numeric column of a CSV file as a [`Record`] (see the module doc for the rules).
+pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
+    let path = path.as_ref();
+    let sidecar = sidecar_for(path)?;
+    let head = {
+        use std::io::Read;
+        let mut f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+        let mut buf = vec![0u8; 4096];
+        let mut n = 0;
+        while n < buf.len() {
+            match f.read(&mut buf[n..]) {
+                Ok(0) => break,
+                Ok(k) => n += k,
+                Err(e) => return Err(IoError::io(path, "read", e)),
+            }
+        }
+        buf.truncate(n);
+        buf
+    };
+    if head.is_empty() {
+        return Err(IoError::truncated(path, "empty file (no rows)"));
+    }
+    let first_line = head.split(|&b| b == b'\n').next().unwrap_or(&[]);
+    let delim = if first_line.contains(&b'\t') && !first_line.contains(&b',') {
+        b'\t'
+    } else {
+        b','
+    };
+    let mut rdr = ::csv::ReaderBuilder::new()
+        .has_headers(false)
+        .delimiter(delim)
+        .comment(Some(b'#'))
+        .trim(::csv::Trim::All)
+        .flexible(false)
+        .from_path(path)
+        .map_err(|e| csv_err(path, e))?;
+
+    let mut rec = ::csv::StringRecord::new();
+    let mut header: Option<Vec<String>> = None;
+    let mut ncols = 0usize;
+    let mut col = usize::MAX;
+    let mut time_col: Option<usize> = None;
+    let mut samples: Vec<f64> = Vec::new();
+    let mut times: Vec<f64> = Vec::new();
+    let mut first = true;
+    loop {
+        match rdr.read_record(&mut rec) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => return Err(csv_err(path, e)),
+        }
+        let line = rec.position().map(|p| p.line()).unwrap_or(0);
+        if first {
+            first = false;
+            ncols = rec.len();
+            let all_numeric = rec.iter().all(|c| c.parse::<f64>().is_ok());
+            let names: Vec<String> = if all_numeric {
+                (0..ncols).map(|i| format!("col{i}")).collect()
+            } else {
+                rec.iter().map(str::to_string).collect()
+            };
+            col = choose_column(path, &names, !all_numeric, opts, sidecar.as_ref())?;
+            time_col = if all_numeric {
+                None
+            } else {
+                names
+                    .iter()
+                    .position(|n| is_time_name(n))
+                    .filter(|&t| t != col)
+            };
+            header = Some(names);
+            if !all_numeric {
+                continue;
+            }
+        }
+        let names = header.as_deref().unwrap_or(&[]);
+        let cell = &rec[col];
+        let v: f64 = cell.parse().map_err(|_| {
+            IoError::malformed(
+                path,
+                format!(
+                    "line {line}, column {:?}: {cell:?} is not a number",
+                    names[col]
+                ),
+            )
+        })?;
+        samples.push(v);
+        if let Some(t) = time_col {
+            let cell = &rec[t];
+            let tv: f64 = cell.parse().map_err(|_| {
+                IoError::malformed(
+                    path,
+                    format!(
+                        "line {line}, column {:?}: {cell:?} is not a number",
+                        names[t]
+                    ),
+                )
+            })?;
+            times.push(tv);
+        }
+    }
+    let names = header.unwrap_or_default();
+    if samples.is_empty() {
+        return Err(IoError::truncated(path, "no data rows"));
+    }
+    let channel = names[col].clone();
+    check_finite(path, &channel, &samples)?;
+    check_n_samples(sidecar.as_ref(), path, samples.len())?;
+
+    let from_time = match time_col {
+        Some(t) => fs_from_time(path, &names[t], &times)?,
+        None => None,
+    };
+    let (fs, fs_source) = resolve_fs(
+        path,
+        opts.fs,
+        sidecar.as_ref(),
+        from_time.map(|f| (f, "time column")),
+        &|a, b| ((a - b) / a).abs() <= 1e-6,
+    )?;
+    let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let unit = sidecar
+        .as_ref()
+        .and_then(|s| s.unit_of(&channel))
+        .unwrap_or_else(|| unit_from_column_name(&channel))
+        .to_string();
+    Ok(Record {
+        samples,
+        fs,
+        rpm,
+        channel,
+        unit,
+        source: path.to_path_buf(),
+        bearing: sidecar.as_ref().and_then(|s| s.bearing.clone()),
+        meta: json!({
+            "format": "csv",
+            "columns": names,
+            "column_index": col,
+            "n_columns": ncols,
+            "fs_source": fs_source.name(),
+            "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
+        }),
+    })
+}
+
+fn csv_err(path: &Path, e: ::csv::Error) -> IoError {
+    let pos = e
+        .position()
+        .map(|p| format!("line {}: ", p.line()))
+        .unwrap_or_default();
+    match e.into_kind() {
+        ::csv::ErrorKind::Io(io) => IoError::io(path, "read", io),
+        ::csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => IoError::malformed(
+            path,
+            format!("{pos}row has {len} fields, the first row has {expected_len}"),
+        ),
+        ::csv::ErrorKind::Utf8 { err, .. } => {
+            IoError::malformed(path, format!("{pos}not UTF-8: {err}"))
+        }
+        other => IoError::malformed(path, format!("{pos}{other:?}")),
+    }
+}
+
+fn choose_column(
+    path: &Path,
+    names: &[String],
+    has_header: bool,
+    opts: &ReadOptions,
+    sidecar: Option<&super::sidecar::Sidecar>,
+) -> Result<usize, IoError> {
+    let unknown = |req: &str| IoError::UnknownChannel {
+        path: path.to_path_buf(),
+        requested: req.to_string(),
+        available: names.to_vec(),
+    };
+    if let Some(req) = opts.channel.as_deref() {
+        if let Some(i) = names.iter().position(|n| n == req) {
+            return Ok(i);
+        }
+        if let Some(i) = names.iter().position(|n| n.eq_ignore_ascii_case(req)) {
+            return Ok(i);
+        }
+        if let Ok(i) = req.parse::<usize>() {
+            if i < names.len() {
+                return Ok(i);
+            }
+        }
+        return Err(unknown(req));
+    }
+    if has_header {
+        if let Some(first) = sidecar.and_then(|s| s.columns.first()) {
+            if let Some(i) = names.iter().position(|n| n == first) {
+                return Ok(i);
+            }
+        }
+        if let Some(i) = names.iter().position(|n| !is_time_name(n)) {
+            return Ok(i);
+        }
+    }
+    if names.is_empty() {
+        return Err(unknown("0"));
+    }
+    Ok(0)
+}
+
+/// Sample rate from a time column in seconds; `None` for fewer than 2 rows. Non-uniform or
+/// non-increasing times are an error.
+fn fs_from_time(path: &Path, name: &str, t: &[f64]) -> Result<Option<f64>, IoError> {
+    if t.len() < 2 {
+        return Ok(None);
+    }
+    check_finite(path, name, t)?;
+    let n = t.len();
+    let span = t[n - 1] - t[0];
+    if span <= 0.0 {
+        return Err(IoError::malformed(
+            path,
+            format!("time column {name:?} does not increase"),
+        ));
+    }
+    let dt = span / (n - 1) as f64;
+    let tol = dt * 1e-3;
+    for (i, &ti) in t.iter().enumerate() {
+        if (ti - (t[0] + i as f64 * dt)).abs() > tol {
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s)",
+                    t[0] + i as f64 * dt
+                ),
+            ));
+        }
+    }
+    Ok(Some(1.0 / dt))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::write_outputs;
+
+    fn opts(channel: Option<&str>, fs: Option<f64>) -> ReadOptions {
+        ReadOptions {
+            channel: channel.map(str::to_string),
+            fs,
+            rpm: None,
+        }
+    }
+
+    #[test]
+    fn round_trip_exact() {
+        let dir = tempfile::tempdir().unwrap();
+        let a: Vec<f64> = (0..1000)
+            .map(|i| (i as f64 * 0.37).sin() * 1e-3 + 1e-310 * i as f64)
+            .collect();
+        let g: Vec<f64> = a.iter().map(|x| x / 9.80665).collect();
+        let set = write_outputs(
+            dir.path(),
+            "rt",
+            &[("accel_m_s2", &a), ("accel_g", &g)],
+            25600.0,
+            &json!({"rpm": 1500.0, "bearing": "cwru-6205-de"}),
+        )
+        .unwrap();
+        let r = read_csv(&set.csv, &ReadOptions::default()).unwrap();
+        assert_eq!(r.channel, "accel_m_s2");
+        assert_eq!(r.samples, a);
+        assert_eq!(r.fs, 25600.0);
+        assert_eq!(r.rpm, Some(1500.0));
+        assert_eq!(r.unit, "m/s^2");
+        assert_eq!(r.bearing.as_deref(), Some("cwru-6205-de"));
+        let r = read_csv(&set.csv, &opts(Some("accel_g"), None)).unwrap();
+        assert_eq!(r.samples, g);
+        assert_eq!(r.unit, "g");
+        let r = read_csv(&set.csv, &opts(Some("2"), None)).unwrap();
+        assert_eq!(r.samples, g);
+        match read_csv(&set.csv, &opts(Some("nope"), None)).unwrap_err() {
+            IoError::UnknownChannel { available, .. } => {
+                assert_eq!(available, vec!["time_s", "accel_m_s2", "accel_g"])
+            }
+            e => panic!("{e:?}"),
+        }
+        // Without the sidecar the rate comes from the time column.
+        std::fs::remove_file(&set.json).unwrap();
+        let r = read_csv(&set.csv, &ReadOptions::default()).unwrap();
+        assert!((r.fs - 25600.0).abs() < 1e-6, "{}", r.fs);
+        assert_eq!(r.rpm, None);
+    }
+
+    #[test]
+    fn headerless_and_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.csv");
+        std::fs::write(&p, "1,2\n3,4\n5,6\n").unwrap();
+        assert!(matches!(
+            read_csv(&p, &ReadOptions::default()),
+            Err(IoError::MissingSampleRate { .. })
+        ));
+        let r = read_csv(&p, &opts(Some("1"), Some(100.0))).unwrap();
+        assert_eq!(r.samples, vec![2.0, 4.0, 6.0]);
+        // NaN cell.
+        std::fs::write(&p, "a,b\n1,2\nNaN,4\n").unwrap();
+        match read_csv(&p, &opts(None, Some(1.0))).unwrap_err() {
+            IoError::NonFinite {
+                index,
+                channel,
+                path,
+                ..
+            } => {
+                assert_eq!((index, channel.as_str()), (1, "a"));
+                assert_eq!(path, p);
+            }
+            e => panic!("{e:?}"),
+        }
+        // Text cell, ragged row, empty file.
+        std::fs::write(&p, "a,b\n1,2\nx,4\n").unwrap();
+        assert!(matches!(
+            read_csv(&p, &opts(None, Some(1.0))),
+            Err(IoError::Malformed { .. })
+        ));
+        std::fs::write(&p, "a,b\n1,2\n3\n").unwrap();
+        assert!(matches!(
+            read_csv(&p, &opts(None, Some(1.0))),
+            Err(IoError::Malformed { .. })
+        ));
+        std::fs::write(&p, "").unwrap();
+        assert!(matches!(
+            read_csv(&p, &opts(None, Some(1.0))),
+            Err(IoError::Truncated { .. })
+        ));
+        std::fs::write(&p, "a,b\n").unwrap();
+        assert!(matches!(
+            read_csv(&p, &opts(None, Some(1.0))),
+            Err(IoError::Truncated { .. })
+        ));
+        // Absurd fs in the sidecar names the sidecar.
+        std::fs::write(&p, "a\n1\n2\n").unwrap();
+        let side = dir.path().join("x.json");
+        std::fs::write(&side, r#"{"fs": 1e12}"#).unwrap();
+        match read_csv(&p, &ReadOptions::default()).unwrap_err() {
+            IoError::AbsurdSampleRate { path, .. } => assert_eq!(path, side),
+            e => panic!("{e:?}"),
+        }
+        std::fs::write(&side, r#"{"fs": 100, "n_samples": 3}"#).unwrap();
+        assert!(matches!(
+            read_csv(&p, &ReadOptions::default()),
+            Err(IoError::Contradiction { .. })
+        ));
+        std::fs::write(&side, r#"{"fs": 100, "complete": false}"#).unwrap();
+        assert!(matches!(
+            read_csv(&p, &ReadOptions::default()),
+            Err(IoError::Contradiction { .. })
+        ));
+        std::fs::write(&side, r#"{"fs": "fast"}"#).unwrap();
+        assert!(matches!(
+            read_csv(&p, &ReadOptions::default()),
+            Err(IoError::Malformed { .. })
+        ));
+        std::fs::write(&side, r#"{"fs": 100, "n_samples": 2, "rpm": 1200}"#).unwrap();
+        let r = read_csv(&p, &ReadOptions::default()).unwrap();
+        assert_eq!((r.fs, r.rpm), (100.0, Some(1200.0)));
+        // Tab-separated.
+        std::fs::write(&p, "t\tv\n0\t1\n0.5\t2\n1.0\t3\n").unwrap();
+        std::fs::remove_file(&side).unwrap();
+        let r = read_csv(&p, &ReadOptions::default()).unwrap();
+        assert_eq!((r.fs, r.samples.len(), r.channel.as_str()), (2.0, 3, "v"));
+    }
+}

@@ -1,0 +1,78 @@
+//! [`Record`]: one channel of measured (or simulated) vibration, as every reader returns it.
+
+use std::path::PathBuf;
+
+use serde::Serialize;
+
+use super::error::IoError;
+
+/// One uniformly sampled channel read from a file.
+#[derive(Debug, Clone, Serialize)]
+pub struct Record {
+    /// The samples, in [`unit`](Record::unit), oldest first. Always finite and non-empty.
+    pub samples: Vec<f64>,
+    /// Sample rate in Hz (1 Hz ..= 10 MHz).
+    pub fs: f64,
+    /// Shaft speed in rpm, if the file, its sidecar or the caller gave one.
+    pub rpm: Option<f64>,
+    /// Channel name as the file calls it (`"DE"`, `"accel_m_s2"`, `"ch3"`, ...).
+    pub channel: String,
+    /// Physical unit of the samples: `"m/s^2"`, `"g"`, `"FS"` (fraction of full scale, for
+    /// integer audio without calibration), or `"unknown"`.
+    pub unit: String,
+    /// The file the samples came from.
+    pub source: PathBuf,
+    /// Name of the bearing preset the channel belongs to, if known (e.g. `"cwru-6205-de"`).
+    pub bearing: Option<String>,
+    /// Everything else known about the record (fault label, sidecar contents, format details).
+    pub meta: serde_json::Value,
+}
+
+impl Record {
+    /// Duration in seconds (`samples.len() / fs`).
+    pub fn duration_s(&self) -> f64 {
+        self.samples.len() as f64 / self.fs
+    }
+}
+
+/// Lowest accepted sample rate, Hz.
+pub const MIN_FS: f64 = 1.0;
+/// Highest accepted sample rate, Hz (10 MHz).
+pub const MAX_FS: f64 = 10.0e6;
+
+/// Check that `fs` (Hz) lies in [`MIN_FS`] ..= [`MAX_FS`]; `path` names the file that declared it.
+pub fn check_fs(path: &std::path::Path, fs: f64) -> Result<f64, IoError> {
+    if fs.is_finite() && (MIN_FS..=MAX_FS).contains(&fs) {
+        Ok(fs)
+    } else {
+        Err(IoError::AbsurdSampleRate {
+            path: path.to_path_buf(),
+            fs,
+        })
+    }
+}
+
+/// Check that every sample is finite; the error names `path`, `channel` and the first bad index.
+pub fn check_finite(path: &std::path::Path, channel: &str, samples: &[f64]) -> Result<(), IoError> {
+    match samples.iter().position(|x| !x.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(IoError::NonFinite {
+            path: path.to_path_buf(),
+            channel: channel.to_string(),
+            index,
+            value: samples[index],
+        }),
+    }
+}
+
+/// Check a shaft speed in rpm: finite and in (0, 1e6).
+pub fn check_rpm(path: &std::path::Path, rpm: f64) -> Result<f64, IoError> {
+    if rpm.is_finite() && rpm > 0.0 && rpm < 1.0e6 {
+        Ok(rpm)
+    } else {
+        Err(IoError::malformed(
+            path,
+            format!("implausible shaft speed {rpm} rpm (allowed 0 < rpm < 1e6)"),
+        ))
+    }
+}

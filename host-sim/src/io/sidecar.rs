@@ -1,0 +1,312 @@
+//! JSON sidecar files: sample rate, speed and units for formats that do not store them.
+//!
+//! A sidecar for `data/run.wav` is `data/run.wav.json` or, if that does not exist,
+//! `data/run.json` (the name [`crate::io::write::write_outputs`] uses, shared by the `.csv` and
+//! `.wav` of one output set). The schema is the one the writer produces (see
+//! [`crate::io::write::SIDECAR_FORMAT`]); every key is optional for reading:
+//! `fs` (Hz), `rpm`, `n_samples`, `columns`, `units` (column → unit), `bearing`,
+//! `wav.{column, unit, scale}` (`scale`: physical units per full scale of an integer WAV, or a
+//! factor applied to a float WAV), and `complete` (a sidecar saying `false` is an error).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use super::error::IoError;
+use super::record::{check_fs, check_rpm};
+
+/// Largest sidecar accepted, bytes (a sidecar is metadata, not data).
+pub const MAX_SIDECAR_BYTES: u64 = 16 << 20;
+
+/// Parsed sidecar.
+#[derive(Debug, Clone, Default)]
+pub struct Sidecar {
+    /// The sidecar file.
+    pub path: PathBuf,
+    /// Sample rate, Hz (validated: 1 Hz ..= 10 MHz).
+    pub fs: Option<f64>,
+    /// Shaft speed, rpm.
+    pub rpm: Option<f64>,
+    /// Number of samples per channel the data file must hold.
+    pub n_samples: Option<u64>,
+    /// Data column names (CSV order, without the time column; NPY columns).
+    pub columns: Vec<String>,
+    /// Column name → unit.
+    pub units: BTreeMap<String, String>,
+    /// Column written to the WAV.
+    pub wav_column: Option<String>,
+    /// Unit of the WAV samples.
+    pub wav_unit: Option<String>,
+    /// Factor applied to WAV samples after integer normalisation to ±1 (default 1).
+    pub wav_scale: Option<f64>,
+    /// Bearing preset name.
+    pub bearing: Option<String>,
+    /// The whole JSON object.
+    pub raw: Value,
+}
+
+impl Sidecar {
+    /// Unit of `column`: `units[column]`, if given.
+    pub fn unit_of(&self, column: &str) -> Option<&str> {
+        self.units.get(column).map(String::as_str)
+    }
+}
+
+/// Candidate sidecar paths for a data file: `<file>.json`, then `<stem>.json`.
+pub fn sidecar_candidates(data: &Path) -> Vec<PathBuf> {
+    let mut v = Vec::new();
+    let mut full = data.as_os_str().to_owned();
+    full.push(".json");
+    v.push(PathBuf::from(full));
+    if data.extension().is_some() {
+        let stem = data.with_extension("json");
+        if stem != data {
+            v.push(stem);
+        }
+    }
+    v
+}
+
+/// Find and read the sidecar of `data`, if one exists.
+pub fn sidecar_for(data: &Path) -> Result<Option<Sidecar>, IoError> {
+    for c in sidecar_candidates(data) {
+        if c.is_file() {
+            return read_sidecar(&c).map(Some);
+        }
+    }
+    Ok(None)
+}
+
+/// Read and validate one sidecar file.
+pub fn read_sidecar(path: &Path) -> Result<Sidecar, IoError> {
+    let len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    if len > MAX_SIDECAR_BYTES {
+        return Err(IoError::unsupported(
+            path,
+            format!("sidecar of {len} bytes exceeds {MAX_SIDECAR_BYTES}"),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let raw: Value = serde_json::from_slice(&bytes)
+        .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))?;
+    parse_sidecar(path, raw)
+}
+
+fn num(path: &Path, v: &Value, key: &str) -> Result<Option<f64>, IoError> {
+    match v.get(key) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::Number(n)) => Ok(n.as_f64()),
+        Some(other) => Err(IoError::malformed(
+            path,
+            format!("sidecar key {key:?} must be a number, found {other}"),
+        )),
+    }
+}
+
+fn string(path: &Path, v: &Value, key: &str) -> Result<Option<String>, IoError> {
+    match v.get(key) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::String(s)) => Ok(Some(s.clone())),
+        Some(other) => Err(IoError::malformed(
+            path,
+            format!("sidecar key {key:?} must be a string, found {other}"),
+        )),
+    }
+}
+
+/// Validate a sidecar JSON value read from `path`.
+pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
+    if !raw.is_object() {
+        return Err(IoError::malformed(path, "sidecar must be a JSON object"));
+    }
+    if raw.get("complete") == Some(&Value::Bool(false)) {
+        return Err(IoError::contradiction(
+            path,
+            "sidecar says \"complete\": false (the output set was not finished)",
+        ));
+    }
+    let fs = match num(path, &raw, "fs")? {
+        Some(f) => Some(check_fs(path, f)?),
+        None => None,
+    };
+    let rpm = match num(path, &raw, "rpm")? {
+        Some(r) => Some(check_rpm(path, r)?),
+        None => None,
+    };
+    let n_samples = match raw.get("n_samples") {
+        None | Some(Value::Null) => None,
+        Some(v) => Some(v.as_u64().ok_or_else(|| {
+            IoError::malformed(
+                path,
+                format!("sidecar \"n_samples\" must be a non-negative integer, found {v}"),
+            )
+        })?),
+    };
+    let columns = match raw.get("columns") {
+        None | Some(Value::Null) => Vec::new(),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|c| {
+                c.as_str().map(str::to_string).ok_or_else(|| {
+                    IoError::malformed(
+                        path,
+                        format!("sidecar \"columns\" entry {c} is not a string"),
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()?,
+        Some(other) => {
+            return Err(IoError::malformed(
+                path,
+                format!("sidecar \"columns\" must be an array, found {other}"),
+            ))
+        }
+    };
+    let mut units = BTreeMap::new();
+    match raw.get("units") {
+        None | Some(Value::Null) => {}
+        Some(Value::Object(m)) => {
+            for (k, v) in m {
+                if let Some(s) = v.as_str() {
+                    units.insert(k.clone(), s.to_string());
+                }
+            }
+        }
+        Some(Value::String(s)) => {
+            // A single unit for every column.
+            for c in &columns {
+                units.insert(c.clone(), s.clone());
+            }
+        }
+        Some(other) => {
+            return Err(IoError::malformed(
+                path,
+                format!("sidecar \"units\" must be an object, found {other}"),
+            ))
+        }
+    }
+    let (wav_column, wav_unit, wav_scale) = match raw.get("wav") {
+        Some(w @ Value::Object(_)) => {
+            let scale = num(path, w, "scale")?;
+            if let Some(s) = scale {
+                if !s.is_finite() || s == 0.0 {
+                    return Err(IoError::malformed(
+                        path,
+                        format!("sidecar \"wav.scale\" must be finite and non-zero, found {s}"),
+                    ));
+                }
+            }
+            (string(path, w, "column")?, string(path, w, "unit")?, scale)
+        }
+        _ => (None, None, None),
+    };
+    Ok(Sidecar {
+        path: path.to_path_buf(),
+        fs,
+        rpm,
+        n_samples,
+        columns,
+        units,
+        wav_column,
+        wav_unit,
+        wav_scale,
+        bearing: string(path, &raw, "bearing")?,
+        raw,
+    })
+}
+
+/// Where the sample rate of a record came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FsSource {
+    Argument,
+    Sidecar,
+    Intrinsic,
+}
+
+impl FsSource {
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            FsSource::Argument => "argument",
+            FsSource::Sidecar => "sidecar",
+            FsSource::Intrinsic => "file",
+        }
+    }
+}
+
+/// Decide the sample rate of `data`: an explicit argument wins; otherwise the sidecar and the
+/// file's own value (`intrinsic`, e.g. a WAV header rate, with its name for messages) must agree
+/// (`agree(sidecar_fs, intrinsic_fs)`), and the sidecar's exact value is used.
+pub(crate) fn resolve_fs(
+    data: &Path,
+    arg: Option<f64>,
+    sidecar: Option<&Sidecar>,
+    intrinsic: Option<(f64, &str)>,
+    agree: &dyn Fn(f64, f64) -> bool,
+) -> Result<(f64, FsSource), IoError> {
+    if let Some(f) = arg {
+        return Ok((check_fs(data, f)?, FsSource::Argument));
+    }
+    let side = sidecar.and_then(|s| s.fs.map(|f| (f, &s.path)));
+    match (side, intrinsic) {
+        (Some((sf, sp)), Some((inf, what))) => {
+            if agree(sf, inf) {
+                Ok((sf, FsSource::Sidecar))
+            } else {
+                Err(IoError::contradiction(
+                    sp,
+                    format!(
+                        "sidecar fs {sf} Hz contradicts {what} {inf} Hz of {}",
+                        data.display()
+                    ),
+                ))
+            }
+        }
+        (Some((sf, _)), None) => Ok((sf, FsSource::Sidecar)),
+        (None, Some((inf, _))) => Ok((check_fs(data, inf)?, FsSource::Intrinsic)),
+        (None, None) => Err(IoError::MissingSampleRate {
+            path: data.to_path_buf(),
+            detail: format!(
+                "no sidecar ({}) with \"fs\" and no explicit rate given",
+                sidecar_candidates(data)
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" or ")
+            ),
+        }),
+    }
+}
+
+/// Check a sidecar's `n_samples` against the samples per channel actually found.
+pub(crate) fn check_n_samples(
+    sidecar: Option<&Sidecar>,
+    data: &Path,
+    found: usize,
+) -> Result<(), IoError> {
+    if let Some(s) = sidecar {
+        if let Some(n) = s.n_samples {
+            if n != found as u64 {
+                return Err(IoError::contradiction(
+                    &s.path,
+                    format!("sidecar n_samples {n} but {} holds {found}", data.display()),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Shaft speed: explicit argument, else sidecar.
+pub(crate) fn resolve_rpm(
+    data: &Path,
+    arg: Option<f64>,
+    sidecar: Option<&Sidecar>,
+) -> Result<Option<f64>, IoError> {
+    match arg {
+        Some(r) => Ok(Some(check_rpm(data, r)?)),
+        None => Ok(sidecar.and_then(|s| s.rpm)),
+    }
+}

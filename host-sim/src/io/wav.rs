@@ -1,0 +1,363 @@
+//! WAV reader (RIFF/WAVE PCM integer 8/16/24/32-bit and IEEE float 32-bit, via `hound`).
+//!
+//! * Integer samples are scaled to ±1 full scale (divided by 2^(bits-1)), unit `"FS"`, unless a
+//!   sidecar gives `wav.scale` (multiplied after normalisation) and a unit (`wav.unit` or
+//!   `units[wav.column]`).
+//! * Float samples are taken as they are (times `wav.scale` if given); unit from the sidecar, else
+//!   `"unknown"`. The float WAV written by [`crate::io::write_outputs`] holds physical units.
+//! * Sample rate: the header rate, cross-checked against a sidecar `fs` when both exist (they must
+//!   agree after rounding the sidecar rate to an integer, since WAV stores integer Hz; the exact
+//!   sidecar value is then used). An explicit rate argument overrides both.
+//! * Channel: [`ReadOptions::channel`] as a zero-based index (or the sidecar's `wav.column` name);
+//!   default 0.
+//!
+//! Robustness: the data size the header claims is checked against the file size before any
+//! buffer is sized, and `hound` is called under `catch_unwind`, so a decoder panic on a hostile
+//! file becomes an [`IoError::Malformed`] instead of unwinding into the caller.
+
+use std::io::BufReader;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+
+use serde_json::json;
+
+use super::error::IoError;
+use super::record::{check_finite, Record};
+use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::ReadOptions;
+
+/// Read one channel of a WAV file as a [`Record`] (see the module doc for the rules).
+pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
+    let path = path.as_ref();
+    let sidecar = sidecar_for(path)?;
+    let file_len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    if file_len == 0 {
+        return Err(IoError::truncated(
+            path,
+            "empty file (a WAV header is at least 44 bytes)",
+        ));
+    }
+    let decoded = catch_unwind(AssertUnwindSafe(|| decode(path, file_len))).map_err(|_| {
+        IoError::malformed(
+            path,
+            "WAV decoder panicked on this file (corrupt header or data)",
+        )
+    })??;
+    let Decoded { spec, interleaved } = decoded;
+    let nch = spec.channels as usize;
+
+    let available: Vec<String> = (0..nch).map(|i| i.to_string()).collect();
+    let index = match opts.channel.as_deref() {
+        None => 0,
+        Some(req) => {
+            let by_name = sidecar
+                .as_ref()
+                .and_then(|s| s.wav_column.as_deref())
+                .filter(|c| *c == req)
+                .map(|_| 0);
+            match by_name.or_else(|| req.parse::<usize>().ok().filter(|&i| i < nch)) {
+                Some(i) => i,
+                None => {
+                    return Err(IoError::UnknownChannel {
+                        path: path.to_path_buf(),
+                        requested: req.to_string(),
+                        available,
+                    })
+                }
+            }
+        }
+    };
+    let int = spec.sample_format == hound::SampleFormat::Int;
+    let full_scale = if int {
+        2f64.powi(i32::from(spec.bits_per_sample) - 1)
+    } else {
+        1.0
+    };
+    let scale = sidecar.as_ref().and_then(|s| s.wav_scale).unwrap_or(1.0);
+    let samples: Vec<f64> = interleaved
+        .iter()
+        .skip(index)
+        .step_by(nch)
+        .map(|&x| x / full_scale * scale)
+        .collect();
+    if samples.is_empty() {
+        return Err(IoError::truncated(path, "no samples in the data chunk"));
+    }
+    let channel = if nch == 1 {
+        sidecar
+            .as_ref()
+            .and_then(|s| s.wav_column.clone())
+            .unwrap_or_else(|| "0".to_string())
+    } else {
+        index.to_string()
+    };
+    check_finite(path, &channel, &samples)?;
+    check_n_samples(sidecar.as_ref(), path, samples.len())?;
+
+    let header_fs = f64::from(spec.sample_rate);
+    let (fs, fs_source) = resolve_fs(
+        path,
+        opts.fs,
+        sidecar.as_ref(),
+        Some((header_fs, "WAV header rate")),
+        &|side, head| side.round() == head,
+    )?;
+    let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let unit = sidecar
+        .as_ref()
+        .and_then(|s| {
+            s.wav_unit.clone().or_else(|| {
+                s.wav_column
+                    .as_deref()
+                    .and_then(|c| s.unit_of(c))
+                    .map(str::to_string)
+            })
+        })
+        .unwrap_or_else(|| if int && scale == 1.0 { "FS" } else { "unknown" }.to_string());
+    Ok(Record {
+        samples,
+        fs,
+        rpm,
+        channel,
+        unit,
+        source: path.to_path_buf(),
+        bearing: sidecar.as_ref().and_then(|s| s.bearing.clone()),
+        meta: json!({
+            "format": "wav",
+            "channels": nch,
+            "channel_index": index,
+            "bits_per_sample": spec.bits_per_sample,
+            "sample_format": if int { "int" } else { "float" },
+            "header_sample_rate_hz": spec.sample_rate,
+            "fs_source": fs_source.name(),
+            "scale": scale,
+            "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
+        }),
+    })
+}
+
+struct Decoded {
+    spec: hound::WavSpec,
+    interleaved: Vec<f64>,
+}
+
+fn hound_err(path: &Path, e: hound::Error) -> IoError {
+    match e {
+        hound::Error::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
+            IoError::truncated(path, format!("WAV ends early: {io}"))
+        }
+        hound::Error::IoError(io) => IoError::io(path, "read", io),
+        hound::Error::FormatError(m) if m.contains("no RIFF tag") || m.contains("no WAVE tag") => {
+            IoError::BadMagic {
+                path: path.to_path_buf(),
+                expected: "RIFF....WAVE".into(),
+                found: m.to_string(),
+            }
+        }
+        hound::Error::FormatError(m) => IoError::malformed(path, format!("WAV: {m}")),
+        hound::Error::Unsupported => {
+            IoError::unsupported(path, "WAV variant not supported by the decoder")
+        }
+        hound::Error::TooWide => IoError::unsupported(path, "WAV sample wider than 32 bits"),
+        other => IoError::malformed(path, format!("WAV: {other}")),
+    }
+}
+
+fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
+    let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let mut r = hound::WavReader::new(BufReader::new(f)).map_err(|e| hound_err(path, e))?;
+    let spec = r.spec();
+    if spec.channels == 0 {
+        return Err(IoError::malformed(path, "WAV header declares 0 channels"));
+    }
+    let bytes_per = u64::from(spec.bits_per_sample).div_ceil(8).max(1);
+    let claimed = u64::from(r.len());
+    if claimed.saturating_mul(bytes_per) > file_len {
+        return Err(IoError::truncated(
+            path,
+            format!(
+                "data chunk claims {claimed} samples of {bytes_per} bytes, file has {file_len} bytes"
+            ),
+        ));
+    }
+    let cap = usize::try_from(claimed).unwrap_or(0);
+    let mut out = Vec::with_capacity(cap);
+    match (spec.sample_format, spec.bits_per_sample) {
+        (hound::SampleFormat::Float, 32) => {
+            for s in r.samples::<f32>() {
+                out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
+            }
+        }
+        (hound::SampleFormat::Int, 1..=32) => {
+            for s in r.samples::<i32>() {
+                out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
+            }
+        }
+        (fmt, bits) => {
+            return Err(IoError::unsupported(
+                path,
+                format!(
+                    "{bits}-bit {fmt:?} WAV samples (supported: 8/16/24/32-bit int, 32-bit float)"
+                ),
+            ))
+        }
+    }
+    Ok(Decoded {
+        spec,
+        interleaved: out,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::write_outputs;
+
+    fn write_int_wav(path: &Path, bits: u16, rate: u32, channels: u16, data: &[i32]) {
+        let spec = hound::WavSpec {
+            channels,
+            sample_rate: rate,
+            bits_per_sample: bits,
+            sample_format: hound::SampleFormat::Int,
+        };
+        let mut w = hound::WavWriter::create(path, spec).unwrap();
+        for &x in data {
+            match bits {
+                8 => w.write_sample(x as i8).unwrap(),
+                16 => w.write_sample(x as i16).unwrap(),
+                _ => w.write_sample(x).unwrap(),
+            }
+        }
+        w.finalize().unwrap();
+    }
+
+    #[test]
+    fn float_round_trip_within_f32() {
+        let dir = tempfile::tempdir().unwrap();
+        let a: Vec<f64> = (0..4800).map(|i| (i as f64 * 0.01).sin() * 37.5).collect();
+        let set = write_outputs(
+            dir.path(),
+            "w",
+            &[("accel_m_s2", &a)],
+            48000.0,
+            &json!({"rpm": 1772}),
+        )
+        .unwrap();
+        let r = read_wav(&set.wav, &ReadOptions::default()).unwrap();
+        assert_eq!(r.samples.len(), a.len());
+        for (x, y) in r.samples.iter().zip(&a) {
+            assert_eq!(*x, *y as f32 as f64);
+            assert!((x - y).abs() <= y.abs() * f32::EPSILON as f64);
+        }
+        assert_eq!(
+            (r.fs, r.rpm, r.unit.as_str()),
+            (48000.0, Some(1772.0), "m/s^2")
+        );
+        assert_eq!(r.channel, "accel_m_s2");
+        // Non-integer fs survives via the sidecar.
+        let set = write_outputs(dir.path(), "frac", &[("x_g", &a)], 20480.5, &json!({})).unwrap();
+        let r = read_wav(&set.wav, &ReadOptions::default()).unwrap();
+        assert_eq!(r.fs, 20480.5);
+        // A sidecar that contradicts the header.
+        let side = dir.path().join("frac.wav.json");
+        std::fs::write(&side, r#"{"fs": 44100}"#).unwrap();
+        match read_wav(&set.wav, &ReadOptions::default()).unwrap_err() {
+            IoError::Contradiction { path, .. } => assert_eq!(path, side),
+            e => panic!("{e:?}"),
+        }
+        // An explicit rate wins.
+        assert_eq!(
+            read_wav(
+                &set.wav,
+                &ReadOptions {
+                    fs: Some(1000.0),
+                    ..Default::default()
+                }
+            )
+            .unwrap()
+            .fs,
+            1000.0
+        );
+    }
+
+    #[test]
+    fn integer_scaling_and_channels() {
+        let dir = tempfile::tempdir().unwrap();
+        for bits in [8u16, 16, 24, 32] {
+            let p = dir.path().join(format!("i{bits}.wav"));
+            let fsc = 1i64 << (bits - 1);
+            let data = [(fsc / 2) as i32, (-fsc) as i32, 0, 1, (fsc - 1) as i32, 5];
+            write_int_wav(&p, bits, 8000, 2, &data);
+            let r = read_wav(&p, &ReadOptions::default()).unwrap();
+            assert_eq!(
+                r.samples,
+                vec![0.5, 0.0, (fsc - 1) as f64 / fsc as f64],
+                "{bits}"
+            );
+            assert_eq!(r.unit, "FS");
+            assert_eq!(r.fs, 8000.0);
+            let r = read_wav(
+                &p,
+                &ReadOptions {
+                    channel: Some("1".into()),
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            assert_eq!(r.samples[0], -1.0);
+            assert!(matches!(
+                read_wav(
+                    &p,
+                    &ReadOptions {
+                        channel: Some("2".into()),
+                        ..Default::default()
+                    }
+                ),
+                Err(IoError::UnknownChannel { .. })
+            ));
+        }
+        // Sidecar calibration.
+        let p = dir.path().join("cal.wav");
+        write_int_wav(&p, 16, 12000, 1, &[16384, -8192]);
+        std::fs::write(
+            dir.path().join("cal.json"),
+            r#"{"wav": {"scale": 10.0, "unit": "g"}, "rpm": 1797}"#,
+        )
+        .unwrap();
+        let r = read_wav(&p, &ReadOptions::default()).unwrap();
+        assert_eq!(r.samples, vec![5.0, -2.5]);
+        assert_eq!((r.unit.as_str(), r.rpm), ("g", Some(1797.0)));
+    }
+
+    #[test]
+    fn corrupt_wavs_are_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("c.wav");
+        write_int_wav(&p, 16, 8000, 1, &[1, 2, 3, 4, 5, 6, 7, 8]);
+        let good = std::fs::read(&p).unwrap();
+        for len in [0, 3, 12, 20, 43, good.len() - 1] {
+            std::fs::write(&p, &good[..len]).unwrap();
+            let e = read_wav(&p, &ReadOptions::default()).unwrap_err();
+            assert!(e.to_string().contains("c.wav"), "{e}");
+        }
+        // Data chunk claiming 4 GiB.
+        let mut huge = good.clone();
+        let n = huge.len();
+        huge[40..44].copy_from_slice(&(u32::MAX - 1).to_le_bytes());
+        std::fs::write(&p, &huge[..n]).unwrap();
+        assert!(read_wav(&p, &ReadOptions::default()).is_err());
+        // Not a WAV at all.
+        std::fs::write(&p, b"this is not a wav file at all, no sir").unwrap();
+        assert!(matches!(
+            read_wav(&p, &ReadOptions::default()),
+            Err(IoError::BadMagic { .. })
+        ));
+        // Rate 0 in the header.
+        let mut zero = good.clone();
+        zero[24..28].copy_from_slice(&0u32.to_le_bytes());
+        std::fs::write(&p, &zero).unwrap();
+        assert!(read_wav(&p, &ReadOptions::default()).is_err());
+    }
+}
