@@ -1,0 +1,484 @@
+//! The TOML scenario file: every key, its unit and its allowed range are listed in the
+//! README ("Configuration reference"). A file may start from a preset (`preset = "…"`) and
+//! override any key; without a preset, `[bearing]`, `[structure]` and `[speed]` are
+//! required in full. Unknown keys are errors. Range checks are the core's
+//! (`wearsim_core::ConfigError`), reported with the same dotted key names as here.
+
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use wearsim_core::bearing::{BearingGeometry, ContactKind};
+use wearsim_core::forces::defect::{DefectConfig, DefectLocation, DefectModel};
+use wearsim_core::forces::imbalance::Imbalance;
+use wearsim_core::forces::slip::Slip;
+use wearsim_core::forces::surface::{Roughness, Waviness};
+use wearsim_core::integrate::IntegratorKind;
+use wearsim_core::speed::{SpeedPoint, SpeedProfile, MAX_SPEED_POINTS};
+use wearsim_core::topography::{self, Topography};
+use wearsim_core::{presets, Channels, ModelConfig, Structure};
+
+/// A configuration problem, always naming the key.
+#[derive(Debug, thiserror::Error)]
+pub enum ConfigFileError {
+    /// The file could not be read.
+    #[error("cannot read configuration {path}: {source}")]
+    Read {
+        /// File.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// TOML syntax, unknown key or wrong type (the message names the key and line).
+    #[error("configuration {path}: {message}")]
+    Parse {
+        /// File.
+        path: String,
+        /// toml's message.
+        message: String,
+    },
+    /// A required key is absent.
+    #[error("missing key `{0}` (required when no preset is given)")]
+    Missing(&'static str),
+    /// A key with a value outside its vocabulary.
+    #[error("`{key}` = \"{value}\" is not allowed; use one of: {allowed}")]
+    Choice {
+        /// Key.
+        key: &'static str,
+        /// Value given.
+        value: String,
+        /// Allowed values.
+        allowed: String,
+    },
+    /// The core rejected a value.
+    #[error("{0}")]
+    Core(wearsim_core::ConfigError),
+}
+
+impl From<wearsim_core::ConfigError> for ConfigFileError {
+    fn from(e: wearsim_core::ConfigError) -> Self {
+        ConfigFileError::Core(e)
+    }
+}
+
+/// The whole file. Every field is optional at this level; see the module docs.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioFile {
+    /// Preset to start from (`wearsim presets`).
+    pub preset: Option<String>,
+    /// Random seed.
+    pub seed: Option<u64>,
+    /// Recorded duration (s).
+    pub duration: Option<f64>,
+    /// Output sample rate (Hz).
+    pub fs: Option<f64>,
+    /// Time simulated and discarded before recording (s).
+    pub settle: Option<f64>,
+    /// `rk4`, `exact-zoh` or `exact-foh`.
+    pub integrator: Option<String>,
+    /// Internal steps per output sample (2..=8); absent = automatic.
+    pub oversample: Option<u32>,
+    /// `acceleration` or `all`.
+    pub channels: Option<String>,
+    /// Static radial load (N).
+    pub radial_load: Option<f64>,
+    /// Radial clearance (m).
+    pub clearance: Option<f64>,
+    /// Bearing geometry.
+    pub bearing: Option<BearingSection>,
+    /// M, K, C.
+    pub structure: Option<StructureSection>,
+    /// Shaft speed.
+    pub speed: Option<SpeedSection>,
+    /// Imbalance.
+    pub imbalance: Option<ImbalanceSection>,
+    /// Outer-race waviness.
+    pub waviness: Option<WavinessSection>,
+    /// Roughness.
+    pub roughness: Option<RoughnessSection>,
+    /// Localized defect.
+    pub defect: Option<DefectSection>,
+    /// Random slip.
+    pub slip: Option<SlipSection>,
+}
+
+/// `[bearing]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BearingSection {
+    pub elements: Option<u8>,
+    pub element_diameter: Option<f64>,
+    pub pitch_diameter: Option<f64>,
+    pub contact_angle_deg: Option<f64>,
+    pub bore: Option<f64>,
+    pub outside_diameter: Option<f64>,
+    pub contact: Option<String>,
+    pub outer_conformity: Option<f64>,
+    pub inner_conformity: Option<f64>,
+    pub roller_length: Option<f64>,
+    pub youngs_modulus: Option<f64>,
+    pub poisson: Option<f64>,
+    pub density: Option<f64>,
+}
+
+/// `[structure]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct StructureSection {
+    pub mass: Option<f64>,
+    pub stiffness: Option<f64>,
+    pub damping: Option<f64>,
+}
+
+/// `[speed]`: exactly one of `shaft_hz`, `rpm`, (`from_hz`, `to_hz`, `ramp_duration`) or
+/// `table = [[t_s, hz], …]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeedSection {
+    pub shaft_hz: Option<f64>,
+    pub rpm: Option<f64>,
+    pub from_hz: Option<f64>,
+    pub to_hz: Option<f64>,
+    pub ramp_duration: Option<f64>,
+    pub table: Option<Vec<[f64; 2]>>,
+}
+
+/// `[imbalance]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImbalanceSection {
+    pub enabled: Option<bool>,
+    pub mass: Option<f64>,
+    pub radius: Option<f64>,
+}
+
+/// `[waviness]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct WavinessSection {
+    pub enabled: Option<bool>,
+    pub amplitude: Option<f64>,
+    pub wavelength: Option<f64>,
+}
+
+/// `[roughness]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughnessSection {
+    pub enabled: Option<bool>,
+    pub rms: Option<f64>,
+    pub wavelength: Option<f64>,
+    pub debris_gain: Option<f64>,
+}
+
+/// `[defect]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DefectSection {
+    pub enabled: Option<bool>,
+    pub location: Option<String>,
+    pub angle_deg: Option<f64>,
+    pub model: Option<String>,
+    pub topography: Option<String>,
+    pub asperity_height: Option<f64>,
+    pub length: Option<f64>,
+    pub width: Option<f64>,
+    pub depth: Option<f64>,
+    pub count: Option<u8>,
+    pub debris: Option<f64>,
+    pub sassi_k_impact: Option<f64>,
+}
+
+/// `[slip]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlipSection {
+    pub enabled: Option<bool>,
+    pub fraction: Option<f64>,
+}
+
+/// Run parameters that are not part of the physical model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSettings {
+    /// Preset the scenario started from, if any.
+    pub preset: Option<String>,
+    /// Seed.
+    pub seed: u64,
+    /// Recorded duration (s).
+    pub duration: f64,
+    /// Discarded settling time (s).
+    pub settle: f64,
+}
+
+/// Default recorded duration (s).
+pub const DEFAULT_DURATION: f64 = 1.0;
+/// Default settling time (s): the start transient of the reference decays by e⁻⁶ in it.
+pub const DEFAULT_SETTLE: f64 = 0.05;
+/// Longest duration `simulate` keeps in memory (s); longer runs stream (`life --dense`).
+pub const MAX_DURATION: f64 = 600.0;
+/// Default preset.
+pub const DEFAULT_PRESET: &str = "thesis-61810";
+
+/// Names accepted for `[defect] topography` and `--topography`.
+pub fn topography_names() -> Vec<&'static str> {
+    let mut v = vec!["healthy"];
+    v.extend(topography::TABLE_1.iter().map(|(n, _)| *n));
+    v
+}
+
+fn choice<T: Copy>(key: &'static str, value: &str, table: &[(&str, T)]) -> Result<T, ConfigFileError> {
+    table
+        .iter()
+        .find(|(n, _)| *n == value)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| ConfigFileError::Choice {
+            key,
+            value: value.to_string(),
+            allowed: table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+        })
+}
+
+fn req<T>(v: Option<T>, base: Option<T>, key: &'static str) -> Result<T, ConfigFileError> {
+    v.or(base).ok_or(ConfigFileError::Missing(key))
+}
+
+/// Integrator names.
+pub const INTEGRATORS: [(&str, IntegratorKind); 3] = [
+    ("rk4", IntegratorKind::Rk4),
+    ("exact-zoh", IntegratorKind::ExactZoh),
+    ("exact-foh", IntegratorKind::ExactFoh),
+];
+/// Defect formulation names.
+pub const DEFECT_MODELS: [(&str, DefectModel); 4] = [
+    ("five-step", DefectModel::FiveStep),
+    ("deflection", DefectModel::Deflection),
+    ("sassi", DefectModel::Sassi),
+    ("impulse", DefectModel::Impulse),
+];
+
+impl ScenarioFile {
+    /// Reads and parses a TOML file (syntax, types and unknown keys are checked here).
+    pub fn load(path: &Path) -> Result<Self, ConfigFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigFileError::Read {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses TOML text; `origin` names it in errors.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ConfigFileError> {
+        toml::from_str(text).map_err(|e| ConfigFileError::Parse {
+            path: origin.to_string(),
+            message: e.to_string().trim().replace('\n', " "),
+        })
+    }
+
+    /// Resolves the file into a validated-ready model configuration and run settings.
+    pub fn resolve(&self) -> Result<(ModelConfig, RunSettings), ConfigFileError> {
+        let base = match &self.preset {
+            Some(name) => Some(presets::by_name(name).ok_or_else(|| ConfigFileError::Choice {
+                key: "preset",
+                value: name.clone(),
+                allowed: presets::NAMES.join(", "),
+            })?),
+            None => None,
+        };
+        let b0 = base.as_ref().map(|c| c.bearing);
+        let bs = self.bearing.clone().unwrap_or_default();
+        let contact = match &bs.contact {
+            Some(c) => choice("bearing.contact", c, &[("point", ContactKind::Point), ("line", ContactKind::Line)])?,
+            None => req(None, b0.map(|b| b.contact), "bearing.contact")?,
+        };
+        let bearing = BearingGeometry {
+            elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,
+            element_diameter: req(bs.element_diameter, b0.map(|b| b.element_diameter), "bearing.element_diameter")?,
+            pitch_diameter: req(bs.pitch_diameter, b0.map(|b| b.pitch_diameter), "bearing.pitch_diameter")?,
+            contact_angle: req(bs.contact_angle_deg.map(f64::to_radians), b0.map(|b| b.contact_angle), "bearing.contact_angle_deg")?,
+            bore: req(bs.bore, b0.map(|b| b.bore), "bearing.bore")?,
+            outside_diameter: req(bs.outside_diameter, b0.map(|b| b.outside_diameter), "bearing.outside_diameter")?,
+            contact,
+            outer_conformity: bs.outer_conformity.or(b0.map(|b| b.outer_conformity)).unwrap_or(0.52),
+            inner_conformity: bs.inner_conformity.or(b0.map(|b| b.inner_conformity)).unwrap_or(0.515),
+            roller_length: bs.roller_length.or(b0.map(|b| b.roller_length)).unwrap_or(0.0),
+            youngs_modulus: bs.youngs_modulus.or(b0.map(|b| b.youngs_modulus)).unwrap_or(208e9),
+            poisson: bs.poisson.or(b0.map(|b| b.poisson)).unwrap_or(0.3),
+            density: bs.density.or(b0.map(|b| b.density)).unwrap_or(7830.0),
+        };
+        let s0 = base.as_ref().map(|c| c.structure);
+        let ss = self.structure.clone().unwrap_or_default();
+        let structure = Structure {
+            mass: req(ss.mass, s0.map(|s| s.mass), "structure.mass")?,
+            stiffness: req(ss.stiffness, s0.map(|s| s.stiffness), "structure.stiffness")?,
+            damping: req(ss.damping, s0.map(|s| s.damping), "structure.damping")?,
+        };
+        let speed = match &self.speed {
+            Some(sp) => speed_from(sp)?,
+            None => base.as_ref().map(|c| c.speed.clone()).ok_or(ConfigFileError::Missing("speed.shaft_hz"))?,
+        };
+        let integrator = match &self.integrator {
+            Some(s) => choice("integrator", s, &INTEGRATORS)?,
+            None => base.as_ref().map(|c| c.integrator).unwrap_or(IntegratorKind::ExactFoh),
+        };
+        let channels = match &self.channels {
+            Some(s) => choice("channels", s, &[("acceleration", Channels::Acceleration), ("all", Channels::All)])?,
+            None => Channels::Acceleration,
+        };
+        let imbalance = section(self.imbalance.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.imbalance), || {
+            let s = self.imbalance.clone().unwrap_or_default();
+            let b = base.as_ref().and_then(|c| c.imbalance);
+            Ok(Imbalance {
+                mass: req(s.mass, b.map(|x| x.mass), "imbalance.mass")?,
+                radius: req(s.radius, b.map(|x| x.radius), "imbalance.radius")?,
+            })
+        }, self.imbalance.is_some())?;
+        let waviness = section(self.waviness.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.waviness), || {
+            let s = self.waviness.clone().unwrap_or_default();
+            let b = base.as_ref().and_then(|c| c.waviness);
+            Ok(Waviness {
+                amplitude: req(s.amplitude, b.map(|x| x.amplitude), "waviness.amplitude")?,
+                wavelength: req(s.wavelength, b.map(|x| x.wavelength).or(Some(0.8e-3)), "waviness.wavelength")?,
+            })
+        }, self.waviness.is_some())?;
+        let roughness = section(self.roughness.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.roughness), || {
+            let s = self.roughness.clone().unwrap_or_default();
+            let b = base.as_ref().and_then(|c| c.roughness);
+            Ok(Roughness {
+                rms: req(s.rms, b.map(|x| x.rms), "roughness.rms")?,
+                wavelength: req(s.wavelength, b.map(|x| x.wavelength).or(Some(0.02e-3)), "roughness.wavelength")?,
+                debris_gain: s.debris_gain.or(b.map(|x| x.debris_gain)).unwrap_or(4.0),
+            })
+        }, self.roughness.is_some())?;
+        let slip = section(self.slip.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.slip), || {
+            let s = self.slip.clone().unwrap_or_default();
+            let b = base.as_ref().and_then(|c| c.slip);
+            Ok(Slip {
+                fraction: req(s.fraction, b.map(|x| x.fraction), "slip.fraction")?,
+            })
+        }, self.slip.is_some())?;
+        let defect = self.defect_config(base.as_ref().and_then(|c| c.defect))?;
+        let cfg = ModelConfig {
+            bearing,
+            structure,
+            radial_load: req(self.radial_load, base.as_ref().map(|c| c.radial_load), "radial_load")?,
+            clearance: self.clearance.or(base.as_ref().map(|c| c.clearance)).unwrap_or(0.0),
+            speed,
+            imbalance,
+            waviness,
+            roughness,
+            defect,
+            slip,
+            integrator,
+            output_rate: self.fs.or(base.as_ref().map(|c| c.output_rate)).unwrap_or(20_000.0),
+            oversample: self.oversample.or(base.as_ref().and_then(|c| c.oversample)),
+            channels,
+        };
+        let run = RunSettings {
+            preset: self.preset.clone(),
+            seed: self.seed.unwrap_or(1),
+            duration: self.duration.unwrap_or(DEFAULT_DURATION),
+            settle: self.settle.unwrap_or(DEFAULT_SETTLE),
+        };
+        check_run(&run)?;
+        Ok((cfg, run))
+    }
+
+    fn defect_config(&self, base: Option<DefectConfig>) -> Result<Option<DefectConfig>, ConfigFileError> {
+        let Some(s) = &self.defect else { return Ok(base) };
+        if s.enabled == Some(false) || s.topography.as_deref() == Some("healthy") || s.location.as_deref() == Some("none") {
+            return Ok(None);
+        }
+        let b = base.unwrap_or(presets::outer_race_defect(topography::MEDIUM_DEFECT));
+        let angle = s.angle_deg.map(f64::to_radians);
+        let location = match s.location.as_deref() {
+            Some("outer") => DefectLocation::OuterRace { angle: angle.unwrap_or(std::f64::consts::FRAC_PI_2) },
+            Some("inner") => DefectLocation::InnerRace { angle: angle.unwrap_or(0.0) },
+            Some(other) => {
+                return Err(ConfigFileError::Choice { key: "defect.location", value: other.into(), allowed: "outer, inner, none".into() })
+            }
+            None => match (b.location, angle) {
+                (DefectLocation::OuterRace { .. }, Some(a)) => DefectLocation::OuterRace { angle: a },
+                (DefectLocation::InnerRace { .. }, Some(a)) => DefectLocation::InnerRace { angle: a },
+                (l, _) => l,
+            },
+        };
+        let model = match &s.model {
+            Some(m) => choice("defect.model", m, &DEFECT_MODELS)?,
+            None => b.model,
+        };
+        let mut t = match &s.topography {
+            Some(name) => topography::by_name(name).ok_or_else(|| ConfigFileError::Choice {
+                key: "defect.topography",
+                value: name.clone(),
+                allowed: topography_names().join(", "),
+            })?,
+            None => b.topography,
+        };
+        t = Topography {
+            asperity_height: s.asperity_height.unwrap_or(t.asperity_height),
+            length: s.length.unwrap_or(t.length),
+            width: s.width.unwrap_or(t.width),
+            depth: s.depth.unwrap_or(t.depth),
+            count: s.count.unwrap_or(t.count),
+            debris: s.debris.unwrap_or(t.debris),
+        };
+        Ok(Some(DefectConfig {
+            location,
+            model,
+            topography: t,
+            sassi_k_impact: s.sassi_k_impact.unwrap_or(b.sassi_k_impact),
+        }))
+    }
+}
+
+/// An optional physical section: `enabled = false` removes it; present keys override the
+/// base; a section given without a base must be complete.
+fn section<T, F: FnOnce() -> Result<T, ConfigFileError>>(
+    enabled: Option<Option<bool>>,
+    base: Option<T>,
+    build: F,
+    given: bool,
+) -> Result<Option<T>, ConfigFileError> {
+    match enabled {
+        Some(Some(false)) => Ok(None),
+        _ if given => build().map(Some),
+        _ => Ok(base),
+    }
+}
+
+fn speed_from(sp: &SpeedSection) -> Result<SpeedProfile, ConfigFileError> {
+    let kinds = [sp.shaft_hz.is_some(), sp.rpm.is_some(), sp.from_hz.is_some() || sp.to_hz.is_some(), sp.table.is_some()];
+    if kinds.iter().filter(|k| **k).count() != 1 {
+        return Err(ConfigFileError::Choice {
+            key: "speed",
+            value: "(several or none)".into(),
+            allowed: "exactly one of shaft_hz, rpm, from_hz+to_hz+ramp_duration, table".into(),
+        });
+    }
+    if let Some(f) = sp.shaft_hz {
+        return Ok(SpeedProfile::Constant(f));
+    }
+    if let Some(r) = sp.rpm {
+        return Ok(SpeedProfile::Constant(r / 60.0));
+    }
+    if let Some(table) = &sp.table {
+        let mut pts = heapless::Vec::<SpeedPoint, MAX_SPEED_POINTS>::new();
+        for [t, hz] in table {
+            pts.push(SpeedPoint { t: *t, shaft_hz: *hz }).map_err(|_| {
+                ConfigFileError::Core(wearsim_core::ConfigError::TooMany { field: "speed.table", count: table.len(), max: MAX_SPEED_POINTS })
+            })?;
+        }
+        return Ok(SpeedProfile::Table(pts));
+    }
+    Ok(SpeedProfile::Ramp {
+        from_hz: req(sp.from_hz, None, "speed.from_hz")?,
+        to_hz: req(sp.to_hz, None, "speed.to_hz")?,
+        duration: req(sp.ramp_duration, None, "speed.ramp_duration")?,
+    })
+}
+
+/// Checks the run settings' ranges.
+pub fn check_run(run: &RunSettings) -> Result<(), ConfigFileError> {
+    wearsim_core::error::check_range("duration", run.duration, 1e-3, MAX_DURATION)?;
+    wearsim_core::error::check_range("settle", run.settle, 0.0, 60.0)?;
+    Ok(())
+}
