@@ -129,17 +129,26 @@ pub const DATA_ENV: &str = "WEARSIM_DATA";
 ///
 /// Typical use in a test: `let Some(dir) = wearsim_host::io::data_dir()? else { return Ok(()) };`
 pub fn data_dir() -> Result<Option<PathBuf>, IoError> {
-    let dir = match std::env::var_os(DATA_ENV) {
+    let ci = std::env::var("CI")
+        .map(|v| v.eq_ignore_ascii_case("true") || v == "1")
+        .unwrap_or(false);
+    resolve_data_dir(std::env::var_os(DATA_ENV), ci)
+}
+
+/// The rule behind [`data_dir`] with the environment passed in: `env` is the value of
+/// `WEARSIM_DATA` (unset or empty: [`default_data_dir`]), `ci` whether a missing folder is an
+/// error.
+pub fn resolve_data_dir(
+    env: Option<std::ffi::OsString>,
+    ci: bool,
+) -> Result<Option<PathBuf>, IoError> {
+    let dir = match env {
         Some(v) if !v.is_empty() => PathBuf::from(v),
         _ => default_data_dir(),
     };
     if dir.is_dir() {
-        return Ok(Some(dir));
-    }
-    let ci = std::env::var("CI")
-        .map(|v| v.eq_ignore_ascii_case("true") || v == "1")
-        .unwrap_or(false);
-    if ci {
+        Ok(Some(dir))
+    } else if ci {
         Err(IoError::DataDirMissing { path: dir })
     } else {
         eprintln!("skipping: data folder {} not found", dir.display());
