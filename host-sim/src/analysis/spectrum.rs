@@ -4,10 +4,10 @@
 use super::error::{bad, check_fs, check_signal, AnalysisError};
 use super::fft::{mean, one_sided_factor, rfft_windowed};
 use super::window::Window;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// What the values of a [`Spectrum`] are.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum SpectrumKind {
     /// One-sided power spectral density, units²/Hz (integrates to the variance).
     Psd,
@@ -18,7 +18,7 @@ pub enum SpectrumKind {
 }
 
 /// A one-sided spectrum on a uniform grid: bin `k` is at `k * df` Hz.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Spectrum {
     /// Bin spacing, Hz per bin.
     pub df: f64,
@@ -65,7 +65,7 @@ impl Spectrum {
 }
 
 /// Parameters of Welch's averaged modified periodogram.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct WelchParams {
     /// Segment length, samples (>= 2).
     pub nperseg: usize,
