@@ -205,6 +205,31 @@ mod tests {
     }
 
     #[test]
+    fn welch_parseval_odd_segments_no_overlap() {
+        // Odd nperseg has no Nyquist bin; every non-DC bin is doubled.
+        let x = gaussian_noise(255 * 400, 0.7, 8);
+        let p = WelchParams {
+            nperseg: 255,
+            overlap: 0.0,
+            window: Window::Rectangular,
+        };
+        let s = welch_psd(&x, 2.0, &p).unwrap();
+        assert_eq!(s.len(), 128);
+        // Without overlap or window, Σ PSD·df is exactly the mean of the
+        // per-segment variances.
+        let seg_var: f64 = x
+            .chunks(255)
+            .map(|c| {
+                let m = mean(c);
+                c.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / 255.0
+            })
+            .sum::<f64>()
+            / 400.0;
+        let power: f64 = s.values.iter().sum::<f64>() * s.df;
+        assert!((power / seg_var - 1.0).abs() < 1e-9, "{power} vs {seg_var}");
+    }
+
+    #[test]
     fn welch_sine_power_and_frequency() {
         let fs = 12_000.0;
         let f0 = 1234.5;
