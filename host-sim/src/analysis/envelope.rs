@@ -2,7 +2,7 @@
 //! (Randall & Antoni 2011, "Rolling element bearing diagnostics—A tutorial").
 
 use super::error::{check_band, check_fs, check_signal, AnalysisError};
-use super::fft::{band_envelope, plan_r2c};
+use super::fft::{band_envelope, rfft};
 use super::spectrum::{amplitude_spectrum_unchecked, Spectrum};
 use super::window::Window;
 
@@ -24,11 +24,7 @@ pub fn bandpass_analytic_envelope(
     check_band(band, fs)?;
     let n = x.len();
     let (k0, k1) = band_bins(band, fs, n)?;
-    let plan = plan_r2c(n);
-    let mut input = x.to_vec();
-    let mut spec = plan.make_output_vec();
-    plan.process(&mut input, &mut spec)
-        .expect("realfft buffer lengths match the plan");
+    let spec = rfft(x, 0.0);
     Ok(band_envelope(&spec, n, k0, k1, n)
         .iter()
         .map(|c| c.norm())

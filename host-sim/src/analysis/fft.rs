@@ -22,16 +22,30 @@ pub(crate) fn plan_inverse(n: usize) -> Arc<dyn Fft<f64>> {
     COMPLEX_PLANNER.with(|p| p.borrow_mut().plan_fft_inverse(n))
 }
 
-/// One-sided DFT (`n/2 + 1` bins, unnormalised) of `x` multiplied sample by
-/// sample by `w` (same length as `x`), after subtracting `offset`.
-pub(crate) fn rfft_windowed(x: &[f64], w: &[f64], offset: f64) -> Vec<Complex<f64>> {
+/// One-sided DFT (`n/2 + 1` bins, unnormalised) of `(x - offset) * w`,
+/// where the window `w` (same length as `x`) is optional.
+fn rfft_impl(x: &[f64], w: Option<&[f64]>, offset: f64) -> Vec<Complex<f64>> {
     let plan = plan_r2c(x.len());
-    let mut input: Vec<f64> = x.iter().zip(w).map(|(v, wi)| (v - offset) * wi).collect();
+    let mut input: Vec<f64> = match w {
+        Some(w) => x.iter().zip(w).map(|(v, wi)| (v - offset) * wi).collect(),
+        None => x.iter().map(|v| v - offset).collect(),
+    };
     let mut out = plan.make_output_vec();
     // Lengths come from the plan itself, so this cannot fail.
     plan.process(&mut input, &mut out)
         .expect("realfft buffer lengths match the plan");
     out
+}
+
+/// One-sided DFT (`n/2 + 1` bins, unnormalised) of `x` multiplied sample by
+/// sample by `w` (same length as `x`), after subtracting `offset`.
+pub(crate) fn rfft_windowed(x: &[f64], w: &[f64], offset: f64) -> Vec<Complex<f64>> {
+    rfft_impl(x, Some(w), offset)
+}
+
+/// One-sided DFT (`n/2 + 1` bins, unnormalised) of `x - offset`.
+pub(crate) fn rfft(x: &[f64], offset: f64) -> Vec<Complex<f64>> {
+    rfft_impl(x, None, offset)
 }
 
 /// Factor turning bin `k` of an `n`-point DFT of a real signal into its

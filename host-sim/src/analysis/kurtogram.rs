@@ -3,7 +3,7 @@
 
 use super::envelope::band_bins;
 use super::error::{bad, check_fs, check_signal, AnalysisError};
-use super::fft::{band_envelope, mean, rfft_windowed};
+use super::fft::{band_envelope, mean, rfft, rfft_windowed};
 use super::spectrum::{Spectrum, SpectrumKind};
 use super::window::Window;
 use realfft::num_complex::Complex;
@@ -146,7 +146,7 @@ pub fn fast_kurtogram(x: &[f64], fs: f64, max_level: usize) -> Result<Kurtogram,
     check_signal(x, need, &format!("max_level={max_level}"))?;
     check_not_constant(x)?;
     let n = x.len();
-    let spec = rfft_windowed(x, &vec![1.0; n], mean(x));
+    let spec = rfft(x, mean(x));
     // Number of bands per row: 1, 2, 3, 4, 6, 8, ..., 2^max_level.
     let mut row_bands = vec![1usize];
     for k in 1..=max_level {

@@ -1,11 +1,20 @@
-//! Signal analysis for bearing vibration: time-domain statistics, spectra
-//! (Welch PSD, amplitude spectrum), envelope analysis, spectral kurtosis and the fast kurtogram,
-//! spectral peaks, bearing fault-family detection,
-//! frequency-zone levels.
+//! Signal analysis for rolling-element bearing vibration.
+//!
+//! - [`stats`]: time-domain statistics (RMS, crest factor, kurtosis...).
+//! - [`spectrum`]: Welch PSD (Welch 1967) and amplitude spectrum; [`window`].
+//! - [`envelope`]: band-pass analytic envelope and envelope spectrum
+//!   (Randall & Antoni 2011).
+//! - [`kurtogram`]: spectral kurtosis (Antoni 2006) and fast kurtogram
+//!   (Antoni 2007) to choose the demodulation band.
+//! - [`peaks`]: spectral peaks, noise floor, peak-over-floor in dB.
+//! - [`faults`]: fault-family detection from the envelope spectrum.
+//! - [`zones`]: band levels of the four El-Thalji frequency zones.
+//! - [`synth`]: seeded synthetic signals with known answers.
 //!
 //! All functions validate their inputs and return [`AnalysisError`] rather
 //! than panicking. Frequencies are in Hz, sampling rates in samples/s,
-//! amplitudes in the signal's own units.
+//! amplitudes in the signal's own units. Typical chain: [`fast_kurtogram`]
+//! → [`envelope_spectrum`] in its best band → [`detect_fault`].
 
 pub mod envelope;
 pub mod error;

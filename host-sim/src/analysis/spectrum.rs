@@ -4,10 +4,10 @@
 use super::error::{bad, check_fs, check_signal, AnalysisError};
 use super::fft::{mean, one_sided_factor, rfft_windowed};
 use super::window::Window;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// What the values of a [`Spectrum`] are.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum SpectrumKind {
     /// One-sided power spectral density, units²/Hz (integrates to the variance).
     Psd,
@@ -18,7 +18,7 @@ pub enum SpectrumKind {
 }
 
 /// A one-sided spectrum on a uniform grid: bin `k` is at `k * df` Hz.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Spectrum {
     /// Bin spacing, Hz per bin.
     pub df: f64,
@@ -65,7 +65,7 @@ impl Spectrum {
 }
 
 /// Parameters of Welch's averaged modified periodogram.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct WelchParams {
     /// Segment length, samples (>= 2).
     pub nperseg: usize,
@@ -202,6 +202,31 @@ mod tests {
             let mid = s.values[100..400].iter().sum::<f64>() / 300.0;
             assert!((mid / (var / 500.0) - 1.0).abs() < 0.03);
         }
+    }
+
+    #[test]
+    fn welch_parseval_odd_segments_no_overlap() {
+        // Odd nperseg has no Nyquist bin; every non-DC bin is doubled.
+        let x = gaussian_noise(255 * 400, 0.7, 8);
+        let p = WelchParams {
+            nperseg: 255,
+            overlap: 0.0,
+            window: Window::Rectangular,
+        };
+        let s = welch_psd(&x, 2.0, &p).unwrap();
+        assert_eq!(s.len(), 128);
+        // Without overlap or window, Σ PSD·df is exactly the mean of the
+        // per-segment variances.
+        let seg_var: f64 = x
+            .chunks(255)
+            .map(|c| {
+                let m = mean(c);
+                c.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / 255.0
+            })
+            .sum::<f64>()
+            / 400.0;
+        let power: f64 = s.values.iter().sum::<f64>() * s.df;
+        assert!((power / seg_var - 1.0).abs() < 1e-9, "{power} vs {seg_var}");
     }
 
     #[test]

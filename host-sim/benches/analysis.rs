@@ -1,0 +1,67 @@
+//! Throughput of the analysis chain on a 10 s, 48 kHz synthetic record with
+//! an outer-race fault: stats + Welch PSD + fast kurtogram + envelope
+//! spectrum + fault detection. Run: `cargo bench -p wearsim-host --bench analysis`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use wearsim_host::analysis::synth::FaultSignal;
+use wearsim_host::analysis::{
+    detect_fault, envelope_spectrum, fast_kurtogram, stats, welch_psd, DetectParams, FaultFamily,
+    FaultFrequencies, WelchParams,
+};
+
+const FS: f64 = 48_000.0;
+const N: usize = 480_000;
+const MAX_LEVEL: usize = 6;
+
+fn record(ff: &FaultFrequencies) -> Vec<f64> {
+    FaultSignal {
+        fs: FS,
+        fault_hz: ff.bpfo,
+        mod_hz: 0.0,
+        mod_depth: 0.0,
+        resonance_hz: 3000.0,
+        damping: 0.05,
+        impulse_amp: 1.0,
+        noise_sigma: 0.5,
+        seed: 1,
+    }
+    .generate(N)
+}
+
+fn bench(c: &mut Criterion) {
+    let ff = FaultFrequencies::from_geometry(29.95, 9, 7.94, 39.04, 0.0);
+    let x = record(&ff);
+    let mut g = c.benchmark_group("analysis_10s_48k");
+    g.throughput(Throughput::Elements(N as u64));
+    g.sample_size(10);
+    g.bench_function("stats", |b| b.iter(|| stats(black_box(&x)).unwrap()));
+    g.bench_function("welch_psd", |b| {
+        b.iter(|| welch_psd(black_box(&x), FS, &WelchParams::default()).unwrap())
+    });
+    g.bench_function("fast_kurtogram", |b| {
+        b.iter(|| fast_kurtogram(black_box(&x), FS, MAX_LEVEL).unwrap())
+    });
+    g.bench_function("envelope_spectrum", |b| {
+        b.iter(|| envelope_spectrum(black_box(&x), FS, Some((2000.0, 4000.0))).unwrap())
+    });
+    let env = envelope_spectrum(&x, FS, Some((2000.0, 4000.0))).unwrap();
+    g.bench_function("detect_fault", |b| {
+        b.iter(|| detect_fault(black_box(&env), &ff, &DetectParams::default()))
+    });
+    g.bench_function("full_chain", |b| {
+        b.iter(|| {
+            let x = black_box(&x);
+            let s = stats(x).unwrap();
+            let psd = welch_psd(x, FS, &WelchParams::default()).unwrap();
+            let kg = fast_kurtogram(x, FS, MAX_LEVEL).unwrap();
+            let env = envelope_spectrum(x, FS, Some(kg.best_band)).unwrap();
+            let d = detect_fault(&env, &ff, &DetectParams::default());
+            assert_eq!(d.family, FaultFamily::OuterRace);
+            (s.kurtosis, psd.len(), d.score)
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
