@@ -21,11 +21,17 @@ pub struct CliError {
 impl CliError {
     /// Bad input (exit code 2).
     pub fn input(e: impl std::fmt::Display) -> Self {
-        CliError { code: 2, message: e.to_string() }
+        CliError {
+            code: 2,
+            message: e.to_string(),
+        }
     }
     /// Run failure (exit code 1).
     pub fn run(e: impl std::fmt::Display) -> Self {
-        CliError { code: 1, message: e.to_string() }
+        CliError {
+            code: 1,
+            message: e.to_string(),
+        }
     }
 }
 
@@ -71,7 +77,11 @@ impl SimulateArgs {
             None => ScenarioFile::default(),
         };
         if file.preset.is_none() && self.config.is_none() {
-            file.preset = Some(self.preset.clone().unwrap_or_else(|| config::DEFAULT_PRESET.to_string()));
+            file.preset = Some(
+                self.preset
+                    .clone()
+                    .unwrap_or_else(|| config::DEFAULT_PRESET.to_string()),
+            );
         }
         if let Some(d) = self.duration {
             file.duration = Some(d);
@@ -83,7 +93,10 @@ impl SimulateArgs {
             file.seed = Some(s);
         }
         if let Some(r) = self.rpm {
-            file.speed = Some(config::SpeedSection { rpm: Some(r), ..Default::default() });
+            file.speed = Some(config::SpeedSection {
+                rpm: Some(r),
+                ..Default::default()
+            });
         }
         if let Some(t) = &self.topography {
             let mut d = file.defect.clone().unwrap_or_default();
@@ -143,13 +156,34 @@ pub struct BenchReport {
 /// Runs the benchmark: a 1 s warm-up, then `seconds` simulated seconds timed.
 pub fn bench(a: &BenchArgs) -> Result<BenchReport, CliError> {
     wearsim_core::error::check_range("seconds", a.seconds, 1.0, 600.0).map_err(CliError::input)?;
-    let file = ScenarioFile { preset: Some(a.preset.clone()), fs: Some(a.fs), duration: Some(a.seconds), settle: Some(1.0), ..Default::default() };
+    let file = ScenarioFile {
+        preset: Some(a.preset.clone()),
+        fs: Some(a.fs),
+        duration: Some(a.seconds),
+        settle: Some(1.0),
+        ..Default::default()
+    };
     let (cfg, run) = file.resolve().map_err(CliError::input)?;
     let sc = Scenario::new(cfg, run).map_err(CliError::input)?;
     // Warm-up run (caches, frequency scaling), then the timed run without settling time.
-    simulate::run(&Scenario { run: config::RunSettings { duration: 1.0, ..sc.run.clone() }, ..sc.clone() }, |_, _| {})
-        .map_err(CliError::run)?;
-    let timed = Scenario { run: config::RunSettings { settle: 0.0, ..sc.run.clone() }, ..sc.clone() };
+    simulate::run(
+        &Scenario {
+            run: config::RunSettings {
+                duration: 1.0,
+                ..sc.run.clone()
+            },
+            ..sc.clone()
+        },
+        |_, _| {},
+    )
+    .map_err(CliError::run)?;
+    let timed = Scenario {
+        run: config::RunSettings {
+            settle: 0.0,
+            ..sc.run.clone()
+        },
+        ..sc.clone()
+    };
     let out = simulate::run(&timed, |_, _| {}).map_err(CliError::run)?;
     let steps = out.steps;
     let integrator = config::INTEGRATORS
@@ -183,7 +217,10 @@ impl Progress {
     /// A new, not yet visible, progress display.
     pub fn new(enabled: bool, label: &'static str) -> Self {
         let bar = enabled.then(|| {
-            let b = indicatif::ProgressBar::with_draw_target(Some(0), indicatif::ProgressDrawTarget::hidden());
+            let b = indicatif::ProgressBar::with_draw_target(
+                Some(0),
+                indicatif::ProgressDrawTarget::hidden(),
+            );
             b.set_style(
                 indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% eta {eta}")
                     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
@@ -192,7 +229,11 @@ impl Progress {
             b.set_message(label);
             b
         });
-        Progress { bar, start: std::time::Instant::now(), label }
+        Progress {
+            bar,
+            start: std::time::Instant::now(),
+            label,
+        }
     }
 
     /// Reports `done` of `total`.
@@ -278,11 +319,22 @@ pub fn print_summary(sc: &Scenario, s: &Summary, rtf: f64, files: &crate::io::wr
     );
     println!("spectrum peaks (Hz, m/s^2, nearest):");
     for p in &s.peaks {
-        println!("  {:>9.2} {:>10.4}  {} ({:.2})", p.freq, p.amplitude, p.nearest, p.nearest_hz);
+        println!(
+            "  {:>9.2} {:>10.4}  {} ({:.2})",
+            p.freq, p.amplitude, p.nearest, p.nearest_hz
+        );
     }
     println!("envelope-spectrum peaks:");
     for p in s.envelope_peaks.iter().take(5) {
-        println!("  {:>9.2} {:>10.4}  {} ({:.2})", p.freq, p.amplitude, p.nearest, p.nearest_hz);
+        println!(
+            "  {:>9.2} {:>10.4}  {} ({:.2})",
+            p.freq, p.amplitude, p.nearest, p.nearest_hz
+        );
     }
-    println!("wrote {} , {} , {}", files.csv.display(), files.wav.display(), files.json.display());
+    println!(
+        "wrote {} , {} , {}",
+        files.csv.display(),
+        files.wav.display(),
+        files.json.display()
+    );
 }

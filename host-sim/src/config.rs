@@ -225,7 +225,11 @@ pub fn topography_names() -> Vec<&'static str> {
     v
 }
 
-fn choice<T: Copy>(key: &'static str, value: &str, table: &[(&str, T)]) -> Result<T, ConfigFileError> {
+fn choice<T: Copy>(
+    key: &'static str,
+    value: &str,
+    table: &[(&str, T)],
+) -> Result<T, ConfigFileError> {
     table
         .iter()
         .find(|(n, _)| *n == value)
@@ -276,31 +280,65 @@ impl ScenarioFile {
     /// Resolves the file into a validated-ready model configuration and run settings.
     pub fn resolve(&self) -> Result<(ModelConfig, RunSettings), ConfigFileError> {
         let base = match &self.preset {
-            Some(name) => Some(presets::by_name(name).ok_or_else(|| ConfigFileError::Choice {
-                key: "preset",
-                value: name.clone(),
-                allowed: presets::NAMES.join(", "),
-            })?),
+            Some(name) => Some(
+                presets::by_name(name).ok_or_else(|| ConfigFileError::Choice {
+                    key: "preset",
+                    value: name.clone(),
+                    allowed: presets::NAMES.join(", "),
+                })?,
+            ),
             None => None,
         };
         let b0 = base.as_ref().map(|c| c.bearing);
         let bs = self.bearing.clone().unwrap_or_default();
         let contact = match &bs.contact {
-            Some(c) => choice("bearing.contact", c, &[("point", ContactKind::Point), ("line", ContactKind::Line)])?,
+            Some(c) => choice(
+                "bearing.contact",
+                c,
+                &[("point", ContactKind::Point), ("line", ContactKind::Line)],
+            )?,
             None => req(None, b0.map(|b| b.contact), "bearing.contact")?,
         };
         let bearing = BearingGeometry {
             elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,
-            element_diameter: req(bs.element_diameter, b0.map(|b| b.element_diameter), "bearing.element_diameter")?,
-            pitch_diameter: req(bs.pitch_diameter, b0.map(|b| b.pitch_diameter), "bearing.pitch_diameter")?,
-            contact_angle: req(bs.contact_angle_deg.map(f64::to_radians), b0.map(|b| b.contact_angle), "bearing.contact_angle_deg")?,
+            element_diameter: req(
+                bs.element_diameter,
+                b0.map(|b| b.element_diameter),
+                "bearing.element_diameter",
+            )?,
+            pitch_diameter: req(
+                bs.pitch_diameter,
+                b0.map(|b| b.pitch_diameter),
+                "bearing.pitch_diameter",
+            )?,
+            contact_angle: req(
+                bs.contact_angle_deg.map(f64::to_radians),
+                b0.map(|b| b.contact_angle),
+                "bearing.contact_angle_deg",
+            )?,
             bore: req(bs.bore, b0.map(|b| b.bore), "bearing.bore")?,
-            outside_diameter: req(bs.outside_diameter, b0.map(|b| b.outside_diameter), "bearing.outside_diameter")?,
+            outside_diameter: req(
+                bs.outside_diameter,
+                b0.map(|b| b.outside_diameter),
+                "bearing.outside_diameter",
+            )?,
             contact,
-            outer_conformity: bs.outer_conformity.or(b0.map(|b| b.outer_conformity)).unwrap_or(0.52),
-            inner_conformity: bs.inner_conformity.or(b0.map(|b| b.inner_conformity)).unwrap_or(0.515),
-            roller_length: bs.roller_length.or(b0.map(|b| b.roller_length)).unwrap_or(0.0),
-            youngs_modulus: bs.youngs_modulus.or(b0.map(|b| b.youngs_modulus)).unwrap_or(208e9),
+            outer_conformity: bs
+                .outer_conformity
+                .or(b0.map(|b| b.outer_conformity))
+                .unwrap_or(0.52),
+            inner_conformity: bs
+                .inner_conformity
+                .or(b0.map(|b| b.inner_conformity))
+                .unwrap_or(0.515),
+            roller_length: bs
+                .roller_length
+                .or(b0.map(|b| b.roller_length))
+                .unwrap_or(0.0),
+            youngs_modulus: bs
+                .youngs_modulus
+                .or(b0.map(|b| b.youngs_modulus))
+                .unwrap_or(208e9),
             poisson: bs.poisson.or(b0.map(|b| b.poisson)).unwrap_or(0.3),
             density: bs.density.or(b0.map(|b| b.density)).unwrap_or(7830.0),
         };
@@ -313,54 +351,102 @@ impl ScenarioFile {
         };
         let speed = match &self.speed {
             Some(sp) => speed_from(sp)?,
-            None => base.as_ref().map(|c| c.speed.clone()).ok_or(ConfigFileError::Missing("speed.shaft_hz"))?,
+            None => base
+                .as_ref()
+                .map(|c| c.speed.clone())
+                .ok_or(ConfigFileError::Missing("speed.shaft_hz"))?,
         };
         let integrator = match &self.integrator {
             Some(s) => choice("integrator", s, &INTEGRATORS)?,
-            None => base.as_ref().map(|c| c.integrator).unwrap_or(IntegratorKind::ExactFoh),
+            None => base
+                .as_ref()
+                .map(|c| c.integrator)
+                .unwrap_or(IntegratorKind::ExactFoh),
         };
         let channels = match &self.channels {
-            Some(s) => choice("channels", s, &[("acceleration", Channels::Acceleration), ("all", Channels::All)])?,
+            Some(s) => choice(
+                "channels",
+                s,
+                &[
+                    ("acceleration", Channels::Acceleration),
+                    ("all", Channels::All),
+                ],
+            )?,
             None => Channels::Acceleration,
         };
-        let imbalance = section(self.imbalance.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.imbalance), || {
-            let s = self.imbalance.clone().unwrap_or_default();
-            let b = base.as_ref().and_then(|c| c.imbalance);
-            Ok(Imbalance {
-                mass: req(s.mass, b.map(|x| x.mass), "imbalance.mass")?,
-                radius: req(s.radius, b.map(|x| x.radius), "imbalance.radius")?,
-            })
-        }, self.imbalance.is_some())?;
-        let waviness = section(self.waviness.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.waviness), || {
-            let s = self.waviness.clone().unwrap_or_default();
-            let b = base.as_ref().and_then(|c| c.waviness);
-            Ok(Waviness {
-                amplitude: req(s.amplitude, b.map(|x| x.amplitude), "waviness.amplitude")?,
-                wavelength: req(s.wavelength, b.map(|x| x.wavelength).or(Some(0.8e-3)), "waviness.wavelength")?,
-            })
-        }, self.waviness.is_some())?;
-        let roughness = section(self.roughness.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.roughness), || {
-            let s = self.roughness.clone().unwrap_or_default();
-            let b = base.as_ref().and_then(|c| c.roughness);
-            Ok(Roughness {
-                rms: req(s.rms, b.map(|x| x.rms), "roughness.rms")?,
-                wavelength: req(s.wavelength, b.map(|x| x.wavelength).or(Some(0.02e-3)), "roughness.wavelength")?,
-                debris_gain: s.debris_gain.or(b.map(|x| x.debris_gain)).unwrap_or(4.0),
-            })
-        }, self.roughness.is_some())?;
-        let slip = section(self.slip.as_ref().map(|s| s.enabled), base.as_ref().and_then(|c| c.slip), || {
-            let s = self.slip.clone().unwrap_or_default();
-            let b = base.as_ref().and_then(|c| c.slip);
-            Ok(Slip {
-                fraction: req(s.fraction, b.map(|x| x.fraction), "slip.fraction")?,
-            })
-        }, self.slip.is_some())?;
+        let imbalance = section(
+            self.imbalance.as_ref().map(|s| s.enabled),
+            base.as_ref().and_then(|c| c.imbalance),
+            || {
+                let s = self.imbalance.clone().unwrap_or_default();
+                let b = base.as_ref().and_then(|c| c.imbalance);
+                Ok(Imbalance {
+                    mass: req(s.mass, b.map(|x| x.mass), "imbalance.mass")?,
+                    radius: req(s.radius, b.map(|x| x.radius), "imbalance.radius")?,
+                })
+            },
+            self.imbalance.is_some(),
+        )?;
+        let waviness = section(
+            self.waviness.as_ref().map(|s| s.enabled),
+            base.as_ref().and_then(|c| c.waviness),
+            || {
+                let s = self.waviness.clone().unwrap_or_default();
+                let b = base.as_ref().and_then(|c| c.waviness);
+                Ok(Waviness {
+                    amplitude: req(s.amplitude, b.map(|x| x.amplitude), "waviness.amplitude")?,
+                    wavelength: req(
+                        s.wavelength,
+                        b.map(|x| x.wavelength).or(Some(0.8e-3)),
+                        "waviness.wavelength",
+                    )?,
+                })
+            },
+            self.waviness.is_some(),
+        )?;
+        let roughness = section(
+            self.roughness.as_ref().map(|s| s.enabled),
+            base.as_ref().and_then(|c| c.roughness),
+            || {
+                let s = self.roughness.clone().unwrap_or_default();
+                let b = base.as_ref().and_then(|c| c.roughness);
+                Ok(Roughness {
+                    rms: req(s.rms, b.map(|x| x.rms), "roughness.rms")?,
+                    wavelength: req(
+                        s.wavelength,
+                        b.map(|x| x.wavelength).or(Some(0.02e-3)),
+                        "roughness.wavelength",
+                    )?,
+                    debris_gain: s.debris_gain.or(b.map(|x| x.debris_gain)).unwrap_or(4.0),
+                })
+            },
+            self.roughness.is_some(),
+        )?;
+        let slip = section(
+            self.slip.as_ref().map(|s| s.enabled),
+            base.as_ref().and_then(|c| c.slip),
+            || {
+                let s = self.slip.clone().unwrap_or_default();
+                let b = base.as_ref().and_then(|c| c.slip);
+                Ok(Slip {
+                    fraction: req(s.fraction, b.map(|x| x.fraction), "slip.fraction")?,
+                })
+            },
+            self.slip.is_some(),
+        )?;
         let defect = self.defect_config(base.as_ref().and_then(|c| c.defect))?;
         let cfg = ModelConfig {
             bearing,
             structure,
-            radial_load: req(self.radial_load, base.as_ref().map(|c| c.radial_load), "radial_load")?,
-            clearance: self.clearance.or(base.as_ref().map(|c| c.clearance)).unwrap_or(0.0),
+            radial_load: req(
+                self.radial_load,
+                base.as_ref().map(|c| c.radial_load),
+                "radial_load",
+            )?,
+            clearance: self
+                .clearance
+                .or(base.as_ref().map(|c| c.clearance))
+                .unwrap_or(0.0),
             speed,
             imbalance,
             waviness,
@@ -368,7 +454,10 @@ impl ScenarioFile {
             defect,
             slip,
             integrator,
-            output_rate: self.fs.or(base.as_ref().map(|c| c.output_rate)).unwrap_or(20_000.0),
+            output_rate: self
+                .fs
+                .or(base.as_ref().map(|c| c.output_rate))
+                .unwrap_or(20_000.0),
             oversample: self.oversample.or(base.as_ref().and_then(|c| c.oversample)),
             channels,
         };
@@ -382,22 +471,42 @@ impl ScenarioFile {
         Ok((cfg, run))
     }
 
-    fn defect_config(&self, base: Option<DefectConfig>) -> Result<Option<DefectConfig>, ConfigFileError> {
-        let Some(s) = &self.defect else { return Ok(base) };
-        if s.enabled == Some(false) || s.topography.as_deref() == Some("healthy") || s.location.as_deref() == Some("none") {
+    fn defect_config(
+        &self,
+        base: Option<DefectConfig>,
+    ) -> Result<Option<DefectConfig>, ConfigFileError> {
+        let Some(s) = &self.defect else {
+            return Ok(base);
+        };
+        if s.enabled == Some(false)
+            || s.topography.as_deref() == Some("healthy")
+            || s.location.as_deref() == Some("none")
+        {
             return Ok(None);
         }
         let b = base.unwrap_or(presets::outer_race_defect(topography::MEDIUM_DEFECT));
         let angle = s.angle_deg.map(f64::to_radians);
         let location = match s.location.as_deref() {
-            Some("outer") => DefectLocation::OuterRace { angle: angle.unwrap_or(std::f64::consts::FRAC_PI_2) },
-            Some("inner") => DefectLocation::InnerRace { angle: angle.unwrap_or(0.0) },
+            Some("outer") => DefectLocation::OuterRace {
+                angle: angle.unwrap_or(std::f64::consts::FRAC_PI_2),
+            },
+            Some("inner") => DefectLocation::InnerRace {
+                angle: angle.unwrap_or(0.0),
+            },
             Some(other) => {
-                return Err(ConfigFileError::Choice { key: "defect.location", value: other.into(), allowed: "outer, inner, none".into() })
+                return Err(ConfigFileError::Choice {
+                    key: "defect.location",
+                    value: other.into(),
+                    allowed: "outer, inner, none".into(),
+                })
             }
             None => match (b.location, angle) {
-                (DefectLocation::OuterRace { .. }, Some(a)) => DefectLocation::OuterRace { angle: a },
-                (DefectLocation::InnerRace { .. }, Some(a)) => DefectLocation::InnerRace { angle: a },
+                (DefectLocation::OuterRace { .. }, Some(a)) => {
+                    DefectLocation::OuterRace { angle: a }
+                }
+                (DefectLocation::InnerRace { .. }, Some(a)) => {
+                    DefectLocation::InnerRace { angle: a }
+                }
                 (l, _) => l,
             },
         };
@@ -446,7 +555,12 @@ fn section<T, F: FnOnce() -> Result<T, ConfigFileError>>(
 }
 
 fn speed_from(sp: &SpeedSection) -> Result<SpeedProfile, ConfigFileError> {
-    let kinds = [sp.shaft_hz.is_some(), sp.rpm.is_some(), sp.from_hz.is_some() || sp.to_hz.is_some(), sp.table.is_some()];
+    let kinds = [
+        sp.shaft_hz.is_some(),
+        sp.rpm.is_some(),
+        sp.from_hz.is_some() || sp.to_hz.is_some(),
+        sp.table.is_some(),
+    ];
     if kinds.iter().filter(|k| **k).count() != 1 {
         return Err(ConfigFileError::Choice {
             key: "speed",
@@ -463,8 +577,16 @@ fn speed_from(sp: &SpeedSection) -> Result<SpeedProfile, ConfigFileError> {
     if let Some(table) = &sp.table {
         let mut pts = heapless::Vec::<SpeedPoint, MAX_SPEED_POINTS>::new();
         for [t, hz] in table {
-            pts.push(SpeedPoint { t: *t, shaft_hz: *hz }).map_err(|_| {
-                ConfigFileError::Core(wearsim_core::ConfigError::TooMany { field: "speed.table", count: table.len(), max: MAX_SPEED_POINTS })
+            pts.push(SpeedPoint {
+                t: *t,
+                shaft_hz: *hz,
+            })
+            .map_err(|_| {
+                ConfigFileError::Core(wearsim_core::ConfigError::TooMany {
+                    field: "speed.table",
+                    count: table.len(),
+                    max: MAX_SPEED_POINTS,
+                })
             })?;
         }
         return Ok(SpeedProfile::Table(pts));

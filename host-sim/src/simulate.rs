@@ -84,13 +84,19 @@ pub fn run(sc: &Scenario, mut progress: impl FnMut(usize, usize)) -> Result<SimO
         left -= k;
     }
     let mut accel = Vec::with_capacity(n);
-    let (mut vel, mut disp) = if all { (Vec::with_capacity(n), Vec::with_capacity(n)) } else { (vec![], vec![]) };
+    let (mut vel, mut disp) = if all {
+        (Vec::with_capacity(n), Vec::with_capacity(n))
+    } else {
+        (vec![], vec![])
+    };
     while accel.len() < n {
         let k = (n - accel.len()).min(chunk.len());
         sc.model.fill(&mut st, &mut chunk[..k]);
         for (i, s) in chunk[..k].iter().enumerate() {
             if !(s.accel.is_finite() && s.vel.is_finite() && s.disp.is_finite()) {
-                return Err(RunError::NonFinite { t: (accel.len() + i) as f64 / fs });
+                return Err(RunError::NonFinite {
+                    t: (accel.len() + i) as f64 / fs,
+                });
             }
         }
         accel.extend(chunk[..k].iter().map(|s| s.accel));

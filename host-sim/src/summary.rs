@@ -103,7 +103,12 @@ pub fn summarize(x: &[f64], fs: f64, model: &Model) -> Result<Summary, analysis:
             .into_iter()
             .map(|p| {
                 let (nearest, nearest_hz) = kin.nearest(p.freq);
-                LabelledPeak { freq: p.freq, amplitude: p.value, nearest, nearest_hz }
+                LabelledPeak {
+                    freq: p.freq,
+                    amplitude: p.value,
+                    nearest,
+                    nearest_hz,
+                }
             })
             .collect()
     };
@@ -111,6 +116,17 @@ pub fn summarize(x: &[f64], fs: f64, model: &Model) -> Result<Summary, analysis:
     let sep = 3.0 * spec.df;
     let peaks = label(analysis::top_peaks(&spec, PEAKS, spec.df, 0.4 * fs, sep));
     let env = analysis::envelope_spectrum(x, fs, None)?;
-    let envelope_peaks = label(analysis::top_peaks(&env, PEAKS, env.df, 0.4 * fs, 3.0 * env.df));
-    Ok(Summary { stats, peaks, envelope_peaks, kinematics: kin })
+    let envelope_peaks = label(analysis::top_peaks(
+        &env,
+        PEAKS,
+        env.df,
+        0.4 * fs,
+        3.0 * env.df,
+    ));
+    Ok(Summary {
+        stats,
+        peaks,
+        envelope_peaks,
+        kinematics: kin,
+    })
 }

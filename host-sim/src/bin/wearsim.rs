@@ -10,7 +10,11 @@ use wearsim_host::summary::{self, KinematicFrequencies};
 use wearsim_host::{cli, io};
 
 #[derive(Parser)]
-#[command(name = "wearsim", version, about = "Rolling-bearing vibration over the wear life (El-Thalji 2016)")]
+#[command(
+    name = "wearsim",
+    version,
+    about = "Rolling-bearing vibration over the wear life (El-Thalji 2016)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -39,7 +43,10 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    let result = match args.command.unwrap_or(Command::Simulate(cli::SimulateArgs::default())) {
+    let result = match args
+        .command
+        .unwrap_or(Command::Simulate(cli::SimulateArgs::default()))
+    {
         Command::Simulate(a) => simulate_cmd(a),
         Command::Bench(a) => bench_cmd(a),
         Command::Presets { json } => presets_cmd(json),
@@ -58,17 +65,24 @@ fn simulate_cmd(a: cli::SimulateArgs) -> Result<(), cli::CliError> {
     let fs = scenario.fs();
     let show = !a.json && std::io::stderr().is_terminal();
     let bar = cli::Progress::new(show, "simulating");
-    let out = simulate::run(&scenario, |done, total| bar.update(done, total)).map_err(cli::CliError::run)?;
+    let out = simulate::run(&scenario, |done, total| bar.update(done, total))
+        .map_err(cli::CliError::run)?;
     bar.finish();
-    let summary = summary::summarize(&out.accel, fs, &scenario.model).map_err(cli::CliError::run)?;
-    let g: Vec<f64> = out.accel.iter().map(|x| x / wearsim_core::real::STANDARD_GRAVITY).collect();
+    let summary =
+        summary::summarize(&out.accel, fs, &scenario.model).map_err(cli::CliError::run)?;
+    let g: Vec<f64> = out
+        .accel
+        .iter()
+        .map(|x| x / wearsim_core::real::STANDARD_GRAVITY)
+        .collect();
     let mut columns: Vec<(&str, &[f64])> = vec![("accel_m_s2", &out.accel), ("accel_g", &g)];
     if let (Some(v), Some(d)) = (&out.vel, &out.disp) {
         columns.push(("vel_m_s", v));
         columns.push(("disp_m", d));
     }
     let meta = cli::run_metadata(&scenario, &a, &summary);
-    let files = io::write::write_outputs(&a.out, "simulate", &columns, fs, &meta).map_err(cli::CliError::input)?;
+    let files = io::write::write_outputs(&a.out, "simulate", &columns, fs, &meta)
+        .map_err(cli::CliError::input)?;
     let rtf = scenario.run.duration / out.wall_s.max(1e-12);
     if a.json {
         let v = json!({
@@ -90,13 +104,24 @@ fn simulate_cmd(a: cli::SimulateArgs) -> Result<(), cli::CliError> {
 fn bench_cmd(a: cli::BenchArgs) -> Result<(), cli::CliError> {
     let report = cli::bench(&a)?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&report).unwrap_or_default());
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).unwrap_or_default()
+        );
     } else {
         println!(
             "{}: {:.1} s simulated at fs = {} Hz (oversample {}, {} integrator) in {:.3} s wall",
-            report.preset, report.simulated_s, report.fs, report.oversample, report.integrator, report.wall_s
+            report.preset,
+            report.simulated_s,
+            report.fs,
+            report.oversample,
+            report.integrator,
+            report.wall_s
         );
-        println!("real-time factor: {:.1} x   ({:.1} ns per internal step, one core)", report.rtf, report.ns_per_step);
+        println!(
+            "real-time factor: {:.1} x   ({:.1} ns per internal step, one core)",
+            report.rtf, report.ns_per_step
+        );
     }
     Ok(())
 }
@@ -104,8 +129,11 @@ fn bench_cmd(a: cli::BenchArgs) -> Result<(), cli::CliError> {
 fn presets_cmd(json: bool) -> Result<(), cli::CliError> {
     let mut rows = vec![];
     for name in wearsim_core::presets::NAMES {
-        let Some(cfg) = wearsim_core::presets::by_name(name) else { continue };
-        let model = wearsim_core::Model::new_checked(cfg.clone()).map_err(|e| cli::CliError::run(format!("preset {name}: {e}")))?;
+        let Some(cfg) = wearsim_core::presets::by_name(name) else {
+            continue;
+        };
+        let model = wearsim_core::Model::new_checked(cfg.clone())
+            .map_err(|e| cli::CliError::run(format!("preset {name}: {e}")))?;
         let k = KinematicFrequencies::of(&model);
         let o = model.orders();
         rows.push(json!({
@@ -125,12 +153,26 @@ fn presets_cmd(json: bool) -> Result<(), cli::CliError> {
         }));
     }
     if json {
-        println!("{}", serde_json::to_string_pretty(&rows).unwrap_or_default());
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).unwrap_or_default()
+        );
         return Ok(());
     }
     println!(
         "{:<18} {:>3} {:>8} {:>8} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>7}",
-        "preset", "N", "Bd mm", "P mm", "deg", "1x Hz", "FTF", "BPFO", "BPFI", "BSF", "fn Hz", "zeta"
+        "preset",
+        "N",
+        "Bd mm",
+        "P mm",
+        "deg",
+        "1x Hz",
+        "FTF",
+        "BPFO",
+        "BPFI",
+        "BSF",
+        "fn Hz",
+        "zeta"
     );
     for r in &rows {
         println!(
@@ -150,7 +192,11 @@ fn presets_cmd(json: bool) -> Result<(), cli::CliError> {
         );
     }
     for r in &rows {
-        println!("  {}: {}", r["name"].as_str().unwrap_or(""), r["description"].as_str().unwrap_or(""));
+        println!(
+            "  {}: {}",
+            r["name"].as_str().unwrap_or(""),
+            r["description"].as_str().unwrap_or("")
+        );
     }
     Ok(())
 }
