@@ -297,7 +297,7 @@ impl ScenarioFile {
                 c,
                 &[("point", ContactKind::Point), ("line", ContactKind::Line)],
             )?,
-            None => req(None, b0.map(|b| b.contact), "bearing.contact")?,
+            None => b0.map(|b| b.contact).unwrap_or(ContactKind::Point),
         };
         let bearing = BearingGeometry {
             elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,

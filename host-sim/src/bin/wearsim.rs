@@ -23,6 +23,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a scenario (the built-in reference without arguments) and write CSV, WAV and a JSON sidecar.
+    #[command(allow_negative_numbers = true)]
     Simulate(cli::SimulateArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
