@@ -5,7 +5,13 @@
 
 use wearsim_core::real;
 
-fn max_err(f: impl Fn(f32) -> f32, g: impl Fn(f32) -> f32, lo: f32, hi: f32, relative: bool) -> f32 {
+fn max_err(
+    f: impl Fn(f32) -> f32,
+    g: impl Fn(f32) -> f32,
+    lo: f32,
+    hi: f32,
+    relative: bool,
+) -> f32 {
     let n = 100_000;
     (0..=n)
         .map(|i| {
