@@ -43,6 +43,7 @@ pub mod rng;
 pub mod sensor;
 pub mod speed;
 pub mod topography;
+pub mod wear;
 
 pub use error::ConfigError;
 pub use model::{Channels, Model, ModelConfig, Sample, State, Structure};

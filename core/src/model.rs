@@ -894,6 +894,10 @@ impl<const NB: usize> State<NB> {
     pub fn shaft_hz(&self) -> Real {
         self.shaft_hz
     }
+    /// Cage angle (rad), wrapped to [0, 2π).
+    pub fn cage_angle(&self) -> Real {
+        self.cage_angle
+    }
     /// Shaft angle (rad), wrapped to [0, 2π).
     pub fn shaft_angle(&self) -> Real {
         self.shaft_angle

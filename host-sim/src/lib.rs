@@ -4,5 +4,6 @@ pub mod analysis;
 pub mod cli;
 pub mod config;
 pub mod io;
+pub mod life;
 pub mod simulate;
 pub mod summary;
