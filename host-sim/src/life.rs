@@ -263,7 +263,7 @@ impl LifeRun {
             bsf: f.bsf,
         };
         let st = analysis::stats(x).map_err(err)?;
-        let nperseg = (x.len() / 4).next_power_of_two().min(4096).max(256);
+        let nperseg = (x.len() / 4).next_power_of_two().clamp(256, 4096);
         let psd = analysis::welch_psd(
             x,
             fs,
