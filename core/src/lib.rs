@@ -28,6 +28,7 @@
 )]
 
 pub mod bearing;
+pub mod checkpoint;
 pub mod contact;
 pub mod decimate;
 pub mod error;

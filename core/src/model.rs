@@ -793,7 +793,80 @@ pub struct State<const NB: usize> {
     stats: StepStats,
 }
 
+/// The plain fields of a [`State`], for checkpoints (`crate::checkpoint`).
+#[derive(Debug, Clone)]
+pub(crate) struct StateParts<const NB: usize> {
+    pub y: Real,
+    pub v: Real,
+    pub g_prev: Real,
+    pub has_prev: bool,
+    pub steps: u64,
+    pub time: Real,
+    pub shaft_hz: Real,
+    pub shaft_angle: Real,
+    pub cage_angle: Real,
+    pub wave_angle: Real,
+    pub shaft_cs: (Real, Real),
+    pub cage_cs: (Real, Real),
+    pub wave_cs: (Real, Real),
+    pub rng: Xoshiro128pp,
+    pub rough: [Real; NB],
+    pub slip: [Real; NB],
+    pub armed: u32,
+    pub topography: Option<Topography>,
+    pub lines: [DelayLine; 3],
+    pub phase: u32,
+}
+
 impl<const NB: usize> State<NB> {
+    pub(crate) fn parts(&self) -> StateParts<NB> {
+        StateParts {
+            y: self.y,
+            v: self.v,
+            g_prev: self.g_prev,
+            has_prev: self.has_prev,
+            steps: self.steps,
+            time: self.time,
+            shaft_hz: self.shaft_hz,
+            shaft_angle: self.shaft_angle,
+            cage_angle: self.cage_angle,
+            wave_angle: self.wave_angle,
+            shaft_cs: self.shaft_cs,
+            cage_cs: self.cage_cs,
+            wave_cs: self.wave_cs,
+            rng: self.rng.clone(),
+            rough: self.rough,
+            slip: self.slip,
+            armed: self.armed,
+            topography: self.topography,
+            lines: self.lines,
+            phase: self.phase,
+        }
+    }
+
+    pub(crate) fn restore(&mut self, p: StateParts<NB>) {
+        self.y = p.y;
+        self.v = p.v;
+        self.g_prev = p.g_prev;
+        self.has_prev = p.has_prev;
+        self.steps = p.steps;
+        self.time = p.time;
+        self.shaft_hz = p.shaft_hz;
+        self.shaft_angle = p.shaft_angle;
+        self.cage_angle = p.cage_angle;
+        self.wave_angle = p.wave_angle;
+        self.shaft_cs = p.shaft_cs;
+        self.cage_cs = p.cage_cs;
+        self.wave_cs = p.wave_cs;
+        self.rng = p.rng;
+        self.rough = p.rough;
+        self.slip = p.slip;
+        self.armed = p.armed;
+        self.topography = p.topography;
+        self.lines = p.lines;
+        self.phase = p.phase;
+    }
+
     /// Initial state at static equilibrium, at rest relative to it, with `seed` for the
     /// random generator. Fails if `NB` is smaller than the bearing's element count.
     pub fn new(model: &Model, seed: u64) -> Result<Self, ConfigError> {

@@ -6,9 +6,14 @@
 //! seed gives the same wear history in both.
 
 use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use wearsim_core::forces::slip::Slip;
-use wearsim_core::wear::{Life, LifeConfig, LifeState, PassMeter, Stage};
+use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
+
+pub mod cli;
+pub mod dense;
+pub mod output;
+pub mod state_json;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Capacity of the dynamic state.
@@ -72,7 +77,7 @@ pub enum LifeError {
 }
 
 /// Features of one window (acceleration, m/s²).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Features {
     /// RMS.
     pub rms: f64,
@@ -95,12 +100,12 @@ pub struct Features {
 }
 
 /// One snapshot of the life.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Snapshot {
     /// Revolutions at the window.
     pub cycles: f64,
     /// Stage name.
-    pub stage: &'static str,
+    pub stage: String,
     /// Features.
     pub features: Features,
     /// Asperity height (m), defect length (m), count, crack depth (m).
@@ -212,7 +217,7 @@ impl LifeRun {
         &self,
         st: &LifeState,
         k: u64,
-    ) -> Result<(Vec<f64>, wearsim_core::wear::PassLoads), LifeError> {
+    ) -> Result<(Vec<f64>, PassLoads), LifeError> {
         let model = self.model_for(st)?;
         let fs = model.config().output_rate;
         let seed = self.spec.seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
@@ -326,20 +331,8 @@ impl LifeRun {
             if st.stage == Stage::Failure {
                 break;
             }
-            let mut remaining = self.spec.snapshot_every;
-            while remaining > 0.0 {
-                let before = st.stage;
-                let adv = self.life.advance(&mut st, remaining, &loads);
-                remaining -= adv.revs;
-                if adv.transition.is_some() {
-                    if st.stage != before {
-                        fresh_transition = Some(st.stage);
-                    }
-                    break;
-                }
-                if adv.revs <= 0.0 {
-                    break;
-                }
+            if let (_, Some(stage)) = self.advance_block(&mut st, &loads) {
+                fresh_transition = Some(stage);
             }
             if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
                 return Err(LifeError::CapReached {
@@ -359,16 +352,46 @@ impl LifeRun {
         })
     }
 
-    fn snapshot(
+    /// Advances the wear by one block: `snapshot_every` revolutions, or less when a stage
+    /// transition (or a growth step of the defect) ends it early. Returns the revolutions
+    /// advanced and the stage entered, if it changed.
+    pub fn advance_block(&self, st: &mut LifeState, loads: &PassLoads) -> (f64, Option<Stage>) {
+        let mut remaining = self.spec.snapshot_every;
+        let mut total = 0.0;
+        while remaining > 0.0 {
+            let before = st.stage;
+            let adv = self.life.advance(st, remaining, loads);
+            remaining -= adv.revs;
+            total += adv.revs;
+            if adv.transition.is_some() {
+                return (total, (st.stage != before).then_some(st.stage));
+            }
+            if adv.revs <= 0.0 {
+                break;
+            }
+        }
+        (total, None)
+    }
+
+    /// Checks the cycle cap.
+    pub fn check_cap(&self, st: &LifeState) -> Result<(), LifeError> {
+        if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
+            return Err(LifeError::CapReached { cap: self.spec.life.cycle_cap, stage: st.stage.name(), cycles: st.cycles });
+        }
+        Ok(())
+    }
+
+    /// The snapshot record of a window.
+    pub fn snapshot(
         &self,
         st: &LifeState,
         x: &[f64],
-        loads: &wearsim_core::wear::PassLoads,
+        loads: &PassLoads,
     ) -> Result<Snapshot, LifeError> {
         let t = st.topography;
         Ok(Snapshot {
             cycles: st.cycles,
-            stage: st.stage.name(),
+            stage: st.stage.name().to_string(),
             features: self.features(x, st.cycles)?,
             asperity: t.map(|t| t.asperity_height).unwrap_or(0.0),
             length: t.map(|t| t.length).unwrap_or(0.0),
