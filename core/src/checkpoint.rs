@@ -102,7 +102,18 @@ impl<const NB: usize> State<NB> {
         w.u32(VERSION)?;
         w.u32(NB as u32)?;
         let p = self.parts();
-        for v in [p.y, p.v, p.g_prev, p.time, p.shaft_hz, p.shaft_angle, p.cage_angle, p.wave_angle, 0.0, 0.0] {
+        for v in [
+            p.y,
+            p.v,
+            p.g_prev,
+            p.time,
+            p.shaft_hz,
+            p.shaft_angle,
+            p.cage_angle,
+            p.wave_angle,
+            0.0,
+            0.0,
+        ] {
             w.real(v)?;
         }
         for (c, s) in [p.shaft_cs, p.cage_cs, p.wave_cs] {
@@ -181,7 +192,14 @@ impl<const NB: usize> State<NB> {
         }
         let count = r.u8()?;
         let [asperity_height, length, width, depth, debris] = t5;
-        let topography = has_topo.then_some(Topography { asperity_height, length, width, depth, count, debris });
+        let topography = has_topo.then_some(Topography {
+            asperity_height,
+            length,
+            width,
+            depth,
+            count,
+            debris,
+        });
         let mut lines = [DelayLine::default(); 3];
         for line in lines.iter_mut() {
             let mut buf = [0.0 as Real; 2 * MAX_TAPS];

@@ -153,7 +153,10 @@ impl DelayLine {
     /// A delay line from a raw buffer and position (for checkpoints); the position is
     /// reduced modulo the capacity.
     pub fn from_raw(buf: [Real; 2 * MAX_TAPS], pos: usize) -> Self {
-        DelayLine { buf, pos: pos % MAX_TAPS }
+        DelayLine {
+            buf,
+            pos: pos % MAX_TAPS,
+        }
     }
 
     /// The newest `len` samples, oldest first.

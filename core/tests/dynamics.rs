@@ -308,7 +308,8 @@ fn state_size_is_fixed() {
 #[test]
 fn checkpoint_round_trip_continues_bit_identically() {
     use wearsim_core::checkpoint::encoded_len;
-    let model = Model::new_checked(wearsim_core::presets::by_name("thesis-61810").unwrap()).unwrap();
+    let model =
+        Model::new_checked(wearsim_core::presets::by_name("thesis-61810").unwrap()).unwrap();
     let mut a: State<16> = State::new(&model, 5).unwrap();
     let mut first = vec![wearsim_core::Sample::default(); 3001];
     model.fill(&mut a, &mut first);
@@ -320,7 +321,10 @@ fn checkpoint_round_trip_continues_bit_identically() {
     let mut rb = ra.clone();
     model.fill(&mut a, &mut ra);
     model.fill(&mut b, &mut rb);
-    assert!(ra.iter().zip(&rb).all(|(x, y)| x.accel.to_bits() == y.accel.to_bits()));
+    assert!(ra
+        .iter()
+        .zip(&rb)
+        .all(|(x, y)| x.accel.to_bits() == y.accel.to_bits()));
     // Corrupt and truncated checkpoints are errors, not panics.
     assert!(State::<16>::decode(&model, &bytes[..n / 2]).is_err());
     let mut bad = bytes.clone();

@@ -107,7 +107,7 @@ impl Material {
         check_range("material.crack_c0", m.crack_c0, 1e-12, 1e6)?;
         check_range("material.crack_m0", m.crack_m0, 0.5, 4.0)?;
         check_range("material.life_exponent", m.life_exponent, 1.0, 6.0)?;
-        check_range("material.life_factor", m.life_factor, 1e-6, 1e3)?;
+        check_range("material.life_factor", m.life_factor, 1e-9, 1e3)?;
         check_range("material.dent_fraction", m.dent_fraction, 0.01, 0.99)?;
         check_range("material.asperity_beta", m.asperity_beta, 0.0, 10.0)?;
         check_range("material.initiation_passes", m.initiation_passes, 1.0, 1e12)?;

@@ -140,12 +140,19 @@ pub enum DenseError {
 }
 
 fn io_err(path: &Path) -> impl Fn(std::io::Error) -> DenseError + '_ {
-    move |source| DenseError::Io { path: path.display().to_string(), source }
+    move |source| DenseError::Io {
+        path: path.display().to_string(),
+        source,
+    }
 }
 
 /// Paths of the dense-mode files in `dir`.
 pub fn paths(dir: &Path) -> (PathBuf, PathBuf, PathBuf) {
-    (dir.join("life-dense.f32"), dir.join("life-dense.json"), dir.join("life-dense.ckpt"))
+    (
+        dir.join("life-dense.f32"),
+        dir.join("life-dense.json"),
+        dir.join("life-dense.ckpt"),
+    )
 }
 
 impl LifeRun {
@@ -154,12 +161,21 @@ impl LifeRun {
     pub fn fingerprint(&self) -> String {
         format!(
             "{:?}|{:?}|{}|{}|{}|{}",
-            self.spec.model, self.spec.life, self.spec.seed, self.spec.snapshot_every, self.spec.window, self.spec.settle
+            self.spec.model,
+            self.spec.life,
+            self.spec.seed,
+            self.spec.snapshot_every,
+            self.spec.window,
+            self.spec.settle
         )
     }
 
     /// Dense mode (see the module docs).
-    pub fn run_dense(&self, opts: &DenseOptions, mut progress: impl FnMut(f64, f64)) -> Result<DenseReport, DenseError> {
+    pub fn run_dense(
+        &self,
+        opts: &DenseOptions,
+        mut progress: impl FnMut(f64, f64),
+    ) -> Result<DenseReport, DenseError> {
         let t0 = std::time::Instant::now();
         let (data_path, manifest_path, ckpt_path) = paths(&opts.dir);
         std::fs::create_dir_all(&opts.dir).map_err(io_err(&opts.dir))?;
@@ -168,25 +184,62 @@ impl LifeRun {
 
         // Start or resume.
         let resumed = ckpt_path.exists();
-        let (mut k, mut st, mut samples_total, mut samples_in_block, mut carry, mut snapshots, mut blocks, dyn_bytes) = if resumed {
+        let (
+            mut k,
+            mut st,
+            mut samples_total,
+            mut samples_in_block,
+            mut carry,
+            mut snapshots,
+            mut blocks,
+            dyn_bytes,
+        ) = if resumed {
             let (c, bytes) = read_checkpoint(&ckpt_path)?;
             if c.fingerprint != fingerprint {
                 return Err(DenseError::Checkpoint {
                     path: ckpt_path.display().to_string(),
-                    reason: "belongs to a run with other settings; use another --out or remove it".into(),
+                    reason: "belongs to a run with other settings; use another --out or remove it"
+                        .into(),
                 });
             }
-            let st = c.block_start.to_state().ok_or_else(|| DenseError::Checkpoint {
-                path: ckpt_path.display().to_string(),
-                reason: "corrupt wear state".into(),
-            })?;
-            (c.block, st, c.samples_total, c.samples_in_block, c.carry, c.snapshots, c.blocks, Some(bytes))
+            let st = c
+                .block_start
+                .to_state()
+                .ok_or_else(|| DenseError::Checkpoint {
+                    path: ckpt_path.display().to_string(),
+                    reason: "corrupt wear state".into(),
+                })?;
+            (
+                c.block,
+                st,
+                c.samples_total,
+                c.samples_in_block,
+                c.carry,
+                c.snapshots,
+                c.blocks,
+                Some(bytes),
+            )
         } else {
-            (0, self.life.initial_state(self.spec.seed), 0, 0, 0.0, vec![], vec![], None)
+            (
+                0,
+                self.life.initial_state(self.spec.seed),
+                0,
+                0,
+                0.0,
+                vec![],
+                vec![],
+                None,
+            )
         };
 
         // The data file holds exactly `samples_total` samples from here on.
-        let mut file = OpenOptions::new().create(true).truncate(false).read(true).write(true).open(&data_path).map_err(io_err(&data_path))?;
+        let mut file = OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .read(true)
+            .write(true)
+            .open(&data_path)
+            .map_err(io_err(&data_path))?;
         let have = file.metadata().map_err(io_err(&data_path))?.len() / 4;
         if have < samples_total {
             return Err(DenseError::Checkpoint {
@@ -194,7 +247,8 @@ impl LifeRun {
                 reason: format!("holds {have} samples but the checkpoint counts {samples_total}"),
             });
         }
-        file.set_len(samples_total * 4).map_err(io_err(&data_path))?;
+        file.set_len(samples_total * 4)
+            .map_err(io_err(&data_path))?;
         file.seek(SeekFrom::End(0)).map_err(io_err(&data_path))?;
         let mut out = BufWriter::new(file);
 
@@ -208,7 +262,10 @@ impl LifeRun {
                 s
             }
         };
-        write_manifest(&manifest_path, &self.manifest(fs, samples_total, st.cycles, false, &blocks))?;
+        write_manifest(
+            &manifest_path,
+            &self.manifest(fs, samples_total, st.cycles, false, &blocks),
+        )?;
 
         let mut generated: u64 = 0;
         let budget = opts.stop_after.map(|s| (s * fs).round() as u64);
@@ -241,14 +298,21 @@ impl LifeRun {
                 });
             }
             let window_n = (self.spec.window * fs) as u64;
-            let mut window: Vec<f64> = Vec::with_capacity(if samples_in_block == 0 { window_n as usize } else { 0 });
+            let mut window: Vec<f64> = Vec::with_capacity(if samples_in_block == 0 {
+                window_n as usize
+            } else {
+                0
+            });
             while samples_in_block < n_block {
                 let n = ((n_block - samples_in_block) as usize).min(CHUNK);
                 model.fill(&mut dynamic, &mut buf[..n]);
                 f32buf.clear();
                 for s in &buf[..n] {
                     if !s.accel.is_finite() {
-                        return Err(LifeError::NonFinite { cycles: start.cycles }.into());
+                        return Err(LifeError::NonFinite {
+                            cycles: start.cycles,
+                        }
+                        .into());
                     }
                     f32buf.extend_from_slice(&(s.accel as f32).to_le_bytes());
                     if (window.len() as u64) < window_n && window.capacity() > 0 {
@@ -276,9 +340,21 @@ impl LifeRun {
                         blocks: blocks.clone(),
                     };
                     write_checkpoint(&ckpt_path, &c, &dynamic)?;
-                    write_manifest(&manifest_path, &self.manifest(fs, samples_total, start.cycles, false, &blocks))?;
+                    write_manifest(
+                        &manifest_path,
+                        &self.manifest(fs, samples_total, start.cycles, false, &blocks),
+                    )?;
                     if stop {
-                        return Ok(DenseReport { samples: samples_total, generated, complete: false, resumed, snapshots, state: start, wall_s: t0.elapsed().as_secs_f64(), fs });
+                        return Ok(DenseReport {
+                            samples: samples_total,
+                            generated,
+                            complete: false,
+                            resumed,
+                            snapshots,
+                            state: start,
+                            wall_s: t0.elapsed().as_secs_f64(),
+                            fs,
+                        });
                     }
                 }
             }
@@ -292,12 +368,31 @@ impl LifeRun {
         }
         out.flush().map_err(io_err(&data_path))?;
         out.get_ref().sync_all().map_err(io_err(&data_path))?;
-        write_manifest(&manifest_path, &self.manifest(fs, samples_total, st.cycles, true, &blocks))?;
+        write_manifest(
+            &manifest_path,
+            &self.manifest(fs, samples_total, st.cycles, true, &blocks),
+        )?;
         let _ = std::fs::remove_file(&ckpt_path);
-        Ok(DenseReport { samples: samples_total, generated, complete: true, resumed, snapshots, state: st, wall_s: t0.elapsed().as_secs_f64(), fs })
+        Ok(DenseReport {
+            samples: samples_total,
+            generated,
+            complete: true,
+            resumed,
+            snapshots,
+            state: st,
+            wall_s: t0.elapsed().as_secs_f64(),
+            fs,
+        })
     }
 
-    fn manifest(&self, fs: f64, samples: u64, cycles: f64, complete: bool, blocks: &[BlockRecord]) -> Manifest {
+    fn manifest(
+        &self,
+        fs: f64,
+        samples: u64,
+        cycles: f64,
+        complete: bool,
+        blocks: &[BlockRecord],
+    ) -> Manifest {
         Manifest {
             format: "wearsim-dense-f32le".into(),
             fs,
@@ -312,14 +407,29 @@ impl LifeRun {
 }
 
 fn write_manifest(path: &Path, m: &Manifest) -> Result<(), DenseError> {
-    let text = serde_json::to_vec_pretty(m).map_err(|e| DenseError::Io { path: path.display().to_string(), source: e.into() })?;
+    let text = serde_json::to_vec_pretty(m).map_err(|e| DenseError::Io {
+        path: path.display().to_string(),
+        source: e.into(),
+    })?;
     super::output::write_atomic(path, &text).map_err(io_err(path))
 }
 
-fn write_checkpoint(path: &Path, c: &Checkpoint, dynamic: &State<CAPACITY>) -> Result<(), DenseError> {
-    let header = serde_json::to_vec(c).map_err(|e| DenseError::Io { path: path.display().to_string(), source: e.into() })?;
+fn write_checkpoint(
+    path: &Path,
+    c: &Checkpoint,
+    dynamic: &State<CAPACITY>,
+) -> Result<(), DenseError> {
+    let header = serde_json::to_vec(c).map_err(|e| DenseError::Io {
+        path: path.display().to_string(),
+        source: e.into(),
+    })?;
     let mut state = vec![0u8; encoded_len(CAPACITY)];
-    let n = dynamic.encode(&mut state).map_err(|e| DenseError::Checkpoint { path: path.display().to_string(), reason: e.to_string() })?;
+    let n = dynamic
+        .encode(&mut state)
+        .map_err(|e| DenseError::Checkpoint {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?;
     let mut bytes = Vec::with_capacity(header.len() + n + 24);
     bytes.extend_from_slice(MAGIC);
     bytes.extend_from_slice(&(header.len() as u64).to_le_bytes());
@@ -330,17 +440,29 @@ fn write_checkpoint(path: &Path, c: &Checkpoint, dynamic: &State<CAPACITY>) -> R
 }
 
 fn read_checkpoint(path: &Path) -> Result<(Checkpoint, Vec<u8>), DenseError> {
-    let bad = |reason: &str| DenseError::Checkpoint { path: path.display().to_string(), reason: reason.into() };
+    let bad = |reason: &str| DenseError::Checkpoint {
+        path: path.display().to_string(),
+        reason: reason.into(),
+    };
     let mut bytes = vec![];
-    File::open(path).and_then(|mut f| f.read_to_end(&mut bytes)).map_err(io_err(path))?;
+    File::open(path)
+        .and_then(|mut f| f.read_to_end(&mut bytes))
+        .map_err(io_err(path))?;
     if bytes.get(..8) != Some(MAGIC.as_slice()) {
         return Err(bad("not a wearsim dense checkpoint"));
     }
-    let len = |at: usize| -> Option<usize> { Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?) as usize) };
+    let len = |at: usize| -> Option<usize> {
+        Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?) as usize)
+    };
     let hl = len(8).ok_or_else(|| bad("truncated header"))?;
-    let header = bytes.get(16..16 + hl).ok_or_else(|| bad("truncated header"))?;
-    let c: Checkpoint = serde_json::from_slice(header).map_err(|e| bad(&format!("corrupt header: {e}")))?;
+    let header = bytes
+        .get(16..16 + hl)
+        .ok_or_else(|| bad("truncated header"))?;
+    let c: Checkpoint =
+        serde_json::from_slice(header).map_err(|e| bad(&format!("corrupt header: {e}")))?;
     let sl = len(16 + hl).ok_or_else(|| bad("truncated state"))?;
-    let state = bytes.get(24 + hl..24 + hl + sl).ok_or_else(|| bad("truncated state"))?;
+    let state = bytes
+        .get(24 + hl..24 + hl + sl)
+        .ok_or_else(|| bad("truncated state"))?;
     Ok((c, state.to_vec()))
 }

@@ -213,11 +213,7 @@ impl LifeRun {
 
     /// Renders one window for state `st` (index `k` seeds its random stream): returns the
     /// samples and the pass loads measured over it.
-    pub fn window(
-        &self,
-        st: &LifeState,
-        k: u64,
-    ) -> Result<(Vec<f64>, PassLoads), LifeError> {
+    pub fn window(&self, st: &LifeState, k: u64) -> Result<(Vec<f64>, PassLoads), LifeError> {
         let model = self.model_for(st)?;
         let fs = model.config().output_rate;
         let seed = self.spec.seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
@@ -376,7 +372,11 @@ impl LifeRun {
     /// Checks the cycle cap.
     pub fn check_cap(&self, st: &LifeState) -> Result<(), LifeError> {
         if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
-            return Err(LifeError::CapReached { cap: self.spec.life.cycle_cap, stage: st.stage.name(), cycles: st.cycles });
+            return Err(LifeError::CapReached {
+                cap: self.spec.life.cycle_cap,
+                stage: st.stage.name(),
+                cycles: st.cycles,
+            });
         }
         Ok(())
     }

@@ -11,7 +11,10 @@ use wearsim_core::wear::LifeState;
 
 /// Writes `bytes` to `path` atomically (temporary file in the same directory, fsync, rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
@@ -32,7 +35,11 @@ pub struct Span {
 
 /// The stage timeline from the event log.
 pub fn timeline(st: &LifeState) -> Vec<Span> {
-    let mut spans: Vec<Span> = vec![Span { stage: "running-in".into(), start: 0.0, end: st.cycles }];
+    let mut spans: Vec<Span> = vec![Span {
+        stage: "running-in".into(),
+        start: 0.0,
+        end: st.cycles,
+    }];
     for e in st.events.iter() {
         if e.stage.name() == spans.last().map(|s| s.stage.as_str()).unwrap_or("") {
             continue;
@@ -40,13 +47,23 @@ pub fn timeline(st: &LifeState) -> Vec<Span> {
         if let Some(last) = spans.last_mut() {
             last.end = e.cycles;
         }
-        spans.push(Span { stage: e.stage.name().into(), start: e.cycles, end: st.cycles });
+        spans.push(Span {
+            stage: e.stage.name().into(),
+            start: e.cycles,
+            end: st.cycles,
+        });
     }
     spans
 }
 
 /// Writes features, timeline, events and summary into `dir`; returns the files written.
-pub fn write_life(dir: &Path, run: &LifeRun, snapshots: &[Snapshot], st: &LifeState, extra: serde_json::Value) -> std::io::Result<Vec<PathBuf>> {
+pub fn write_life(
+    dir: &Path,
+    run: &LifeRun,
+    snapshots: &[Snapshot],
+    st: &LifeState,
+    extra: serde_json::Value,
+) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let life_end = st.cycles.max(1.0);
     let mut csv = String::from("cycles,life_fraction,stage,rms,kurtosis,crest_factor,zone_rotating,zone_fault,zone_natural,zone_high,fault_peak,resonance_peak,asperity_m,length_m,count,crack_m,debris,zone_load_n,edge_load_n\n");
@@ -54,8 +71,25 @@ pub fn write_life(dir: &Path, run: &LifeRun, snapshots: &[Snapshot], st: &LifeSt
         let f = &s.features;
         csv.push_str(&format!(
             "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-            s.cycles, s.cycles / life_end, s.stage, f.rms, f.kurtosis, f.crest_factor, f.zone_rotating, f.zone_fault, f.zone_natural, f.zone_high,
-            f.fault_peak, f.resonance_peak, s.asperity, s.length, s.count, s.crack, s.debris, s.zone_load, s.edge_load
+            s.cycles,
+            s.cycles / life_end,
+            s.stage,
+            f.rms,
+            f.kurtosis,
+            f.crest_factor,
+            f.zone_rotating,
+            f.zone_fault,
+            f.zone_natural,
+            f.zone_high,
+            f.fault_peak,
+            f.resonance_peak,
+            s.asperity,
+            s.length,
+            s.count,
+            s.crack,
+            s.debris,
+            s.zone_load,
+            s.edge_load
         ));
     }
     let spans = timeline(st);
@@ -67,14 +101,22 @@ pub fn write_life(dir: &Path, run: &LifeRun, snapshots: &[Snapshot], st: &LifeSt
     let mut ev = String::from("stage,cycles,asperity_m,length_m,width_m,depth_m,count,crack_m\n");
     for e in &events {
         let t = &e.topography;
-        ev.push_str(&format!("{},{},{},{},{},{},{},{}\n", e.stage, e.cycles, t.asperity_height, t.length, t.width, t.depth, t.count, e.crack));
+        ev.push_str(&format!(
+            "{},{},{},{},{},{},{},{}\n",
+            e.stage, e.cycles, t.asperity_height, t.length, t.width, t.depth, t.count, e.crack
+        ));
     }
     let files = [
         ("life-features.csv", csv.into_bytes()),
         ("life-features.json", serde_json::to_vec_pretty(snapshots)?),
         ("life-timeline.csv", tl.into_bytes()),
         ("life-events.csv", ev.into_bytes()),
-        ("life-events.json", serde_json::to_vec_pretty(&json!({ "events": events, "timeline": spans, "lost_events": st.lost_events }))?),
+        (
+            "life-events.json",
+            serde_json::to_vec_pretty(
+                &json!({ "events": events, "timeline": spans, "lost_events": st.lost_events }),
+            )?,
+        ),
     ];
     let mut written = vec![];
     for (name, bytes) in files {

@@ -23,13 +23,27 @@ pub struct TopographyJson {
 
 impl From<Topography> for TopographyJson {
     fn from(t: Topography) -> Self {
-        TopographyJson { asperity_height: t.asperity_height, length: t.length, width: t.width, depth: t.depth, count: t.count, debris: t.debris }
+        TopographyJson {
+            asperity_height: t.asperity_height,
+            length: t.length,
+            width: t.width,
+            depth: t.depth,
+            count: t.count,
+            debris: t.debris,
+        }
     }
 }
 
 impl From<TopographyJson> for Topography {
     fn from(t: TopographyJson) -> Self {
-        Topography { asperity_height: t.asperity_height, length: t.length, width: t.width, depth: t.depth, count: t.count, debris: t.debris }
+        Topography {
+            asperity_height: t.asperity_height,
+            length: t.length,
+            width: t.width,
+            depth: t.depth,
+            count: t.count,
+            debris: t.debris,
+        }
     }
 }
 
@@ -48,7 +62,12 @@ pub struct EventJson {
 
 impl From<&Event> for EventJson {
     fn from(e: &Event) -> Self {
-        EventJson { stage: e.stage.name().into(), cycles: e.cycles, topography: e.topography.into(), crack: e.crack }
+        EventJson {
+            stage: e.stage.name().into(),
+            cycles: e.cycles,
+            topography: e.topography.into(),
+            crack: e.crack,
+        }
     }
 }
 
@@ -115,7 +134,12 @@ impl LifeStateJson {
     pub fn to_state(&self) -> Option<LifeState> {
         let mut events = EventLog::new();
         for e in &self.events {
-            let ev = Event { stage: stage_of(&e.stage)?, cycles: e.cycles, topography: e.topography.into(), crack: e.crack };
+            let ev = Event {
+                stage: stage_of(&e.stage)?,
+                cycles: e.cycles,
+                topography: e.topography.into(),
+                crack: e.crack,
+            };
             events.push(ev).ok()?;
         }
         Some(LifeState {
