@@ -30,6 +30,10 @@ enum Command {
     Life(wearsim_host::life::cli::LifeArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
+    /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
+    Analyze(wearsim_host::analyze::AnalyzeArgs),
+    /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
+    CwruBenchmark(wearsim_host::cwru_benchmark::CwruBenchmarkArgs),
     /// List the presets with their derived frequencies.
     Presets {
         /// Machine-readable output.
@@ -55,6 +59,8 @@ fn main() -> ExitCode {
         Command::Bench(a) => bench_cmd(a),
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
+        Command::Analyze(a) => wearsim_host::analyze::run(&a),
+        Command::CwruBenchmark(a) => wearsim_host::cwru_benchmark::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
