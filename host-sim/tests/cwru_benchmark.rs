@@ -47,8 +47,19 @@ fn cwru_inner_outer_and_normal_meet_the_target() -> Result<(), Box<dyn std::erro
     let total: usize = r.confusion.iter().flatten().sum();
     assert_eq!(total, r.files.len());
     // A race fault is never taken for the other race (a physics-level confusion).
-    let ir = CLASSES.iter().position(|c| *c == FaultFamily::InnerRace).unwrap_or(0);
-    let or = CLASSES.iter().position(|c| *c == FaultFamily::OuterRace).unwrap_or(1);
-    assert_eq!(r.confusion[ir][or] + r.confusion[or][ir], 0, "{:?}", r.confusion);
+    let ir = CLASSES
+        .iter()
+        .position(|c| *c == FaultFamily::InnerRace)
+        .unwrap_or(0);
+    let or = CLASSES
+        .iter()
+        .position(|c| *c == FaultFamily::OuterRace)
+        .unwrap_or(1);
+    assert_eq!(
+        r.confusion[ir][or] + r.confusion[or][ir],
+        0,
+        "{:?}",
+        r.confusion
+    );
     Ok(())
 }
