@@ -28,6 +28,8 @@ enum Command {
     /// Run a whole wear life: stage timeline, per-snapshot features, events (snapshot or dense mode).
     #[command(allow_negative_numbers = true)]
     Life(wearsim_host::life::cli::LifeArgs),
+    /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
+    ImsCompare(wearsim_host::life::cli::ImsCompareArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
@@ -58,6 +60,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate_cmd(a),
         Command::Bench(a) => bench_cmd(a),
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
+        Command::ImsCompare(a) => wearsim_host::life::cli::ims_compare_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
         Command::Analyze(a) => wearsim_host::analyze::run(&a),
         Command::CwruBenchmark(a) => wearsim_host::cwru_benchmark::run(&a),

@@ -14,6 +14,7 @@ pub mod cli;
 pub mod dense;
 pub mod ims;
 pub mod output;
+pub mod plot;
 pub mod state_json;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Once;
 
 /// Font family name under which DejaVu Sans is registered.
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 /// Plot size in pixels (PNG) and user units (SVG).
 const SIZE: (u32, u32) = (1100, 700);
 /// Most points drawn per curve (max-hold decimation keeps every peak visible).
@@ -109,7 +109,7 @@ fn marks(k: &Kinematics, harmonics: usize) -> Vec<Mark> {
 
 /// Points `(f, value)` of `s` in `[f0, f1]`, decimated by max-hold to at most `MAX_POINTS`,
 /// values mapped by `map`.
-fn points(s: &Spectrum, f0: f64, f1: f64, map: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
+pub(crate) fn points(s: &Spectrum, f0: f64, f1: f64, map: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
     if s.is_empty() || s.df <= 0.0 {
         return vec![];
     }
@@ -134,12 +134,12 @@ fn points(s: &Spectrum, f0: f64, f1: f64, map: impl Fn(f64) -> f64) -> Vec<(f64,
 }
 
 /// Amplitude in dB re 1 signal unit (floored at -200 dB).
-fn db(v: f64) -> f64 {
+pub(crate) fn db(v: f64) -> f64 {
     20.0 * v.max(1e-10).log10()
 }
 
 /// Range `(lo, hi)` of the finite values, padded; a fallback for empty or flat data.
-fn range(pts: &[(f64, f64)], pad_lo: f64, pad_hi: f64) -> (f64, f64) {
+pub(crate) fn range(pts: &[(f64, f64)], pad_lo: f64, pad_hi: f64) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for &(_, y) in pts {
         if y.is_finite() {
@@ -157,10 +157,10 @@ fn range(pts: &[(f64, f64)], pad_lo: f64, pad_hi: f64) -> (f64, f64) {
     (lo - pad_lo * span, hi + pad_hi * span)
 }
 
-type R = Result<(), String>;
+pub(crate) type R = Result<(), String>;
 
 /// Turn any drawing error into a message.
-fn e<T, E: std::fmt::Display>(r: Result<T, E>) -> Result<T, String> {
+pub(crate) fn e<T, E: std::fmt::Display>(r: Result<T, E>) -> Result<T, String> {
     r.map_err(|err| err.to_string())
 }
 
@@ -477,7 +477,7 @@ fn draw_kurtogram<DB: DrawingBackend>(
 }
 
 /// Render one figure to `<dir>/<name>.png` and `.svg`.
-fn render(
+pub(crate) fn render(
     dir: &Path,
     name: &str,
     draw_png: impl FnOnce(DrawingArea<BitMapBackend, Shift>) -> R,
