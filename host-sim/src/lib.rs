@@ -1,6 +1,7 @@
 //! wearsim host library: scenario configuration, the simulation runner, measurement
 //! readers and writers, signal analysis, and the figures the `wearsim` command prints.
 pub mod analysis;
+pub mod capture;
 pub mod cli;
 pub mod config;
 pub mod io;

@@ -26,6 +26,8 @@ enum Command {
     Simulate(cli::SimulateArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
+    /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
+    Capture(wearsim_host::capture::CaptureArgs),
     /// List the presets with their derived frequencies.
     Presets {
         /// Machine-readable output.
@@ -49,6 +51,7 @@ fn main() -> ExitCode {
     {
         Command::Simulate(a) => simulate_cmd(a),
         Command::Bench(a) => bench_cmd(a),
+        Command::Capture(a) => wearsim_host::capture::run(a),
         Command::Presets { json } => presets_cmd(json),
     };
     match result {
