@@ -536,6 +536,7 @@ impl<'a> Iterator for Decoder<'a> {
 }
 
 #[cfg(test)]
+#[allow(clippy::unwrap_used, clippy::indexing_slicing)]
 mod tests {
     use super::*;
 

@@ -6,6 +6,9 @@
 //! * `fwtool reference PRESET SEED N OUT [f32|i16 FULL_SCALE_G]` — runs the same f32 build of
 //!   the core on the host and writes the first N output samples in the firmware's wire
 //!   format (little-endian f32 m/s², or i16 counts) to OUT.
+//! * `fwtool budget SERIAL` — instructions per output sample from the end frame of a stream
+//!   captured under QEMU `-icount shift=0` (1 instruction = 1 ns of virtual time), plus the
+//!   stream's overruns; one JSON object.
 //! * `fwtool size ELF [--json]` — flash (text + rodata + data image) and static RAM
 //!   (data + bss + uninit) of a firmware ELF, like `size`.
 use std::process::ExitCode;
@@ -20,6 +23,7 @@ fn main() -> ExitCode {
         Some("defmt") => defmt_cmd(&args[1..]),
         Some("reference") => reference_cmd(&args[1..]),
         Some("size") => size_cmd(&args[1..]),
+        Some("budget") => budget_cmd(&args[1..]),
         _ => Err("usage: fwtool defmt ELF LOG | reference PRESET SEED N OUT [f32|i16 FS_G] | size ELF [--json]".into()),
     };
     match r {
@@ -93,6 +97,36 @@ fn reference_cmd(a: &[String]) -> Result<(), String> {
         }
     }
     std::fs::write(out, bytes).map_err(|e| format!("{out}: {e}"))
+}
+
+fn budget_cmd(a: &[String]) -> Result<(), String> {
+    let Some(path) = a.first() else {
+        return Err("usage: fwtool budget SERIAL".into());
+    };
+    let bytes = read(path)?;
+    let end = wearsim_frame::Decoder::new(&bytes).find_map(|e| match e {
+        wearsim_frame::Event::Frame {
+            header:
+                wearsim_frame::Header {
+                    kind: wearsim_frame::Kind::End,
+                    ..
+                },
+            payload,
+            ..
+        } => wearsim_frame::EndInfo::from_bytes(payload),
+        _ => None,
+    });
+    let e = end.ok_or_else(|| format!("{path}: no valid end frame"))?;
+    if e.measured_samples == 0 || e.tick_hz == 0 {
+        return Err(format!("{path}: the end frame carries no measurement"));
+    }
+    let ips = e.busy_ticks as f64 * (1e9 / e.tick_hz as f64) / e.measured_samples as f64;
+    println!(
+        "{}",
+        serde_json::json!({"instructions_per_sample": ips, "measured_samples": e.measured_samples,
+            "samples": e.total_samples, "overruns": e.overruns, "tx_drops": e.reserved})
+    );
+    Ok(())
 }
 
 fn size_cmd(a: &[String]) -> Result<(), String> {
