@@ -145,6 +145,20 @@ impl DelayLine {
         }
     }
 
+    /// Raw buffer and position (for checkpoints).
+    pub fn raw(&self) -> (&[Real; 2 * MAX_TAPS], usize) {
+        (&self.buf, self.pos)
+    }
+
+    /// A delay line from a raw buffer and position (for checkpoints); the position is
+    /// reduced modulo the capacity.
+    pub fn from_raw(buf: [Real; 2 * MAX_TAPS], pos: usize) -> Self {
+        DelayLine {
+            buf,
+            pos: pos % MAX_TAPS,
+        }
+    }
+
     /// The newest `len` samples, oldest first.
     #[inline(always)]
     pub fn window(&self, len: usize) -> &[Real] {

@@ -123,3 +123,5 @@ pub fn check_range(
         })
     }
 }
+
+impl core::error::Error for ConfigError {}

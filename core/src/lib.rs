@@ -28,6 +28,7 @@
 )]
 
 pub mod bearing;
+pub mod checkpoint;
 pub mod contact;
 pub mod decimate;
 pub mod error;
@@ -43,6 +44,7 @@ pub mod rng;
 pub mod sensor;
 pub mod speed;
 pub mod topography;
+pub mod wear;
 
 pub use error::ConfigError;
 pub use model::{Channels, Model, ModelConfig, Sample, State, Structure};

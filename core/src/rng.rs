@@ -50,6 +50,19 @@ impl Xoshiro128pp {
         result
     }
 
+    /// The raw state words (for checkpoints).
+    pub fn state_words(&self) -> [u32; 4] {
+        self.s
+    }
+
+    /// A generator from raw state words (for checkpoints); the all-zero state is replaced
+    /// by a valid one.
+    pub fn from_state_words(s: [u32; 4]) -> Self {
+        Xoshiro128pp {
+            s: if s == [0; 4] { [1, 0, 0, 0] } else { s },
+        }
+    }
+
     /// Uniform number in `[−1, 1)` built from the top 24 bits, so the value is exactly
     /// representable and identical in `f32` and `f64`.
     #[inline(always)]

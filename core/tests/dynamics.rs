@@ -302,3 +302,33 @@ fn state_size_is_fixed() {
     let size = core::mem::size_of::<State<16>>();
     assert!(size < 14 * 1024, "State<16> is {size} bytes");
 }
+
+/// A state encoded mid-run and decoded continues with exactly the samples of the
+/// uninterrupted run (dense life mode resumes from such checkpoints).
+#[test]
+fn checkpoint_round_trip_continues_bit_identically() {
+    use wearsim_core::checkpoint::encoded_len;
+    let model =
+        Model::new_checked(wearsim_core::presets::by_name("thesis-61810").unwrap()).unwrap();
+    let mut a: State<16> = State::new(&model, 5).unwrap();
+    let mut first = vec![wearsim_core::Sample::default(); 3001];
+    model.fill(&mut a, &mut first);
+    let mut bytes = vec![0u8; encoded_len(16)];
+    let n = a.encode(&mut bytes).unwrap();
+    assert!(n <= bytes.len());
+    let mut b: State<16> = State::decode(&model, &bytes[..n]).unwrap();
+    let mut ra = vec![wearsim_core::Sample::default(); 5000];
+    let mut rb = ra.clone();
+    model.fill(&mut a, &mut ra);
+    model.fill(&mut b, &mut rb);
+    assert!(ra
+        .iter()
+        .zip(&rb)
+        .all(|(x, y)| x.accel.to_bits() == y.accel.to_bits()));
+    // Corrupt and truncated checkpoints are errors, not panics.
+    assert!(State::<16>::decode(&model, &bytes[..n / 2]).is_err());
+    let mut bad = bytes.clone();
+    bad[0] ^= 0xFF;
+    assert!(State::<16>::decode(&model, &bad).is_err());
+    assert!(State::<8>::decode(&model, &bytes).is_err());
+}

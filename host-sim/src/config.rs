@@ -99,6 +99,51 @@ pub struct ScenarioFile {
     pub defect: Option<DefectSection>,
     /// Random slip.
     pub slip: Option<SlipSection>,
+    /// Wear-model material constants (`wearsim life`); absent keys keep the defaults.
+    pub material: Option<MaterialSection>,
+    /// Life-run settings (`wearsim life`).
+    pub life: Option<LifeSection>,
+}
+
+macro_rules! material_section {
+    ($($field:ident: $ty:ty),* $(,)?) => {
+        /// `[material]`: constants of the wear model (see `wearsim_core::wear::Material`).
+        #[derive(Debug, Clone, Default, Deserialize, Serialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct MaterialSection {
+            $(#[doc = concat!("`", stringify!($field), "`")] pub $field: Option<$ty>,)*
+        }
+
+        impl MaterialSection {
+            /// The defaults with the given keys replaced (validated later by the core).
+            pub fn apply(&self, mut m: wearsim_core::wear::Material) -> wearsim_core::wear::Material {
+                $(if let Some(v) = self.$field { m.$field = v; })*
+                m
+            }
+        }
+    };
+}
+
+material_section! {
+    youngs_modulus: f64, yield_strength: f64, hardness: f64, k_threshold: f64, crack_c0: f64,
+    crack_m0: f64, life_exponent: f64, life_factor: f64, dent_fraction: f64, asperity_beta: f64,
+    initiation_passes: f64, overrolling: f64, abrasion: f64, spall_depth: f64, breakout_ratio: f64,
+    completed_length: f64, failure_defects: u8, propagation_passes: f64, debris_per_breakout: f64,
+    debris_flush_passes: f64,
+}
+
+/// `[life]`: settings of a life run (command-line options override them).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LifeSection {
+    /// Film parameter λ.
+    pub lambda: Option<f64>,
+    /// Steady composite roughness (m).
+    pub roughness: Option<f64>,
+    /// Initial / steady roughness.
+    pub running_in: Option<f64>,
+    /// Steady-state slip fraction.
+    pub slip: Option<f64>,
 }
 
 /// `[bearing]`.
@@ -297,7 +342,7 @@ impl ScenarioFile {
                 c,
                 &[("point", ContactKind::Point), ("line", ContactKind::Line)],
             )?,
-            None => req(None, b0.map(|b| b.contact), "bearing.contact")?,
+            None => b0.map(|b| b.contact).unwrap_or(ContactKind::Point),
         };
         let bearing = BearingGeometry {
             elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,

@@ -5,5 +5,6 @@ pub mod capture;
 pub mod cli;
 pub mod config;
 pub mod io;
+pub mod life;
 pub mod simulate;
 pub mod summary;

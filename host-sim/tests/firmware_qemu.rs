@@ -268,7 +268,7 @@ fn m3_softfloat_stream_is_bit_identical_and_reports_its_overruns() {
     let run = qemu("mps2-an385", &firmware(M3, ""));
     let d = check_stream(&run, "m3-softfloat");
     bit_identical(&d, &reference_f32(SAMPLES));
-    // ~75 k instructions per sample do not fit the 50 k of a 20 kHz period at 1 GHz virtual:
+    // ~60 k instructions per sample do not fit the 50 k of a 20 kHz period at 1 GHz virtual:
     // the missed deadlines must be counted in the frames and logged, never silent.
     assert!(d.report.overruns > 0);
     assert!(
@@ -435,11 +435,11 @@ fn m4f_ram_and_flash_within_limits() {
     assert!(flash > 10_000 && flash <= 128 * 1024, "flash {flash} bytes");
 }
 
-/// The target: ≤ 4000 instructions per output sample on the M4F. Measured 5960 with
+/// The target: ≤ 4000 instructions per output sample on the M4F. Measured 5474 with
 /// the exact libm f32 core (see docs/firmware.md): not met yet, so this test is ignored until
 /// the core's step is made cheaper. Run it with `--ignored`.
 #[test]
-#[ignore = "M4F measures ~5960 instructions/sample, over the 4000 target: see docs/firmware.md"]
+#[ignore = "M4F measures ~5470 instructions/sample, over the 4000 target: see docs/firmware.md"]
 fn m4f_instructions_per_sample_at_most_4000() {
     if missing_tools().is_some() {
         return;

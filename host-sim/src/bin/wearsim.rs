@@ -23,7 +23,11 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a scenario (the built-in reference without arguments) and write CSV, WAV and a JSON sidecar.
+    #[command(allow_negative_numbers = true)]
     Simulate(cli::SimulateArgs),
+    /// Run a whole wear life: stage timeline, per-snapshot features, events (snapshot or dense mode).
+    #[command(allow_negative_numbers = true)]
+    Life(wearsim_host::life::cli::LifeArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
@@ -52,6 +56,7 @@ fn main() -> ExitCode {
         Command::Simulate(a) => simulate_cmd(a),
         Command::Bench(a) => bench_cmd(a),
         Command::Capture(a) => wearsim_host::capture::run(a),
+        Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
     };
     match result {

@@ -1,0 +1,239 @@
+//! Byte encoding of a [`State`] for checkpoints of long runs (dense life mode): a run
+//! interrupted after a checkpoint continues from it and produces exactly the samples an
+//! uninterrupted run would. Little-endian, every real as `f64` (exact for `f32` builds),
+//! headed by a magic word, a format version and the element capacity.
+
+use crate::decimate::{DelayLine, MAX_TAPS};
+use crate::error::ConfigError;
+use crate::model::{Model, State};
+use crate::real::Real;
+use crate::rng::Xoshiro128pp;
+use crate::topography::Topography;
+
+const MAGIC: u32 = 0x5753_4350; // "WSCP"
+const VERSION: u32 = 1;
+
+/// Bytes needed to encode a `State<NB>`.
+pub const fn encoded_len(nb: usize) -> usize {
+    4 + 4 + 4 // magic, version, NB
+        + 8 * 10 // y, v, g_prev, time, shaft_hz, three angles, ... (see encode)
+        + 8 * 6 // phasors
+        + 1 + 8 // has_prev, steps
+        + 16 // rng
+        + 8 * 2 * nb // rough, slip
+        + 4 + 4 // armed, phase
+        + 1 + 8 * 5 + 1 // topography option, five reals, count
+        + 3 * (8 * 2 * MAX_TAPS + 4) // delay lines
+}
+
+struct Writer<'a> {
+    out: &'a mut [u8],
+    at: usize,
+}
+
+impl Writer<'_> {
+    fn bytes(&mut self, b: &[u8]) -> Result<(), ConfigError> {
+        let end = self.at + b.len();
+        let max = self.out.len();
+        let dst = self.out.get_mut(self.at..end).ok_or(ConfigError::TooMany {
+            field: "checkpoint.buffer",
+            count: end,
+            max,
+        })?;
+        dst.copy_from_slice(b);
+        self.at = end;
+        Ok(())
+    }
+    fn u32(&mut self, v: u32) -> Result<(), ConfigError> {
+        self.bytes(&v.to_le_bytes())
+    }
+    fn u64(&mut self, v: u64) -> Result<(), ConfigError> {
+        self.bytes(&v.to_le_bytes())
+    }
+    #[allow(clippy::unnecessary_cast)]
+    fn real(&mut self, v: Real) -> Result<(), ConfigError> {
+        self.bytes(&(v as f64).to_le_bytes())
+    }
+}
+
+struct Reader<'a> {
+    inp: &'a [u8],
+    at: usize,
+}
+
+const CORRUPT: ConfigError = ConfigError::Inconsistent {
+    field: "checkpoint",
+    reason: "truncated or corrupt checkpoint",
+};
+
+impl Reader<'_> {
+    fn take<const N: usize>(&mut self) -> Result<[u8; N], ConfigError> {
+        let s = self.inp.get(self.at..self.at + N).ok_or(CORRUPT)?;
+        let mut a = [0u8; N];
+        a.copy_from_slice(s);
+        self.at += N;
+        Ok(a)
+    }
+    fn u8(&mut self) -> Result<u8, ConfigError> {
+        Ok(self.take::<1>()?[0])
+    }
+    fn u32(&mut self) -> Result<u32, ConfigError> {
+        Ok(u32::from_le_bytes(self.take::<4>()?))
+    }
+    fn u64(&mut self) -> Result<u64, ConfigError> {
+        Ok(u64::from_le_bytes(self.take::<8>()?))
+    }
+    fn real(&mut self) -> Result<Real, ConfigError> {
+        let v = f64::from_le_bytes(self.take::<8>()?);
+        if v.is_finite() {
+            Ok(v as Real)
+        } else {
+            Err(CORRUPT)
+        }
+    }
+}
+
+impl<const NB: usize> State<NB> {
+    /// Encodes the state into `out` (at least [`encoded_len`]`(NB)` bytes); returns the
+    /// number of bytes written.
+    pub fn encode(&self, out: &mut [u8]) -> Result<usize, ConfigError> {
+        let mut w = Writer { out, at: 0 };
+        w.u32(MAGIC)?;
+        w.u32(VERSION)?;
+        w.u32(NB as u32)?;
+        let p = self.parts();
+        for v in [
+            p.y,
+            p.v,
+            p.g_prev,
+            p.time,
+            p.shaft_hz,
+            p.shaft_angle,
+            p.cage_angle,
+            p.wave_angle,
+            0.0,
+            0.0,
+        ] {
+            w.real(v)?;
+        }
+        for (c, s) in [p.shaft_cs, p.cage_cs, p.wave_cs] {
+            w.real(c)?;
+            w.real(s)?;
+        }
+        w.bytes(&[p.has_prev as u8])?;
+        w.u64(p.steps)?;
+        for word in p.rng.state_words() {
+            w.u32(word)?;
+        }
+        for v in p.rough.iter().chain(p.slip.iter()) {
+            w.real(*v)?;
+        }
+        w.u32(p.armed)?;
+        w.u32(p.phase)?;
+        match p.topography {
+            Some(t) => {
+                w.bytes(&[1])?;
+                for v in [t.asperity_height, t.length, t.width, t.depth, t.debris] {
+                    w.real(v)?;
+                }
+                w.bytes(&[t.count])?;
+            }
+            None => {
+                w.bytes(&[0])?;
+                for _ in 0..5 {
+                    w.real(0.0)?;
+                }
+                w.bytes(&[0])?;
+            }
+        }
+        for line in p.lines.iter() {
+            let (buf, pos) = line.raw();
+            for v in buf.iter() {
+                w.real(*v)?;
+            }
+            w.u32(pos as u32)?;
+        }
+        Ok(w.at)
+    }
+
+    /// Decodes a state encoded by [`State::encode`] for `model` (whose defect shape is
+    /// re-derived from the stored topography).
+    pub fn decode(model: &Model, bytes: &[u8]) -> Result<Self, ConfigError> {
+        let mut r = Reader { inp: bytes, at: 0 };
+        if r.u32()? != MAGIC || r.u32()? != VERSION || r.u32()? != NB as u32 {
+            return Err(ConfigError::Inconsistent {
+                field: "checkpoint",
+                reason: "not a wearsim state checkpoint of this version and capacity",
+            });
+        }
+        let mut st = State::<NB>::new(model, 0)?;
+        let mut scalars = [0.0 as Real; 10];
+        for v in scalars.iter_mut() {
+            *v = r.real()?;
+        }
+        let mut cs = [(0.0 as Real, 0.0 as Real); 3];
+        for v in cs.iter_mut() {
+            *v = (r.real()?, r.real()?);
+        }
+        let has_prev = r.u8()? != 0;
+        let steps = r.u64()?;
+        let rng = Xoshiro128pp::from_state_words([r.u32()?, r.u32()?, r.u32()?, r.u32()?]);
+        let mut rough = [0.0 as Real; NB];
+        let mut slip = [0.0 as Real; NB];
+        for v in rough.iter_mut().chain(slip.iter_mut()) {
+            *v = r.real()?;
+        }
+        let armed = r.u32()?;
+        let phase = r.u32()?;
+        let has_topo = r.u8()? != 0;
+        let mut t5 = [0.0 as Real; 5];
+        for v in t5.iter_mut() {
+            *v = r.real()?;
+        }
+        let count = r.u8()?;
+        let [asperity_height, length, width, depth, debris] = t5;
+        let topography = has_topo.then_some(Topography {
+            asperity_height,
+            length,
+            width,
+            depth,
+            count,
+            debris,
+        });
+        let mut lines = [DelayLine::default(); 3];
+        for line in lines.iter_mut() {
+            let mut buf = [0.0 as Real; 2 * MAX_TAPS];
+            for v in buf.iter_mut() {
+                *v = r.real()?;
+            }
+            *line = DelayLine::from_raw(buf, r.u32()? as usize);
+        }
+        let [y, v, g_prev, time, shaft_hz, shaft_angle, cage_angle, wave_angle, _, _] = scalars;
+        st.restore(crate::model::StateParts {
+            y,
+            v,
+            g_prev,
+            has_prev,
+            steps,
+            time,
+            shaft_hz,
+            shaft_angle,
+            cage_angle,
+            wave_angle,
+            shaft_cs: cs[0],
+            cage_cs: cs[1],
+            wave_cs: cs[2],
+            rng,
+            rough,
+            slip,
+            armed,
+            topography: None,
+            lines,
+            phase: phase % model.oversample().max(1),
+        });
+        if let Some(t) = topography {
+            st.set_topography(model, t)?;
+        }
+        Ok(st)
+    }
+}

@@ -1,0 +1,522 @@
+//! The life state machine: configuration ([`Life`]) apart from the evolving state
+//! ([`LifeState`]); `life.advance(&mut state, revs, &loads)` integrates the wear laws
+//! over shaft revolutions with the contact loads measured from the dynamic model, and
+//! stops at the first stage transition so that the caller can measure the loads of the
+//! new topography before going on.
+
+use super::events::{Event, EventLog};
+use super::material::Material;
+use super::rating::{dynamic_load_rating, lubrication_factor, stribeck_factor};
+use super::stages::Stage;
+use crate::bearing::{BearingGeometry, ContactKind};
+use crate::contact::{ElementContact, HertzContact};
+use crate::error::{check_range, ConfigError};
+use crate::kinematics::FaultOrders;
+use crate::real::{ln, pow, sqrt, Real, PI};
+use crate::rng::Xoshiro128pp;
+use crate::topography::{self, Topography};
+
+/// Contact loads measured over a window of the dynamic model (N).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PassLoads {
+    /// Power mean (Lundberg–Palmgren exponent) of the per-pass peak element load.
+    pub zone: Real,
+    /// Arithmetic mean of the per-pass peak element load.
+    pub zone_mean: Real,
+    /// Mean per-pass peak load of an element at the defect (0 without defect).
+    pub edge: Real,
+    /// Cubic mean of the same (fatigue initiation grows with p⁹ ∝ Q³).
+    pub edge_cubic: Real,
+    /// Passes measured.
+    pub passes: u32,
+}
+
+/// Configuration of a life run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct LifeConfig {
+    /// Material and tribology constants.
+    pub material: Material,
+    /// Film parameter λ = h/σ at the steady roughness (thesis eq. 25).
+    pub lambda: Real,
+    /// Steady composite roughness σ (m); 0.1 µm for ground races.
+    pub roughness: Real,
+    /// Initial roughness over steady roughness (running-in), ≥ 1.
+    pub running_in: Real,
+    /// Slip fraction of the steady state (grows with the stage).
+    pub slip: Real,
+    /// Revolutions after which an unfinished life is an error.
+    pub cycle_cap: Real,
+}
+
+impl LifeConfig {
+    /// Defaults: bearing steel, λ = 2, σ = 0.1 µm, running-in ratio 1.5, slip 1 %,
+    /// cap 10⁹ revolutions.
+    pub const DEFAULT: LifeConfig = LifeConfig {
+        material: Material::BEARING_STEEL,
+        lambda: 2.0,
+        roughness: 0.1e-6,
+        running_in: 1.5,
+        slip: 0.01,
+        cycle_cap: 1e9,
+    };
+}
+
+/// What a life advance did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Advance {
+    /// Revolutions integrated (≤ requested; less when a transition stopped it).
+    pub revs: Real,
+    /// Stage entered, if a transition happened.
+    pub transition: Option<Stage>,
+}
+
+/// Inputs of the dynamic model that the wear state sets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicInputs {
+    /// Defect topography (none before the dent).
+    pub topography: Option<Topography>,
+    /// Roughness relative to its steady value (running-in > 1).
+    pub roughness_scale: Real,
+    /// Slip fraction.
+    pub slip: Real,
+}
+
+/// The evolving life state; fixed size (the event log is a `heapless::Vec`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LifeState {
+    /// Shaft revolutions so far.
+    pub cycles: Real,
+    /// Current stage.
+    pub stage: Stage,
+    /// Defect topography, once a dent exists.
+    pub topography: Option<Topography>,
+    /// Composite roughness σ (m).
+    pub roughness: Real,
+    /// Rolling-contact fatigue damage (life fraction).
+    pub fatigue: Real,
+    /// Crack-initiation damage at the dent (opens at 1).
+    pub initiation: Real,
+    /// Depth of the current crack (m), 0 before it opens.
+    pub crack: Real,
+    /// Depth the current crack started from (m).
+    pub crack_start: Real,
+    /// Asperity height when the dent formed (m).
+    pub dent_asperity: Real,
+    /// Height the current asperity smooths towards (m): Table 1's smoothed states — 0 for
+    /// a dent, 4/30 of a fresh spall edge (work-hardened breakout edges).
+    pub asperity_floor: Real,
+    /// Debris level (0–1).
+    pub debris: Real,
+    /// Fatigue-life scatter factor of this bearing (Weibull, median 1).
+    pub scatter: Real,
+    /// Transitions so far.
+    pub events: EventLog,
+    /// Transitions that did not fit in the log.
+    pub lost_events: u16,
+}
+
+/// Validated life model of one bearing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Life {
+    cfg: LifeConfig,
+    rating: Real,
+    exponent: Real,
+    elements: Real,
+    stribeck: Real,
+    passes_per_rev: Real,
+    contact: HertzContact,
+    element_radius: Real,
+    reference_pressure: Real,
+    reference_load: Real,
+    kind: ContactKind,
+}
+
+/// Weibull slope of rolling-bearing lives (ISO 281: e = 1.11 for ball bearings).
+pub const WEIBULL_SLOPE: Real = 1.11;
+/// Share of a fresh spall edge's asperity that smoothing cannot remove: Table 1's
+/// smoothed large defect (4 µm) over the large defect (30 µm).
+pub const SPALL_EDGE_RESIDUAL: Real =
+    topography::SMOOTHED_LARGE_DEFECT.asperity_height / topography::LARGE_DEFECT.asperity_height;
+/// Smallest initial crack depth (m): a typical inclusion/micro-crack in bearing steel.
+pub const MIN_FLAW: Real = 5e-6;
+
+impl Life {
+    /// Validates `cfg` for `bearing`; `static_load` is the most loaded element's static
+    /// load (N) used when a window measured no pass.
+    pub fn new_checked(
+        cfg: LifeConfig,
+        bearing: &BearingGeometry,
+        static_load: Real,
+    ) -> Result<Self, ConfigError> {
+        let material = Material::new_checked(cfg.material)?;
+        check_range("lambda", cfg.lambda, 0.05, 20.0)?;
+        check_range("life.roughness", cfg.roughness, 1e-9, 5e-6)?;
+        check_range("life.running_in", cfg.running_in, 1.0, 10.0)?;
+        check_range("life.slip", cfg.slip, 0.0, 0.1)?;
+        check_range("cycles", cfg.cycle_cap, 1.0, 1e13)?;
+        check_range("life.static_load", static_load, 1e-3, 1e8)?;
+        let contact = ElementContact::of(bearing);
+        let orders = FaultOrders::of(bearing);
+        let exponent = match bearing.contact {
+            ContactKind::Point => 3.0,
+            ContactKind::Line => 10.0 / 3.0,
+        };
+        Ok(Life {
+            cfg: LifeConfig { material, ..cfg },
+            rating: dynamic_load_rating(bearing),
+            exponent,
+            elements: bearing.elements as Real,
+            stribeck: stribeck_factor(bearing.contact),
+            passes_per_rev: orders.bpfo,
+            contact: contact.outer,
+            element_radius: 0.5 * bearing.element_diameter,
+            reference_pressure: contact.outer.max_pressure(static_load),
+            reference_load: static_load,
+            kind: bearing.contact,
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &LifeConfig {
+        &self.cfg
+    }
+
+    /// ISO 281 basic dynamic load rating used (N).
+    pub fn rating(&self) -> Real {
+        self.rating
+    }
+
+    /// Initial state; `seed` draws the bearing's fatigue-life scatter from the Weibull
+    /// distribution (slope 1.11, median 1).
+    pub fn initial_state(&self, seed: u64) -> LifeState {
+        let mut rng = Xoshiro128pp::from_u64(seed ^ 0x5EED_11FE);
+        let u = 0.5 * (rng.uniform_pm1() + 1.0); // [0, 1)
+        let u = u.clamp(1e-6, 1.0 - 1e-6);
+        let scatter = pow(-ln(1.0 - u) / ln(2.0), 1.0 / WEIBULL_SLOPE);
+        LifeState {
+            cycles: 0.0,
+            stage: Stage::RunningIn,
+            topography: None,
+            roughness: self.cfg.roughness * self.cfg.running_in,
+            fatigue: 0.0,
+            initiation: 0.0,
+            crack: 0.0,
+            crack_start: 0.0,
+            dent_asperity: 0.0,
+            asperity_floor: 0.0,
+            debris: 0.0,
+            scatter,
+            events: EventLog::new(),
+            lost_events: 0,
+        }
+    }
+
+    /// What the dynamic model must simulate for the state `st`.
+    pub fn dynamic_inputs(&self, st: &LifeState) -> DynamicInputs {
+        // Slip grows with the stage (thesis §4.1.6: "the amount is related to the wear
+        // evolution stages"): ×1 up to the dent, ×4 in damage growth.
+        const SLIP_GROWTH: [Real; 10] = [1.0, 1.0, 1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 4.0];
+        let growth = SLIP_GROWTH.get(st.stage.index()).copied().unwrap_or(1.0);
+        DynamicInputs {
+            topography: st.topography.map(|t| Topography {
+                debris: st.debris.min(1.0),
+                ..t
+            }),
+            roughness_scale: st.roughness / self.cfg.roughness,
+            slip: self.cfg.slip * growth,
+        }
+    }
+
+    fn film(&self) -> Real {
+        self.cfg.lambda * self.cfg.roughness
+    }
+
+    /// Film parameter at the current roughness.
+    pub fn lambda_now(&self, st: &LifeState) -> Real {
+        self.film() / st.roughness
+    }
+
+    /// Stress-concentration factor of an asperity of height `h` in a contact of
+    /// rolling-direction half-width `b` (after Hannes & Alfredsson 2011).
+    fn kt(&self, h: Real, b: Real) -> Real {
+        if b <= 0.0 {
+            return 1.0;
+        }
+        1.0 + self.cfg.material.asperity_beta * sqrt(h / b)
+    }
+
+    /// Advances `st` by up to `revs` revolutions with the measured `loads`; stops at the
+    /// first transition. Never panics; a state in `Failure` does not change.
+    pub fn advance(&self, st: &mut LifeState, revs: Real, loads: &PassLoads) -> Advance {
+        let m = &self.cfg.material;
+        let mut done = 0.0;
+        if st.stage == Stage::Failure || revs.is_nan() || revs <= 0.0 {
+            return Advance {
+                revs: 0.0,
+                transition: None,
+            };
+        }
+        let q_zone = if loads.zone > 0.0 {
+            loads.zone
+        } else {
+            self.reference_load
+        };
+        let q_zone_mean = if loads.zone_mean > 0.0 {
+            loads.zone_mean
+        } else {
+            q_zone
+        };
+        let q_edge = if loads.edge_cubic > 0.0 {
+            loads.edge_cubic
+        } else {
+            q_zone
+        };
+        let p_zone = self.contact.max_pressure(q_zone_mean);
+        let p_edge = self.contact.max_pressure(q_edge);
+        let (_, b) = self.contact.semi_axes(q_zone_mean);
+        let p_mean = 2.0 / 3.0 * p_zone;
+        let load = self.elements * q_zone / self.stribeck;
+        let n_p = self.passes_per_rev;
+        let mut guard = 0u32;
+        while done < revs && guard < 200_000 {
+            guard += 1;
+            let remaining = revs - done;
+            let lambda = self.lambda_now(st);
+            let interaction = (1.0 - lambda / 3.0).clamp(0.0, 1.0);
+            let slide = self.cfg.slip * 2.0 * b; // sliding distance per pass (m)
+            let archard = m.abrasion * p_mean / m.hardness * slide; // depth per pass (m)
+
+            // Rates per revolution.
+            let a_l = lubrication_factor(lambda);
+            let fatigue_rate = pow(load / self.rating, self.exponent) * (1.0 + 2.0 * st.debris)
+                / (1e6 * m.life_factor * a_l * st.scatter);
+            let rough_rate = if st.stage == Stage::RunningIn {
+                -n_p * archard * interaction
+            } else {
+                0.0
+            };
+            let h = st.topography.map(|t| t.asperity_height).unwrap_or(0.0);
+            let kt = self.kt(h, b);
+            let sigma0 = p_edge * kt;
+            let excess = h - st.asperity_floor;
+            let h_rate = if excess > 0.0 {
+                let w_a = sigma0;
+                let omega = 1.12 * sqrt(w_a * p_mean) / m.youngs_modulus; // eq. 24 (relative)
+                let abr = if h > self.film() {
+                    archard * (0.2 + interaction)
+                } else {
+                    0.0
+                };
+                -n_p * (m.overrolling * excess * omega + abr)
+            } else {
+                0.0
+            };
+            let depth = st.topography.map(|t| t.depth).unwrap_or(0.0);
+            let flaw = (depth + h).max(MIN_FLAW);
+            let dk_flaw = 1.12 * sigma0 * sqrt(PI * flaw);
+            let init_rate = match st.stage {
+                Stage::Dent | Stage::DentSmoothing if dk_flaw >= m.k_threshold => {
+                    n_p * pow(sigma0 / self.reference_pressure, 9.0) / m.initiation_passes
+                }
+                Stage::DefectSmoothing | Stage::DamageGrowth => {
+                    let r = sigma0 / self.reference_pressure;
+                    n_p * r * r * r / m.propagation_passes
+                }
+                _ => 0.0,
+            };
+            let crack_rate = if st.crack > 0.0 {
+                let dk = 1.12 * sigma0 * sqrt(PI * st.crack);
+                let delta_pl = dk * dk / (2.0 * m.youngs_modulus * m.yield_strength);
+                n_p * m.crack_c0 * pow(delta_pl, m.crack_m0)
+            } else {
+                0.0
+            };
+            let debris_rate = -n_p * st.debris / m.debris_flush_passes;
+
+            // Step: at most the remaining revolutions, small relative changes, and
+            // landing exactly on the next threshold of a linear accumulator.
+            let mut dt = remaining;
+            if st.stage == Stage::SteadyState && fatigue_rate > 0.0 {
+                dt = dt.min(((m.dent_fraction - st.fatigue) / fatigue_rate).max(0.0));
+            }
+            if matches!(st.stage, Stage::Dent | Stage::DentSmoothing) && fatigue_rate > 0.0 {
+                dt = dt.min(((1.0 - st.fatigue) / fatigue_rate).max(0.0));
+            }
+            if init_rate > 0.0 {
+                dt = dt.min(((1.0 - st.initiation) / init_rate).max(0.0));
+            }
+            if rough_rate < 0.0 {
+                dt = dt.min(0.05 * (st.roughness - self.cfg.roughness).max(1e-12) / -rough_rate);
+            }
+            if h_rate < 0.0 {
+                dt = dt.min(0.02 * excess / -h_rate);
+            }
+            if crack_rate > 0.0 {
+                dt = dt.min(0.02 * st.crack / crack_rate);
+            }
+            if debris_rate < 0.0 {
+                dt = dt.min(0.05 * st.debris / -debris_rate);
+            }
+            let dt = dt.max(remaining.min(1e-3));
+
+            st.fatigue += fatigue_rate * dt;
+            st.roughness = (st.roughness + rough_rate * dt).max(self.cfg.roughness);
+            st.initiation += init_rate * dt;
+            st.crack += crack_rate * dt;
+            st.debris = (st.debris + debris_rate * dt).max(0.0);
+            if let Some(t) = st.topography.as_mut() {
+                t.asperity_height = (t.asperity_height + h_rate * dt).max(st.asperity_floor);
+            }
+            st.cycles += dt;
+            done += dt;
+
+            if let Some(next) = self.transition(st) {
+                self.enter(st, next);
+                return Advance {
+                    revs: done,
+                    transition: Some(next),
+                };
+            }
+        }
+        Advance {
+            revs: done,
+            transition: None,
+        }
+    }
+
+    /// The stage the state has reached, if it differs from its current one.
+    fn transition(&self, st: &LifeState) -> Option<Stage> {
+        let m = &self.cfg.material;
+        match st.stage {
+            Stage::RunningIn => {
+                let done = st.roughness <= 1.05 * self.cfg.roughness || self.lambda_now(st) >= 3.0;
+                done.then_some(Stage::SteadyState)
+            }
+            Stage::SteadyState => (st.fatigue >= m.dent_fraction).then_some(Stage::Dent),
+            Stage::Dent | Stage::DentSmoothing => {
+                if st.initiation >= 1.0 || st.fatigue >= 1.0 {
+                    Some(Stage::CrackOpening)
+                } else if st.stage == Stage::Dent
+                    && st.topography.map(|t| t.asperity_height).unwrap_or(0.0)
+                        <= 0.5 * st.dent_asperity
+                {
+                    Some(Stage::DentSmoothing)
+                } else {
+                    None
+                }
+            }
+            Stage::CrackOpening => {
+                (st.crack >= 2.0 * st.crack_start).then_some(Stage::CrackPropagation)
+            }
+            Stage::CrackPropagation => {
+                (st.crack >= m.spall_depth).then_some(Stage::DefectCompletion)
+            }
+            Stage::DefectCompletion => {
+                if st.crack >= m.spall_depth {
+                    let grown = st.topography.map(|t| t.length).unwrap_or(0.0)
+                        + m.breakout_ratio * m.spall_depth;
+                    if grown >= m.completed_length {
+                        return Some(Stage::DefectSmoothing);
+                    }
+                    // Growth within the stage: handled in `enter` via a self-transition.
+                    return Some(Stage::DefectCompletion);
+                }
+                None
+            }
+            Stage::DefectSmoothing | Stage::DamageGrowth => {
+                if st.initiation >= 1.0 {
+                    let count = st.topography.map(|t| t.count).unwrap_or(1) + 1;
+                    if count >= m.failure_defects {
+                        Some(Stage::Failure)
+                    } else {
+                        Some(Stage::DamageGrowth)
+                    }
+                } else {
+                    None
+                }
+            }
+            Stage::Failure => None,
+        }
+    }
+
+    /// Applies the topography change of entering `next` and logs it.
+    fn enter(&self, st: &mut LifeState, next: Stage) {
+        let m = &self.cfg.material;
+        let breakout = m.breakout_ratio * m.spall_depth;
+        let fresh_crack = |h: Real| (0.25 * h).max(MIN_FLAW);
+        let logged = next != st.stage;
+        match next {
+            Stage::Dent => {
+                st.topography = Some(topography::REAL_DENT);
+                st.dent_asperity = topography::REAL_DENT.asperity_height;
+                st.asperity_floor = topography::SMOOTHED_DENT.asperity_height;
+            }
+            Stage::CrackOpening => {
+                let t = st.topography.unwrap_or(topography::REAL_DENT);
+                st.crack = (t.depth + t.asperity_height).max(MIN_FLAW);
+                st.crack_start = st.crack;
+            }
+            Stage::DefectCompletion | Stage::DefectSmoothing => {
+                let completed = next == Stage::DefectSmoothing;
+                let length = match (st.stage, st.topography) {
+                    (Stage::DefectCompletion, Some(t)) => {
+                        (t.length + breakout).min(m.completed_length)
+                    }
+                    _ => breakout,
+                };
+                // Table 1 landmarks: fresh edges of 20 µm up to medium size, 30 µm for
+                // large defects.
+                let h = if length >= 2e-3 { 30e-6 } else { 20e-6 };
+                st.asperity_floor = h * SPALL_EDGE_RESIDUAL;
+                st.topography = Some(Topography {
+                    asperity_height: h,
+                    length,
+                    width: (0.6 * length).max(50e-6),
+                    depth: m.spall_depth,
+                    count: 1,
+                    debris: 0.0,
+                });
+                st.debris += m.debris_per_breakout;
+                // Until completion the trailing-edge crack restarts from a fresh flaw; once
+                // complete, new defects come from the propagation accumulator instead.
+                st.crack = if completed { 0.0 } else { fresh_crack(h) };
+                st.crack_start = st.crack;
+                st.initiation = 0.0;
+            }
+            Stage::DamageGrowth | Stage::Failure => {
+                if let Some(t) = st.topography.as_mut() {
+                    t.count = t.count.saturating_add(1);
+                    t.asperity_height = topography::LARGE_DEFECT.asperity_height;
+                }
+                st.asperity_floor = topography::LARGE_DEFECT.asperity_height * SPALL_EDGE_RESIDUAL;
+                st.debris += m.debris_per_breakout;
+                st.initiation = 0.0;
+            }
+            _ => {}
+        }
+        let event = Event {
+            stage: next,
+            cycles: st.cycles,
+            topography: st.topography.unwrap_or(topography::SMOOTHED_DENT),
+            crack: st.crack,
+        };
+        st.stage = next;
+        // Stage changes and spawned defects are logged; growth steps of the defect within
+        // its completion stage are not (the snapshots show them).
+        if (logged || next == Stage::DamageGrowth) && st.events.push(event).is_err() {
+            st.lost_events = st.lost_events.saturating_add(1);
+        }
+    }
+
+    /// The reference Hertz pressure (Pa) of the static most loaded element.
+    pub fn reference_pressure(&self) -> Real {
+        self.reference_pressure
+    }
+
+    /// Whether `kind` is the contact the life was built for.
+    pub fn contact_kind(&self) -> ContactKind {
+        self.kind
+    }
+}

@@ -1,0 +1,195 @@
+//! `wearsim life`: arguments and the command.
+
+use super::dense::DenseOptions;
+use super::{LifeRun, LifeSpec};
+use crate::cli::{CliError, Progress};
+use crate::config::{self, ScenarioFile};
+use clap::Args;
+use serde_json::json;
+use std::path::PathBuf;
+use wearsim_core::wear::LifeConfig;
+
+/// `wearsim life` arguments.
+#[derive(Debug, Clone, Args)]
+pub struct LifeArgs {
+    /// Preset of the bearing and operating point.
+    #[arg(long, default_value = config::DEFAULT_PRESET, conflicts_with = "config")]
+    pub preset: String,
+    /// TOML scenario file (as for `simulate`) instead of a preset.
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Cycle cap: revolutions within which the bearing must fail, 1..=1e13.
+    #[arg(long, default_value_t = 5.0e7)]
+    pub cycles: f64,
+    /// Revolutions between snapshots (a vibration window is also rendered at every transition).
+    #[arg(long, default_value_t = 20_000.0)]
+    pub snapshot_every: f64,
+    /// Stream the continuous vibration of the whole life to disk (resumable).
+    #[arg(long)]
+    pub dense: bool,
+    /// Multiplier of the radial load, 0.05..=20.
+    #[arg(long, default_value_t = 1.0)]
+    pub load_scale: f64,
+    /// Film parameter λ (film thickness / composite roughness), 0.05..=20; default 2 (or the
+    /// configuration's `[life] lambda`).
+    #[arg(long)]
+    pub lambda: Option<f64>,
+    /// Seed (wear scatter and the windows' random streams).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Window length (s) rendered per snapshot, 0.02..=10.
+    #[arg(long, default_value_t = 0.25)]
+    pub window: f64,
+    /// Output directory.
+    #[arg(long, default_value = "wearsim-life")]
+    pub out: PathBuf,
+    /// Dense mode: stop after this many simulated seconds, leaving a checkpoint; rerun to go on.
+    #[arg(long)]
+    pub stop_after: Option<f64>,
+    /// Machine-readable summary on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl LifeArgs {
+    /// The validated run.
+    pub fn run(&self) -> Result<LifeRun, CliError> {
+        let mut file = match &self.config {
+            Some(p) => ScenarioFile::load(p).map_err(CliError::input)?,
+            None => ScenarioFile {
+                preset: Some(self.preset.clone()),
+                ..Default::default()
+            },
+        };
+        if file.preset.is_none() && self.config.is_none() {
+            file.preset = Some(self.preset.clone());
+        }
+        let (mut model, _) = file.resolve().map_err(CliError::input)?;
+        wearsim_core::error::check_range("load_scale", self.load_scale, 0.05, 20.0)
+            .map_err(CliError::input)?;
+        model.radial_load *= self.load_scale;
+        let d = LifeConfig::DEFAULT;
+        let ls = file.life.clone().unwrap_or_default();
+        let material = file
+            .material
+            .as_ref()
+            .map(|m| m.apply(d.material))
+            .unwrap_or(d.material);
+        let life = LifeConfig {
+            material,
+            lambda: self.lambda.or(ls.lambda).unwrap_or(d.lambda),
+            roughness: ls.roughness.unwrap_or(d.roughness),
+            running_in: ls.running_in.unwrap_or(d.running_in),
+            slip: ls.slip.unwrap_or(d.slip),
+            cycle_cap: self.cycles,
+        };
+        let spec = LifeSpec {
+            model,
+            life,
+            seed: self.seed,
+            snapshot_every: self.snapshot_every,
+            window: self.window,
+            settle: 0.05,
+        };
+        LifeRun::new(spec).map_err(CliError::input)
+    }
+}
+
+/// Runs `wearsim life`.
+pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
+    if a.stop_after.is_some() && !a.dense {
+        return Err(CliError::input("--stop-after applies to --dense runs only"));
+    }
+    let run = a.run()?;
+    let bar = Progress::new(
+        !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr()),
+        "life",
+    );
+    let cap = a.cycles;
+    let update = |c: f64, _: f64| bar.update((c.min(cap) / cap * 1000.0) as usize, 1000);
+    let extra = json!({ "preset": a.preset, "config": a.config, "load_scale": a.load_scale, "lambda": a.lambda, "mode": if a.dense { "dense" } else { "snapshot" } });
+    let (snapshots, state, wall, windows, dense_info) = if a.dense {
+        let r = run
+            .run_dense(
+                &DenseOptions {
+                    dir: a.out.clone(),
+                    stop_after: a.stop_after,
+                },
+                update,
+            )
+            .map_err(|e| match e {
+                super::dense::DenseError::Life(l) => life_error(l),
+                other => CliError::input(other),
+            })?;
+        bar.finish();
+        if !r.complete {
+            let msg = json!({ "complete": false, "samples": r.samples, "generated": r.generated, "cycles": r.state.cycles, "resumed": r.resumed,
+                "note": "stopped with a checkpoint; rerun the same command to continue" });
+            if a.json {
+                println!("{}", serde_json::to_string_pretty(&msg).unwrap_or_default());
+            } else {
+                println!("dense run stopped at {} samples ({:.0} revolutions); rerun the same command to continue", r.samples, r.state.cycles);
+            }
+            return Ok(());
+        }
+        let info = json!({ "samples": r.samples, "generated": r.generated, "resumed": r.resumed, "samples_per_s": r.generated as f64 / r.wall_s.max(1e-9), "fs": r.fs });
+        (r.snapshots, r.state, r.wall_s, 0usize, Some(info))
+    } else {
+        let r = run.run_snapshots(update).map_err(life_error)?;
+        bar.finish();
+        (r.snapshots, r.state, r.wall_s, r.windows, None)
+    };
+    let extra = json!({ "args": extra, "wall_s": wall, "windows": windows, "dense": dense_info });
+    let files = super::output::write_life(&a.out, &run, &snapshots, &state, extra.clone())
+        .map_err(|e| CliError::run(format!("{}: {e}", a.out.display())))?;
+    let timeline = super::output::timeline(&state);
+    if a.json {
+        let v = json!({
+            "complete": true,
+            "cycles_to_failure": state.cycles,
+            "timeline": timeline,
+            "events": state.events.iter().map(super::state_json::EventJson::from).collect::<Vec<_>>(),
+            "snapshots": snapshots.len(),
+            "wall_s": wall,
+            "windows": windows,
+            "dense": dense_info,
+            "files": files,
+        });
+        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+    } else {
+        println!(
+            "life to failure: {:.0} revolutions ({:.2} h at {:.2} Hz); {} snapshots in {:.2} s",
+            state.cycles,
+            state.cycles / run.shaft_hz / 3600.0,
+            run.shaft_hz,
+            snapshots.len(),
+            wall
+        );
+        println!(
+            "{:<20} {:>14} {:>14} {:>8}",
+            "stage", "start (rev)", "end (rev)", "share"
+        );
+        for s in &timeline {
+            println!(
+                "{:<20} {:>14.0} {:>14.0} {:>7.1}%",
+                s.stage,
+                s.start,
+                s.end,
+                100.0 * (s.end - s.start) / state.cycles.max(1.0)
+            );
+        }
+        for f in &files {
+            println!("wrote {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+fn life_error(e: super::LifeError) -> CliError {
+    match e {
+        super::LifeError::CapReached { .. }
+        | super::LifeError::Config(_)
+        | super::LifeError::SnapshotInterval { .. } => CliError::input(e),
+        other => CliError::run(other),
+    }
+}

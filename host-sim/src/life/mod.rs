@@ -1,0 +1,405 @@
+//! Whole-life runs: the wear state machine of the core driven by contact loads measured
+//! in windows of the dynamic model. Snapshot mode renders a window every
+//! `snapshot_every` revolutions (and at every transition), the way condition monitoring
+//! samples a machine; dense mode (module `dense`) streams the continuous vibration of
+//! the whole life. Both advance the wear from the same measurement windows, so the same
+//! seed gives the same wear history in both.
+
+use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
+use serde::{Deserialize, Serialize};
+use wearsim_core::forces::slip::Slip;
+use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
+
+pub mod cli;
+pub mod dense;
+pub mod output;
+pub mod state_json;
+use wearsim_core::{Model, ModelConfig, Sample, State};
+
+/// Capacity of the dynamic state.
+pub const CAPACITY: usize = wearsim_core::bearing::MAX_ELEMENTS;
+
+/// A life-run configuration (validated by [`LifeRun::new`]).
+#[derive(Debug, Clone)]
+pub struct LifeSpec {
+    /// Dynamic model of the bearing (its defect, if any, is replaced by the wear state).
+    pub model: ModelConfig,
+    /// Wear configuration.
+    pub life: LifeConfig,
+    /// Seed (wear scatter, windows' random streams).
+    pub seed: u64,
+    /// Revolutions between snapshots.
+    pub snapshot_every: f64,
+    /// Recorded window length (s), after a settling time of `settle` (s).
+    pub window: f64,
+    /// Settling time before each window (s).
+    pub settle: f64,
+}
+
+/// Why a life run cannot be done.
+#[derive(Debug, thiserror::Error)]
+pub enum LifeError {
+    /// A configuration value is out of range.
+    #[error("{0}")]
+    Config(#[from] wearsim_core::ConfigError),
+    /// The snapshot interval is not shorter than the cap.
+    #[error("snapshot interval {every} revolutions is not shorter than the cycle cap {cap}; allowed 1 ..< cycles")]
+    SnapshotInterval {
+        /// Interval.
+        every: f64,
+        /// Cap.
+        cap: f64,
+    },
+    /// The life did not finish within the cap.
+    #[error("the bearing did not fail within the cycle cap of {cap} revolutions (reached stage {stage} at {cycles:.0}); raise --cycles or the load")]
+    CapReached {
+        /// Cap.
+        cap: f64,
+        /// Stage reached.
+        stage: &'static str,
+        /// Revolutions run.
+        cycles: f64,
+    },
+    /// Signal analysis of a window failed.
+    #[error("analysis of the window at {cycles:.0} revolutions failed: {source}")]
+    Analysis {
+        /// Where.
+        cycles: f64,
+        /// Cause.
+        source: analysis::AnalysisError,
+    },
+    /// The model produced a non-finite sample.
+    #[error("non-finite sample in the window at {cycles:.0} revolutions")]
+    NonFinite {
+        /// Where.
+        cycles: f64,
+    },
+}
+
+/// Features of one window (acceleration, m/s²).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Features {
+    /// RMS.
+    pub rms: f64,
+    /// Kurtosis.
+    pub kurtosis: f64,
+    /// Crest factor.
+    pub crest_factor: f64,
+    /// RMS in the rotating zone.
+    pub zone_rotating: f64,
+    /// RMS in the fault-frequency zone.
+    pub zone_fault: f64,
+    /// RMS in the natural-frequency zone.
+    pub zone_natural: f64,
+    /// RMS in the high-frequency zone.
+    pub zone_high: f64,
+    /// Envelope-spectrum amplitude at the fault frequency (BPFO).
+    pub fault_peak: f64,
+    /// Amplitude-spectrum peak near the natural frequency.
+    pub resonance_peak: f64,
+}
+
+/// One snapshot of the life.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Snapshot {
+    /// Revolutions at the window.
+    pub cycles: f64,
+    /// Stage name.
+    pub stage: String,
+    /// Features.
+    pub features: Features,
+    /// Asperity height (m), defect length (m), count, crack depth (m).
+    pub asperity: f64,
+    /// Defect length (m).
+    pub length: f64,
+    /// Defect count.
+    pub count: u8,
+    /// Crack depth (m).
+    pub crack: f64,
+    /// Debris level.
+    pub debris: f64,
+    /// Measured pass loads: zone power mean (N).
+    pub zone_load: f64,
+    /// Measured pass loads: defect-edge cubic mean (N).
+    pub edge_load: f64,
+}
+
+/// A rendered window at a transition (publication IV's sampled events).
+#[derive(Debug, Clone)]
+pub struct EventWindow {
+    /// Stage entered.
+    pub stage: Stage,
+    /// Revolutions.
+    pub cycles: f64,
+    /// Acceleration samples (m/s²).
+    pub samples: Vec<f64>,
+}
+
+/// Result of a life run.
+#[derive(Debug, Clone)]
+pub struct LifeResult {
+    /// Snapshots in order.
+    pub snapshots: Vec<Snapshot>,
+    /// Final wear state (with the event log).
+    pub state: LifeState,
+    /// Windows rendered at transitions.
+    pub event_windows: Vec<EventWindow>,
+    /// Output rate of the windows (Hz).
+    pub fs: f64,
+    /// Dynamic windows simulated.
+    pub windows: usize,
+    /// Wall-clock time (s).
+    pub wall_s: f64,
+}
+
+/// A validated life run.
+#[derive(Debug, Clone)]
+pub struct LifeRun {
+    /// The specification.
+    pub spec: LifeSpec,
+    /// The core's life model.
+    pub life: Life,
+    /// Shaft speed (Hz).
+    pub shaft_hz: f64,
+}
+
+impl LifeRun {
+    /// Validates the specification.
+    pub fn new(spec: LifeSpec) -> Result<Self, LifeError> {
+        let base = Model::new_checked(ModelConfig {
+            defect: None,
+            ..spec.model.clone()
+        })?;
+        if !(spec.snapshot_every >= 1.0 && spec.snapshot_every < spec.life.cycle_cap) {
+            return Err(LifeError::SnapshotInterval {
+                every: spec.snapshot_every,
+                cap: spec.life.cycle_cap,
+            });
+        }
+        wearsim_core::error::check_range("window", spec.window, 0.02, 10.0)?;
+        wearsim_core::error::check_range("settle", spec.settle, 0.0, 10.0)?;
+        let life = Life::new_checked(
+            spec.life,
+            &base.config().bearing,
+            base.static_reference().q_max.max(1e-3),
+        )?;
+        let shaft_hz = spec.model.speed.shaft_hz(0.0);
+        Ok(LifeRun {
+            spec,
+            life,
+            shaft_hz,
+        })
+    }
+
+    /// The dynamic model for wear state `st`.
+    pub fn model_for(&self, st: &LifeState) -> Result<Model, LifeError> {
+        let inputs = self.life.dynamic_inputs(st);
+        let mut cfg = self.spec.model.clone();
+        cfg.defect = match (cfg.defect, inputs.topography) {
+            (Some(d), Some(t)) => {
+                Some(wearsim_core::forces::defect::DefectConfig { topography: t, ..d })
+            }
+            (None, Some(t)) => Some(wearsim_core::presets::outer_race_defect(t)),
+            (_, None) => None,
+        };
+        if let Some(r) = cfg.roughness.as_mut() {
+            r.rms *= inputs.roughness_scale;
+        }
+        cfg.slip = Some(Slip {
+            fraction: inputs.slip,
+        });
+        Ok(Model::new_checked(cfg)?)
+    }
+
+    /// Renders one window for state `st` (index `k` seeds its random stream): returns the
+    /// samples and the pass loads measured over it.
+    pub fn window(&self, st: &LifeState, k: u64) -> Result<(Vec<f64>, PassLoads), LifeError> {
+        let model = self.model_for(st)?;
+        let fs = model.config().output_rate;
+        let seed = self.spec.seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        let mut ds: State<CAPACITY> = State::new(&model, seed)?;
+        let settle = (self.spec.settle * fs) as usize;
+        let n = (self.spec.window * fs) as usize;
+        let exponent =
+            if model.config().bearing.contact == wearsim_core::bearing::ContactKind::Point {
+                3.0
+            } else {
+                10.0 / 3.0
+            };
+        let mut meter = PassMeter::new(model.config().bearing.elements, exponent);
+        let mut out = Vec::with_capacity(n);
+        let mut emitted = 0usize;
+        while out.len() < n {
+            let s: Option<Sample> = model.step(&mut ds);
+            if emitted >= settle {
+                meter.observe(ds.stats(), ds.cage_angle());
+            }
+            if let Some(s) = s {
+                if !s.accel.is_finite() {
+                    return Err(LifeError::NonFinite { cycles: st.cycles });
+                }
+                if emitted >= settle {
+                    out.push(s.accel);
+                }
+                emitted += 1;
+            }
+        }
+        Ok((out, meter.loads()))
+    }
+
+    /// Features of a window.
+    pub fn features(&self, x: &[f64], cycles: f64) -> Result<Features, LifeError> {
+        let err = |source| LifeError::Analysis { cycles, source };
+        let base = Model::new_checked(ModelConfig {
+            defect: None,
+            ..self.spec.model.clone()
+        })?;
+        let fs = base.config().output_rate;
+        let f = base.orders().at(self.shaft_hz);
+        let ff = FaultFrequencies {
+            shaft_hz: f.shaft,
+            ftf: f.ftf,
+            bpfo: f.bpfo,
+            bpfi: f.bpfi,
+            bsf: f.bsf,
+        };
+        let st = analysis::stats(x).map_err(err)?;
+        let nperseg = (x.len() / 4).next_power_of_two().clamp(256, 4096);
+        let psd = analysis::welch_psd(
+            x,
+            fs,
+            &WelchParams {
+                nperseg,
+                ..WelchParams::default()
+            },
+        )
+        .map_err(err)?;
+        let zones = ZoneBands::new(&ff, base.natural_frequency_hz(), fs).map_err(err)?;
+        let z = analysis::zone_levels(&psd, &zones);
+        let env = analysis::envelope_spectrum(x, fs, None).map_err(err)?;
+        let fault_peak = analysis::peak_near(&env, ff.bpfo, 0.02 * ff.bpfo + env.df)
+            .map(|p| p.value)
+            .unwrap_or(0.0);
+        let spec = analysis::amplitude_spectrum(x, fs, Window::Hann).map_err(err)?;
+        let fnat = base.natural_frequency_hz();
+        let resonance_peak = analysis::top_peaks(&spec, 1, 0.7 * fnat, 1.3 * fnat, 0.0)
+            .first()
+            .map(|p| p.value)
+            .unwrap_or(0.0);
+        Ok(Features {
+            rms: st.rms,
+            kurtosis: st.kurtosis,
+            crest_factor: st.crest_factor,
+            zone_rotating: z.rotating,
+            zone_fault: z.fault,
+            zone_natural: z.natural,
+            zone_high: z.high,
+            fault_peak,
+            resonance_peak,
+        })
+    }
+
+    /// Snapshot mode: the whole life, a window every `snapshot_every` revolutions and at
+    /// every transition. `progress(cycles, cap)` is called after each window.
+    pub fn run_snapshots(
+        &self,
+        mut progress: impl FnMut(f64, f64),
+    ) -> Result<LifeResult, LifeError> {
+        let t0 = std::time::Instant::now();
+        let mut st = self.life.initial_state(self.spec.seed);
+        let mut snapshots = vec![];
+        let mut event_windows = vec![];
+        let mut k = 0u64;
+        let mut fresh_transition: Option<Stage> = Some(Stage::RunningIn);
+        let fs = self.spec.model.output_rate;
+        loop {
+            let (x, loads) = self.window(&st, k)?;
+            k += 1;
+            snapshots.push(self.snapshot(&st, &x, &loads)?);
+            if let Some(stage) = fresh_transition.take() {
+                event_windows.push(EventWindow {
+                    stage,
+                    cycles: st.cycles,
+                    samples: x,
+                });
+            }
+            progress(st.cycles, self.spec.life.cycle_cap);
+            if st.stage == Stage::Failure {
+                break;
+            }
+            if let (_, Some(stage)) = self.advance_block(&mut st, &loads) {
+                fresh_transition = Some(stage);
+            }
+            if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
+                return Err(LifeError::CapReached {
+                    cap: self.spec.life.cycle_cap,
+                    stage: st.stage.name(),
+                    cycles: st.cycles,
+                });
+            }
+        }
+        Ok(LifeResult {
+            snapshots,
+            state: st,
+            event_windows,
+            fs,
+            windows: k as usize,
+            wall_s: t0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Advances the wear by one block: `snapshot_every` revolutions, or less when a stage
+    /// transition (or a growth step of the defect) ends it early. Returns the revolutions
+    /// advanced and the stage entered, if it changed.
+    pub fn advance_block(&self, st: &mut LifeState, loads: &PassLoads) -> (f64, Option<Stage>) {
+        let mut remaining = self.spec.snapshot_every;
+        let mut total = 0.0;
+        while remaining > 0.0 {
+            let before = st.stage;
+            let adv = self.life.advance(st, remaining, loads);
+            remaining -= adv.revs;
+            total += adv.revs;
+            if adv.transition.is_some() {
+                return (total, (st.stage != before).then_some(st.stage));
+            }
+            if adv.revs <= 0.0 {
+                break;
+            }
+        }
+        (total, None)
+    }
+
+    /// Checks the cycle cap.
+    pub fn check_cap(&self, st: &LifeState) -> Result<(), LifeError> {
+        if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
+            return Err(LifeError::CapReached {
+                cap: self.spec.life.cycle_cap,
+                stage: st.stage.name(),
+                cycles: st.cycles,
+            });
+        }
+        Ok(())
+    }
+
+    /// The snapshot record of a window.
+    pub fn snapshot(
+        &self,
+        st: &LifeState,
+        x: &[f64],
+        loads: &PassLoads,
+    ) -> Result<Snapshot, LifeError> {
+        let t = st.topography;
+        Ok(Snapshot {
+            cycles: st.cycles,
+            stage: st.stage.name().to_string(),
+            features: self.features(x, st.cycles)?,
+            asperity: t.map(|t| t.asperity_height).unwrap_or(0.0),
+            length: t.map(|t| t.length).unwrap_or(0.0),
+            count: t.map(|t| t.count).unwrap_or(0),
+            crack: st.crack,
+            debris: st.debris,
+            zone_load: loads.zone,
+            edge_load: loads.edge_cubic,
+        })
+    }
+}

@@ -1,0 +1,143 @@
+//! Writing the results of a life run: per-snapshot features, the stage timeline and the
+//! event log (CSV and JSON), and the summary — each file written to a temporary file and
+//! renamed, the summary last, so an interrupted run never leaves a set that looks complete.
+
+use super::state_json::EventJson;
+use super::{LifeRun, Snapshot};
+use serde_json::json;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use wearsim_core::wear::LifeState;
+
+/// Writes `bytes` to `path` atomically (temporary file in the same directory, fsync, rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+/// One stage's span in revolutions.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Span {
+    /// Stage name.
+    pub stage: String,
+    /// First revolution.
+    pub start: f64,
+    /// Last revolution (the next stage's start, or the end of life).
+    pub end: f64,
+}
+
+/// The stage timeline from the event log.
+pub fn timeline(st: &LifeState) -> Vec<Span> {
+    let mut spans: Vec<Span> = vec![Span {
+        stage: "running-in".into(),
+        start: 0.0,
+        end: st.cycles,
+    }];
+    for e in st.events.iter() {
+        if e.stage.name() == spans.last().map(|s| s.stage.as_str()).unwrap_or("") {
+            continue;
+        }
+        if let Some(last) = spans.last_mut() {
+            last.end = e.cycles;
+        }
+        spans.push(Span {
+            stage: e.stage.name().into(),
+            start: e.cycles,
+            end: st.cycles,
+        });
+    }
+    spans
+}
+
+/// Writes features, timeline, events and summary into `dir`; returns the files written.
+pub fn write_life(
+    dir: &Path,
+    run: &LifeRun,
+    snapshots: &[Snapshot],
+    st: &LifeState,
+    extra: serde_json::Value,
+) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let life_end = st.cycles.max(1.0);
+    let mut csv = String::from("cycles,life_fraction,stage,rms,kurtosis,crest_factor,zone_rotating,zone_fault,zone_natural,zone_high,fault_peak,resonance_peak,asperity_m,length_m,count,crack_m,debris,zone_load_n,edge_load_n\n");
+    for s in snapshots {
+        let f = &s.features;
+        csv.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            s.cycles,
+            s.cycles / life_end,
+            s.stage,
+            f.rms,
+            f.kurtosis,
+            f.crest_factor,
+            f.zone_rotating,
+            f.zone_fault,
+            f.zone_natural,
+            f.zone_high,
+            f.fault_peak,
+            f.resonance_peak,
+            s.asperity,
+            s.length,
+            s.count,
+            s.crack,
+            s.debris,
+            s.zone_load,
+            s.edge_load
+        ));
+    }
+    let spans = timeline(st);
+    let mut tl = String::from("stage,start_cycles,end_cycles\n");
+    for s in &spans {
+        tl.push_str(&format!("{},{},{}\n", s.stage, s.start, s.end));
+    }
+    let events: Vec<EventJson> = st.events.iter().map(Into::into).collect();
+    let mut ev = String::from("stage,cycles,asperity_m,length_m,width_m,depth_m,count,crack_m\n");
+    for e in &events {
+        let t = &e.topography;
+        ev.push_str(&format!(
+            "{},{},{},{},{},{},{},{}\n",
+            e.stage, e.cycles, t.asperity_height, t.length, t.width, t.depth, t.count, e.crack
+        ));
+    }
+    let files = [
+        ("life-features.csv", csv.into_bytes()),
+        ("life-features.json", serde_json::to_vec_pretty(snapshots)?),
+        ("life-timeline.csv", tl.into_bytes()),
+        ("life-events.csv", ev.into_bytes()),
+        (
+            "life-events.json",
+            serde_json::to_vec_pretty(
+                &json!({ "events": events, "timeline": spans, "lost_events": st.lost_events }),
+            )?,
+        ),
+    ];
+    let mut written = vec![];
+    for (name, bytes) in files {
+        let p = dir.join(name);
+        write_atomic(&p, &bytes)?;
+        written.push(p);
+    }
+    let summary = json!({
+        "complete": true,
+        "cycles_to_failure": st.cycles,
+        "stage": st.stage.name(),
+        "events": events,
+        "timeline": spans,
+        "snapshots": snapshots.len(),
+        "rating_n": run.life.rating(),
+        "weibull_scatter": st.scatter,
+        "seed": run.spec.seed,
+        "run": extra,
+    });
+    let p = dir.join("life-summary.json");
+    write_atomic(&p, &serde_json::to_vec_pretty(&summary)?)?;
+    written.push(p);
+    Ok(written)
+}

@@ -1,0 +1,245 @@
+//! The `wearsim` binary: the default scenario, machine-readable output, determinism, and
+//! the documented errors for bad input (exit code 2, a message naming the field, no
+//! output that looks complete).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn wearsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(args)
+        .output()
+        .expect("run wearsim")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn write_config(dir: &Path, text: &str) -> String {
+    let p = dir.join("scenario.toml");
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
+}
+
+#[test]
+fn simulate_default_scenario_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let o = wearsim(&[
+        "simulate",
+        "--duration",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["preset"], "thesis-61810");
+    assert_eq!(v["fs"], 20000.0);
+    let rms = v["summary"]["stats"]["rms"].as_f64().unwrap();
+    assert!(rms > 0.0 && rms.is_finite());
+    // The envelope's strongest line is the outer-race ball pass frequency of the default
+    // medium outer-race defect.
+    let bpfo = v["summary"]["kinematics"]["bpfo"].as_f64().unwrap();
+    let env0 = v["summary"]["envelope_peaks"][0]["freq"].as_f64().unwrap();
+    assert!(
+        (env0 - bpfo).abs() < 2.0,
+        "envelope peak {env0} vs BPFO {bpfo}"
+    );
+    let side: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("simulate.json")).unwrap()).unwrap();
+    assert_eq!(side["complete"], true);
+    assert_eq!(side["n_samples"], 10_000);
+    assert_eq!(side["seed"], 1);
+    assert!(out.join("simulate.wav").exists() && out.join("simulate.csv").exists());
+}
+
+#[test]
+fn same_seed_same_bytes_other_seed_differs() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, seed: &str| {
+        let out = dir.path().join(name);
+        let o = wearsim(&[
+            "simulate",
+            "--duration",
+            "0.2",
+            "--seed",
+            seed,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(out.join("simulate.csv")).unwrap()
+    };
+    let (a, b, c) = (run("a", "7"), run("b", "7"), run("c", "8"));
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+}
+
+/// Each bad input: exit code 2, the message names the field (and range where there is
+/// one), and no sidecar is left that says "complete".
+#[test]
+fn bad_inputs_are_named_and_leave_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: Vec<(&str, Vec<&str>, &str)> = vec![
+        (
+            "unknown key",
+            vec!["preset = \"thesis-61810\"\nspeeed = 3\n"],
+            "unknown field `speeed`",
+        ),
+        (
+            "unknown nested key",
+            vec!["preset = \"thesis-61810\"\n[structure]\nmas = 1.0\n"],
+            "unknown field `mas`",
+        ),
+        (
+            "missing key",
+            vec!["radial_load = 100.0\n"],
+            "bearing.elements",
+        ),
+        (
+            "zero mass",
+            vec!["preset = \"thesis-61810\"\n[structure]\nmass = 0.0\n"],
+            "structure.mass = 0 is out of range",
+        ),
+        (
+            "nan stiffness",
+            vec!["preset = \"thesis-61810\"\n[structure]\nstiffness = nan\n"],
+            "structure.stiffness",
+        ),
+        (
+            "negative fs",
+            vec!["preset = \"thesis-61810\"\nfs = -5.0\n"],
+            "fs = -5 is out of range",
+        ),
+        (
+            "step too large",
+            vec!["preset = \"thesis-61810\"\nfs = 1000.0\noversample = 2\n"],
+            "internal step too large",
+        ),
+        ("bad preset", vec!["preset = \"nope\"\n"], "thesis-61810"),
+        (
+            "bad topography",
+            vec!["preset = \"thesis-61810\"\n[defect]\ntopography = \"huge\"\n"],
+            "defect.topography",
+        ),
+        (
+            "bad integrator",
+            vec!["preset = \"thesis-61810\"\nintegrator = \"euler\"\n"],
+            "rk4, exact-zoh, exact-foh",
+        ),
+        (
+            "duration",
+            vec!["preset = \"thesis-61810\"\nduration = 1e9\n"],
+            "duration",
+        ),
+        (
+            "two speeds",
+            vec!["preset = \"thesis-61810\"\n[speed]\nrpm = 100.0\nshaft_hz = 3.0\n"],
+            "exactly one of",
+        ),
+        ("toml syntax", vec!["preset = \n"], "scenario.toml"),
+    ];
+    for (what, text, needle) in cases {
+        let cfg = write_config(dir.path(), text[0]);
+        let out = dir.path().join(format!("out-{}", what.replace(' ', "-")));
+        let mut args = vec!["simulate", "--config", &cfg, "--out", out.to_str().unwrap()];
+        if what != "duration" {
+            args.extend(["--duration", "0.1"]); // the command line overrides the file
+        }
+        let o = wearsim(&args);
+        assert_eq!(o.status.code(), Some(2), "{what}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(needle),
+            "{what}: message {:?} lacks {needle:?}",
+            stderr(&o)
+        );
+        assert!(
+            !out.join("simulate.json").exists(),
+            "{what}: output written"
+        );
+    }
+    // Bad arguments.
+    for (args, needle) in [
+        (vec!["simulate", "--fs", "abc"], "invalid value"),
+        (
+            vec!["simulate", "--topography", "crater", "--duration", "0.1"],
+            "defect.topography",
+        ),
+        (vec!["simulate", "--preset", "x"], "preset"),
+        (vec!["simulate", "--duration", "-1"], "duration"),
+        (vec!["frobnicate"], "unrecognized subcommand"),
+    ] {
+        let o = wearsim(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(needle), "{args:?}: {:?}", stderr(&o));
+    }
+}
+
+#[test]
+fn a_complete_config_without_preset_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = write_config(
+        dir.path(),
+        r#"
+seed = 3
+duration = 0.2
+fs = 10000.0
+radial_load = 300.0
+[bearing]
+elements = 9
+element_diameter = 7.94e-3
+pitch_diameter = 39.04e-3
+contact_angle_deg = 0.0
+bore = 25e-3
+outside_diameter = 52e-3
+contact = "point"
+[structure]
+mass = 1.0
+stiffness = 5e7
+damping = 500.0
+[speed]
+rpm = 1797.0
+[defect]
+location = "inner"
+topography = "mild-defect"
+"#,
+    );
+    let out = dir.path().join("o");
+    let o = wearsim(&[
+        "simulate",
+        "--config",
+        &cfg,
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(
+        (v["summary"]["kinematics"]["bpfi"].as_f64().unwrap() - 5.4152 * 1797.0 / 60.0).abs() < 0.1
+    );
+}
+
+#[test]
+fn presets_and_bench_json() {
+    let o = wearsim(&["presets", "--json"]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let cwru = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "cwru-6205-de")
+        .unwrap();
+    assert!((cwru["orders"]["bpfo"].as_f64().unwrap() - 3.5848).abs() < 1e-3);
+    let o = wearsim(&["bench", "--seconds", "1", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["rtf"].as_f64().unwrap() > 0.0);
+    assert!(v["ns_per_step"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["oversample"], 2);
+}

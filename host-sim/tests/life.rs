@@ -1,0 +1,329 @@
+//! Whole-life behaviour (thesis Fig. 5–7, model.md §8) and the life command's modes and
+//! errors.
+
+use proptest::prelude::*;
+use std::process::Command;
+use wearsim_core::wear::{LifeConfig, Material, Stage};
+use wearsim_host::life::dense::DenseOptions;
+use wearsim_host::life::{LifeRun, LifeSpec};
+
+fn reference(seed: u64, every: f64, window: f64) -> LifeSpec {
+    LifeSpec {
+        model: wearsim_core::presets::by_name("thesis-61810").unwrap(),
+        life: LifeConfig::DEFAULT,
+        seed,
+        snapshot_every: every,
+        window,
+        settle: 0.05,
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// Normalised RMS over life: steady (within ±5 % of its median) over the steady-state
+/// stage, a step of at least 30 % at the dent, a fall back below 80 % of the dent's level
+/// with smoothing, and a rise to at least 10× the steady level at the end.
+#[test]
+fn reference_life_follows_the_thesis() {
+    let run = LifeRun::new(reference(3, 20_000.0, 0.25)).unwrap();
+    let r = run.run_snapshots(|_, _| {}).unwrap();
+    assert_eq!(r.state.stage, Stage::Failure);
+    let rms = |stage: &str| -> Vec<f64> {
+        r.snapshots
+            .iter()
+            .filter(|s| s.stage == stage)
+            .map(|s| s.features.rms)
+            .collect()
+    };
+    let steady = rms("steady-state");
+    assert!(steady.len() > 20, "only {} steady snapshots", steady.len());
+    let m = median(steady.clone());
+    for v in &steady {
+        assert!((v / m - 1.0).abs() < 0.05, "steady RMS {v} vs median {m}");
+    }
+    let dent = rms("dent");
+    assert!(dent[0] > 1.3 * m, "dent step {} vs steady {m}", dent[0]);
+    let smooth = rms("dent-smoothing");
+    assert!(
+        smooth.iter().any(|v| *v < 0.8 * dent[0]),
+        "no fall with smoothing"
+    );
+    let end = r.snapshots.last().unwrap().features.rms;
+    assert!(end > 10.0 * m, "end of life {end} vs steady {m}");
+    // The dent forms around the middle of life (thesis: "the dent appears around the
+    // middle of life").
+    let dent_at = r
+        .state
+        .events
+        .iter()
+        .find(|e| e.stage == Stage::Dent)
+        .unwrap()
+        .cycles;
+    let frac = dent_at / r.state.cycles;
+    assert!((0.3..0.7).contains(&frac), "dent at {frac} of life");
+    // Every stage of the thesis occurs, in order.
+    let stages: Vec<Stage> = r.state.events.iter().map(|e| e.stage).collect();
+    for s in &Stage::ALL[1..] {
+        assert!(stages.contains(s), "{s:?} missing in {stages:?}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
+    /// Over many seeds the stage order is never violated, the life ends in failure, and no
+    /// feature is NaN.
+    #[test]
+    fn stage_order_holds_for_any_seed(seed in 0u64..1_000_000) {
+        let run = LifeRun::new(reference(seed, 200_000.0, 0.05)).unwrap();
+        let r = run.run_snapshots(|_, _| {}).unwrap();
+        let idx: Vec<usize> = r.state.events.iter().map(|e| e.stage.index()).collect();
+        prop_assert!(idx.windows(2).all(|w| w[0] <= w[1]), "{:?}", idx);
+        prop_assert_eq!(r.state.stage, Stage::Failure);
+        let cycles: Vec<f64> = r.state.events.iter().map(|e| e.cycles).collect();
+        prop_assert!(cycles.windows(2).all(|w| w[0] <= w[1]));
+        prop_assert!(r.snapshots.iter().all(|s| s.features.rms.is_finite() && s.features.kurtosis.is_finite()));
+    }
+}
+
+fn life_with(load_scale: f64, lambda: f64, seed: u64, every: f64) -> (f64, LifeRun) {
+    let mut spec = reference(seed, every, 0.05);
+    spec.model.radial_load *= load_scale;
+    spec.life.lambda = lambda;
+    spec.life.cycle_cap = 1e12;
+    let run = LifeRun::new(spec).unwrap();
+    let r = run.run_snapshots(|_, _| {}).unwrap();
+    assert!(r
+        .snapshots
+        .iter()
+        .all(|s| s.features.rms.is_finite() && s.features.zone_high.is_finite()));
+    (r.state.cycles, run)
+}
+
+/// No NaN over whole lives at the corners of the load and lubrication ranges.
+#[test]
+fn corners_of_the_parameter_ranges() {
+    for (load, lambda) in [(0.2, 0.1), (0.2, 10.0), (5.0, 0.1), (5.0, 10.0)] {
+        let (life, _) = life_with(load, lambda, 7, 1e7);
+        assert!(
+            life.is_finite() && life > 0.0,
+            "load {load} lambda {lambda}: {life}"
+        );
+    }
+}
+
+/// Life against load follows a power law with an exponent between 2 and 4.5 (ball-bearing
+/// rating life ∝ load⁻³); the load acts through the dynamic model's contact loads.
+#[test]
+fn life_against_load_is_a_power_law() {
+    let scales: [f64; 5] = [0.6, 0.8, 1.0, 1.25, 1.6];
+    let pts: Vec<(f64, f64)> = scales
+        .iter()
+        .map(|s| (s.ln(), life_with(*s, 2.0, 5, 100_000.0).0.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let slope = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
+        / pts.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<f64>();
+    println!("life ∝ load^{slope:.2}");
+    assert!((-4.5..=-2.0).contains(&slope), "fitted exponent {slope}");
+}
+
+/// Poor lubrication (λ < 1) shortens life against full separation (λ > 3).
+#[test]
+fn poor_lubrication_shortens_life() {
+    let (poor, _) = life_with(1.0, 0.8, 5, 100_000.0);
+    let (good, _) = life_with(1.0, 4.0, 5, 100_000.0);
+    println!("life at λ=0.8: {poor:.3e}, at λ=4: {good:.3e}");
+    assert!(poor < 0.5 * good);
+}
+
+fn accelerated(seed: u64) -> LifeSpec {
+    let mut model = wearsim_core::presets::by_name("thesis-61810").unwrap();
+    model.output_rate = 5000.0;
+    let material = Material {
+        life_factor: 1e-8,
+        initiation_passes: 2e3,
+        propagation_passes: 2e3,
+        overrolling: 0.05,
+        crack_c0: 300.0,
+        ..Material::BEARING_STEEL
+    };
+    LifeSpec {
+        model,
+        life: LifeConfig {
+            material,
+            running_in: 1.0,
+            ..LifeConfig::DEFAULT
+        },
+        seed,
+        snapshot_every: 100.0,
+        window: 0.1,
+        settle: 0.05,
+    }
+}
+
+/// The same seed gives the same wear history in snapshot and dense mode, and a dense run
+/// interrupted twice and resumed writes exactly the samples of an uninterrupted one.
+#[test]
+fn dense_mode_same_history_and_resume() {
+    let run = LifeRun::new(accelerated(9)).unwrap();
+    let snap = run.run_snapshots(|_, _| {}).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let whole = dir.path().join("whole");
+    let dense = run
+        .run_dense(
+            &DenseOptions {
+                dir: whole.clone(),
+                stop_after: None,
+            },
+            |_, _| {},
+        )
+        .unwrap();
+    assert!(dense.complete);
+    let a: Vec<(Stage, u64)> = snap
+        .state
+        .events
+        .iter()
+        .map(|e| (e.stage, e.cycles.to_bits()))
+        .collect();
+    let b: Vec<(Stage, u64)> = dense
+        .state
+        .events
+        .iter()
+        .map(|e| (e.stage, e.cycles.to_bits()))
+        .collect();
+    assert_eq!(a, b);
+    assert_eq!(dense.state.stage, Stage::Failure);
+    let expected = (dense.state.cycles / run.shaft_hz * 5000.0) as u64;
+    assert!(
+        dense.samples.abs_diff(expected) <= 2,
+        "{} samples for {} expected",
+        dense.samples,
+        expected
+    );
+
+    let split = dir.path().join("split");
+    let opts = DenseOptions {
+        dir: split.clone(),
+        stop_after: Some(3.0),
+    };
+    let first = run.run_dense(&opts, |_, _| {}).unwrap();
+    assert!(!first.complete && first.samples > 0);
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(split.join("life-dense.json")).unwrap()).unwrap();
+    assert_eq!(manifest["complete"], false);
+    // Simulate a crash after the checkpoint: garbage appended to the data file is dropped.
+    {
+        use std::io::Write;
+        let mut f = std::fs::OpenOptions::new()
+            .append(true)
+            .open(split.join("life-dense.f32"))
+            .unwrap();
+        f.write_all(&[0xAB; 1000]).unwrap();
+    }
+    let second = run.run_dense(&opts, |_, _| {}).unwrap();
+    assert!(second.resumed);
+    let mut last = second;
+    while !last.complete {
+        last = run.run_dense(&opts, |_, _| {}).unwrap();
+    }
+    assert_eq!(
+        std::fs::read(whole.join("life-dense.f32")).unwrap(),
+        std::fs::read(split.join("life-dense.f32")).unwrap()
+    );
+    assert!(!split.join("life-dense.ckpt").exists());
+    let manifest: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(split.join("life-dense.json")).unwrap()).unwrap();
+    assert_eq!(manifest["complete"], true);
+    assert_eq!(manifest["samples"], dense.samples);
+}
+
+fn wearsim(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn life_command_outputs_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("life");
+    let o = wearsim(&[
+        "life",
+        "--snapshot-every",
+        "200000",
+        "--window",
+        "0.05",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["cycles_to_failure"].as_f64().unwrap() > 1e5);
+    for f in [
+        "life-features.csv",
+        "life-timeline.csv",
+        "life-events.csv",
+        "life-events.json",
+        "life-summary.json",
+    ] {
+        assert!(out.join(f).exists(), "{f}");
+    }
+    let cfg = dir.path().join("bad.toml");
+    for (text, args, needle) in [
+        (
+            "preset = \"thesis-61810\"\n[material]\nyield_strength = -1.0\n",
+            vec![],
+            "material.yield_strength",
+        ),
+        (
+            "preset = \"thesis-61810\"\n[material]\nfracture = 1.0\n",
+            vec![],
+            "unknown field `fracture`",
+        ),
+        (
+            "preset = \"thesis-61810\"\n",
+            vec!["--snapshot-every", "1e9", "--cycles", "1e6"],
+            "snapshot interval",
+        ),
+        (
+            "preset = \"thesis-61810\"\n",
+            vec!["--cycles", "1000", "--snapshot-every", "100"],
+            "did not fail within the cycle cap",
+        ),
+        (
+            "preset = \"thesis-61810\"\n",
+            vec!["--lambda", "-1"],
+            "lambda",
+        ),
+        (
+            "preset = \"thesis-61810\"\n",
+            vec!["--load-scale", "100"],
+            "load_scale",
+        ),
+    ] {
+        std::fs::write(&cfg, text).unwrap();
+        let o2 = dir.path().join("o2");
+        let mut a = vec![
+            "life",
+            "--config",
+            cfg.to_str().unwrap(),
+            "--out",
+            o2.to_str().unwrap(),
+        ];
+        a.extend(args);
+        let o = wearsim(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+        assert!(err.contains(needle), "{err} lacks {needle}");
+        assert!(!o2.join("life-summary.json").exists());
+    }
+}

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Sets up and runs every check of the project: formatting, lints, all tests (host,
+# integration, data-backed, QEMU), the no_std builds of the core for Cortex-M0 and M4F,
+# and the fast-math error measurement. With CI=true, missing measured data fails the
+# data-backed tests instead of skipping them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+
+step() { printf '\n== %s\n' "$*"; }
+
+step "cargo fmt --check"
+cargo fmt --all -- --check
+
+step "cargo clippy (deny warnings)"
+cargo clippy --workspace --all-targets -- -D warnings
+
+step "core: no_std builds for thumbv6m-none-eabi and thumbv7em-none-eabihf"
+for target in thumbv6m-none-eabi thumbv7em-none-eabihf; do
+  cargo build -p wearsim-core --target "$target"
+  cargo build -p wearsim-core --target "$target" --features f32
+done
+cargo build -p wearsim-core --target thumbv7em-none-eabihf --features fast-math,defmt
+cargo clippy -p wearsim-core --target thumbv7em-none-eabihf --features f32 -- -D warnings
+
+step "core: fast-math approximation error"
+cargo test -p wearsim-core --features fast-math --test fast_math
+
+if [ -f firmware-stub/Cargo.toml ]; then
+  step "firmware-stub: fmt and clippy"
+  (cd firmware-stub && cargo fmt --all -- --check && cargo clippy --all-targets -- -D warnings)
+fi
+
+step "all tests"
+cargo test --workspace
