@@ -1,10 +1,13 @@
 //! wearsim host library: scenario configuration, the simulation runner, measurement
 //! readers and writers, signal analysis, and the figures the `wearsim` command prints.
 pub mod analysis;
+pub mod analyze;
 pub mod capture;
 pub mod cli;
 pub mod config;
+pub mod cwru_benchmark;
 pub mod io;
 pub mod life;
+pub mod plot;
 pub mod simulate;
 pub mod summary;

@@ -2,7 +2,7 @@
 //! families of the characteristic defect frequencies and their modulation
 //! sidebands (Randall & Antoni 2011, section 3).
 
-use super::peaks::{noise_floor, peak_near, ratio_db, Peak};
+use super::peaks::{noise_floor, peak_near, ratio_db, top_peaks, Peak};
 use super::spectrum::Spectrum;
 use serde::{Deserialize, Serialize};
 
@@ -63,9 +63,15 @@ pub enum FaultFamily {
 pub struct DetectParams {
     /// Harmonics searched per family, 1..=`harmonics` (default 5).
     pub harmonics: usize,
-    /// Slip tolerance as a fraction of each harmonic's frequency (default
-    /// 0.02; never below 2 bins).
+    /// Slip tolerance: the family's actual fundamental is searched within this fraction of
+    /// the kinematic one (default 0.02; Smith & Randall 2015 report 1–2 % random slip).
     pub slip: f64,
+    /// Tolerance of each harmonic around `order × fundamental`, once the fundamental has been
+    /// fixed, as a fraction of the harmonic's frequency (default 0.004; never below 2 bins).
+    /// Slip shifts all harmonics of a family together, so once the common fundamental is
+    /// known its harmonics must line up closely; this is what separates, for example, BPFO
+    /// harmonics from BPFI ones (2×BPFI is only 0.7 % from 3×BPFO on a 6205).
+    pub harmonic_tol: f64,
     /// A peak counts as found when it is at least this many dB above the
     /// local noise floor (default 10 dB).
     pub min_db: f64,
@@ -75,7 +81,10 @@ pub struct DetectParams {
     /// family's base frequency (default 0.5).
     pub floor_half_width: f64,
     /// Weight of a found sideband in the score relative to a harmonic
-    /// (default 0.5).
+    /// (default 0: sidebands are reported as evidence but not scored. On the
+    /// CWRU records the dense line combs of strong outer-race faults put peaks
+    /// at ±shaft and ±FTF of almost any line, so scoring sidebands favoured the
+    /// inner-race and ball families over true outer-race faults).
     pub sideband_weight: f64,
 }
 
@@ -84,10 +93,11 @@ impl Default for DetectParams {
         DetectParams {
             harmonics: 5,
             slip: 0.02,
+            harmonic_tol: 0.004,
             min_db: 10.0,
             min_harmonics: 3,
             floor_half_width: 0.5,
-            sideband_weight: 0.5,
+            sideband_weight: 0.0,
         }
     }
 }
@@ -97,7 +107,8 @@ impl Default for DetectParams {
 pub struct HarmonicEvidence {
     /// Harmonic order (1 = fundamental).
     pub order: usize,
-    /// Expected frequency, Hz.
+    /// Expected frequency, Hz: the order times the family's fitted fundamental
+    /// ([`FamilyEvidence::fundamental_hz`]).
     pub expected_hz: f64,
     /// Largest local maximum within the slip tolerance, if any.
     pub peak: Option<Peak>,
@@ -105,6 +116,9 @@ pub struct HarmonicEvidence {
     pub over_floor_db: f64,
     /// Whether the peak clears `min_db`.
     pub found: bool,
+    /// Whether another family also claims this peak as one of its found harmonics (then it
+    /// does not count in [`FamilyEvidence::exclusive_score`]).
+    pub shared: bool,
     /// Heights above floor (dB) of the lower and upper sidebands around the
     /// harmonic, for the families that have them (0 where none is found).
     pub sidebands_db: Option<[f64; 2]>,
@@ -117,6 +131,9 @@ pub struct FamilyEvidence {
     pub family: FaultFamily,
     /// Base (first-harmonic) frequency, Hz: BPFI, BPFO or 2×BSF.
     pub base_hz: f64,
+    /// Fundamental fitted within the slip tolerance of `base_hz` (the common fundamental
+    /// whose harmonics scored best), Hz.
+    pub fundamental_hz: f64,
     /// Sideband spacing, Hz (shaft for BPFI, FTF for balls), if any.
     pub sideband_hz: Option<f64>,
     /// Per-harmonic evidence, order 1 first.
@@ -127,32 +144,94 @@ pub struct FamilyEvidence {
     /// harmonics plus `sideband_weight` times that of the found sidebands,
     /// divided by the number of harmonics searched.
     pub score: f64,
+    /// Like `score`, counting only the harmonics and sidebands that no other family claims
+    /// as a found harmonic; the decision compares these.
+    pub exclusive_score: f64,
 }
 
 /// Result of [`detect_fault`].
 #[derive(Debug, Clone, Serialize)]
 pub struct FaultDiagnosis {
-    /// Diagnosed family: the highest-scoring family among those with at
-    /// least `min_harmonics` harmonics found, or `None`.
+    /// Diagnosed family: the family of highest `exclusive_score` among those
+    /// with at least `min_harmonics` harmonics found, or `None`.
     pub family: FaultFamily,
-    /// Score of the diagnosed family (0 for `None`).
+    /// Exclusive score of the diagnosed family (0 for `None`).
     pub score: f64,
     /// Evidence for every family (inner, outer, ball).
     pub evidence: Vec<FamilyEvidence>,
 }
 
-/// Look for one peak near `f` Hz; returns the peak and its dB over floor.
-fn probe(env: &Spectrum, f: f64, tol: f64, floor_hw: f64) -> (Option<Peak>, f64) {
+/// Look for one peak near `f` Hz; returns the peak and its dB over `floor`.
+fn probe(env: &Spectrum, f: f64, tol: f64, floor: f64) -> (Option<Peak>, f64) {
     match peak_near(env, f, tol) {
-        Some(p) => {
-            let floor = noise_floor(env, p.freq, floor_hw);
-            (Some(p), ratio_db(env.kind, p.value, floor))
-        }
+        Some(p) => (Some(p), ratio_db(env.kind, p.value, floor)),
         None => (None, 0.0),
     }
 }
 
+/// Most local maxima taken from each harmonic's slip window as fundamental candidates.
+const CANDIDATES_PER_HARMONIC: usize = 4;
+
+/// Evidence of one family for a fundamental `f0` Hz; `floors[k-1]` and `sb_floors[k-1]` are
+/// the noise floors around harmonic `k` and around its sidebands.
+fn evidence_at(
+    env: &Spectrum,
+    f0: f64,
+    sideband_hz: Option<f64>,
+    floors: &[(f64, [f64; 2])],
+    p: &DetectParams,
+) -> (Vec<HarmonicEvidence>, usize, f64) {
+    let min_tol = 2.0 * env.df;
+    let mut score = 0.0;
+    let mut found = 0;
+    let harmonics = floors
+        .iter()
+        .enumerate()
+        .map(|(i, &(floor, sb_floor))| {
+            let order = i + 1;
+            let expected_hz = order as f64 * f0;
+            let tol = (p.harmonic_tol * expected_hz).max(min_tol);
+            let (peak, db) = probe(env, expected_hz, tol, floor);
+            let is_found = peak.is_some() && db >= p.min_db;
+            if is_found {
+                found += 1;
+                score += db;
+            }
+            let centre = peak.filter(|_| is_found).map_or(expected_hz, |q| q.freq);
+            let sidebands_db = sideband_hz.filter(|s| *s > 0.0).map(|s| {
+                let mut out = [0.0; 2];
+                for (j, f) in [centre - s, centre + s].into_iter().enumerate() {
+                    let tol = (p.harmonic_tol * f.abs()).max(min_tol);
+                    let (_, db) = probe(env, f, tol, sb_floor[j]);
+                    if db >= p.min_db {
+                        score += p.sideband_weight * db;
+                        out[j] = db;
+                    }
+                }
+                out
+            });
+            HarmonicEvidence {
+                order,
+                expected_hz,
+                peak,
+                over_floor_db: db,
+                found: is_found,
+                shared: false,
+                sidebands_db,
+            }
+        })
+        .collect();
+    (harmonics, found, score)
+}
+
 /// Search the harmonics (and sidebands) of one family in `env`.
+///
+/// Slip moves every harmonic of a family by the same factor, so the family is evaluated on a
+/// common fundamental: the candidates are the kinematic `base_hz` and `peak / order` for the
+/// largest local maxima within `slip` of each harmonic `order × base_hz`; each candidate's
+/// harmonics are then looked for within `harmonic_tol` of `order × candidate`, and the
+/// candidate with the highest score is kept. Noise floors are medians around the kinematic
+/// harmonic and sideband frequencies.
 fn family_evidence(
     env: &Spectrum,
     family: FaultFamily,
@@ -161,51 +240,66 @@ fn family_evidence(
     p: &DetectParams,
 ) -> FamilyEvidence {
     let min_tol = 2.0 * env.df;
+    let usable = base_hz.is_finite() && base_hz > 0.0 && env.df > 0.0;
+    if !usable || p.harmonics == 0 {
+        return FamilyEvidence {
+            family,
+            base_hz,
+            fundamental_hz: base_hz,
+            sideband_hz,
+            harmonics: Vec::new(),
+            found: 0,
+            score: 0.0,
+            exclusive_score: 0.0,
+        };
+    }
     let floor_hw = (p.floor_half_width * base_hz).max(4.0 * min_tol);
-    let mut score = 0.0;
-    let mut found = 0;
-    let usable = base_hz.is_finite() && base_hz > 0.0;
-    let harmonics = (1..=p.harmonics)
-        .filter(|_| usable)
+    let s = sideband_hz
+        .filter(|s| s.is_finite() && *s > 0.0)
+        .unwrap_or(0.0);
+    let floors: Vec<(f64, [f64; 2])> = (1..=p.harmonics)
         .map(|order| {
-            let expected_hz = order as f64 * base_hz;
-            let tol = (p.slip * expected_hz).max(min_tol);
-            let (peak, db) = probe(env, expected_hz, tol, floor_hw);
-            let is_found = peak.is_some() && db >= p.min_db;
-            if is_found {
-                found += 1;
-                score += db;
-            }
-            let centre = peak.map_or(expected_hz, |q| q.freq);
-            let sidebands_db = sideband_hz.filter(|s| *s > 0.0).map(|s| {
-                let tol = (p.slip * s).max(min_tol);
-                [centre - s, centre + s].map(|f| {
-                    let (_, db) = probe(env, f, tol, floor_hw);
-                    if db >= p.min_db {
-                        score += p.sideband_weight * db;
-                        db
-                    } else {
-                        0.0
-                    }
-                })
-            });
-            HarmonicEvidence {
-                order,
-                expected_hz,
-                peak,
-                over_floor_db: db,
-                found: is_found,
-                sidebands_db,
-            }
+            let f = order as f64 * base_hz;
+            (
+                noise_floor(env, f, floor_hw),
+                [
+                    noise_floor(env, f - s, floor_hw),
+                    noise_floor(env, f + s, floor_hw),
+                ],
+            )
         })
         .collect();
+    let mut candidates = vec![base_hz];
+    for order in 1..=p.harmonics {
+        let f = order as f64 * base_hz;
+        let tol = (p.slip * f).max(min_tol);
+        for q in top_peaks(env, CANDIDATES_PER_HARMONIC, f - tol, f + tol, 0.0) {
+            candidates.push(q.freq / order as f64);
+        }
+    }
+    let mut best: Option<(f64, Vec<HarmonicEvidence>, usize, f64)> = None;
+    for f0 in candidates {
+        let (h, found, score) = evidence_at(env, f0, sideband_hz, &floors, p);
+        let better = match &best {
+            None => true,
+            Some((b0, _, _, bs)) => {
+                score > *bs || (score == *bs && (f0 - base_hz).abs() < (b0 - base_hz).abs())
+            }
+        };
+        if better {
+            best = Some((f0, h, found, score));
+        }
+    }
+    let (fundamental_hz, harmonics, found, score) = best.unwrap_or((base_hz, Vec::new(), 0, 0.0));
     FamilyEvidence {
         family,
         base_hz,
+        fundamental_hz,
         sideband_hz,
         harmonics,
         found,
         score: score / p.harmonics.max(1) as f64,
+        exclusive_score: 0.0,
     }
 }
 
@@ -213,26 +307,81 @@ fn family_evidence(
 /// [`super::envelope_spectrum`] in the band chosen by the kurtogram).
 ///
 /// For each family — inner race (BPFI, sidebands ±shaft), outer race (BPFO)
-/// and ball (2×BSF, sidebands ±FTF) — harmonics 1..=H are searched within
-/// the slip tolerance, each peak is rated in dB above the median noise floor
-/// around it, and the family with the highest score among those with at
-/// least `min_harmonics` harmonics found is reported (Randall & Antoni 2011).
+/// and ball (2×BSF, sidebands ±FTF) — a common fundamental is fitted within
+/// the slip tolerance and its harmonics 1..=H are searched within
+/// `harmonic_tol`; each peak is rated in dB above the median noise floor
+/// around it. A line found by two families (e.g. 2×BPFI and 3×BPFO, 0.7 %
+/// apart on a 6205) counts for neither, and the family with the highest
+/// exclusive score among those with at least `min_harmonics` harmonics found
+/// is reported (Randall & Antoni 2011).
 /// Non-positive or non-finite characteristic frequencies yield no evidence.
 pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> FaultDiagnosis {
-    let evidence = vec![
+    let mut evidence = vec![
         family_evidence(env, FaultFamily::InnerRace, ff.bpfi, Some(ff.shaft_hz), p),
         family_evidence(env, FaultFamily::OuterRace, ff.bpfo, None, p),
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
+    mark_shared(&mut evidence, env.df, p);
     let best = evidence
         .iter()
-        .filter(|e| e.found >= p.min_harmonics.max(1))
-        .max_by(|a, b| a.score.total_cmp(&b.score));
-    let (family, score) = best.map_or((FaultFamily::None, 0.0), |e| (e.family, e.score));
+        .filter(|e| e.found >= p.min_harmonics.max(1) && e.exclusive_score > 0.0)
+        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
+    let (family, score) = best.map_or((FaultFamily::None, 0.0), |e| (e.family, e.exclusive_score));
     FaultDiagnosis {
         family,
         score,
         evidence,
+    }
+}
+
+/// Mark the found harmonics that another family also claims (a found harmonic of another
+/// family, or an order `H+1..=2H` of the fitted fundamental of another family with at least
+/// `min_harmonics` found, within `max(2 bins, harmonic_tol × f)`) and compute every family's
+/// `exclusive_score`: its score without those harmonics and without sidebands that fall on
+/// another family's found harmonics. A line that two families explain is evidence for
+/// neither; the decision rests on the lines only one family explains.
+fn mark_shared(evidence: &mut [FamilyEvidence], df: f64, p: &DetectParams) {
+    let mut claimed: Vec<(usize, f64)> = evidence
+        .iter()
+        .enumerate()
+        .flat_map(|(i, e)| {
+            e.harmonics
+                .iter()
+                .filter(|h| h.found)
+                .filter_map(move |h| h.peak.map(|q| (i, q.freq)))
+        })
+        .collect();
+    // A diagnosable family's comb goes on beyond the harmonics searched (6×BPFO lies 0.7 %
+    // from 4×BPFI on a 6205): extend it to twice as many orders.
+    for (i, e) in evidence.iter().enumerate() {
+        if e.found >= p.min_harmonics.max(1) {
+            for order in p.harmonics + 1..=2 * p.harmonics {
+                claimed.push((i, order as f64 * e.fundamental_hz));
+            }
+        }
+    }
+    let near_other = |i: usize, f: f64| {
+        let tol = (p.harmonic_tol * f.abs()).max(2.0 * df);
+        claimed.iter().any(|&(j, g)| j != i && (g - f).abs() <= tol)
+    };
+    for (i, e) in evidence.iter_mut().enumerate() {
+        let mut score = 0.0;
+        let s = e.sideband_hz.unwrap_or(0.0);
+        for h in e.harmonics.iter_mut().filter(|h| h.found) {
+            let f = h.peak.map_or(h.expected_hz, |q| q.freq);
+            h.shared = near_other(i, f);
+            if !h.shared {
+                score += h.over_floor_db;
+            }
+            if let Some(sb) = h.sidebands_db {
+                for (db, fsb) in sb.iter().zip([f - s, f + s]) {
+                    if *db > 0.0 && !near_other(i, fsb) {
+                        score += p.sideband_weight * db;
+                    }
+                }
+            }
+        }
+        e.exclusive_score = score / p.harmonics.max(1) as f64;
     }
 }
 
@@ -284,7 +433,7 @@ mod tests {
     /// The diagnosed family's score is at least `ratio` times every other's.
     fn assert_margin(d: &FaultDiagnosis, ratio: f64) {
         for e in d.evidence.iter().filter(|e| e.family != d.family) {
-            assert!(d.score >= ratio * e.score, "{d:#?}");
+            assert!(d.score >= ratio * e.exclusive_score, "{d:#?}");
         }
     }
 
@@ -369,6 +518,45 @@ mod tests {
             assert_eq!(h.peak.unwrap().bin, 100 * h.order);
         }
         assert!((d.score - 40.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn common_fundamental_and_shared_lines() {
+        // Outer-race comb at 1.2 % slip above the kinematic BPFO, 0.1 Hz bins.
+        let ff = cwru();
+        let f0 = ff.bpfo * 1.012;
+        let mut values = vec![0.01; 20_000];
+        for k in 1..=8 {
+            values[(k as f64 * f0 / 0.1).round() as usize] = 1.0;
+        }
+        let env = Spectrum {
+            df: 0.1,
+            values,
+            kind: SpectrumKind::Amplitude,
+        };
+        let d = detect_fault(&env, &ff, &DetectParams::default());
+        assert_eq!(d.family, FaultFamily::OuterRace, "{d:#?}");
+        let outer = &d.evidence[1];
+        assert_eq!(outer.found, 5);
+        assert!(
+            (outer.fundamental_hz - f0).abs() < 0.1,
+            "{}",
+            outer.fundamental_hz
+        );
+        // 2x and 4x BPFI fall within 0.7 % of 3x and 6x BPFO: found, but shared,
+        // so the inner-race family has no exclusive evidence.
+        let inner = &d.evidence[0];
+        assert!(inner.found <= 2, "{inner:#?}");
+        assert!(
+            inner.harmonics.iter().filter(|h| h.found).all(|h| h.shared),
+            "{d:#?}"
+        );
+        assert_eq!(inner.exclusive_score, 0.0);
+        assert!(
+            (d.score - 40.0 * 4.0 / 5.0).abs() < 1e-6,
+            "3x BPFO is shared: {}",
+            d.score
+        );
     }
 
     proptest! {

@@ -32,6 +32,10 @@ enum Command {
     Bench(cli::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
     Capture(wearsim_host::capture::CaptureArgs),
+    /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
+    Analyze(wearsim_host::analyze::AnalyzeArgs),
+    /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
+    CwruBenchmark(wearsim_host::cwru_benchmark::CwruBenchmarkArgs),
     /// List the presets with their derived frequencies.
     Presets {
         /// Machine-readable output.
@@ -58,6 +62,8 @@ fn main() -> ExitCode {
         Command::Capture(a) => wearsim_host::capture::run(a),
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
+        Command::Analyze(a) => wearsim_host::analyze::run(&a),
+        Command::CwruBenchmark(a) => wearsim_host::cwru_benchmark::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -12,6 +12,7 @@ use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stag
 
 pub mod cli;
 pub mod dense;
+pub mod ims;
 pub mod output;
 pub mod state_json;
 use wearsim_core::{Model, ModelConfig, Sample, State};

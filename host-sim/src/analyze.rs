@@ -1,0 +1,595 @@
+//! `wearsim analyze`: statistics, kurtogram-selected demodulation band, envelope-spectrum
+//! fault-family decision and El-Thalji frequency-zone levels of one measured (or simulated)
+//! record, with optional plots.
+//!
+//! The chain (Randall & Antoni 2011, "Rolling element bearing diagnostics — a tutorial",
+//! MSSP 25; Borghesani et al. 2013, "Application of cepstrum pre-whitening for the diagnosis
+//! of bearing faults under variable speed conditions", MSSP 36):
+//!
+//! 1. time-domain statistics of the raw record;
+//! 2. fast kurtogram (Antoni 2007) of the raw record, restricted to bands that lie above the
+//!    fault-frequency zone and are wide enough to hold the fault harmonics that are searched,
+//!    to choose the demodulation band (where the impulses dominate);
+//! 3. cepstral pre-whitening (CPW): the record's spectrum is divided by its own magnitude,
+//!    which removes the discrete machine lines (and the interference harmonics of the CWRU
+//!    rig) inside the band while keeping the impulse timing;
+//! 4. envelope spectrum of the whitened record in the chosen band and [`detect_fault`]
+//!    (common-fundamental harmonic fit within the slip tolerance; lines claimed by two
+//!    families count for neither).
+//!
+//! One parameter set ([`Method::default`]) serves every record: nothing depends on a label.
+
+use crate::analysis::{
+    self, detect_fault, envelope_spectrum, fast_kurtogram, welch_psd, zone_levels, DetectParams,
+    FaultDiagnosis, FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window,
+    ZoneBands, ZoneLevels,
+};
+use crate::cli::CliError;
+use crate::io::{self, ReadOptions, Record};
+use clap::Args;
+use realfft::num_complex::Complex;
+use realfft::RealFftPlanner;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// `wearsim analyze` arguments.
+#[derive(Debug, Clone, Args, Default)]
+pub struct AnalyzeArgs {
+    /// Measurement file: CWRU .mat, CSV/TXT, WAV, NPY, IMS snapshot, or wearsim's own
+    /// `simulate` output (the .csv or .wav beside its JSON sidecar).
+    pub file: PathBuf,
+    /// Channel: CWRU `DE`/`FE`/`BA`, CSV header name or column index, WAV/NPY column index.
+    #[arg(long)]
+    pub channel: Option<String>,
+    /// Shaft speed (rpm), 0 < rpm < 1e6; overrides the file / sidecar value.
+    #[arg(long)]
+    pub rpm: Option<f64>,
+    /// Sample rate (Hz), 1..=1e7; overrides the file / sidecar value.
+    #[arg(long)]
+    pub fs: Option<f64>,
+    /// Bearing preset giving the geometry (see `wearsim presets`); overrides the record's.
+    #[arg(long)]
+    pub bearing: Option<String>,
+    /// Print everything as one JSON object on standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Write PNG and SVG plots (spectrum, envelope spectrum, kurtogram) into this directory.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+/// Characteristic frequencies of the analysed bearing at the record's speed, Hz.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Kinematics {
+    /// Shaft rotation frequency 1×, Hz.
+    pub shaft_hz: f64,
+    /// Cage (fundamental train) frequency, Hz (El-Thalji 2016 eq. 17).
+    pub ftf: f64,
+    /// Ball pass frequency, outer race, Hz (eq. 18).
+    pub bpfo: f64,
+    /// Ball pass frequency, inner race, Hz (eq. 19).
+    pub bpfi: f64,
+    /// Ball spin frequency, Hz (eq. 20); a ball defect shows at 2×BSF.
+    pub bsf: f64,
+    /// Linearised natural frequency of the preset's structure, Hz (resonance zone centre).
+    pub natural_hz: f64,
+}
+
+impl Kinematics {
+    /// Frequencies of bearing preset `preset` at `rpm` (rev/min). Errors name the preset and
+    /// list the valid names.
+    pub fn of_preset(preset: &str, rpm: f64) -> Result<Self, String> {
+        let cfg = wearsim_core::presets::by_name(preset).ok_or_else(|| {
+            format!(
+                "unknown bearing preset {preset:?} (allowed: {})",
+                wearsim_core::presets::NAMES.join(", ")
+            )
+        })?;
+        let model = wearsim_core::Model::new_checked(cfg.clone())
+            .map_err(|e| format!("bearing preset {preset}: {e}"))?;
+        let shaft = rpm / 60.0;
+        let f = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing).at(shaft);
+        Ok(Kinematics {
+            shaft_hz: f.shaft,
+            ftf: f.ftf,
+            bpfo: f.bpfo,
+            bpfi: f.bpfi,
+            bsf: f.bsf,
+            natural_hz: model.natural_frequency_hz(),
+        })
+    }
+
+    /// The fault frequencies in the detector's form.
+    pub fn fault_frequencies(&self) -> FaultFrequencies {
+        FaultFrequencies {
+            shaft_hz: self.shaft_hz,
+            ftf: self.ftf,
+            bpfo: self.bpfo,
+            bpfi: self.bpfi,
+            bsf: self.bsf,
+        }
+    }
+}
+
+/// The fixed analysis method (one parameter set for every record).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Method {
+    /// Cepstral pre-whitening of the record before the envelope (default true; the
+    /// kurtogram always sees the raw record).
+    pub prewhiten: bool,
+    /// Deepest fast-kurtogram level (default 6; reduced automatically for short records).
+    pub max_level: usize,
+    /// Narrowest admissible demodulation band, as a multiple of the highest fault harmonic
+    /// searched (`top = harmonics × max(BPFI, 2×BSF)`), so that the envelope can hold every
+    /// harmonic the detector looks for (default 1.2). Admissible bands also start at or
+    /// above `top` (the carrier lies above the fault-frequency zone it modulates), unless the
+    /// record's bandwidth leaves no room for that.
+    pub min_band_factor: f64,
+    /// Detector thresholds ([`DetectParams::default`]).
+    pub detect: DetectParams,
+}
+
+impl Default for Method {
+    fn default() -> Self {
+        Method {
+            prewhiten: true,
+            max_level: 6,
+            min_band_factor: 1.2,
+            detect: DetectParams::default(),
+        }
+    }
+}
+
+/// Summary of the fast kurtogram.
+#[derive(Debug, Clone, Serialize)]
+pub struct KurtogramSummary {
+    /// Deepest level computed.
+    pub max_level: usize,
+    /// Narrowest admissible band width, Hz (see [`Method::min_band_factor`]).
+    pub min_band_hz: f64,
+    /// Chosen demodulation band `(lo, hi)`, Hz: the admissible band of largest kurtosis.
+    pub band_hz: (f64, f64),
+    /// Kurtosis of the complex envelope in that band (0 for Gaussian noise).
+    pub kurtosis: f64,
+    /// Level of the chosen band (log2 of the number of bands in its row).
+    pub level: f64,
+    /// Band of largest kurtosis over the whole kurtogram (admissible or not), Hz.
+    pub unrestricted_band_hz: (f64, f64),
+    /// Its kurtosis.
+    pub unrestricted_kurtosis: f64,
+}
+
+/// Zone bands and levels (El-Thalji 2016 frequency zones), from a Welch PSD of the raw record.
+#[derive(Debug, Clone, Serialize)]
+pub struct Zones {
+    /// Band edges, Hz.
+    pub bands: ZoneBands,
+    /// RMS levels, signal units.
+    pub levels: ZoneLevels,
+}
+
+/// Everything `wearsim analyze` reports (the `--json` object).
+#[derive(Debug, Clone, Serialize)]
+pub struct Analysis {
+    /// File analysed.
+    pub file: PathBuf,
+    /// Channel name as the file calls it.
+    pub channel: String,
+    /// Unit of the samples (`g`, `m/s^2`, ...).
+    pub unit: String,
+    /// Sample rate, Hz.
+    pub fs: f64,
+    /// Number of samples.
+    pub samples: usize,
+    /// Duration, s.
+    pub duration_s: f64,
+    /// Shaft speed used, rpm.
+    pub rpm: f64,
+    /// Where the speed came from: `argument` or `file`.
+    pub rpm_source: String,
+    /// Bearing preset used for the geometry.
+    pub bearing: String,
+    /// Where the bearing came from: `argument` or `file`.
+    pub bearing_source: String,
+    /// Characteristic frequencies at `rpm`, Hz.
+    pub kinematics: Kinematics,
+    /// The method's parameters.
+    pub method: Method,
+    /// RMS, peak, crest factor, kurtosis, skewness of the raw record (signal units).
+    pub stats: Stats,
+    /// Demodulation band chosen by the kurtogram.
+    pub kurtogram: KurtogramSummary,
+    /// Fault-family decision with the evidence of every family.
+    pub diagnosis: FaultDiagnosis,
+    /// Zone levels, or `None` when a zone falls outside (0, fs/2) (see `zones_note`).
+    pub zones: Option<Zones>,
+    /// Why the zones are missing, if they are.
+    pub zones_note: Option<String>,
+}
+
+/// The spectra behind an [`Analysis`], for plots.
+#[derive(Debug, Clone)]
+pub struct Spectra {
+    /// Amplitude spectrum of the raw record (Hann window, whole record), signal units.
+    pub spectrum: Spectrum,
+    /// Envelope spectrum in the chosen band (of the pre-whitened record if
+    /// [`Method::prewhiten`]); signal units, or unit-less when pre-whitened.
+    pub envelope: Spectrum,
+    /// The fast kurtogram of the raw record.
+    pub kurtogram: Kurtogram,
+}
+
+/// Result of [`analyze_signal`]: the figures that depend only on the samples.
+#[derive(Debug, Clone)]
+pub struct SignalAnalysis {
+    /// Statistics of the raw signal.
+    pub stats: Stats,
+    /// Demodulation band.
+    pub kurtogram: KurtogramSummary,
+    /// Fault decision.
+    pub diagnosis: FaultDiagnosis,
+    /// Zones, or the reason they are missing.
+    pub zones: Result<Zones, String>,
+    /// Spectra for plots.
+    pub spectra: Spectra,
+}
+
+/// Cepstral pre-whitening (Sawalhi & Randall 2011; Borghesani et al. 2013): the inverse FFT
+/// of `X(f) / |X(f)|` of the mean-removed record, i.e. the record with its real cepstrum set
+/// to zero except at quefrency 0. The mean and bins of zero magnitude become zero. The output
+/// has the input's length and a flat (unit-less) magnitude spectrum: every bin has magnitude
+/// 1 before the inverse FFT's 1/n scaling. Fewer than 2 samples give zeros.
+pub fn prewhiten(x: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    if n < 2 {
+        return vec![0.0; n];
+    }
+    let mean = x.iter().sum::<f64>() / n as f64;
+    let mut planner = RealFftPlanner::<f64>::new();
+    let fwd = planner.plan_fft_forward(n);
+    let inv = planner.plan_fft_inverse(n);
+    let mut input: Vec<f64> = x.iter().map(|v| v - mean).collect();
+    let mut spec = fwd.make_output_vec();
+    if fwd.process(&mut input, &mut spec).is_err() {
+        return vec![0.0; n];
+    }
+    for (k, c) in spec.iter_mut().enumerate() {
+        let m = c.norm();
+        // DC and (even n) Nyquist must stay real for the inverse real FFT.
+        if k == 0 || m == 0.0 || !m.is_finite() {
+            *c = Complex::new(0.0, 0.0);
+        } else {
+            *c /= m;
+        }
+    }
+    if n.is_multiple_of(2) {
+        if let Some(last) = spec.last_mut() {
+            *last = Complex::new(last.re, 0.0);
+        }
+    }
+    let mut out = inv.make_output_vec();
+    if inv.process(&mut spec, &mut out).is_err() {
+        return vec![0.0; n];
+    }
+    let scale = 1.0 / n as f64;
+    out.iter_mut().for_each(|v| *v *= scale);
+    out
+}
+
+/// Band edges `(lo, hi)` Hz of cell `i` of kurtogram row `r`.
+pub fn kurtogram_band(kg: &Kurtogram, r: usize, i: usize) -> (f64, f64) {
+    let nb = kg.grid.get(r).map_or(1, Vec::len).max(1);
+    let w = kg.fs / 2.0 / nb as f64;
+    (i as f64 * w, (i + 1) as f64 * w)
+}
+
+/// Analyse samples `x` at `fs` Hz of a bearing with frequencies `kin` using `method`.
+/// Errors (signal too short, constant, non-finite, bad fs) come from [`analysis`].
+pub fn analyze_signal(
+    x: &[f64],
+    fs: f64,
+    kin: &Kinematics,
+    method: &Method,
+) -> Result<SignalAnalysis, analysis::AnalysisError> {
+    let stats = analysis::stats(x)?;
+    let ff = kin.fault_frequencies();
+    let white;
+    let y: &[f64] = if method.prewhiten {
+        white = prewhiten(x);
+        &white
+    } else {
+        x
+    };
+    // Deepest level the record supports (32 envelope samples in the narrowest band).
+    let mut level = method.max_level.clamp(1, 16);
+    while level > 1 && (32usize << (level + 1)) > x.len() {
+        level -= 1;
+    }
+    // Spectral kurtosis of the raw record says where the impulses dominate (Antoni 2007).
+    let kg = fast_kurtogram(x, fs, level)?;
+    let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
+    let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
+    let mut best: Option<(f64, usize, usize)> = None;
+    for (r, row) in kg.grid.iter().enumerate() {
+        let width = fs / 2.0 / row.len().max(1) as f64;
+        if width + 1e-9 < min_band_hz {
+            continue;
+        }
+        for (i, &k) in row.iter().enumerate() {
+            // The carrier band must lie above the fault harmonics it is to reveal.
+            if (i as f64) * width + 1e-9 < top.min(fs / 2.0 - min_band_hz) {
+                continue;
+            }
+            if best.is_none_or(|b| k > b.0) {
+                best = Some((k, r, i));
+            }
+        }
+    }
+    let (kurtosis, r, i) = best.unwrap_or((kg.grid[0][0], 0, 0));
+    let band = kurtogram_band(&kg, r, i);
+    let summary = KurtogramSummary {
+        max_level: level,
+        min_band_hz,
+        band_hz: band,
+        kurtosis,
+        level: kg.level_values.get(r).copied().unwrap_or(0.0),
+        unrestricted_band_hz: kg.best_band,
+        unrestricted_kurtosis: kg.best_kurtosis,
+    };
+    let env = envelope_spectrum(y, fs, Some(band))?;
+    let diagnosis = detect_fault(&env, &ff, &method.detect);
+    let spectrum = analysis::amplitude_spectrum(x, fs, Window::Hann)?;
+    let zones = zones(x, fs, kin);
+    Ok(SignalAnalysis {
+        stats,
+        kurtogram: summary,
+        diagnosis,
+        zones,
+        spectra: Spectra {
+            spectrum,
+            envelope: env,
+            kurtogram: kg,
+        },
+    })
+}
+
+/// Zone levels from a Welch PSD (segments of about 1 Hz resolution, at most the record).
+fn zones(x: &[f64], fs: f64, kin: &Kinematics) -> Result<Zones, String> {
+    let bands = ZoneBands::new(&kin.fault_frequencies(), kin.natural_hz, fs)
+        .map_err(|e| format!("frequency zones undefined: {e}"))?;
+    let mut nperseg = 4096usize;
+    while nperseg > x.len() && nperseg > 64 {
+        nperseg /= 2;
+    }
+    let psd = welch_psd(
+        x,
+        fs,
+        &WelchParams {
+            nperseg,
+            ..WelchParams::default()
+        },
+    )
+    .map_err(|e| format!("zone PSD: {e}"))?;
+    Ok(Zones {
+        levels: zone_levels(&psd, &bands),
+        bands,
+    })
+}
+
+/// Read `args.file` and analyse it; errors name the file (exit 2 for bad input).
+pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), CliError> {
+    let opts = ReadOptions {
+        channel: args.channel.clone(),
+        fs: args.fs,
+        rpm: args.rpm,
+    };
+    let rec = io::read_any(&args.file, &opts).map_err(CliError::input)?;
+    analyze_record(
+        &rec,
+        args.bearing.as_deref(),
+        args.rpm.is_some(),
+        &Method::default(),
+    )
+}
+
+/// Analyse a record already read. `bearing` overrides the record's bearing preset;
+/// `rpm_from_argument` only labels where the speed came from.
+pub fn analyze_record(
+    rec: &Record,
+    bearing: Option<&str>,
+    rpm_from_argument: bool,
+    method: &Method,
+) -> Result<(Analysis, Spectra), CliError> {
+    let file = rec.source.display().to_string();
+    let (bearing, bearing_source) = match (bearing, rec.bearing.as_deref()) {
+        (Some(b), _) => (b.to_string(), "argument"),
+        (None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => (b.to_string(), "file"),
+        (None, other) => {
+            return Err(CliError::input(format!(
+                "{file}: no bearing geometry{}: pass --bearing PRESET (one of {})",
+                other.map_or(String::new(), |b| format!(
+                    " (the file names {b:?}, which is not a preset)"
+                )),
+                wearsim_core::presets::NAMES.join(", ")
+            )))
+        }
+    };
+    let Some(rpm) = rec.rpm else {
+        return Err(CliError::input(format!(
+            "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
+        )));
+    };
+    let kin = Kinematics::of_preset(&bearing, rpm)
+        .map_err(|e| CliError::input(format!("{file}: {e}")))?;
+    let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
+        .map_err(|e| CliError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
+    let (zones, zones_note) = match a.zones {
+        Ok(z) => (Some(z), None),
+        Err(e) => (None, Some(e)),
+    };
+    Ok((
+        Analysis {
+            file: rec.source.clone(),
+            channel: rec.channel.clone(),
+            unit: rec.unit.clone(),
+            fs: rec.fs,
+            samples: rec.samples.len(),
+            duration_s: rec.duration_s(),
+            rpm,
+            rpm_source: if rpm_from_argument {
+                "argument"
+            } else {
+                "file"
+            }
+            .into(),
+            bearing,
+            bearing_source: bearing_source.into(),
+            kinematics: kin,
+            method: *method,
+            stats: a.stats,
+            kurtogram: a.kurtogram,
+            diagnosis: a.diagnosis,
+            zones,
+            zones_note,
+        },
+        a.spectra,
+    ))
+}
+
+/// Human-readable name of a family.
+pub fn family_name(f: FaultFamily) -> &'static str {
+    match f {
+        FaultFamily::InnerRace => "inner race",
+        FaultFamily::OuterRace => "outer race",
+        FaultFamily::Ball => "ball",
+        FaultFamily::None => "none",
+    }
+}
+
+/// Print the analysis for a person.
+pub fn print_analysis(a: &Analysis) {
+    let k = &a.kinematics;
+    println!(
+        "{} [{}] | fs {} Hz | {} samples ({:.2} s) | {:.0} rpm ({}) | bearing {} ({})",
+        a.file.display(),
+        a.channel,
+        a.fs,
+        a.samples,
+        a.duration_s,
+        a.rpm,
+        a.rpm_source,
+        a.bearing,
+        a.bearing_source
+    );
+    println!(
+        "kinematics: 1x {:.2} Hz  FTF {:.2}  BPFO {:.2}  BPFI {:.2}  BSF {:.2} (2xBSF {:.2})  natural {:.0} Hz",
+        k.shaft_hz,
+        k.ftf,
+        k.bpfo,
+        k.bpfi,
+        k.bsf,
+        2.0 * k.bsf,
+        k.natural_hz
+    );
+    let s = &a.stats;
+    println!(
+        "statistics ({}): RMS {:.4}  peak {:.4}  crest {:.2}  kurtosis {:.2}  skewness {:.3}",
+        a.unit, s.rms, s.peak, s.crest_factor, s.kurtosis, s.skewness
+    );
+    let kg = &a.kurtogram;
+    println!(
+        "demodulation band (fast kurtogram, level {:.1}, bands >= {:.0} Hz above the fault zone): {:.0}-{:.0} Hz, kurtosis {:.2}{}",
+        kg.level,
+        kg.min_band_hz,
+        kg.band_hz.0,
+        kg.band_hz.1,
+        kg.kurtosis,
+        if a.method.prewhiten { "; envelope of the pre-whitened record" } else { "" }
+    );
+    let d = &a.diagnosis;
+    println!(
+        "diagnosis: {} (exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
+        family_name(d.family),
+        d.score
+    );
+    for e in &d.evidence {
+        let mut parts = vec![];
+        for h in &e.harmonics {
+            let mut s = format!(
+                "{}x {:.1}Hz:{}{:.1}dB",
+                h.order,
+                h.peak.map_or(h.expected_hz, |p| p.freq),
+                match (h.found, h.shared) {
+                    (true, true) => "=",
+                    (true, false) => "+",
+                    _ => "",
+                },
+                h.over_floor_db
+            );
+            if let Some([lo, hi]) = h.sidebands_db {
+                s.push_str(&format!(" [sb {lo:.0}/{hi:.0}]"));
+            }
+            parts.push(s);
+        }
+        println!(
+            "  {:<10} base {:>7.2} Hz fitted {:>7.2} Hz  found {}/{}  score {:>5.1}  exclusive {:>5.1}",
+            family_name(e.family),
+            e.base_hz,
+            e.fundamental_hz,
+            e.found,
+            e.harmonics.len(),
+            e.score,
+            e.exclusive_score,
+        );
+        println!("    {}", parts.join("  "));
+    }
+    match (&a.zones, &a.zones_note) {
+        (Some(z), _) => {
+            let (b, l) = (&z.bands, &z.levels);
+            println!("zone levels (RMS, {}):", a.unit);
+            for (name, band, v) in [
+                ("rotating", b.rotating, l.rotating),
+                ("fault", b.fault, l.fault),
+                ("natural", b.natural, l.natural),
+                ("high", b.high, l.high),
+            ] {
+                println!("  {name:<9} {:>8.1}-{:<8.1} Hz  {v:.4e}", band.0, band.1);
+            }
+            println!("  total     {:.4e}", l.total);
+        }
+        (None, Some(n)) => println!("zone levels: {n}"),
+        (None, None) => {}
+    }
+}
+
+/// `wearsim analyze`: read, analyse, print (or `--json`), plot.
+pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    let (a, spectra) = analyze(args)?;
+    let plots = match &args.plot {
+        Some(dir) => crate::plot::write_all(dir, &a, &spectra)?,
+        None => vec![],
+    };
+    if args.json {
+        let mut v = serde_json::to_value(&a).map_err(CliError::run)?;
+        if let Some(obj) = v.as_object_mut() {
+            obj.insert("plots".into(), serde_json::json!(plots));
+        }
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(CliError::run)?
+        );
+    } else {
+        print_analysis(&a);
+        for p in &plots {
+            println!("wrote {}", p.display());
+        }
+    }
+    Ok(())
+}
+
+/// The file name `path` without directories, for messages.
+pub fn short_name(path: &Path) -> String {
+    path.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
