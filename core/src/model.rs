@@ -658,7 +658,7 @@ impl Model {
         let Some(r) = self.cfg.roughness else { return };
         let v = TAU * st.shaft_hz * self.orders.ftf * self.cfg.bearing.outer_race_radius();
         let debris = st.topography.map(|t| t.debris).unwrap_or(0.0);
-        let sigma = r.step_sigma(self.h, v, debris) * 1.732_050_807_568_877_2;
+        let sigma = r.step_sigma(self.h, v, debris) * crate::real::SQRT_3;
         let (cc, sc) = st.cage_cs;
         let n = self.cfg.bearing.elements as usize;
         let rough_all = st.rough.get_mut(..n).unwrap_or(&mut []);
@@ -693,22 +693,22 @@ impl Model {
         };
         let (cc, sc) = st.cage_cs;
         let n = self.cfg.bearing.elements;
-        for j in 0..n as usize {
-            let Some((ce, se)) = self.elem_cs.get(j).copied() else {
-                break;
-            };
+        // Iterators instead of indexing keep this per-step loop free of bounds checks (it is
+        // a sixth of the step on a Cortex-M4F); the arithmetic is unchanged.
+        let mut armed = st.armed;
+        let mut bit = 1u32;
+        let elems = self.elem_cs.get(..n as usize).unwrap_or(&[]);
+        for ((ce, se), s) in elems.iter().zip(st.slip.iter_mut()) {
             let cos_rel = (cc * ce - sc * se) * dc + (sc * ce + cc * se) * ds;
-            let bit = 1u32 << (j as u32 & 31);
             if cos_rel > 0.5 {
-                st.armed |= bit;
-            } else if cos_rel < -0.5 && st.armed & bit != 0 {
-                st.armed &= !bit;
-                let draw = slip.draw(&mut st.rng, n);
-                if let Some(s) = st.slip.get_mut(j) {
-                    *s = draw;
-                }
+                armed |= bit;
+            } else if cos_rel < -0.5 && armed & bit != 0 {
+                armed &= !bit;
+                *s = slip.draw(&mut st.rng, n);
             }
+            bit = bit.rotate_left(1);
         }
+        st.armed = armed;
     }
 
     /// Moves time, angles and phasors one step on.

@@ -76,7 +76,7 @@ impl Xoshiro128pp {
     pub fn gauss_approx(&mut self) -> Real {
         let s = self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1();
         // Var(U[-1,1)) = 1/3, four of them: 4/3.
-        s * 0.866_025_403_784_438_6
+        s * crate::real::HALF_SQRT_3
     }
 }
 

@@ -32,6 +32,8 @@ enum Command {
     ImsCompare(wearsim_host::life::cli::ImsCompareArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(cli::BenchArgs),
+    /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
+    Capture(wearsim_host::capture::CaptureArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
     Analyze(wearsim_host::analyze::AnalyzeArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
@@ -66,6 +68,7 @@ fn main() -> ExitCode {
     {
         Command::Simulate(a) => simulate_cmd(a),
         Command::Bench(a) => bench_cmd(a),
+        Command::Capture(a) => wearsim_host::capture::run(a),
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::ImsCompare(a) => wearsim_host::life::cli::ims_compare_cmd(&a),
         Command::Presets { json } => presets_cmd(json),

@@ -1,0 +1,588 @@
+//! `wearsim capture`: reads the framed sample stream of the wearsim firmware (a QEMU
+//! `-serial file:` capture or a serial device), checks framing and CRC, reports dropped,
+//! missing and corrupt frames, optionally compares the samples with a host run of the same
+//! preset and seed, and writes the same outputs as `wearsim simulate`.
+//!
+//! Atomicity: outputs are written (through [`crate::io::write::write_outputs`], itself
+//! atomic) only for a **complete** stream: a start frame, every data frame in sequence with
+//! contiguous sample indices, an end frame whose totals match, no corrupt or truncated
+//! bytes, and (with `--expect-seed`/`--preset`) samples within tolerance of the host run.
+//! Otherwise the command prints its report (with `"complete": false` under `--json`), writes
+//! nothing, and exits with code 2 (bad stream) or 1 (comparison failed).
+//!
+//! The frame layout is documented in `docs/firmware.md` and in the `wearsim-frame` crate.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use serde::Serialize;
+use serde_json::json;
+use wearsim_core::{presets, Model, State};
+use wearsim_frame::{self as frame, Event, Format, Kind};
+
+use crate::cli::CliError;
+
+/// Largest stream accepted (bytes): 20 kHz of f32 for about 25 minutes.
+pub const MAX_STREAM_BYTES: u64 = 128 * 1024 * 1024;
+
+/// Tolerance of an f32 target run against the f64 host run: largest sample difference over
+/// the first [`COMPARE_PREFIX`] samples, relative to the host RMS over them (see
+/// `docs/firmware.md`, "Host versus target": f32 rounding gives ~5e-4 there; later the two
+/// trajectories decorrelate and only their statistics agree).
+pub const F64_REL_TOLERANCE: f64 = 2e-3;
+/// Samples compared one by one with the host run (10 ms at 20 kHz).
+pub const COMPARE_PREFIX: usize = 200;
+/// Tolerance on the RMS of the whole record, relative to the host's (measured 0.2 %).
+pub const RMS_REL_TOLERANCE: f64 = 0.02;
+
+/// `wearsim capture` arguments.
+#[derive(Debug, Clone, Args)]
+pub struct CaptureArgs {
+    /// Captured stream: a file written by QEMU `-serial file:PATH`, or a serial device
+    /// (read until the end frame arrives).
+    #[arg(long)]
+    pub input: PathBuf,
+    /// Output directory for capture.csv / capture.wav / capture.json.
+    #[arg(long, default_value = "wearsim-out")]
+    pub out: PathBuf,
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Compare with a host (f64) run of `--preset` with this seed.
+    #[arg(long, requires = "preset")]
+    pub expect_seed: Option<u64>,
+    /// Preset of the host run to compare with (see `wearsim presets`).
+    #[arg(long, requires = "expect_seed")]
+    pub preset: Option<String>,
+    /// Largest difference over the first 200 samples, relative to the host RMS over them.
+    #[arg(long, default_value_t = F64_REL_TOLERANCE)]
+    pub tolerance: f64,
+}
+
+/// A span of bytes that is not a valid frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BadSpan {
+    /// Byte offset in the stream.
+    pub offset: usize,
+    /// Length in bytes.
+    pub len: usize,
+    /// Why the bytes were rejected.
+    pub reason: String,
+}
+
+/// Result of the comparison with a host run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Comparison {
+    /// Preset of the host run.
+    pub preset: String,
+    /// Seed of the host run.
+    pub seed: u64,
+    /// Samples compared one by one (the first ones).
+    pub samples: usize,
+    /// Largest |target − host| over them (m/s²).
+    pub max_abs_error: f64,
+    /// RMS of the host signal over them (m/s²).
+    pub host_rms: f64,
+    /// `max_abs_error / host_rms`.
+    pub rel_error: f64,
+    /// Tolerance applied to `rel_error`.
+    pub tolerance: f64,
+    /// Index of the first sample whose difference exceeds `tolerance · host_rms`, over the
+    /// whole record (where the trajectories part).
+    pub first_divergence: Option<usize>,
+    /// RMS of the whole target record over the host's, minus 1.
+    pub rms_rel_diff: f64,
+    /// Tolerance applied to `|rms_rel_diff|`.
+    pub rms_tolerance: f64,
+    /// Whether both checks pass.
+    pub pass: bool,
+}
+
+/// What the decoder found in a stream.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaptureReport {
+    /// Input path.
+    pub input: String,
+    /// Bytes read.
+    pub bytes: usize,
+    /// Frames whose CRC matched.
+    pub valid_frames: usize,
+    /// Valid data frames.
+    pub data_frames: usize,
+    /// Data frames missing from the sequence numbers.
+    pub missing_frames: u64,
+    /// Samples missing between data frames (gaps in `first_sample`).
+    pub missing_samples: u64,
+    /// Rejected byte spans (corrupt frames, garbage).
+    pub corrupt: Vec<BadSpan>,
+    /// Whether the stream ends inside a frame.
+    pub truncated: bool,
+    /// Samples received.
+    pub samples: usize,
+    /// Sample rate from the start frame (Hz).
+    pub rate_hz: Option<f64>,
+    /// Preset named by the start frame.
+    pub preset: Option<String>,
+    /// Seed from the start frame.
+    pub seed: Option<u64>,
+    /// Firmware flavour: `m4f-hardfloat`, `m3-softfloat` or `other`.
+    pub flavour: Option<String>,
+    /// Sample format of the data frames.
+    pub format: Option<String>,
+    /// Missed sample deadlines reported by the firmware (its real-time overruns).
+    pub overruns: u32,
+    /// Samples the firmware could not queue for transmission (from the end frame).
+    pub tx_drops: Option<u32>,
+    /// Whether the end frame arrived.
+    pub end_frame: bool,
+    /// Instructions per output sample of the firmware's timed loop, valid for a QEMU run with
+    /// `-icount shift=0` (1 instruction = 1 ns of virtual time).
+    pub instructions_per_sample: Option<f64>,
+    /// Comparison with the host run, if asked for.
+    pub comparison: Option<Comparison>,
+    /// Everything that makes the stream incomplete, one line each.
+    pub problems: Vec<String>,
+    /// True when the stream is complete and every check passed.
+    pub complete: bool,
+}
+
+/// The samples and report of a decoded stream.
+#[derive(Debug, Clone)]
+pub struct Decoded {
+    /// The report.
+    pub report: CaptureReport,
+    /// Samples in m/s², in order.
+    pub accel: Vec<f64>,
+}
+
+/// Decodes a captured stream and checks it (no comparison, no output).
+pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
+    let mut r = CaptureReport {
+        input: input.to_string(),
+        bytes: bytes.len(),
+        valid_frames: 0,
+        data_frames: 0,
+        missing_frames: 0,
+        missing_samples: 0,
+        corrupt: vec![],
+        truncated: false,
+        samples: 0,
+        rate_hz: None,
+        preset: None,
+        seed: None,
+        flavour: None,
+        format: None,
+        overruns: 0,
+        tx_drops: None,
+        end_frame: false,
+        instructions_per_sample: None,
+        comparison: None,
+        problems: vec![],
+        complete: false,
+    };
+    let mut accel = Vec::new();
+    let mut start: Option<frame::StartInfo> = None;
+    let mut end: Option<(frame::EndInfo, u32)> = None;
+    let mut next_seq: Option<u32> = None;
+    let mut next_sample: u64 = 0;
+    let mut format: Option<Format> = None;
+    for ev in frame::Decoder::new(bytes) {
+        match ev {
+            Event::Corrupt {
+                offset,
+                len,
+                reason,
+            } => r.corrupt.push(BadSpan {
+                offset,
+                len,
+                reason: reason.as_str().to_string(),
+            }),
+            Event::Truncated { offset, len } => {
+                r.truncated = true;
+                r.problems.push(format!(
+                    "stream ends inside a frame ({len} bytes at offset {offset})"
+                ));
+            }
+            Event::Frame {
+                header, payload, ..
+            } => {
+                r.valid_frames += 1;
+                if end.is_some() {
+                    r.problems
+                        .push(format!("frame seq {} after the end frame", header.seq));
+                }
+                match header.kind {
+                    Kind::Start => {
+                        if start.is_some() {
+                            r.problems.push("second start frame".into());
+                        }
+                        start = frame::StartInfo::from_bytes(payload);
+                        next_seq = Some(1);
+                    }
+                    Kind::Data | Kind::End => {
+                        if let Some(want) = next_seq {
+                            if header.seq != want {
+                                let lost = header.seq.wrapping_sub(want) as u64;
+                                r.missing_frames += lost.min(u32::MAX as u64);
+                                r.problems.push(format!(
+                                    "frame sequence jumps from {} to {} ({} frame(s) missing)",
+                                    want.wrapping_sub(1),
+                                    header.seq,
+                                    lost
+                                ));
+                            }
+                        } else {
+                            r.problems
+                                .push(format!("frame seq {} before any start frame", header.seq));
+                        }
+                        next_seq = Some(header.seq.wrapping_add(1));
+                        r.overruns = r.overruns.max(header.overruns);
+                        if header.kind == Kind::End {
+                            end = frame::EndInfo::from_bytes(payload).map(|e| (e, header.seq));
+                            continue;
+                        }
+                        r.data_frames += 1;
+                        if *format.get_or_insert(header.format) != header.format {
+                            r.problems.push(format!(
+                                "frame seq {} changes the sample format",
+                                header.seq
+                            ));
+                        }
+                        let first = header.first_sample as u64;
+                        if first != next_sample {
+                            let gap = first.saturating_sub(next_sample);
+                            r.missing_samples += gap;
+                            r.problems.push(format!(
+                                "samples {next_sample}..{first} missing before frame seq {}",
+                                header.seq
+                            ));
+                        }
+                        let scale = header.scale as f64;
+                        match header.format {
+                            Format::F32 => accel.extend(payload.chunks_exact(4).map(|c| {
+                                f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64 * scale
+                            })),
+                            Format::I16 => accel.extend(
+                                payload
+                                    .chunks_exact(2)
+                                    .map(|c| i16::from_le_bytes([c[0], c[1]]) as f64 * scale),
+                            ),
+                            Format::None => {}
+                        }
+                        let n = payload.len() / header.format.sample_size().max(1);
+                        next_sample = first + n as u64;
+                    }
+                }
+            }
+        }
+    }
+    r.samples = accel.len();
+    r.format = format.map(|f| match f {
+        Format::F32 => "f32".to_string(),
+        Format::I16 => "i16".to_string(),
+        Format::None => "none".to_string(),
+    });
+    match start {
+        Some(s) => {
+            r.rate_hz = Some(s.rate_hz as f64);
+            r.preset = Some(s.preset_name().to_string());
+            r.seed = Some(s.seed);
+            r.flavour = Some(
+                match s.flavour {
+                    1 => "m4f-hardfloat",
+                    2 => "m3-softfloat",
+                    _ => "other",
+                }
+                .to_string(),
+            );
+            if !(1.0..=1e7).contains(&(s.rate_hz as f64)) {
+                r.problems
+                    .push(format!("start frame has an invalid rate {} Hz", s.rate_hz));
+            }
+        }
+        None => r.problems.push("no valid start frame".into()),
+    }
+    match end {
+        Some((e, _)) => {
+            r.end_frame = true;
+            r.tx_drops = Some(e.reserved);
+            if e.total_samples as usize != r.samples {
+                r.problems.push(format!(
+                    "end frame counts {} samples, {} received",
+                    e.total_samples, r.samples
+                ));
+            }
+            if e.data_frames as usize != r.data_frames {
+                r.problems.push(format!(
+                    "end frame counts {} data frames, {} received",
+                    e.data_frames, r.data_frames
+                ));
+            }
+            if e.reserved != 0 {
+                r.problems.push(format!(
+                    "firmware dropped {} sample(s) before transmission",
+                    e.reserved
+                ));
+            }
+            if e.measured_samples > 0 && e.tick_hz > 0 {
+                r.instructions_per_sample = Some(
+                    e.busy_ticks as f64 * (1e9 / e.tick_hz as f64) / e.measured_samples as f64,
+                );
+            }
+        }
+        None => r
+            .problems
+            .push("no end frame: the stream is incomplete".into()),
+    }
+    if !r.corrupt.is_empty() {
+        let bytes: usize = r.corrupt.iter().map(|c| c.len).sum();
+        r.problems.push(format!(
+            "{} corrupt span(s), {bytes} byte(s) rejected",
+            r.corrupt.len()
+        ));
+    }
+    if r.samples == 0 {
+        r.problems.push("no samples".into());
+    }
+    r.complete = r.problems.is_empty();
+    Decoded { report: r, accel }
+}
+
+/// Compares `accel` with the first samples of a host run of `preset` with `seed`.
+pub fn compare(
+    accel: &[f64],
+    preset: &str,
+    seed: u64,
+    tolerance: f64,
+) -> Result<Comparison, CliError> {
+    let cfg = presets::by_name(preset)
+        .ok_or_else(|| CliError::input(format!("unknown preset {preset:?}")))?;
+    let model = Model::new_checked(cfg).map_err(|e| CliError::input(format!("{preset}: {e}")))?;
+    let mut st =
+        State::<32>::new(&model, seed).map_err(|e| CliError::input(format!("{preset}: {e}")))?;
+    let mut host = Vec::with_capacity(accel.len());
+    while host.len() < accel.len() {
+        if let Some(s) = model.step(&mut st) {
+            host.push(s.accel);
+        }
+    }
+    let rms = |x: &[f64]| (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt();
+    let n = accel.len().min(COMPARE_PREFIX);
+    let max_err = accel[..n]
+        .iter()
+        .zip(&host[..n])
+        .map(|(a, h)| (a - h).abs())
+        .fold(0.0f64, f64::max);
+    let host_rms = rms(&host[..n]);
+    let rel = if host_rms > 0.0 {
+        max_err / host_rms
+    } else {
+        max_err
+    };
+    let first_divergence = accel
+        .iter()
+        .zip(&host)
+        .position(|(a, h)| (a - h).abs() > tolerance * host_rms);
+    let (rt, rh) = (rms(accel), rms(&host));
+    let rms_rel_diff = if rh > 0.0 { rt / rh - 1.0 } else { rt };
+    Ok(Comparison {
+        preset: preset.to_string(),
+        seed,
+        samples: n,
+        max_abs_error: max_err,
+        host_rms,
+        rel_error: rel,
+        tolerance,
+        first_divergence,
+        rms_rel_diff,
+        rms_tolerance: RMS_REL_TOLERANCE,
+        pass: rel <= tolerance && rms_rel_diff.abs() <= RMS_REL_TOLERANCE,
+    })
+}
+
+fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
+    let meta =
+        std::fs::metadata(path).map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+    let mut f = std::fs::File::open(path)
+        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+    let mut buf = Vec::new();
+    if meta.is_file() {
+        if meta.len() > MAX_STREAM_BYTES {
+            return Err(CliError::input(format!(
+                "{}: {} bytes is over the {MAX_STREAM_BYTES}-byte limit",
+                path.display(),
+                meta.len()
+            )));
+        }
+        f.read_to_end(&mut buf)
+            .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+        return Ok(buf);
+    }
+    // A device or pipe: read until an end frame has arrived, EOF, or the size limit.
+    let mut chunk = [0u8; 4096];
+    loop {
+        let n = f
+            .read(&mut chunk)
+            .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+        if n == 0 {
+            break;
+        }
+        buf.extend_from_slice(&chunk[..n]);
+        if buf.len() as u64 > MAX_STREAM_BYTES {
+            return Err(CliError::input(format!(
+                "{}: more than {MAX_STREAM_BYTES} bytes without an end frame",
+                path.display()
+            )));
+        }
+        let tail_from = buf.len().saturating_sub(n + frame::MAX_FRAME);
+        let seen_end = frame::Decoder::new(&buf[tail_from..]).any(|e| {
+            matches!(
+                e,
+                Event::Frame {
+                    header: frame::Header {
+                        kind: Kind::End,
+                        ..
+                    },
+                    ..
+                }
+            )
+        });
+        if seen_end {
+            break;
+        }
+    }
+    Ok(buf)
+}
+
+fn print_report(r: &CaptureReport, files: Option<&crate::io::write::OutputSet>, json: bool) {
+    if json {
+        let mut v = serde_json::to_value(r).unwrap_or_default();
+        if let (Some(f), Some(o)) = (files, v.as_object_mut()) {
+            o.insert(
+                "files".into(),
+                json!({"csv": f.csv, "wav": f.wav, "json": f.json}),
+            );
+        }
+        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        return;
+    }
+    println!(
+        "capture {}: {} bytes, {} valid frames ({} data), {} samples at {} Hz, preset {} seed {}, {}",
+        r.input,
+        r.bytes,
+        r.valid_frames,
+        r.data_frames,
+        r.samples,
+        r.rate_hz.map(|x| x.to_string()).unwrap_or("?".into()),
+        r.preset.as_deref().unwrap_or("?"),
+        r.seed.map(|x| x.to_string()).unwrap_or("?".into()),
+        r.flavour.as_deref().unwrap_or("?"),
+    );
+    println!(
+        "missing frames {}, missing samples {}, corrupt spans {}, truncated {}, overruns {}",
+        r.missing_frames,
+        r.missing_samples,
+        r.corrupt.len(),
+        r.truncated,
+        r.overruns
+    );
+    if let Some(ips) = r.instructions_per_sample {
+        println!("firmware: {ips:.0} instructions per sample (valid under QEMU -icount shift=0)");
+    }
+    if let Some(c) = &r.comparison {
+        println!(
+            "host {} seed {}: first {} samples max |error| {:.3e} m/s^2 = {:.3e} of RMS {:.3e} (tolerance {:.1e}); record RMS {:+.2e} (tolerance {:.0e}): {}",
+            c.preset,
+            c.seed,
+            c.samples,
+            c.max_abs_error,
+            c.rel_error,
+            c.host_rms,
+            c.tolerance,
+            c.rms_rel_diff,
+            c.rms_tolerance,
+            if c.pass { "pass" } else { "FAIL" }
+        );
+    }
+    for p in &r.problems {
+        println!("problem: {p}");
+    }
+    if let Some(f) = files {
+        println!(
+            "wrote {}, {}, {}",
+            f.csv.display(),
+            f.wav.display(),
+            f.json.display()
+        );
+    }
+}
+
+/// Runs `wearsim capture`.
+pub fn run(a: CaptureArgs) -> Result<(), CliError> {
+    if !(a.tolerance.is_finite() && a.tolerance >= 0.0) {
+        return Err(CliError::input(format!(
+            "--tolerance {} must be a finite number ≥ 0",
+            a.tolerance
+        )));
+    }
+    let bytes = read_input(&a.input)?;
+    let Decoded { mut report, accel } = decode(&a.input.display().to_string(), &bytes);
+    let mut code = 2;
+    if let (Some(seed), Some(preset)) = (a.expect_seed, a.preset.as_deref()) {
+        if report.complete {
+            let c = compare(&accel, preset, seed, a.tolerance)?;
+            if report.preset.as_deref() != Some(preset) || report.seed != Some(seed) {
+                report.problems.push(format!(
+                    "stream is preset {:?} seed {:?}, expected {preset:?} seed {seed}",
+                    report.preset, report.seed
+                ));
+                code = 1;
+            }
+            if !c.pass {
+                report.problems.push(format!(
+                    "samples differ from the host run: {:.3e} of its RMS over the first {} (tolerance {:.1e}), record RMS {:+.2e} (tolerance {:.0e})",
+                    c.rel_error, c.samples, c.tolerance, c.rms_rel_diff, c.rms_tolerance
+                ));
+                code = 1;
+            }
+            report.comparison = Some(c);
+            report.complete = report.problems.is_empty();
+        }
+    }
+    if !report.complete {
+        print_report(&report, None, a.json);
+        let first = report.problems.first().cloned().unwrap_or_default();
+        return Err(CliError {
+            code,
+            message: format!(
+                "{}: stream not complete, nothing written ({} problem(s); first: {first})",
+                a.input.display(),
+                report.problems.len()
+            ),
+        });
+    }
+    let fs = report.rate_hz.unwrap_or(0.0);
+    let g: Vec<f64> = accel
+        .iter()
+        .map(|x| x / wearsim_core::real::STANDARD_GRAVITY)
+        .collect();
+    let columns: Vec<(&str, &[f64])> = vec![("accel_m_s2", &accel), ("accel_g", &g)];
+    let meta = json!({
+        "generator": "wearsim capture",
+        "version": env!("CARGO_PKG_VERSION"),
+        "source": a.input.display().to_string(),
+        "preset": report.preset,
+        "seed": report.seed,
+        "firmware_flavour": report.flavour,
+        "sample_format": report.format,
+        "frames": report.data_frames,
+        "overruns": report.overruns,
+        "instructions_per_sample": report.instructions_per_sample,
+        "comparison": report.comparison,
+    });
+    let files = crate::io::write::write_outputs(&a.out, "capture", &columns, fs, &meta)
+        .map_err(CliError::input)?;
+    print_report(&report, Some(&files), a.json);
+    Ok(())
+}
