@@ -156,6 +156,7 @@ pub struct Model {
     aa: AntiAlias,
     rot: Option<Rotations>,
     defect_offset_cs: (Real, Real),
+    outer_radius: Real,
 }
 
 impl Model {
@@ -311,6 +312,7 @@ impl Model {
             aa: AntiAlias::design(ratio),
             rot,
             defect_offset_cs,
+            outer_radius: bearing.outer_race_radius(),
             cfg: ModelConfig { bearing, ..cfg },
         })
     }
@@ -444,15 +446,19 @@ impl Model {
         y: Real,
         v: Real,
         stats: &mut StepStats,
+        draw: Option<(&mut Xoshiro128pp, Real)>,
     ) -> Real {
         let mut f = self.cfg.radial_load;
         if let Some(imb) = &self.cfg.imbalance {
             f += imb.force(k, y, v);
         }
-        f + self.element_forces(st, k, y, stats)
+        f + self.element_forces(st, k, y, stats, draw)
     }
 
-    /// Hertz element forces with waviness, roughness and the defect (N).
+    /// Hertz element forces with waviness, roughness and the defect (N). With `draw`, the
+    /// roughness heights are drawn here (generator, amplitude) in the order and for the
+    /// elements [`Model::draw_random`] would use, saving its second pass; without it they
+    /// come from the state (drawn once per step for RK4's four stages).
     #[inline(always)]
     fn element_forces<const NB: usize>(
         &self,
@@ -460,6 +466,7 @@ impl Model {
         k: &Kinematics,
         y: Real,
         stats: &mut StepStats,
+        mut draw: Option<(&mut Xoshiro128pp, Real)>,
     ) -> Real {
         let n = self.cfg.bearing.elements as usize;
         let gamma = self.cfg.clearance;
@@ -481,19 +488,26 @@ impl Model {
         let ang_all = self.elem_angle.get(..n).unwrap_or(&[]);
         let rough_all = st.rough.get(..n).unwrap_or(&[]);
         let slip_all = st.slip.get(..n).unwrap_or(&[]);
-        for ((((ecs, wcs), elem_angle), rough), slip) in ecs_all
+        let cache_all = st.rsqrt.get(..n).unwrap_or(&[]);
+        for (((((ecs, wcs), elem_angle), rough), slip), rsqrt) in ecs_all
             .iter()
             .zip(wcs_all)
             .zip(ang_all)
             .zip(rough_all)
             .zip(slip_all)
+            .zip(cache_all)
         {
             let (ce, se) = *ecs;
             let sin_t = sc * ce + cc * se;
+            let rough = match draw.as_mut() {
+                Some((rng, sigma)) if sin_t > -0.05 => *sigma * rng.uniform_pm1(),
+                Some(_) => 0.0,
+                None => *rough,
+            };
             if sin_t <= 0.0 {
                 continue;
             }
-            let mut delta = y * sin_t - gamma - *rough;
+            let mut delta = y * sin_t - gamma - rough;
             if wave_amp != 0.0 {
                 let (cwe, swe) = *wcs;
                 delta -= wave_amp * (sw * cwe + cw * swe);
@@ -543,7 +557,7 @@ impl Model {
                     }
                 }
             }
-            let mut q = self.contact.load(delta);
+            let mut q = self.hertz(delta, rsqrt);
             if unload > 0.0 {
                 q *= if unload < 1.0 { 1.0 - unload } else { 0.0 };
             }
@@ -558,11 +572,47 @@ impl Model {
         fy
     }
 
+    /// Hertz element load `K δ^p` (N). In `f32` builds point contacts use `δ²·(1/√δ)` with
+    /// the inverse square root refined by two Newton steps from the element's value of
+    /// the previous evaluation (cached in `rsqrt`; libm's `sqrtf` only when the cache is
+    /// cold or off by more than 10 %): libm's software `sqrtf` dominated the Cortex-M4F's
+    /// step, and the two Newton steps from a < 5·10⁻³ start are exact to f32 rounding.
+    /// Deterministic, so a host `f32` run and the target stay bit-identical.
+    #[inline(always)]
+    fn hertz(&self, delta: Real, rsqrt: &core::cell::Cell<Real>) -> Real {
+        #[cfg(feature = "f32")]
+        {
+            if delta <= 0.0 {
+                return 0.0;
+            }
+            if self.contact.kind == crate::bearing::ContactKind::Point {
+                let r0 = rsqrt.get();
+                let e = delta * r0 * r0;
+                let r = if r0 > 0.0 && e > 0.9 && e < 1.1 {
+                    let r1 = r0 * (1.5 - 0.5 * e);
+                    r1 * (1.5 - 0.5 * delta * r1 * r1)
+                } else {
+                    1.0 / sqrt(delta)
+                };
+                rsqrt.set(r);
+                return self.contact.stiffness * delta * delta * r;
+            }
+            self.contact.load(delta)
+        }
+        #[cfg(not(feature = "f32"))]
+        {
+            let _ = rsqrt;
+            self.contact.load(delta)
+        }
+    }
+
     /// Advances the state by one internal step; returns a sample every
     /// [`Model::oversample`] steps.
     #[inline]
     pub fn step<const NB: usize>(&self, st: &mut State<NB>) -> Option<Sample> {
-        self.draw_random(st);
+        if self.cfg.integrator == IntegratorKind::Rk4 {
+            self.draw_random(st);
+        }
         let mut stats = StepStats::default();
         let (y, v) = (st.y, st.v);
         let kl_m = self.kl_m;
@@ -583,7 +633,7 @@ impl Model {
                         rk4::Stage::End => &k1,
                     };
                     let mut s = StepStats::default();
-                    let f = self.total_force(stref, kin, yy, vv, &mut s);
+                    let f = self.total_force(stref, kin, yy, vv, &mut s, None);
                     if first {
                         stats = s;
                         first = false;
@@ -594,7 +644,17 @@ impl Model {
             }
             kind => {
                 let k0 = self.kinematics(st, 0);
-                let g = (self.total_force(st, &k0, y, v, &mut stats) + k_c0 * y) * inv_m;
+                let mut rng = st.rng.clone();
+                let draw = self.cfg.roughness.map(|_| {
+                    let sigma = if self.rot.is_some() {
+                        st.rough_sigma
+                    } else {
+                        self.rough_sigma(st.shaft_hz, st.topography)
+                    };
+                    (&mut rng, sigma)
+                });
+                let g = (self.total_force(st, &k0, y, v, &mut stats, draw) + k_c0 * y) * inv_m;
+                st.rng = rng;
                 let slope = if st.has_prev && kind == IntegratorKind::ExactFoh {
                     g - st.g_prev
                 } else {
@@ -655,10 +715,14 @@ impl Model {
     /// integrator stage sees the same surface.
     #[inline(always)]
     fn draw_random<const NB: usize>(&self, st: &mut State<NB>) {
-        let Some(r) = self.cfg.roughness else { return };
-        let v = TAU * st.shaft_hz * self.orders.ftf * self.cfg.bearing.outer_race_radius();
-        let debris = st.topography.map(|t| t.debris).unwrap_or(0.0);
-        let sigma = r.step_sigma(self.h, v, debris) * crate::real::SQRT_3;
+        if self.cfg.roughness.is_none() {
+            return;
+        }
+        let sigma = if self.rot.is_some() {
+            st.rough_sigma
+        } else {
+            self.rough_sigma(st.shaft_hz, st.topography)
+        };
         let (cc, sc) = st.cage_cs;
         let n = self.cfg.bearing.elements as usize;
         let rough_all = st.rough.get_mut(..n).unwrap_or(&mut []);
@@ -673,6 +737,18 @@ impl Model {
                 0.0
             };
         }
+    }
+
+    /// Amplitude of the per-step roughness draw (m) at shaft speed `shaft_hz` with the
+    /// debris of `topography` (see [`Roughness::step_sigma`]); constant-speed models cache it
+    /// in the state, because its square root costs more than the draw on an M4F.
+    fn rough_sigma(&self, shaft_hz: Real, topography: Option<Topography>) -> Real {
+        let Some(r) = self.cfg.roughness else {
+            return 0.0;
+        };
+        let v = TAU * shaft_hz * self.orders.ftf * self.outer_radius;
+        let debris = topography.map(|t| t.debris).unwrap_or(0.0);
+        r.step_sigma(self.h, v, debris) * crate::real::SQRT_3
     }
 
     /// Redraws an element's slip offset once per pass, while it is opposite the defect.
@@ -783,6 +859,8 @@ pub struct State<const NB: usize> {
     rng: Xoshiro128pp,
     rough: [Real; NB],
     slip: [Real; NB],
+    rsqrt: [core::cell::Cell<Real>; NB],
+    rough_sigma: Real,
     armed: u32,
     topography: Option<Topography>,
     shape: DefectShape,
@@ -896,6 +974,8 @@ impl<const NB: usize> State<NB> {
             rng: Xoshiro128pp::from_u64(seed),
             rough: [0.0; NB],
             slip: [0.0; NB],
+            rsqrt: core::array::from_fn(|_| core::cell::Cell::new(0.0)),
+            rough_sigma: model.rough_sigma(f0, None),
             armed: 0,
             topography: None,
             shape: DefectShape::default(),
@@ -931,6 +1011,7 @@ impl<const NB: usize> State<NB> {
             + shape.spacing_angle * (shape.count.saturating_sub(1)) as Real
             + slip_margin;
         self.window_cos = if span >= PI { -2.0 } else { cos(span) };
+        self.rough_sigma = model.rough_sigma(self.shaft_hz, Some(t));
         self.tail = tail;
         self.shape = shape;
         self.topography = Some(t);
