@@ -328,6 +328,8 @@ fn accelerated_life_logs_its_stage_transitions_in_order() {
     if missing_tools().is_some() {
         return;
     }
+    // The firmware runs the core's stress-driven wear (Material::ACCELERATED): transitions
+    // come from the contact loads it measures, not from a schedule.
     let run = qemu("mps2-an386", &firmware(M4F, "life"));
     assert!(run.ok, "{:#?}", run.defmt);
     let stages: Vec<&str> = run
@@ -335,28 +337,29 @@ fn accelerated_life_logs_its_stage_transitions_in_order() {
         .iter()
         .filter_map(|l| l.strip_prefix("INFO stage transition: "))
         .collect();
-    let names: Vec<&str> = wearsim_core::topography::TABLE_1
-        .iter()
-        .map(|(n, _)| *n)
-        .collect();
-    assert_eq!(stages.len(), names.len(), "{:#?}", run.defmt);
-    let mut last_sample = None;
-    for (i, (line, name)) in stages.iter().zip(&names).enumerate() {
-        assert!(
-            line.starts_with(&format!("{i} {name} at sample ")),
-            "stage {i}: {line}"
-        );
+    assert!(stages.len() >= 5, "{:#?}", run.defmt);
+    let mut last = (None::<usize>, None::<u32>);
+    for line in &stages {
+        let mut words = line.split(' ');
+        let idx: usize = words.next().and_then(|w| w.parse().ok()).unwrap();
+        let name = words.next().unwrap();
+        assert_eq!(wearsim_core::wear::Stage::ALL[idx].name(), name, "{line}");
         let at: u32 = line
             .split(" at sample ")
             .nth(1)
             .and_then(|s| s.split(' ').next())
             .and_then(|s| s.parse().ok())
             .unwrap();
-        if let Some(p) = last_sample {
-            assert!(at > p, "stage {i} at {at} after {p}");
+        if let (Some(pi), Some(pa)) = last {
+            assert!(idx > pi, "stage order violated: {line} after index {pi}");
+            assert!(at >= pa, "{line} before sample {pa}");
         }
-        last_sample = Some(at);
+        last = (Some(idx), Some(at));
     }
+    assert!(
+        stages.last().unwrap().starts_with("9 failure"),
+        "{stages:#?}"
+    );
     // The stream carries the whole scenario.
     let d = capture::decode("qemu", &run.serial);
     assert!(d.report.complete, "{:#?}", d.report.problems);

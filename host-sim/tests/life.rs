@@ -146,14 +146,7 @@ fn poor_lubrication_shortens_life() {
 fn accelerated(seed: u64) -> LifeSpec {
     let mut model = wearsim_core::presets::by_name("thesis-61810").unwrap();
     model.output_rate = 5000.0;
-    let material = Material {
-        life_factor: 1e-8,
-        initiation_passes: 2e3,
-        propagation_passes: 2e3,
-        overrolling: 0.05,
-        crack_c0: 300.0,
-        ..Material::BEARING_STEEL
-    };
+    let material = Material::ACCELERATED;
     LifeSpec {
         model,
         life: LifeConfig {

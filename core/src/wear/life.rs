@@ -510,6 +510,30 @@ impl Life {
         }
     }
 
+    /// The dynamic-model configuration for wear state `st`: `base` with the state's defect
+    /// topography (on `base`'s defect location and formulation, or the outer race at the
+    /// load-zone centre), roughness scaled by running-in and slip grown with the stage.
+    pub fn model_config(
+        &self,
+        base: &crate::model::ModelConfig,
+        st: &LifeState,
+    ) -> crate::model::ModelConfig {
+        let inputs = self.dynamic_inputs(st);
+        let mut cfg = base.clone();
+        cfg.defect = match (cfg.defect, inputs.topography) {
+            (Some(d), Some(t)) => Some(crate::forces::defect::DefectConfig { topography: t, ..d }),
+            (None, Some(t)) => Some(crate::presets::outer_race_defect(t)),
+            (_, None) => None,
+        };
+        if let Some(r) = cfg.roughness.as_mut() {
+            r.rms *= inputs.roughness_scale;
+        }
+        cfg.slip = Some(crate::forces::slip::Slip {
+            fraction: inputs.slip,
+        });
+        cfg
+    }
+
     /// The reference Hertz pressure (Pa) of the static most loaded element.
     pub fn reference_pressure(&self) -> Real {
         self.reference_pressure

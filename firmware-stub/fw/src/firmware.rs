@@ -47,9 +47,6 @@ const FRAME_SAMPLES: usize = 64;
 const NB: usize = 16;
 /// Full scale of the 16-bit counts (g): the reference scenario peaks near 10 g.
 pub const FULL_SCALE_G: Real = 16.0;
-/// Cage revolutions per wear stage in the accelerated-life scenario.
-#[cfg(feature = "life")]
-const LIFE_CAGE_REVS: Real = 1.0;
 
 #[cfg(feature = "i16-stream")]
 const FORMAT: frame::Format = frame::Format::I16;
@@ -222,7 +219,10 @@ fn main() -> ! {
     let Some(cfg) = presets::by_name(PRESET) else {
         fatal("unknown preset")
     };
-    let model = match Model::new_checked(cfg) {
+    #[cfg(feature = "life")]
+    let base = cfg.clone();
+    #[cfg_attr(not(feature = "life"), allow(unused_mut))]
+    let mut model = match Model::new_checked(cfg) {
         Ok(m) => m,
         Err(_) => fatal("preset rejected by validation"),
     };
@@ -285,9 +285,18 @@ fn main() -> ! {
     };
 
     #[cfg(feature = "life")]
-    let life = life::Life::new(&model, rate, LIFE_CAGE_REVS);
+    let mut wear = life::Wear::new(&base, rate, SEED);
     #[cfg(feature = "life")]
-    let total = life.total_samples();
+    {
+        model = wear.model();
+        match State::new(&model, SEED) {
+            Ok(s) => *st = s,
+            Err(_) => fatal("state capacity"),
+        }
+    }
+    #[cfg(feature = "life")]
+    #[allow(unused_mut)]
+    let mut total = life::MAX_SAMPLES;
     #[cfg(not(feature = "life"))]
     let total = SAMPLES;
 
@@ -329,10 +338,11 @@ fn main() -> ! {
         // Produce one sample if the ring has room, then serve the transmit queue, so that a
         // model slower than real time (the soft-float M3) still drains the queue.
         if (total == 0 || produced < total) && ring_tx.ready() {
-            #[cfg(feature = "life")]
-            life.at_sample(&model, st, produced);
             let s = loop {
-                if let Some(s) = model.step(st) {
+                let out = model.step(st);
+                #[cfg(feature = "life")]
+                wear.observe(st);
+                if let Some(s) = out {
                     break s;
                 }
             };
@@ -341,6 +351,12 @@ fn main() -> ! {
             }
             produced += 1;
             worked = true;
+            #[cfg(feature = "life")]
+            if wear.after_sample(&mut model, st, produced) {
+                // End of life: the stream ends with the sample that completed it.
+                total = produced;
+                LIMIT.store(total, Ordering::Relaxed);
+            }
         }
         // Transmit what the timer released.
         while let Some((i, w)) = txq_rx.dequeue() {
@@ -479,51 +495,131 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 
 #[cfg(feature = "life")]
 mod life {
-    //! Accelerated-life scenario: the defect topography steps through the thesis's Table 1
-    //! (real dent → … → two large defects), one stage every `cage_revs` cage revolutions.
+    //! Accelerated-life scenario on the core's stress-driven wear model (`core::wear`): the
+    //! contact loads of the running model are measured pass by pass (`PassMeter`), the wear
+    //! state is advanced every [`BLOCK_REVS`] shaft revolutions with them, and each stage
+    //! transition rebuilds the model for the new topography and is logged. The material is
+    //! `Material::ACCELERATED` (a whole life in about 300 revolutions, ~12 s at 20 kHz).
     use super::{fatal, State, NB};
-    use wearsim_core::topography::TABLE_1;
-    use wearsim_core::{Model, Real};
+    use wearsim_core::wear::{Life, LifeConfig, LifeState, Material, PassMeter, Stage};
+    use wearsim_core::{Model, ModelConfig, Real};
 
-    /// Schedule of the stages.
-    pub struct Life {
-        per_stage: u32,
+    /// Shaft revolutions between wear updates.
+    pub const BLOCK_REVS: Real = 2.0;
+    /// Upper bound of the stream (samples); the run ends at failure, normally far earlier.
+    pub const MAX_SAMPLES: u32 = 1_000_000;
+
+    /// The wear state and its measurement.
+    pub struct Wear {
+        life: Life,
+        state: LifeState,
+        meter: PassMeter,
+        base: ModelConfig,
+        rate: Real,
+        shaft_hz: Real,
+        block: u32,
+        since: u32,
+        exponent: Real,
     }
 
-    impl Life {
-        /// Samples per stage = cage revolutions / FTF × output rate.
-        pub fn new(model: &Model, rate: Real, cage_revs: Real) -> Self {
-            let ftf_hz = model.config().speed.max_hz() * model.orders().ftf;
-            let per = (cage_revs / ftf_hz * rate + 0.5) as u32;
-            Life {
-                per_stage: per.max(1),
-            }
-        }
-        /// Samples of the whole scenario.
-        pub fn total_samples(&self) -> u32 {
-            self.per_stage * TABLE_1.len() as u32
-        }
-        /// Applies the stage that begins at output sample `k`, logging the transition.
-        pub fn at_sample(&self, model: &Model, st: &mut State<NB>, k: u32) {
-            if k % self.per_stage != 0 {
-                return;
-            }
-            let stage = (k / self.per_stage) as usize;
-            let Some((name, topo)) = TABLE_1.get(stage) else {
-                return;
+    impl Wear {
+        /// Wear of `base` (its defect is replaced by the wear state) at output `rate`.
+        pub fn new(base: &ModelConfig, rate: Real, seed: u64) -> Self {
+            let Ok(probe) = Model::new_checked(ModelConfig {
+                defect: None,
+                ..base.clone()
+            }) else {
+                fatal("life: base model rejected")
             };
-            if st.set_topography(model, *topo).is_err() {
-                fatal("topography rejected");
+            let cfg = LifeConfig {
+                material: Material::ACCELERATED,
+                running_in: 1.0,
+                ..LifeConfig::DEFAULT
+            };
+            let Ok(life) = Life::new_checked(cfg, &base.bearing, probe.static_reference().q_max)
+            else {
+                fatal("life: configuration rejected")
+            };
+            let shaft_hz = base.speed.shaft_hz(0.0);
+            let exponent = if base.bearing.contact == wearsim_core::bearing::ContactKind::Point {
+                3.0
+            } else {
+                10.0 / 3.0
+            };
+            Wear {
+                state: life.initial_state(seed),
+                life,
+                meter: PassMeter::new(base.bearing.elements, exponent),
+                base: base.clone(),
+                rate,
+                shaft_hz,
+                block: (BLOCK_REVS / shaft_hz * rate + 0.5) as u32,
+                since: 0,
+                exponent,
             }
-            defmt::info!(
-                "stage transition: {=u8} {=str} at sample {=u32} (asperity {=f32} um, length {=f32} um, count {=u8})",
-                stage as u8,
-                name,
-                k,
-                topo.asperity_height as f32 * 1e6,
-                topo.length as f32 * 1e6,
-                topo.count
-            );
+        }
+
+        /// The model for the current wear state.
+        pub fn model(&self) -> Model {
+            match Model::new_checked(self.life.model_config(&self.base, &self.state)) {
+                Ok(m) => m,
+                Err(_) => fatal("life: model for the wear state rejected"),
+            }
+        }
+
+        /// Feeds one internal step's contact loads.
+        #[inline]
+        pub fn observe(&mut self, st: &State<NB>) {
+            self.meter.observe(st.stats(), st.cage_angle());
+        }
+
+        /// After output sample `k`: every block, advance the wear with the measured loads;
+        /// on a transition log it and switch `model`/`st` to the new topography. Returns
+        /// true once the bearing has failed.
+        pub fn after_sample(&mut self, model: &mut Model, st: &mut State<NB>, k: u32) -> bool {
+            self.since += 1;
+            if self.since < self.block {
+                return false;
+            }
+            let mut revs = self.since as Real / self.rate * self.shaft_hz;
+            self.since = 0;
+            let loads = self.meter.loads();
+            self.meter = PassMeter::new(self.base.bearing.elements, self.exponent);
+            let mut guard = 0;
+            while revs > 0.0 && guard < 64 {
+                guard += 1;
+                let before = self.state.stage;
+                let adv = self.life.advance(&mut self.state, revs, &loads);
+                revs -= adv.revs;
+                if adv.transition.is_some() {
+                    *model = self.model();
+                    if let Some(t) = self.state.topography {
+                        if st.set_topography(model, t).is_err() {
+                            fatal("life: topography rejected");
+                        }
+                    }
+                    if self.state.stage != before {
+                        let t = self
+                            .state
+                            .topography
+                            .unwrap_or(wearsim_core::topography::SMOOTHED_DENT);
+                        defmt::info!(
+                            "stage transition: {=u8} {=str} at sample {=u32} (revolution {=f32}, asperity {=f32} um, length {=f32} um, count {=u8})",
+                            self.state.stage.index() as u8,
+                            self.state.stage.name(),
+                            k,
+                            self.state.cycles as f32,
+                            t.asperity_height as f32 * 1e6,
+                            t.length as f32 * 1e6,
+                            t.count
+                        );
+                    }
+                }
+                if adv.revs <= 0.0 || self.state.stage == Stage::Failure {
+                    break;
+                }
+            }
+            self.state.stage == Stage::Failure
         }
     }
 }

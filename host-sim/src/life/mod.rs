@@ -7,7 +7,6 @@
 
 use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
-use wearsim_core::forces::slip::Slip;
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
 
 pub mod cli;
@@ -193,24 +192,11 @@ impl LifeRun {
         })
     }
 
-    /// The dynamic model for wear state `st`.
+    /// The dynamic model for wear state `st` (see `Life::model_config`).
     pub fn model_for(&self, st: &LifeState) -> Result<Model, LifeError> {
-        let inputs = self.life.dynamic_inputs(st);
-        let mut cfg = self.spec.model.clone();
-        cfg.defect = match (cfg.defect, inputs.topography) {
-            (Some(d), Some(t)) => {
-                Some(wearsim_core::forces::defect::DefectConfig { topography: t, ..d })
-            }
-            (None, Some(t)) => Some(wearsim_core::presets::outer_race_defect(t)),
-            (_, None) => None,
-        };
-        if let Some(r) = cfg.roughness.as_mut() {
-            r.rms *= inputs.roughness_scale;
-        }
-        cfg.slip = Some(Slip {
-            fraction: inputs.slip,
-        });
-        Ok(Model::new_checked(cfg)?)
+        Ok(Model::new_checked(
+            self.life.model_config(&self.spec.model, st),
+        )?)
     }
 
     /// Renders one window for state `st` (index `k` seeds its random stream): returns the
