@@ -125,6 +125,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         bar.finish();
         if !r.complete {
             let msg = json!({ "complete": false, "samples": r.samples, "generated": r.generated, "cycles": r.state.cycles, "resumed": r.resumed,
+                "wall_s": r.wall_s, "samples_per_s": r.generated as f64 / r.wall_s.max(1e-9),
                 "note": "stopped with a checkpoint; rerun the same command to continue" });
             if a.json {
                 println!("{}", serde_json::to_string_pretty(&msg).unwrap_or_default());

@@ -46,6 +46,42 @@ fn log_range(v: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo / 1.5, hi * 1.5)
 }
 
+/// Axes of a normalised-RMS-over-life chart: life fraction 0–1 against a log ratio.
+fn life_axes<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    (lo, hi): (f64, f64),
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<
+            plotters::coord::types::RangedCoordf64,
+            plotters::coord::combinators::LogCoord<f64>,
+        >,
+    >,
+    String,
+> {
+    let mut chart = e(ChartBuilder::on(root)
+        .caption(title, (FONT, 18))
+        .margin(10)
+        .margin_right(20)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0f64..1f64, (lo..hi).log_scale()))?;
+    e(chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 14))
+        .light_line_style(WHITE.mix(0.0))
+        .draw())?;
+    Ok(chart)
+}
+
 fn draw_life<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     snaps: &[Snapshot],
@@ -68,21 +104,13 @@ fn draw_life<DB: DrawingBackend>(
         .map(|s| (s.cycles / end, s.features.rms / base))
         .collect();
     let (lo, hi) = log_range(pts.iter().map(|p| p.1));
-    let mut chart = e(ChartBuilder::on(&root)
-        .caption(title, (FONT, 18))
-        .margin(10)
-        .margin_right(20)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0f64..1f64, (lo..hi).log_scale()))?;
-    e(chart
-        .configure_mesh()
-        .x_desc("fraction of life (revolutions / revolutions to failure)")
-        .y_desc("RMS / steady-state RMS")
-        .label_style((FONT, 13))
-        .axis_desc_style((FONT, 14))
-        .light_line_style(WHITE.mix(0.0))
-        .draw())?;
+    let mut chart = life_axes(
+        &root,
+        title,
+        (lo, hi),
+        "fraction of life (revolutions / revolutions to failure)",
+        "RMS / steady-state RMS",
+    )?;
     for (i, s) in spans.iter().enumerate() {
         let (a, b) = (s.start / end, (s.end / end).max(s.start / end + 0.002));
         e(chart.draw_series(std::iter::once(Rectangle::new(
@@ -251,20 +279,13 @@ fn draw_ims<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &ImsComparison)
             .unwrap_or("-".into()),
         c.distance_db_rms
     );
-    let mut chart = e(ChartBuilder::on(&root)
-        .caption(title, (FONT, 17))
-        .margin(10)
-        .margin_right(20)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0f64..1f64, (lo..hi).log_scale()))?;
-    e(chart
-        .configure_mesh()
-        .x_desc("fraction of life")
-        .y_desc("RMS / early-life median")
-        .label_style((FONT, 13))
-        .axis_desc_style((FONT, 14))
-        .draw())?;
+    let mut chart = life_axes(
+        &root,
+        &title,
+        (lo, hi),
+        "fraction of life",
+        "RMS / early-life median",
+    )?;
     let m: Vec<(f64, f64)> = c
         .measured
         .t
