@@ -505,6 +505,7 @@ impl ScenarioFile {
                 .unwrap_or(20_000.0),
             oversample: self.oversample.or(base.as_ref().and_then(|c| c.oversample)),
             channels,
+            effects: wearsim_core::effects::Effects::NONE,
         };
         let run = RunSettings {
             preset: self.preset.clone(),
