@@ -166,6 +166,10 @@ pub struct Model {
     rough_scale: Real,
     transfer: Option<TransferPath>,
     sensor_chain: Option<SensorChain>,
+    /// Whether an effect needs per-step work (transfer path, running-in): one check per
+    /// step keeps the baseline's step unchanged.
+    per_step_effects: bool,
+    shaft_harmonics: bool,
 }
 
 impl Model {
@@ -355,6 +359,8 @@ impl Model {
                 .transfer_path
                 .map(|t| TransferPath::design(&t, h as Real)),
             sensor_chain: fx.sensor.map(|t| SensorChain::design(&t, cfg.output_rate)),
+            per_step_effects: fx.transfer_path.is_some() || fx.running_in.is_some(),
+            shaft_harmonics: fx.shaft_harmonics.is_some(),
             cfg: ModelConfig { bearing, ..cfg },
         })
     }
@@ -500,8 +506,8 @@ impl Model {
         if let Some(imb) = &self.cfg.imbalance {
             f += imb.force(k, y, v);
         }
-        if let Some(sh) = &self.cfg.effects.shaft_harmonics {
-            f += sh.force(k);
+        if self.shaft_harmonics {
+            f += self.shaft_harmonics_force(k);
         }
         f + self.element_forces(st, k, y, stats, draw)
     }
@@ -576,12 +582,7 @@ impl Model {
                         DefectLocation::Ball { .. } => 0.0,
                     };
                     let inner = matches!(d.location, DefectLocation::InnerRace { .. });
-                    // Load-zone effect: the element's angle from the load-zone centre (π/2)
-                    // has cos ψ = sin θ.
-                    let lz = match &self.cfg.effects.load_zone {
-                        Some(p) => p.gain(sin_t),
-                        None => 1.0,
-                    };
+                    let mut dd = 0.0;
                     for kd in 0..shape.count {
                         let centre = base + kd as Real * shape.spacing_angle;
                         let mut psi = angle_diff(theta, centre);
@@ -595,12 +596,12 @@ impl Model {
                         match d.model {
                             DefectModel::FiveStep => {
                                 let ls = shape.load.eval(xi);
-                                unload += lz * ls.unload;
-                                delta += lz * ls.extra_deflection;
+                                unload += ls.unload;
+                                dd += ls.extra_deflection;
                             }
-                            DefectModel::Deflection => delta -= lz * shape.geometric_drop(xi),
+                            DefectModel::Deflection => dd -= shape.geometric_drop(xi),
                             DefectModel::Sassi => {
-                                add += lz * shape.sassi(xi, angle_diff(theta, PI / 2.0))
+                                add += shape.sassi(xi, angle_diff(theta, PI / 2.0))
                             }
                             DefectModel::Impulse => {
                                 let w_rel = if inner {
@@ -608,10 +609,19 @@ impl Model {
                                 } else {
                                     k.cage_omega
                                 };
-                                add += lz * shape.impulse(xi, w_rel * shape.race_radius);
+                                add += shape.impulse(xi, w_rel * shape.race_radius);
                             }
                         }
                     }
+                    // Load-zone effect: the element's angle from the load-zone centre (π/2)
+                    // has cos ψ = sin θ; the defect's whole force term is scaled.
+                    if let Some(p) = &self.cfg.effects.load_zone {
+                        let g = p.gain(sin_t);
+                        unload *= g;
+                        add *= g;
+                        dd *= g;
+                    }
+                    delta += dd;
                 }
             }
             let mut q = self.hertz(delta, rsqrt);
@@ -724,18 +734,16 @@ impl Model {
             }
         };
         st.stats = stats;
-        if self.cfg.effects.running_in.is_some() {
-            self.update_running_in(st);
-        }
         self.update_slip(st);
         self.advance_kinematics(st);
         st.y = y1;
         st.v = v1;
         st.steps += 1;
 
-        let a0 = match &self.transfer {
-            Some(t) => t.filter(&mut st.path, a0),
-            None => a0,
+        let a0 = if self.per_step_effects {
+            self.effects_step(st, a0)
+        } else {
+            a0
         };
         st.lines[0].push(a0);
         if self.cfg.channels == Channels::All {
@@ -829,17 +837,35 @@ impl Model {
         }
     }
 
-    /// Running-in effect: counts revolutions and refreshes the roughness factor every
-    /// 256 internal steps (an exponential per step would cost more than the draw).
-    fn update_running_in<const NB: usize>(&self, st: &mut State<NB>) {
-        let Some(p) = self.cfg.effects.running_in else {
-            return;
+    /// Force of the shaft-harmonics effect (N), out of line so that the baseline's force
+    /// sum only pays for the check.
+    #[inline(never)]
+    fn shaft_harmonics_force(&self, k: &Kinematics) -> Real {
+        self.cfg
+            .effects
+            .shaft_harmonics
+            .map(|p| p.force(k))
+            .unwrap_or(0.0)
+    }
+
+    /// Per-step work of the effects that need it, kept out of line so that the baseline
+    /// step stays as it was: the transfer path filters the internal-rate acceleration
+    /// `a0`; running-in counts revolutions and refreshes the roughness factor every 256
+    /// internal steps (an exponential per step would cost more than the draw).
+    #[inline(never)]
+    fn effects_step<const NB: usize>(&self, st: &mut State<NB>, a0: Real) -> Real {
+        let a = match &self.transfer {
+            Some(t) => t.filter(&mut st.path, a0),
+            None => a0,
         };
-        if !st.steps.is_multiple_of(256) {
-            return;
+        if let Some(p) = self.cfg.effects.running_in {
+            st.revs += st.shaft_hz * self.h;
+            if st.steps.is_multiple_of(256) {
+                st.run_in = p.scale(st.revs);
+                st.rough_sigma = self.rough_sigma(st.shaft_hz, st.topography) * st.run_in;
+            }
         }
-        st.run_in = p.scale(st.revs);
-        st.rough_sigma = self.rough_sigma(st.shaft_hz, st.topography) * st.run_in;
+        a
     }
 
     /// Redraws an element's slip offset once per pass, while it is opposite the defect.
@@ -891,9 +917,6 @@ impl Model {
             }
         };
         st.shaft_hz = f1;
-        if self.cfg.effects.running_in.is_some() {
-            st.revs += ds / TAU;
-        }
         let dc = ds * self.orders.ftf;
         st.shaft_angle = advance_angle(st.shaft_angle, ds);
         st.cage_angle = advance_angle(st.cage_angle, dc);
