@@ -1015,6 +1015,10 @@ pub(crate) struct StateParts<const NB: usize> {
     pub topography: Option<Topography>,
     pub lines: [DelayLine; 3],
     pub phase: u32,
+    pub path: PathState,
+    pub sensor: SensorState,
+    pub revs: Real,
+    pub run_in: Real,
 }
 
 impl<const NB: usize> State<NB> {
@@ -1040,6 +1044,10 @@ impl<const NB: usize> State<NB> {
             topography: self.topography,
             lines: self.lines,
             phase: self.phase,
+            path: self.path,
+            sensor: self.sensor.clone(),
+            revs: self.revs,
+            run_in: self.run_in,
         }
     }
 
@@ -1064,6 +1072,15 @@ impl<const NB: usize> State<NB> {
         self.topography = p.topography;
         self.lines = p.lines;
         self.phase = p.phase;
+        self.path = p.path;
+        self.sensor = p.sensor;
+        self.revs = p.revs;
+        self.run_in = p.run_in;
+    }
+
+    /// After a restore: the cached roughness amplitude with the restored running-in factor.
+    pub(crate) fn refresh_rough(&mut self, model: &Model) {
+        self.rough_sigma = model.rough_sigma(self.shaft_hz, self.topography) * self.run_in;
     }
 
     /// Initial state at static equilibrium, at rest relative to it, with `seed` for the

@@ -65,6 +65,20 @@ pub struct SensorState {
 }
 
 impl SensorState {
+    /// Generator words, low-pass memory and mains phase (checkpoints).
+    pub fn raw(&self) -> ([u32; 4], Real, Real) {
+        (self.rng.state_words(), self.lp, self.phase)
+    }
+
+    /// The memory from [`SensorState::raw`].
+    pub fn from_raw(words: [u32; 4], lp: Real, phase: Real) -> Self {
+        SensorState {
+            rng: Xoshiro128pp::from_state_words(words),
+            lp,
+            phase,
+        }
+    }
+
     /// Fresh memory; the generator is derived from the run's `seed` but distinct from the
     /// model's stream.
     pub fn new(seed: u64) -> Self {

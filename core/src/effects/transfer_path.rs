@@ -115,6 +115,31 @@ pub struct PathState {
     z: [(Real, Real); MODES],
 }
 
+impl PathState {
+    /// The memory as plain numbers (checkpoints).
+    pub fn raw(&self) -> [Real; 2 * MODES] {
+        let mut out = [0.0; 2 * MODES];
+        for (o, z) in out.chunks_exact_mut(2).zip(self.z.iter()) {
+            if let [a, b] = o {
+                *a = z.0;
+                *b = z.1;
+            }
+        }
+        out
+    }
+
+    /// The memory from [`PathState::raw`].
+    pub fn from_raw(r: [Real; 2 * MODES]) -> Self {
+        let mut z = [(0.0, 0.0); MODES];
+        for (zi, c) in z.iter_mut().zip(r.chunks_exact(2)) {
+            if let [a, b] = c {
+                *zi = (*a, *b);
+            }
+        }
+        PathState { z }
+    }
+}
+
 impl TransferPath {
     /// Designs the filter for `p` at internal step `h` (s); modes with zero gain are
     /// dropped.
