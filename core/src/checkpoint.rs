@@ -4,6 +4,8 @@
 //! headed by a magic word, a format version and the element capacity.
 
 use crate::decimate::{DelayLine, MAX_TAPS};
+use crate::effects::sensor::SensorState;
+use crate::effects::transfer_path::{PathState, MODES};
 use crate::error::ConfigError;
 use crate::model::{Model, State};
 use crate::real::Real;
@@ -11,7 +13,9 @@ use crate::rng::Xoshiro128pp;
 use crate::topography::Topography;
 
 const MAGIC: u32 = 0x5753_4350; // "WSCP"
-const VERSION: u32 = 1;
+/// Version 2 appends the effects' memories (transfer path, sensor, running-in); version 1
+/// checkpoints (no effects) are still read.
+const VERSION: u32 = 2;
 
 /// Bytes needed to encode a `State<NB>`.
 pub const fn encoded_len(nb: usize) -> usize {
@@ -24,6 +28,7 @@ pub const fn encoded_len(nb: usize) -> usize {
         + 4 + 4 // armed, phase
         + 1 + 8 * 5 + 1 // topography option, five reals, count
         + 3 * (8 * 2 * MAX_TAPS + 4) // delay lines
+        + 8 * 2 * MODES + 16 + 8 * 2 + 8 * 2 // path, sensor rng, lp, phase, revs, run_in
 }
 
 struct Writer<'a> {
@@ -153,6 +158,16 @@ impl<const NB: usize> State<NB> {
             }
             w.u32(pos as u32)?;
         }
+        for v in p.path.raw() {
+            w.real(v)?;
+        }
+        let (words, lp, ph) = p.sensor.raw();
+        for word in words {
+            w.u32(word)?;
+        }
+        for v in [lp, ph, p.revs, p.run_in] {
+            w.real(v)?;
+        }
         Ok(w.at)
     }
 
@@ -160,7 +175,9 @@ impl<const NB: usize> State<NB> {
     /// re-derived from the stored topography).
     pub fn decode(model: &Model, bytes: &[u8]) -> Result<Self, ConfigError> {
         let mut r = Reader { inp: bytes, at: 0 };
-        if r.u32()? != MAGIC || r.u32()? != VERSION || r.u32()? != NB as u32 {
+        let magic = r.u32()?;
+        let version = r.u32()?;
+        if magic != MAGIC || !(version == 1 || version == VERSION) || r.u32()? != NB as u32 {
             return Err(ConfigError::Inconsistent {
                 field: "checkpoint",
                 reason: "not a wearsim state checkpoint of this version and capacity",
@@ -208,6 +225,21 @@ impl<const NB: usize> State<NB> {
             }
             *line = DelayLine::from_raw(buf, r.u32()? as usize);
         }
+        let fresh = st.parts();
+        let (mut path, mut sensor, mut revs, mut run_in) =
+            (fresh.path, fresh.sensor, fresh.revs, fresh.run_in);
+        if version >= 2 {
+            let mut z = [0.0 as Real; 2 * MODES];
+            for v in z.iter_mut() {
+                *v = r.real()?;
+            }
+            path = PathState::from_raw(z);
+            let words = [r.u32()?, r.u32()?, r.u32()?, r.u32()?];
+            let (lp, ph) = (r.real()?, r.real()?);
+            sensor = SensorState::from_raw(words, lp, ph);
+            revs = r.real()?;
+            run_in = r.real()?;
+        }
         let [y, v, g_prev, time, shaft_hz, shaft_angle, cage_angle, wave_angle, _, _] = scalars;
         st.restore(crate::model::StateParts {
             y,
@@ -230,7 +262,12 @@ impl<const NB: usize> State<NB> {
             topography: None,
             lines,
             phase: phase % model.oversample().max(1),
+            path,
+            sensor,
+            revs,
+            run_in,
         });
+        st.refresh_rough(model);
         if let Some(t) = topography {
             st.set_topography(model, t)?;
         }

@@ -31,6 +31,7 @@ pub mod bearing;
 pub mod checkpoint;
 pub mod contact;
 pub mod decimate;
+pub mod effects;
 pub mod error;
 pub mod forces;
 pub mod integrate;

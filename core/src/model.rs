@@ -14,6 +14,9 @@
 use crate::bearing::{BearingGeometry, MAX_ELEMENTS};
 use crate::contact::ElementContact;
 use crate::decimate::{AntiAlias, DelayLine};
+use crate::effects::sensor::{SensorChain, SensorState};
+use crate::effects::transfer_path::{PathState, TransferPath};
+use crate::effects::Effects;
 use crate::error::{check_range, ConfigError};
 use crate::forces::defect::{
     DefectConfig, DefectLocation, DefectModel, DefectShape, StaticReference,
@@ -94,6 +97,9 @@ pub struct ModelConfig {
     pub oversample: Option<u32>,
     /// Channels to filter and emit.
     pub channels: Channels,
+    /// Candidate effects for the sim-to-real diagnosis ([`crate::effects`]); all off by
+    /// default.
+    pub effects: Effects,
 }
 
 /// One output sample.
@@ -157,12 +163,46 @@ pub struct Model {
     rot: Option<Rotations>,
     defect_offset_cs: (Real, Real),
     outer_radius: Real,
+    rough_scale: Real,
+    transfer: Option<TransferPath>,
+    sensor_chain: Option<SensorChain>,
+    /// Whether an effect needs per-step work (transfer path, running-in): one check per
+    /// step keeps the baseline's step unchanged.
+    per_step_effects: bool,
+    shaft_harmonics: bool,
 }
 
 impl Model {
     /// Validates `cfg` and derives everything the step needs. Every rejection names its
     /// field and the allowed range.
-    pub fn new_checked(cfg: ModelConfig) -> Result<Self, ConfigError> {
+    pub fn new_checked(mut cfg: ModelConfig) -> Result<Self, ConfigError> {
+        let fx = Effects::new_checked(cfg.effects)?;
+        if let Some(s) = fx.slip {
+            cfg.slip = Some(Slip {
+                fraction: s.fraction,
+            });
+        }
+        if cfg.roughness.is_none() {
+            if fx.roughness.is_some() {
+                return Err(ConfigError::Inconsistent {
+                    field: "effect.roughness",
+                    reason: "the roughness effect scales the model's roughness, which is off",
+                });
+            }
+            if fx.running_in.is_some() {
+                return Err(ConfigError::Inconsistent {
+                    field: "effect.running-in",
+                    reason: "running-in raises the model's roughness, which is off",
+                });
+            }
+        }
+        if let Some(t) = fx.transfer_path {
+            t.check_rate(cfg.output_rate)?;
+        }
+        if let Some(t) = fx.sensor {
+            t.check_rate(cfg.output_rate)?;
+        }
+        let speed_max_factor = fx.speed_fluctuation.map(|f| f.max_factor()).unwrap_or(1.0);
         let bearing = BearingGeometry::new_checked(cfg.bearing)?;
         check_range("structure.mass", cfg.structure.mass, 1e-4, 1e5)?;
         check_range("structure.stiffness", cfg.structure.stiffness, 1.0, 1e12)?;
@@ -220,7 +260,7 @@ impl Model {
         };
         let limit = cfg.integrator.omega_h_limit() as f64;
         let fs = cfg.output_rate as f64;
-        let max_cage_hz = (cfg.speed.max_hz() * orders.ftf) as f64;
+        let max_cage_hz = (cfg.speed.max_hz() * speed_max_factor * orders.ftf) as f64;
         let wave_hz = wave_order as f64 * max_cage_hz;
         let accepts = |r: u32| -> bool {
             let h = 1.0 / (fs * r as f64);
@@ -275,7 +315,8 @@ impl Model {
             let wa = wrap_angle(ang * wave_order as Real);
             *wcs = (cos(wa), sin(wa));
         }
-        let rot = if let SpeedProfile::Constant(f) = cfg.speed {
+        let rot = if let (SpeedProfile::Constant(f), None) = (&cfg.speed, fx.speed_fluctuation) {
+            let f = *f;
             let ds = TAU * f * h as Real;
             let dc = ds * orders.ftf;
             let dw = wrap_angle(dc * wave_order as Real);
@@ -313,6 +354,13 @@ impl Model {
             rot,
             defect_offset_cs,
             outer_radius: bearing.outer_race_radius(),
+            rough_scale: fx.roughness.map(|r| r.scale).unwrap_or(1.0),
+            transfer: fx
+                .transfer_path
+                .map(|t| TransferPath::design(&t, h as Real)),
+            sensor_chain: fx.sensor.map(|t| SensorChain::design(&t, cfg.output_rate)),
+            per_step_effects: fx.transfer_path.is_some() || fx.running_in.is_some(),
+            shaft_harmonics: fx.shaft_harmonics.is_some(),
             cfg: ModelConfig { bearing, ..cfg },
         })
     }
@@ -369,13 +417,19 @@ impl Model {
     /// Defect geometry derived for topography `t` (none without a configured defect).
     pub fn defect_shape(&self, t: &Topography) -> DefectShape {
         match self.cfg.defect {
-            Some(d) => DefectShape::derive(
-                t,
-                &d.location,
-                &self.cfg.bearing,
-                &self.eq.reference,
-                d.defect_sassi_k(),
-            ),
+            Some(d) => {
+                let mut s = DefectShape::derive(
+                    t,
+                    &d.location,
+                    &self.cfg.bearing,
+                    &self.eq.reference,
+                    d.defect_sassi_k(),
+                );
+                if let Some(e) = self.cfg.effects.edge_shape {
+                    e.apply(&mut s);
+                }
+                s
+            }
             None => DefectShape::default(),
         }
     }
@@ -395,15 +449,15 @@ impl Model {
             (_, Some(r)) => (f0, 0.0, Some((r.shaft, r.cage, r.wave))),
             (fr, None) => {
                 let dt = if fr == 1 { 0.5 * self.h } else { self.h };
-                let f1 = self.cfg.speed.shaft_hz(st.time + dt);
+                let f1 = self.speed_hz(st.time + dt);
                 (f1, PI * (f0 + f1) * dt, None)
             }
         };
         let omega = TAU * shaft_hz;
-        let alpha = match self.cfg.speed {
-            SpeedProfile::Constant(_) => 0.0,
-            _ => {
-                let f2 = self.cfg.speed.shaft_hz(st.time + self.h);
+        let alpha = match self.rot {
+            Some(_) => 0.0,
+            None => {
+                let f2 = self.speed_hz(st.time + self.h);
                 TAU * (f2 - f0) / self.h
             }
         };
@@ -451,6 +505,9 @@ impl Model {
         let mut f = self.cfg.radial_load;
         if let Some(imb) = &self.cfg.imbalance {
             f += imb.force(k, y, v);
+        }
+        if self.shaft_harmonics {
+            f += self.shaft_harmonics_force(k);
         }
         f + self.element_forces(st, k, y, stats, draw)
     }
@@ -525,6 +582,7 @@ impl Model {
                         DefectLocation::Ball { .. } => 0.0,
                     };
                     let inner = matches!(d.location, DefectLocation::InnerRace { .. });
+                    let mut dd = 0.0;
                     for kd in 0..shape.count {
                         let centre = base + kd as Real * shape.spacing_angle;
                         let mut psi = angle_diff(theta, centre);
@@ -539,9 +597,9 @@ impl Model {
                             DefectModel::FiveStep => {
                                 let ls = shape.load.eval(xi);
                                 unload += ls.unload;
-                                delta += ls.extra_deflection;
+                                dd += ls.extra_deflection;
                             }
-                            DefectModel::Deflection => delta -= shape.geometric_drop(xi),
+                            DefectModel::Deflection => dd -= shape.geometric_drop(xi),
                             DefectModel::Sassi => {
                                 add += shape.sassi(xi, angle_diff(theta, PI / 2.0))
                             }
@@ -555,6 +613,15 @@ impl Model {
                             }
                         }
                     }
+                    // Load-zone effect: the element's angle from the load-zone centre (π/2)
+                    // has cos ψ = sin θ; the defect's whole force term is scaled.
+                    if let Some(p) = &self.cfg.effects.load_zone {
+                        let g = p.gain(sin_t);
+                        unload *= g;
+                        add *= g;
+                        dd *= g;
+                    }
+                    delta += dd;
                 }
             }
             let mut q = self.hertz(delta, rsqrt);
@@ -649,7 +716,7 @@ impl Model {
                     let sigma = if self.rot.is_some() {
                         st.rough_sigma
                     } else {
-                        self.rough_sigma(st.shaft_hz, st.topography)
+                        self.rough_sigma(st.shaft_hz, st.topography) * st.run_in
                     };
                     (&mut rng, sigma)
                 });
@@ -673,6 +740,11 @@ impl Model {
         st.v = v1;
         st.steps += 1;
 
+        let a0 = if self.per_step_effects {
+            self.effects_step(st, a0)
+        } else {
+            a0
+        };
         st.lines[0].push(a0);
         if self.cfg.channels == Channels::All {
             if let Some(l) = st.lines.get_mut(1) {
@@ -687,7 +759,10 @@ impl Model {
             return None;
         }
         st.phase = 0;
-        let accel = self.aa.output(&st.lines[0]);
+        let mut accel = self.aa.output(&st.lines[0]);
+        if let Some(chain) = &self.sensor_chain {
+            accel = chain.apply(&mut st.sensor, accel);
+        }
         let (vel, disp) = if self.cfg.channels == Channels::All {
             (self.aa.output(&st.lines[1]), self.aa.output(&st.lines[2]))
         } else {
@@ -721,7 +796,7 @@ impl Model {
         let sigma = if self.rot.is_some() {
             st.rough_sigma
         } else {
-            self.rough_sigma(st.shaft_hz, st.topography)
+            self.rough_sigma(st.shaft_hz, st.topography) * st.run_in
         };
         let (cc, sc) = st.cage_cs;
         let n = self.cfg.bearing.elements as usize;
@@ -748,7 +823,49 @@ impl Model {
         };
         let v = TAU * shaft_hz * self.orders.ftf * self.outer_radius;
         let debris = topography.map(|t| t.debris).unwrap_or(0.0);
-        r.step_sigma(self.h, v, debris) * crate::real::SQRT_3
+        r.step_sigma(self.h, v, debris) * crate::real::SQRT_3 * self.rough_scale
+    }
+
+    /// Shaft frequency (Hz) at time `t` (s): the speed profile, modulated by the
+    /// speed-fluctuation effect when it is on.
+    #[inline(always)]
+    fn speed_hz(&self, t: Real) -> Real {
+        let f = self.cfg.speed.shaft_hz(t);
+        match &self.cfg.effects.speed_fluctuation {
+            Some(p) => f * p.factor(t),
+            None => f,
+        }
+    }
+
+    /// Force of the shaft-harmonics effect (N), out of line so that the baseline's force
+    /// sum only pays for the check.
+    #[inline(never)]
+    fn shaft_harmonics_force(&self, k: &Kinematics) -> Real {
+        self.cfg
+            .effects
+            .shaft_harmonics
+            .map(|p| p.force(k))
+            .unwrap_or(0.0)
+    }
+
+    /// Per-step work of the effects that need it, kept out of line so that the baseline
+    /// step stays as it was: the transfer path filters the internal-rate acceleration
+    /// `a0`; running-in counts revolutions and refreshes the roughness factor every 256
+    /// internal steps (an exponential per step would cost more than the draw).
+    #[inline(never)]
+    fn effects_step<const NB: usize>(&self, st: &mut State<NB>, a0: Real) -> Real {
+        let a = match &self.transfer {
+            Some(t) => t.filter(&mut st.path, a0),
+            None => a0,
+        };
+        if let Some(p) = self.cfg.effects.running_in {
+            st.revs += st.shaft_hz * self.h;
+            if st.steps.is_multiple_of(256) {
+                st.run_in = p.scale(st.revs);
+                st.rough_sigma = self.rough_sigma(st.shaft_hz, st.topography) * st.run_in;
+            }
+        }
+        a
     }
 
     /// Redraws an element's slip offset once per pass, while it is opposite the defect.
@@ -795,7 +912,7 @@ impl Model {
         let (f1, ds) = match self.rot {
             Some(_) => (f0, TAU * f0 * self.h),
             None => {
-                let f1 = self.cfg.speed.shaft_hz(st.time);
+                let f1 = self.speed_hz(st.time);
                 (f1, PI * (f0 + f1) * self.h)
             }
         };
@@ -869,6 +986,10 @@ pub struct State<const NB: usize> {
     lines: [DelayLine; 3],
     phase: u32,
     stats: StepStats,
+    path: PathState,
+    sensor: SensorState,
+    revs: Real,
+    run_in: Real,
 }
 
 /// The plain fields of a [`State`], for checkpoints (`crate::checkpoint`).
@@ -894,6 +1015,10 @@ pub(crate) struct StateParts<const NB: usize> {
     pub topography: Option<Topography>,
     pub lines: [DelayLine; 3],
     pub phase: u32,
+    pub path: PathState,
+    pub sensor: SensorState,
+    pub revs: Real,
+    pub run_in: Real,
 }
 
 impl<const NB: usize> State<NB> {
@@ -919,6 +1044,10 @@ impl<const NB: usize> State<NB> {
             topography: self.topography,
             lines: self.lines,
             phase: self.phase,
+            path: self.path,
+            sensor: self.sensor.clone(),
+            revs: self.revs,
+            run_in: self.run_in,
         }
     }
 
@@ -943,6 +1072,15 @@ impl<const NB: usize> State<NB> {
         self.topography = p.topography;
         self.lines = p.lines;
         self.phase = p.phase;
+        self.path = p.path;
+        self.sensor = p.sensor;
+        self.revs = p.revs;
+        self.run_in = p.run_in;
+    }
+
+    /// After a restore: the cached roughness amplitude with the restored running-in factor.
+    pub(crate) fn refresh_rough(&mut self, model: &Model) {
+        self.rough_sigma = model.rough_sigma(self.shaft_hz, self.topography) * self.run_in;
     }
 
     /// Initial state at static equilibrium, at rest relative to it, with `seed` for the
@@ -956,7 +1094,7 @@ impl<const NB: usize> State<NB> {
                 max: if NB > 32 { 32 } else { NB },
             });
         }
-        let f0 = model.cfg.speed.shaft_hz(0.0);
+        let f0 = model.speed_hz(0.0);
         let mut st = State {
             y: model.eq.y0,
             v: 0.0,
@@ -984,7 +1122,15 @@ impl<const NB: usize> State<NB> {
             lines: [DelayLine::default(); 3],
             phase: 0,
             stats: StepStats::default(),
+            path: PathState::default(),
+            sensor: SensorState::new(seed),
+            revs: 0.0,
+            run_in: 1.0,
         };
+        if let Some(p) = model.cfg.effects.running_in {
+            st.run_in = p.scale(0.0);
+            st.rough_sigma *= st.run_in;
+        }
         if let Some(d) = model.cfg.defect {
             st.set_topography(model, d.topography)?;
         }
@@ -1011,7 +1157,7 @@ impl<const NB: usize> State<NB> {
             + shape.spacing_angle * (shape.count.saturating_sub(1)) as Real
             + slip_margin;
         self.window_cos = if span >= PI { -2.0 } else { cos(span) };
-        self.rough_sigma = model.rough_sigma(self.shaft_hz, Some(t));
+        self.rough_sigma = model.rough_sigma(self.shaft_hz, Some(t)) * self.run_in;
         self.tail = tail;
         self.shape = shape;
         self.topography = Some(t);

@@ -152,6 +152,7 @@ pub fn by_name(name: &str) -> Option<ModelConfig> {
         output_rate: 20_000.0,
         oversample: None,
         channels: Channels::Acceleration,
+        effects: crate::effects::Effects::NONE,
     };
     match name {
         "thesis-61810" => Some(thesis),

@@ -67,6 +67,18 @@ pub struct SimulateArgs {
     /// Print the summary as JSON on stdout (no progress bar).
     #[arg(long)]
     pub json: bool,
+    /// Switch a candidate effect on: NAME[:PARAM=VALUE,...] (repeatable; see `wearsim effects`).
+    #[arg(long = "effect", value_name = "NAME[:PARAM=VALUE,...]")]
+    pub effect: Vec<String>,
+}
+
+/// Appends the `--effect` arguments to the scenario file's effects.
+pub fn add_effect_args(file: &mut ScenarioFile, args: &[String]) -> Result<(), CliError> {
+    for a in args {
+        file.effect
+            .push(crate::effects::parse_arg(a).map_err(CliError::input)?);
+    }
+    Ok(())
 }
 
 impl SimulateArgs {
@@ -106,6 +118,7 @@ impl SimulateArgs {
             }
             file.defect = Some(d);
         }
+        add_effect_args(&mut file, &self.effect)?;
         let (cfg, run) = file.resolve().map_err(CliError::input)?;
         Scenario::new(cfg, run).map_err(CliError::input)
     }
@@ -286,8 +299,17 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
         "integrator": format!("{:?}", cfg.integrator),
         "topography": cfg.defect.map(|d| format!("{:?}", d.topography)),
         "model": format!("{cfg:?}"),
+        "effects": sc_effects(sc, a),
         "summary": summary,
         "usable_band_hz": [0.0, 0.4 * cfg.output_rate],
+    })
+}
+
+/// The effects switched on (command line after file), for the sidecar.
+fn sc_effects(sc: &Scenario, a: &SimulateArgs) -> Value {
+    json!({
+        "arguments": a.effect,
+        "resolved": format!("{:?}", sc.model.config().effects),
     })
 }
 

@@ -51,6 +51,9 @@ pub enum ConfigFileError {
     /// The core rejected a value.
     #[error("{0}")]
     Core(wearsim_core::ConfigError),
+    /// An unknown effect or parameter, or a value outside its bounds.
+    #[error("{0}")]
+    Effect(String),
 }
 
 impl From<wearsim_core::ConfigError> for ConfigFileError {
@@ -103,6 +106,10 @@ pub struct ScenarioFile {
     pub material: Option<MaterialSection>,
     /// Life-run settings (`wearsim life`).
     pub life: Option<LifeSection>,
+    /// Candidate effects (`[[effect]]` tables: `name`, `params = { ... }`); see
+    /// `wearsim effects`.
+    #[serde(default)]
+    pub effect: Vec<crate::effects::EffectSection>,
 }
 
 macro_rules! material_section {
@@ -505,6 +512,7 @@ impl ScenarioFile {
                 .unwrap_or(20_000.0),
             oversample: self.oversample.or(base.as_ref().and_then(|c| c.oversample)),
             channels,
+            effects: crate::effects::build(&self.effect).map_err(ConfigFileError::Effect)?,
         };
         let run = RunSettings {
             preset: self.preset.clone(),

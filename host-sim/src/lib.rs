@@ -6,6 +6,7 @@ pub mod capture;
 pub mod cli;
 pub mod config;
 pub mod cwru_benchmark;
+pub mod effects;
 pub mod io;
 pub mod life;
 pub mod plot;

@@ -38,6 +38,12 @@ enum Command {
     Analyze(wearsim_host::analyze::AnalyzeArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
     CwruBenchmark(wearsim_host::cwru_benchmark::CwruBenchmarkArgs),
+    /// List the candidate effects (sim-to-real) with their parameters, units, defaults and bounds.
+    Effects {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
     /// List the presets with their derived frequencies.
     Presets {
         /// Machine-readable output.
@@ -72,6 +78,18 @@ fn main() -> ExitCode {
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::ImsCompare(a) => wearsim_host::life::cli::ims_compare_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
+        Command::Effects { json } => {
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&wearsim_host::effects::catalogue_json())
+                        .unwrap_or_default()
+                );
+            } else {
+                print!("{}", wearsim_host::effects::catalogue_text());
+            }
+            Ok(())
+        }
         Command::Analyze(a) => wearsim_host::analyze::run(&a),
         Command::CwruBenchmark(a) => wearsim_host::cwru_benchmark::run(&a),
     };

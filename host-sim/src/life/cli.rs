@@ -49,6 +49,9 @@ pub struct LifeArgs {
     /// Machine-readable summary on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Switch a candidate effect on: NAME[:PARAM=VALUE,...] (repeatable; see `wearsim effects`).
+    #[arg(long = "effect", value_name = "NAME[:PARAM=VALUE,...]")]
+    pub effect: Vec<String>,
 }
 
 impl LifeArgs {
@@ -64,6 +67,7 @@ impl LifeArgs {
         if file.preset.is_none() && self.config.is_none() {
             file.preset = Some(self.preset.clone());
         }
+        crate::cli::add_effect_args(&mut file, &self.effect)?;
         let (mut model, _) = file.resolve().map_err(CliError::input)?;
         wearsim_core::error::check_range("load_scale", self.load_scale, 0.05, 20.0)
             .map_err(CliError::input)?;

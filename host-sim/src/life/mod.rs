@@ -194,9 +194,13 @@ impl LifeRun {
 
     /// The dynamic model for wear state `st` (see `Life::model_config`).
     pub fn model_for(&self, st: &LifeState) -> Result<Model, LifeError> {
-        Ok(Model::new_checked(
-            self.life.model_config(&self.spec.model, st),
-        )?)
+        let mut cfg = self.life.model_config(&self.spec.model, st);
+        // The running-in effect decays over the life: a window starts at the revolutions
+        // the wear model has run.
+        if let Some(r) = cfg.effects.running_in.as_mut() {
+            r.start_revs += st.cycles;
+        }
+        Ok(Model::new_checked(cfg)?)
     }
 
     /// Renders one window for state `st` (index `k` seeds its random stream): returns the

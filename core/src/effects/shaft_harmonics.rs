@@ -1,0 +1,37 @@
+//! Effect `shaft-harmonics`: misalignment and mechanical looseness. Imbalance gives a
+//! force at 1× shaft; angular/parallel misalignment of the coupling gives a dominant 2×
+//! (and 1×) component and looseness a series of harmonics, 3× and above (Randall 2011,
+//! *Vibration-based Condition Monitoring* §1.2 and Table 1.1; ISO 13373-3). The effect
+//! adds radial forces `F_2 sin(2θ_s) + F_3 sin(3θ_s)` (N), θ_s the shaft angle, to the
+//! existing imbalance term; amplitudes are taken as independent of speed (kinematic
+//! misalignment forces set by the coupling stiffness and the offset).
+
+use crate::error::{check_range, ConfigError};
+use crate::forces::Kinematics;
+use crate::real::Real;
+
+/// Parameters of the `shaft-harmonics` effect.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Params {
+    /// Force amplitude at 2× shaft (N), in [0, 10⁴].
+    pub f2: Real,
+    /// Force amplitude at 3× shaft (N), in [0, 10⁴].
+    pub f3: Real,
+}
+
+impl Params {
+    /// Validates both amplitudes in [0, 10⁴] N.
+    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
+        check_range("shaft-harmonics.f2", p.f2, 0.0, 1.0e4)?;
+        check_range("shaft-harmonics.f3", p.f3, 0.0, 1.0e4)?;
+        Ok(p)
+    }
+
+    /// Radial force (N) at kinematics `k`, from the shaft phasor (no trigonometric calls):
+    /// `sin 2θ = 2 s c`, `sin 3θ = s (3 − 4 s²)`.
+    #[inline]
+    pub fn force(&self, k: &Kinematics) -> Real {
+        let (c, s) = k.shaft_cs;
+        self.f2 * 2.0 * s * c + self.f3 * s * (3.0 - 4.0 * s * s)
+    }
+}

@@ -1,0 +1,607 @@
+//! Signature tests of the candidate effects (`wearsim_core::effects`): each effect, added
+//! to a baseline, must produce its physical signature (frequency content, sidebands,
+//! noise level…) with tolerances that a wrong implementation would fail.
+#![allow(clippy::needless_range_loop)]
+
+mod common;
+
+use common::run;
+use std::f64::consts::TAU;
+use wearsim_core::effects::transfer_path::{Mode, TransferPath};
+use wearsim_core::effects::{self, Effects, CATALOGUE};
+use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
+use wearsim_core::{presets, ConfigError, Model, ModelConfig, Sample};
+
+fn thesis() -> ModelConfig {
+    presets::by_name("thesis-61810").unwrap()
+}
+
+/// The thesis bearing with only the given excitations.
+fn clean() -> ModelConfig {
+    ModelConfig {
+        imbalance: None,
+        waviness: None,
+        roughness: None,
+        defect: None,
+        slip: None,
+        ..thesis()
+    }
+}
+
+fn with(mut cfg: ModelConfig, name: &str, params: &[(&str, f64)]) -> ModelConfig {
+    let info = effects::info(name).unwrap();
+    let values: Vec<f64> = info
+        .params
+        .iter()
+        .map(|p| {
+            params
+                .iter()
+                .find(|(n, _)| *n == p.name)
+                .map(|(_, v)| *v)
+                .unwrap_or(p.default)
+        })
+        .collect();
+    cfg.effects.set(name, &values).unwrap();
+    cfg
+}
+
+fn accel(cfg: ModelConfig, seed: u64, seconds: f64) -> (Model, Vec<f64>) {
+    let m = Model::new_checked(cfg).unwrap();
+    let n = (seconds * m.config().output_rate) as usize;
+    let a = run(&m, seed, n).iter().map(|s: &Sample| s.accel).collect();
+    (m, a)
+}
+
+/// Joint least-squares amplitudes of sinusoids at `freqs` in `x` sampled at `fs`
+/// (leakage between close lines is removed by fitting them together, plus a mean).
+fn amplitudes(x: &[f64], fs: f64, freqs: &[f64]) -> Vec<f64> {
+    let k = 2 * freqs.len() + 1;
+    let mut ata = vec![vec![0.0; k]; k];
+    let mut atb = vec![0.0; k];
+    let mut row = vec![0.0; k];
+    for (i, xi) in x.iter().enumerate() {
+        let t = i as f64 / fs;
+        for (j, f) in freqs.iter().enumerate() {
+            let (s, c) = (TAU * f * t).sin_cos();
+            row[2 * j] = s;
+            row[2 * j + 1] = c;
+        }
+        row[k - 1] = 1.0;
+        for a in 0..k {
+            atb[a] += row[a] * xi;
+            for b in 0..k {
+                ata[a][b] += row[a] * row[b];
+            }
+        }
+    }
+    // Gaussian elimination with partial pivoting.
+    for c in 0..k {
+        let p = (c..k)
+            .max_by(|a, b| ata[*a][c].abs().total_cmp(&ata[*b][c].abs()))
+            .unwrap();
+        ata.swap(c, p);
+        atb.swap(c, p);
+        for r in 0..k {
+            if r != c {
+                let f = ata[r][c] / ata[c][c];
+                for q in c..k {
+                    ata[r][q] -= f * ata[c][q];
+                }
+                atb[r] -= f * atb[c];
+            }
+        }
+    }
+    let sol: Vec<f64> = (0..k).map(|i| atb[i] / ata[i][i]).collect();
+    (0..freqs.len())
+        .map(|j| sol[2 * j].hypot(sol[2 * j + 1]))
+        .collect()
+}
+
+fn rms(x: &[f64]) -> f64 {
+    let m = x.iter().sum::<f64>() / x.len() as f64;
+    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+/// Squared envelope proxy: the squared signal with its mean removed.
+fn squared(x: &[f64]) -> Vec<f64> {
+    let sq: Vec<f64> = x.iter().map(|v| v * v).collect();
+    let m = sq.iter().sum::<f64>() / sq.len() as f64;
+    sq.iter().map(|v| v - m).collect()
+}
+
+#[test]
+fn catalogue_is_consistent() {
+    let mut names: Vec<&str> = CATALOGUE.iter().map(|e| e.name).collect();
+    names.sort();
+    names.dedup();
+    assert_eq!(names.len(), 9);
+    for e in CATALOGUE.iter() {
+        let defaults: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        let mut fx = Effects::NONE;
+        fx.set(e.name, &defaults)
+            .unwrap_or_else(|err| panic!("{}: default rejected: {err}", e.name));
+        assert!(fx.any());
+        for (i, p) in e.params.iter().enumerate() {
+            assert!(
+                p.min <= p.default && p.default <= p.max,
+                "{}.{}",
+                e.name,
+                p.name
+            );
+            // Just outside each bound: rejected, naming `effect.param` and the bounds.
+            for bad in [
+                p.min - 1e-3 * (1.0 + p.min.abs()),
+                p.max + 1e-3 * (1.0 + p.max.abs()),
+            ] {
+                let mut v = defaults.clone();
+                v[i] = bad;
+                match Effects::NONE.clone().set(e.name, &v) {
+                    Err(ConfigError::OutOfRange {
+                        field, min, max, ..
+                    }) => {
+                        assert_eq!(field, format!("{}.{}", e.name, p.name));
+                        assert_eq!((min, max), (p.min, p.max), "{field}");
+                    }
+                    other => panic!("{}.{} = {bad}: {other:?}", e.name, p.name),
+                }
+            }
+        }
+    }
+    assert!(Effects::NONE.clone().set("ball-defect", &[]).is_err());
+}
+
+#[test]
+fn all_effects_are_deterministic_and_off_means_baseline() {
+    let base = thesis();
+    let mut all = base.clone();
+    for e in CATALOGUE.iter() {
+        let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        all.effects.set(e.name, &d).unwrap();
+    }
+    let (_, a) = accel(all.clone(), 7, 0.2);
+    let (_, b) = accel(all, 7, 0.2);
+    assert_eq!(a, b);
+    let (_, c) = accel(base.clone(), 7, 0.2);
+    assert_ne!(a, c);
+    // Effects::NONE is the baseline, bit for bit.
+    let (_, d) = accel(
+        ModelConfig {
+            effects: Effects::NONE,
+            ..base
+        },
+        7,
+        0.2,
+    );
+    assert_eq!(c, d);
+}
+
+#[test]
+fn slip_smears_the_higher_fault_harmonics() {
+    let base = ModelConfig {
+        slip: None,
+        ..thesis()
+    };
+    let fr = presets::THESIS_SHAFT_HZ;
+    let (m, a0) = accel(base.clone(), 3, 2.0);
+    let bpfo = m.orders().bpfo * fr;
+    let fs = m.config().output_rate;
+    let (m1, a1) = accel(with(base, "slip", &[("fraction", 0.08)]), 3, 2.0);
+    assert_eq!(m1.config().slip.map(|s| s.fraction), Some(0.08));
+    let h = |a: &[f64]| amplitudes(&squared(a), fs, &[bpfo, 4.0 * bpfo]);
+    let (h0, h1) = (h(&a0), h(&a1));
+    let (r0, r1) = (h0[1] / h0[0], h1[1] / h1[0]);
+    // Gaussian jitter σ = 0.08 pitch attenuates harmonic k by exp(−(2πkσ)²/2): k = 1:
+    // 0.88, k = 4: 0.13, so the 4th/1st ratio falls by about 7.
+    println!("slip: 4th/1st harmonic {r0:.3} -> {r1:.3}");
+    assert!(r1 < 0.35 * r0, "{r0} -> {r1}");
+}
+
+#[test]
+fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
+    let base = ModelConfig {
+        slip: None,
+        defect: Some(DefectConfig {
+            location: DefectLocation::InnerRace { angle: 0.0 },
+            ..thesis().defect.unwrap()
+        }),
+        ..clean()
+    };
+    let fr = presets::THESIS_SHAFT_HZ;
+    let (m, a0) = accel(base.clone(), 3, 2.0);
+    let (_, a1) = accel(
+        with(base, "load-zone", &[("depth", 1.0), ("epsilon", 0.25)]),
+        3,
+        2.0,
+    );
+    // Squared acceleration averaged synchronously over the defect's angle ψ from the
+    // load-zone centre (defect angle = shaft angle; centre at π/2).
+    let profile = |a: &[f64]| {
+        let mut e = [0.0f64; 36];
+        let mut n = [0usize; 36];
+        for (i, v) in a.iter().enumerate().skip(1000) {
+            let ang = TAU * fr * m.output_time(i as u64) - std::f64::consts::FRAC_PI_2;
+            let b = (ang.rem_euclid(TAU) / TAU * 36.0) as usize % 36;
+            e[b] += v * v;
+            n[b] += 1;
+        }
+        let e: Vec<f64> = e.iter().zip(n).map(|(x, k)| x / k.max(1) as f64).collect();
+        // Energy on the entering flank, ψ in −70°..−40° (the trailing flank is blurred by
+        // the ringing of the impacts), over the energy at |ψ| < 10°.
+        (e[29] + e[30] + e[31]) / 3.0 / ((e[0] + e[35]) / 2.0)
+    };
+    let (p0, p1) = (profile(&a0), profile(&a1));
+    println!("load-zone: energy at -70..-40 deg / centre {p0:.4} -> {p1:.4}");
+    // Stribeck with ε = 0.25 zeroes the defect force beyond 60° and leaves
+    // (1 − 0.29/0.5)^1.5 ≈ 0.27 of it at 45° (energy ≈ 0.07), against the baseline's
+    // Hertz modulation alone: the flank energy must fall to well under half.
+    assert!(p1 < 0.4 * p0, "{p0} -> {p1}");
+    // The Stribeck gain itself.
+    let p = effects::load_zone::Params {
+        depth: 1.0,
+        epsilon: 0.5,
+    };
+    assert!((p.gain(1.0) - 1.0).abs() < 1e-12);
+    assert!(p.gain(0.0).abs() < 1e-12 && p.gain(-1.0) == 0.0);
+    assert!((p.gain(0.5) - 0.5f64.powf(1.5)).abs() < 1e-12);
+    let half = effects::load_zone::Params { depth: 0.5, ..p };
+    assert!((half.gain(0.0) - 0.5).abs() < 1e-12);
+}
+
+#[test]
+fn transfer_path_impulse_response_peaks_at_the_modes() {
+    let h = 1.0 / 80_000.0;
+    let modes = [
+        Mode {
+            freq_hz: 1500.0,
+            zeta: 0.02,
+            gain: 4.0,
+        },
+        Mode {
+            freq_hz: 4000.0,
+            zeta: 0.03,
+            gain: 2.0,
+        },
+        Mode {
+            freq_hz: 7000.0,
+            zeta: 0.05,
+            gain: 1.0,
+        },
+    ];
+    let tp = TransferPath::design(&effects::transfer_path::Params { modes }, h);
+    let mut st = Default::default();
+    let ir: Vec<f64> = (0..40_000)
+        .map(|i| tp.filter(&mut st, if i == 0 { 1.0 } else { 0.0 }))
+        .collect();
+    let mag = |f: f64| {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (i, v) in ir.iter().enumerate() {
+            let (s, c) = (TAU * f * i as f64 * h).sin_cos();
+            re += v * c;
+            im -= v * s;
+        }
+        re.hypot(im)
+    };
+    let spectrum: Vec<(f64, f64)> = (10..1000)
+        .map(|k| (k as f64 * 10.0, mag(k as f64 * 10.0)))
+        .collect();
+    let peaks: Vec<(f64, f64)> = spectrum
+        .windows(3)
+        .filter(|w| w[1].1 > w[0].1 && w[1].1 > w[2].1 && w[1].1 > 1.2)
+        .map(|w| w[1])
+        .collect();
+    println!("transfer-path peaks {peaks:?}");
+    assert_eq!(peaks.len(), 3, "{peaks:?}");
+    for (p, m) in peaks.iter().zip(modes) {
+        assert!((p.0 - m.freq_hz).abs() <= 10.0, "{p:?} vs {m:?}");
+        // Peak magnitude 1 + g (the neighbouring modes add a little).
+        assert!(
+            (mag(m.freq_hz) - (1.0 + m.gain)).abs() < 0.08 * (1.0 + m.gain),
+            "{m:?}"
+        );
+    }
+    // Far from the modes the path is transparent.
+    assert!((mag(200.0) - 1.0).abs() < 0.03 && (mag(20_000.0) - 1.0).abs() < 0.05);
+}
+
+#[test]
+fn transfer_path_in_the_model_lifts_its_band() {
+    let base = ModelConfig {
+        slip: None,
+        ..thesis()
+    };
+    let (m, a0) = accel(base.clone(), 5, 1.0);
+    let fs = m.config().output_rate;
+    let (_, a1) = accel(
+        with(
+            base,
+            "transfer-path",
+            &[("f1", 3000.0), ("zeta1", 0.02), ("gain1", 5.0)],
+        ),
+        5,
+        1.0,
+    );
+    let band = |a: &[f64], f0: f64| -> f64 {
+        (0..41)
+            .map(|k| f0 - 20.0 + k as f64)
+            .map(|f| amplitudes(a, fs, &[f])[0].powi(2))
+            .sum()
+    };
+    let r_mode = (band(&a1, 3000.0) / band(&a0, 3000.0)).sqrt();
+    let r_off = (band(&a1, 6000.0) / band(&a0, 6000.0)).sqrt();
+    println!("transfer-path: band gain at 3 kHz {r_mode:.2}, at 6 kHz {r_off:.2}");
+    // |1 + g·BP| over ±20 Hz of a ζ = 0.02 (±60 Hz half-power) mode: 4.5..6.
+    assert!(r_mode > 4.0 && r_mode < 6.2, "{r_mode}");
+    assert!((r_off - 1.0).abs() < 0.1, "{r_off}");
+    // Above fs/2.5 the frequency is rejected, naming the field.
+    let bad = with(thesis(), "transfer-path", &[("f1", 9000.0)]);
+    match Model::new_checked(bad) {
+        Err(ConfigError::OutOfRange { field, max, .. }) => {
+            assert_eq!(field, "transfer-path.f1");
+            assert_eq!(max, 20_000.0 / 2.5);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn speed_fluctuation_puts_sidebands_on_the_shaft_line() {
+    let base = ModelConfig {
+        imbalance: thesis().imbalance,
+        ..clean()
+    };
+    let fr = presets::THESIS_SHAFT_HZ;
+    let (a, fm) = (0.05, 5.0);
+    let freqs = [fr - fm, fr, fr + fm];
+    let (m, a0) = accel(base.clone(), 1, 4.0);
+    let fs = m.config().output_rate;
+    let (m1, a1) = accel(
+        with(
+            base,
+            "speed-fluctuation",
+            &[("amplitude", a), ("freq_hz", fm)],
+        ),
+        1,
+        4.0,
+    );
+    // Skip the settling transient.
+    let h0 = amplitudes(&a0[4000..], fs, &freqs);
+    let h1 = amplitudes(&a1[4000..], fs, &freqs);
+    // Reference: the imbalance force ω² sin θ with the same modulated speed, its lines
+    // weighted by the accelerance ∝ f² well below resonance.
+    let fsr = 20_000.0;
+    let reference: Vec<f64> = (0..80_000)
+        .map(|i| {
+            let t = i as f64 / fsr;
+            let w = TAU * fr * (1.0 + a * (TAU * fm * t).sin());
+            let th = TAU * fr * t - a * fr / fm * (TAU * fm * t).cos();
+            w * w * th.sin()
+        })
+        .collect();
+    let hr = amplitudes(&reference, fsr, &freqs);
+    let wgt = |i: usize| (freqs[i] / fr).powi(2);
+    let expect = (hr[0] * wgt(0) + hr[2] * wgt(2)) / hr[1];
+    let got = (h1[0] + h1[2]) / h1[1];
+    let before = (h0[0] + h0[2]) / h0[1];
+    println!("speed-fluctuation: sidebands/carrier {before:.4} -> {got:.4} (expected {expect:.4})");
+    assert!(before < 0.01, "{before}");
+    assert!((got - expect).abs() < 0.15 * expect, "{got} vs {expect}");
+    assert!(m1.oversample() >= m.oversample());
+}
+
+#[test]
+fn sensor_adds_noise_hum_and_bandwidth() {
+    let base = thesis();
+    let (m, a0) = accel(base.clone(), 9, 1.0);
+    let fs = m.config().output_rate;
+    let (_, a1) = accel(
+        with(
+            base.clone(),
+            "sensor",
+            &[
+                ("noise", 0.5),
+                ("hum", 0.2),
+                ("hum_hz", 50.0),
+                ("hum_harmonics", 0.25),
+            ],
+        ),
+        9,
+        1.0,
+    );
+    let d: Vec<f64> = a1.iter().zip(&a0).map(|(x, y)| x - y).collect();
+    let h = amplitudes(&d, fs, &[50.0, 100.0, 150.0]);
+    println!("sensor: hum {h:?}");
+    assert!((h[0] - 0.2).abs() < 0.01 && (h[1] - 0.05).abs() < 0.01 && (h[2] - 0.05).abs() < 0.01);
+    let noise_rms = (rms(&d).powi(2) - 0.5 * (0.2f64.powi(2) + 2.0 * 0.05f64.powi(2))).sqrt();
+    assert!((noise_rms - 0.5).abs() < 0.02, "{noise_rms}");
+    // Low-pass: the output's lines are the input's times |H(f)| of a one-pole at 500 Hz.
+    let p = effects::sensor::Params {
+        noise: 0.0,
+        corner_hz: 500.0,
+        hum: 0.0,
+        hum_hz: 50.0,
+        hum_harmonics: 0.0,
+    };
+    let (_, a2) = accel(
+        with(base, "sensor", &[("noise", 0.0), ("corner_hz", 500.0)]),
+        9,
+        1.0,
+    );
+    let chain = effects::sensor::SensorChain::design(&p, fs);
+    let fr = presets::THESIS_SHAFT_HZ;
+    let bpfo = m.orders().bpfo * fr;
+    for f in [bpfo * 10.0, bpfo * 20.0] {
+        let f = f.round();
+        let g = amplitudes(&a2[200..], fs, &[f])[0] / amplitudes(&a0[200..], fs, &[f])[0];
+        let want = chain.lowpass_gain(f, fs);
+        println!("sensor low-pass at {f} Hz: {g:.4} (|H| {want:.4})");
+        assert!((g - want).abs() < 0.1 * want, "{f}: {g} vs {want}");
+    }
+    assert!(chain.lowpass_gain(5000.0, fs) < 0.12);
+}
+
+#[test]
+fn shaft_harmonics_give_lines_at_2x_and_3x() {
+    let fr = presets::THESIS_SHAFT_HZ;
+    let base = clean();
+    let (m, a0) = accel(base.clone(), 1, 2.0);
+    let fs = m.config().output_rate;
+    let (_, a1) = accel(
+        with(base, "shaft-harmonics", &[("f2", 100.0), ("f3", 50.0)]),
+        1,
+        2.0,
+    );
+    let fn_ = m.natural_frequency_hz();
+    let zeta = m.damping_ratio();
+    let mass = m.config().structure.mass;
+    let expect = |f: f64, amp: f64| {
+        let r = f / fn_;
+        amp / mass * r * r / ((1.0 - r * r).powi(2) + (2.0 * zeta * r).powi(2)).sqrt()
+    };
+    let h0 = amplitudes(&a0[2000..], fs, &[2.0 * fr, 3.0 * fr]);
+    let h1 = amplitudes(&a1[2000..], fs, &[2.0 * fr, 3.0 * fr]);
+    let (e2, e3) = (expect(2.0 * fr, 100.0), expect(3.0 * fr, 50.0));
+    println!(
+        "shaft-harmonics: 2x {:.4e} (exp {e2:.4e}), 3x {:.4e} (exp {e3:.4e}); off {h0:?}",
+        h1[0], h1[1]
+    );
+    assert!((h1[0] - e2).abs() < 0.05 * e2);
+    assert!((h1[1] - e3).abs() < 0.05 * e3);
+    assert!(h0[0] < 0.01 * e2 && h0[1] < 0.01 * e3);
+}
+
+#[test]
+fn running_in_raises_roughness_early_then_decays() {
+    let base = ModelConfig {
+        roughness: thesis().roughness,
+        ..clean()
+    };
+    let (m, a0) = accel(base.clone(), 2, 2.0);
+    let fs = m.config().output_rate;
+    let (_, a1) = accel(
+        with(
+            base.clone(),
+            "running-in",
+            &[("factor", 5.0), ("decay_revs", 5.0)],
+        ),
+        2,
+        2.0,
+    );
+    let w = |a: &[f64], t0: f64, t1: f64| rms(&a[(t0 * fs) as usize..(t1 * fs) as usize]);
+    let fr = presets::THESIS_SHAFT_HZ;
+    let early = w(&a1, 0.02, 0.06) / w(&a0, 0.02, 0.06);
+    // Mean factor over 0.02..0.06 s.
+    let expect: f64 = (0..40)
+        .map(|i| 1.0 + 4.0 * (-(0.02 + i as f64 * 1e-3) * fr / 5.0).exp())
+        .sum::<f64>()
+        / 40.0;
+    let late = w(&a1, 1.5, 2.0) / w(&a0, 1.5, 2.0);
+    println!("running-in: early ratio {early:.3} (expected {expect:.3}), late {late:.3}");
+    assert!(
+        (early - expect).abs() < 0.15 * expect,
+        "{early} vs {expect}"
+    );
+    assert!((late - 1.0).abs() < 0.05, "{late}");
+    // Needs roughness.
+    let no_rough = with(clean(), "running-in", &[]);
+    assert!(matches!(
+        Model::new_checked(no_rough),
+        Err(ConfigError::Inconsistent {
+            field: "effect.running-in",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn roughness_scales_the_broadband_level() {
+    let base = ModelConfig {
+        roughness: thesis().roughness,
+        ..clean()
+    };
+    let (_, a0) = accel(base.clone(), 4, 0.5);
+    let (_, a1) = accel(with(base.clone(), "roughness", &[("scale", 3.0)]), 4, 0.5);
+    let r = rms(&a1[500..]) / rms(&a0[500..]);
+    println!("roughness: RMS ratio {r:.3}");
+    assert!((r - 3.0).abs() < 0.15, "{r}");
+    // Scale 0 leaves only the parametric (varying-compliance) excitation: the level of
+    // the model without roughness.
+    let (_, a2) = accel(with(base, "roughness", &[("scale", 0.0)]), 4, 0.5);
+    let (_, a3) = accel(clean(), 4, 0.5);
+    let r0 = rms(&a2[500..]) / rms(&a3[500..]);
+    assert!((r0 - 1.0).abs() < 0.01, "{r0}");
+    assert!(matches!(
+        Model::new_checked(with(clean(), "roughness", &[])),
+        Err(ConfigError::Inconsistent {
+            field: "effect.roughness",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn edge_shape_scales_the_five_step_function_and_the_impact() {
+    let base = ModelConfig {
+        slip: None,
+        ..thesis()
+    };
+    let topo = base.defect.unwrap().topography;
+    let m0 = Model::new_checked(base.clone()).unwrap();
+    let sharp = with(
+        base.clone(),
+        "edge-shape",
+        &[("length_scale", 0.5), ("asperity_scale", 2.0)],
+    );
+    let m1 = Model::new_checked(sharp.clone()).unwrap();
+    let (s0, s1) = (m0.defect_shape(&topo), m1.defect_shape(&topo));
+    assert!((s1.load.entry - (0.5 * s0.load.entry).min(0.5)).abs() < 1e-12);
+    assert!((s1.load.impact - 0.5 * s0.load.impact).abs() < 1e-12);
+    assert!((s1.load.asperity - 2.0 * s0.load.asperity).abs() < 1e-18);
+    // Dynamic signature: a sharper, higher edge gives a larger impact (peak and kurtosis).
+    let (_, a0) = accel(base, 6, 1.0);
+    let (_, a1) = accel(sharp, 6, 1.0);
+    let peak = |a: &[f64]| a[500..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let kurt = |a: &[f64]| {
+        let a = &a[500..];
+        let m = a.iter().sum::<f64>() / a.len() as f64;
+        let v = a.iter().map(|x| (x - m).powi(2)).sum::<f64>() / a.len() as f64;
+        a.iter().map(|x| (x - m).powi(4)).sum::<f64>() / a.len() as f64 / (v * v)
+    };
+    println!(
+        "edge-shape: peak {:.3} -> {:.3}, kurtosis {:.2} -> {:.2}",
+        peak(&a0),
+        peak(&a1),
+        kurt(&a0),
+        kurt(&a1)
+    );
+    assert!(peak(&a1) > 1.3 * peak(&a0));
+}
+
+/// With every effect on, a checkpoint mid-run continues with exactly the samples of the
+/// uninterrupted run (the transfer-path, sensor and running-in memories are saved).
+#[test]
+fn checkpoint_with_all_effects_continues_bit_identically() {
+    use wearsim_core::checkpoint::encoded_len;
+    use wearsim_core::State;
+    let mut cfg = thesis();
+    for e in CATALOGUE.iter() {
+        let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        cfg.effects.set(e.name, &d).unwrap();
+    }
+    let cfg = with(cfg, "sensor", &[("corner_hz", 3000.0), ("hum", 0.1)]);
+    let cfg = with(cfg, "running-in", &[("decay_revs", 3.0)]);
+    let model = Model::new_checked(cfg).unwrap();
+    let mut a: State<16> = State::new(&model, 5).unwrap();
+    let mut first = vec![Sample::default(); 3001];
+    model.fill(&mut a, &mut first);
+    let mut bytes = vec![0u8; encoded_len(16)];
+    let n = a.encode(&mut bytes).unwrap();
+    let mut b: State<16> = State::decode(&model, &bytes[..n]).unwrap();
+    let mut ra = vec![Sample::default(); 5000];
+    let mut rb = ra.clone();
+    model.fill(&mut a, &mut ra);
+    model.fill(&mut b, &mut rb);
+    assert!(ra
+        .iter()
+        .zip(&rb)
+        .all(|(x, y)| x.accel.to_bits() == y.accel.to_bits()));
+}

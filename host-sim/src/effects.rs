@@ -1,0 +1,138 @@
+//! Candidate effects on the command line (`--effect NAME[:PARAM=VALUE,...]`), in the
+//! scenario file (`[[effect]]` with `name` and `params`) and in `wearsim effects`. The
+//! catalogue (names, units, defaults, bounds) is the core's
+//! ([`wearsim_core::effects::CATALOGUE`]); parameters not given take their default.
+
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use wearsim_core::effects::{self, EffectInfo, Effects, CATALOGUE};
+
+/// One `[[effect]]` table, or one `--effect` argument.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EffectSection {
+    /// Effect name (`wearsim effects`).
+    pub name: String,
+    /// Parameter values; absent ones take the default.
+    #[serde(default)]
+    pub params: BTreeMap<String, f64>,
+}
+
+fn names() -> String {
+    CATALOGUE
+        .iter()
+        .map(|e| e.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn lookup(name: &str) -> Result<&'static EffectInfo, String> {
+    effects::info(name)
+        .ok_or_else(|| format!("unknown effect `{name}`; known effects: {}", names()))
+}
+
+/// Parses `NAME[:PARAM=VALUE,...]`.
+pub fn parse_arg(spec: &str) -> Result<EffectSection, String> {
+    let (name, rest) = match spec.split_once(':') {
+        Some((n, r)) => (n.trim(), r.trim()),
+        None => (spec.trim(), ""),
+    };
+    lookup(name)?;
+    let mut params = BTreeMap::new();
+    for kv in rest.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let Some((k, v)) = kv.split_once('=') else {
+            return Err(format!(
+                "effect `{name}`: `{kv}` is not PARAM=VALUE (in --effect {spec})"
+            ));
+        };
+        let value: f64 = v.trim().parse().map_err(|_| {
+            format!(
+                "effect `{name}`: parameter `{}` = `{}` is not a number",
+                k.trim(),
+                v.trim()
+            )
+        })?;
+        params.insert(k.trim().to_string(), value);
+    }
+    Ok(EffectSection {
+        name: name.to_string(),
+        params,
+    })
+}
+
+/// Switches `sec` on in `fx`: unknown effects or parameters and out-of-bounds values are
+/// rejected with a message naming them and the bounds.
+pub fn apply(fx: &mut Effects, sec: &EffectSection) -> Result<(), String> {
+    let info = lookup(&sec.name)?;
+    for k in sec.params.keys() {
+        if !info.params.iter().any(|p| p.name == k) {
+            let known: Vec<&str> = info.params.iter().map(|p| p.name).collect();
+            return Err(format!(
+                "effect `{}` has no parameter `{k}`; its parameters: {}",
+                info.name,
+                known.join(", ")
+            ));
+        }
+    }
+    let mut values = Vec::with_capacity(info.params.len());
+    for p in info.params {
+        let v = sec.params.get(p.name).copied().unwrap_or(p.default);
+        if !(v >= p.min && v <= p.max) {
+            let unit = if p.unit == "-" { "" } else { p.unit };
+            return Err(format!(
+                "effect `{}`: parameter `{}` = {v} is outside its bounds [{}, {}] {unit}",
+                info.name, p.name, p.min, p.max
+            )
+            .trim_end()
+            .to_string());
+        }
+        values.push(v);
+    }
+    fx.set(info.name, &values)
+        .map_err(|e| format!("effect `{}`: {e}", info.name))
+}
+
+/// Builds the effects of a list of sections (a later section of the same effect wins).
+pub fn build(sections: &[EffectSection]) -> Result<Effects, String> {
+    let mut fx = Effects::NONE;
+    for s in sections {
+        apply(&mut fx, s)?;
+    }
+    Ok(fx)
+}
+
+/// The catalogue as JSON: a list of effects with their parameters.
+pub fn catalogue_json() -> Value {
+    Value::Array(
+        CATALOGUE
+            .iter()
+            .map(|e| {
+                json!({
+                    "name": e.name,
+                    "description": e.summary,
+                    "params": e.params.iter().map(|p| json!({
+                        "name": p.name, "unit": p.unit, "default": p.default,
+                        "min": p.min, "max": p.max, "description": p.doc,
+                    })).collect::<Vec<_>>(),
+                })
+            })
+            .collect(),
+    )
+}
+
+/// The catalogue as text.
+pub fn catalogue_text() -> String {
+    let mut s = String::new();
+    for e in CATALOGUE.iter() {
+        s.push_str(&format!("{:<18} {}\n", e.name, e.summary));
+        for p in e.params {
+            s.push_str(&format!(
+                "    {:<15} {:>6}  default {:<8} bounds [{}, {}]  {}\n",
+                p.name, p.unit, p.default, p.min, p.max, p.doc
+            ));
+        }
+    }
+    s.push_str("usage: --effect NAME[:PARAM=VALUE,...] (repeatable), or [[effect]] name = \"...\", params = { ... } in the scenario file\n");
+    s
+}
