@@ -40,8 +40,8 @@ impl KinematicFrequencies {
         }
     }
 
-    /// Nearest labelled frequency to `f`: harmonics 1–10 of shaft, BPFO, BPFI, BSF, 1–3 of
-    /// FTF, the natural and the waviness frequency. Returns (label, Hz).
+    /// Nearest labelled frequency to `f`: harmonics 1–10 of the shaft, 1–20 of BPFO, BPFI
+    /// and BSF, 1–3 of FTF, the natural and the waviness frequency. Returns (label, Hz).
     pub fn nearest(&self, f: f64) -> (String, f64) {
         let mut best = (String::from("-"), f64::INFINITY);
         let mut consider = |label: String, c: f64| {
@@ -49,9 +49,13 @@ impl KinematicFrequencies {
                 best = (label, c);
             }
         };
-        for k in 1..=10 {
+        // Fault families up to 20 harmonics: impacts ring the structure, so the largest
+        // lines of a defective bearing are high BPFO/BPFI harmonics near the resonance.
+        for k in 1..=20 {
             let kf = k as f64;
-            consider(format!("{k}x shaft"), kf * self.shaft);
+            if k <= 10 {
+                consider(format!("{k}x shaft"), kf * self.shaft);
+            }
             consider(format!("{k}x BPFO"), kf * self.bpfo);
             consider(format!("{k}x BPFI"), kf * self.bpfi);
             consider(format!("{k}x BSF"), kf * self.bsf);
