@@ -7,6 +7,7 @@ pub mod cli;
 pub mod config;
 pub mod cwru_benchmark;
 pub mod effects;
+pub mod gap;
 pub mod io;
 pub mod life;
 pub mod plot;
