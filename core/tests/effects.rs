@@ -267,7 +267,13 @@ fn transfer_path_impulse_response_peaks_at_the_modes() {
             gain: 1.0,
         },
     ];
-    let tp = TransferPath::design(&effects::transfer_path::Params { modes }, h);
+    let tp = TransferPath::design(
+        &effects::transfer_path::Params {
+            modes,
+            path_gain: 1.0,
+        },
+        h,
+    );
     let mut st = Default::default();
     let ir: Vec<f64> = (0..40_000)
         .map(|i| tp.filter(&mut st, if i == 0 { 1.0 } else { 0.0 }))

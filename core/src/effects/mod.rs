@@ -107,7 +107,7 @@ pub const CATALOGUE: [EffectInfo; 9] = [
     },
     EffectInfo {
         name: "transfer-path",
-        summary: "up to three structural modes between bearing and sensor (band-pass resonators on the acceleration)",
+        summary: "path from bearing to sensor: broadband gain and up to three structural modes (band-pass resonators on the acceleration)",
         params: &[
             p("f1", "Hz", 2000.0, 100.0, 4.0e5, "mode 1 frequency (at most fs/2.5)"),
             p("zeta1", "-", 0.05, 0.005, 0.2, "mode 1 damping ratio"),
@@ -118,6 +118,7 @@ pub const CATALOGUE: [EffectInfo; 9] = [
             p("f3", "Hz", 4000.0, 100.0, 4.0e5, "mode 3 frequency (at most fs/2.5)"),
             p("zeta3", "-", 0.05, 0.005, 0.2, "mode 3 damping ratio"),
             p("gain3", "-", 0.0, 0.0, 10.0, "mode 3 added peak gain (0 = off)"),
+            p("path_gain", "-", 1.0, 0.01, 10.0, "broadband gain of the path from bearing to sensor (1 = none)"),
         ],
     },
     EffectInfo {
@@ -238,6 +239,7 @@ impl Effects {
                 self.transfer_path =
                     Some(transfer_path::Params::new_checked(transfer_path::Params {
                         modes: [mode(0), mode(1), mode(2)],
+                        path_gain: v(values, 9),
                     })?)
             }
             "speed-fluctuation" => {

@@ -9,6 +9,11 @@
 //! (bandwidth `2ζ_i f_i`), discretised by the bilinear transform with the centre
 //! frequency pre-warped (RBJ audio-EQ cookbook), so the peak is exactly at `f_i` with
 //! magnitude `1 + g_i`. Up to three modes; a gain of 0 switches a mode off.
+//! A broadband path gain `G` multiplies the result, `a_out = G (a + Σ g_i BP_i(a))`: the
+//! model's output is the acceleration of the bearing's outer ring, the sensor sits on a
+//! housing behind joints and mass that attenuate (or, rarely, amplify) it as a whole
+//! (transmission loss across bolted joints, Randall 2011 §2.2; McFadden & Smith 1984 for
+//! the path from outer race to transducer).
 //! Frequencies must lie in [100 Hz, fs/2.5] (fs the output rate) so that the modes stay
 //! inside the anti-alias pass band.
 
@@ -34,6 +39,8 @@ pub struct Mode {
 pub struct Params {
     /// The modes.
     pub modes: [Mode; MODES],
+    /// Broadband path gain `G` (–), in [0.01, 10]; 1 = none.
+    pub path_gain: Real,
 }
 
 const FIELDS: [[&str; 3]; MODES] = [
@@ -63,6 +70,7 @@ impl Params {
             check_range(z, m.zeta, 0.005, 0.2)?;
             check_range(g, m.gain, 0.0, 10.0)?;
         }
+        check_range("transfer-path.path_gain", p.path_gain, 0.01, 10.0)?;
         Ok(p)
     }
 
@@ -107,6 +115,7 @@ impl Resonator {
 pub struct TransferPath {
     res: [Resonator; MODES],
     active: usize,
+    gain: Real,
 }
 
 /// Filter memory (two values per mode).
@@ -152,7 +161,11 @@ impl TransferPath {
                 active += 1;
             }
         }
-        TransferPath { res, active }
+        TransferPath {
+            res,
+            active,
+            gain: p.path_gain,
+        }
     }
 
     /// Filters one internal-rate sample.
@@ -165,6 +178,6 @@ impl TransferPath {
             z.1 = -r.b0 * x - r.a2 * out;
             y += out;
         }
-        y
+        self.gain * y
     }
 }

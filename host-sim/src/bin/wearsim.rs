@@ -38,6 +38,11 @@ enum Command {
     Analyze(wearsim_host::analyze::AnalyzeArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
     CwruBenchmark(wearsim_host::cwru_benchmark::CwruBenchmarkArgs),
+    /// Diagnose the sim-to-real gap of measured records: where it lies, which candidate effect closes it, how far.
+    #[command(allow_negative_numbers = true)]
+    Gap(wearsim_host::gap::cli::GapArgs),
+    /// Twin experiments: withhold candidate effects from simulated "measurements" and check that the gap diagnosis names them.
+    GapValidate(wearsim_host::gap::validate_cli::GapValidateArgs),
     /// List the candidate effects (sim-to-real) with their parameters, units, defaults and bounds.
     Effects {
         /// Machine-readable output.
@@ -78,6 +83,8 @@ fn main() -> ExitCode {
         Command::Life(a) => wearsim_host::life::cli::life_cmd(&a),
         Command::ImsCompare(a) => wearsim_host::life::cli::ims_compare_cmd(&a),
         Command::Presets { json } => presets_cmd(json),
+        Command::Gap(a) => wearsim_host::gap::cli::run(&a),
+        Command::GapValidate(a) => wearsim_host::gap::validate_cli::run(&a),
         Command::Effects { json } => {
             if json {
                 println!(

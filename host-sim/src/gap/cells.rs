@@ -68,26 +68,37 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
         },
     )?;
     let zones = ZoneBands::new(&spec.ff, spec.resonance_hz, fs)?;
-    for (name, band) in [
-        ("rotating", zones.rotating),
-        ("fault", zones.fault),
-        ("natural", zones.natural),
-        ("high", zones.high),
+    // The natural-frequency zone of the cells spans every structural resonance band between
+    // the fault zone and the high zone (the thesis's zone is the model's one resonance ±30 %;
+    // a measured record's housing modes lie anywhere above the fault zone, and a mode in a
+    // gap between zones would be invisible to every zone cell).
+    let natural = (zones.fault.1.min(zones.natural.0), zones.natural.1);
+    // Shape resolution: 1/3 octave in the rotating and fault zones (few PSD bins per band
+    // at low frequency), 1/6 octave in the natural and high zones (a mode of 5 % damping is
+    // about 1/7 octave wide).
+    for (name, band, per_octave) in [
+        ("rotating", zones.rotating, 3.0),
+        ("fault", zones.fault, 3.0),
+        ("natural", natural, 6.0),
+        ("high", zones.high, 6.0),
     ] {
         let level = analysis::zones::band_rms(&psd, band);
         push(&mut v, format!("zone:{name}"), "zone", "dB", db(level));
-        // Third-octave bands inside the zone, relative to the zone level.
+        // Fractional-octave bands inside the zone, relative to the zone level.
+        let step = 2f64.powf(1.0 / per_octave);
         let mut f = band.0.max(psd.df * 2.0);
         let mut k = 0;
-        while f * 2f64.powf(1.0 / 3.0) <= band.1 && k < 12 {
-            let hi = f * 2f64.powf(1.0 / 3.0);
+        while f * step <= band.1 && k < 40 {
+            let hi = f * step;
             let b = analysis::zones::band_rms(&psd, (f, hi));
             push(
                 &mut v,
                 format!("shape:{name}:{k}"),
                 "shape",
                 "dB",
-                db(b) - db(level),
+                // Bands more than 80 dB below the zone level are empty on any record
+                // (numerical floor, not signal): clamped so they cannot carry a gap.
+                (db(b) - db(level)).max(-80.0),
             );
             f = hi;
             k += 1;
@@ -122,14 +133,20 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
         levels.push(p.map(|p| db(p.value)).unwrap_or(-240.0));
         push(&mut v, format!("env:h{h}"), "env", "dB", pof);
     }
-    let h1 = levels.first().copied().unwrap_or(-240.0);
+    // Sidebands: the largest envelope value within ±1.5 bins of f1 ± Δ (always defined,
+    // unlike a local-maximum search that returns nothing for a missing sideband), mean of
+    // both sides in dB relative to the largest value within ±1.5 bins of f1.
+    let window_max = |f: f64| -> f64 {
+        let k0 = env.bin_of((f - 1.5 * env.df).max(0.0));
+        let k1 = env.bin_of(f + 1.5 * env.df);
+        (k0..=k1)
+            .filter_map(|k| env.values.get(k).copied())
+            .fold(0.0, f64::max)
+    };
+    let h1 = db(window_max(f1));
     for (name, df) in [("1x", spec.ff.shaft_hz), ("ftf", spec.ff.ftf)] {
-        let lo = analysis::peak_near(&env, f1 - df, env.df * 1.5)
-            .map(|p| db(p.value))
-            .unwrap_or(-240.0);
-        let hi = analysis::peak_near(&env, f1 + df, env.df * 1.5)
-            .map(|p| db(p.value))
-            .unwrap_or(-240.0);
+        let lo = db(window_max(f1 - df));
+        let hi = db(window_max(f1 + df));
         push(
             &mut v,
             format!("env:sideband-{name}"),

@@ -4,7 +4,16 @@
 //! the measurement's variability. This module answers "where"; the attribution to
 //! candidate effects ("which", "how far") builds on it.
 
+pub mod attribute;
 pub mod cells;
+pub mod cli;
+pub mod fit;
+pub mod matched;
+pub mod records;
+pub mod report;
+pub mod space;
+pub mod validate;
+pub mod validate_cli;
 
 pub use cells::{cells, CellSpec, CellValue};
 
@@ -69,42 +78,157 @@ pub fn segment_cells(x: &[f64], spec: &CellSpec) -> Result<Vec<Vec<CellValue>>, 
         .collect()
 }
 
+/// The measured side of a gap, computed once: each cell's mean and (floored) spread over
+/// the measured record's segments. Fits compare many simulations against one reference.
+#[derive(Debug, Clone)]
+pub struct Reference {
+    /// Cell names, groups and units, in cell order.
+    pub names: Vec<(String, &'static str, &'static str)>,
+    /// Mean of each cell over the measured segments.
+    pub mean: Vec<f64>,
+    /// Floored standard deviation of each cell across the measured segments.
+    pub spread: Vec<f64>,
+    /// Weight of each cell in the total gap: `1/√(G·n_g)` for a cell of a group with
+    /// `n_g` cells among `G` groups, so that every group counts equally (Σ w² = 1).
+    pub weight: Vec<f64>,
+    /// The spec the cells were computed with.
+    pub spec: CellSpec,
+}
+
+impl Reference {
+    /// Cells of the measured record `real`, split into [`SEGMENTS`] segments.
+    pub fn new(real: &[f64], spec: &CellSpec) -> Result<Self, AnalysisError> {
+        let r = segment_cells(real, spec)?;
+        let Some(first) = r.first() else {
+            return Err(AnalysisError::Empty);
+        };
+        let mut names = vec![];
+        let mut mean = vec![];
+        let mut spread = vec![];
+        for (i, c) in first.iter().enumerate() {
+            let rv: Vec<f64> = r
+                .iter()
+                .filter_map(|seg| seg.get(i).map(|c| c.value))
+                .collect();
+            let (m, s) = mean_std(&rv);
+            names.push((c.name.clone(), c.group, c.unit));
+            mean.push(m);
+            spread.push(s.max(spread_floor(c.unit)));
+        }
+        let weight = group_weights(&names);
+        Ok(Reference {
+            names,
+            mean,
+            spread,
+            weight,
+            spec: spec.clone(),
+        })
+    }
+
+    /// Mean cell values of simulated record `sim` over its segments.
+    pub fn sim_means(&self, sim: &[f64]) -> Result<Vec<f64>, AnalysisError> {
+        let s = segment_cells(sim, &self.spec)?;
+        Ok((0..self.mean.len())
+            .map(|i| {
+                let v: Vec<f64> = s
+                    .iter()
+                    .filter_map(|seg| seg.get(i).map(|c| c.value))
+                    .collect();
+                mean_std(&v).0
+            })
+            .collect())
+    }
+
+    /// Normalised gaps `(sim − real)/spread` of simulated cell means `sim`, in cell order.
+    pub fn residuals(&self, sim: &[f64]) -> Vec<f64> {
+        sim.iter()
+            .zip(&self.mean)
+            .zip(&self.spread)
+            .map(|((s, r), d)| (s - r) / d)
+            .collect()
+    }
+
+    /// Weighted gaps `w·(sim − real)/spread` (their root sum of squares is the total gap).
+    pub fn weighted(&self, sim: &[f64]) -> Vec<f64> {
+        self.residuals(sim)
+            .iter()
+            .zip(&self.weight)
+            .map(|(r, w)| r * w)
+            .collect()
+    }
+
+    /// The full report for simulated cell means `sim`.
+    pub fn report(&self, sim: &[f64]) -> GapReport {
+        let gaps = self.residuals(sim);
+        let mut out: Vec<CellGap> = self
+            .names
+            .iter()
+            .zip(sim)
+            .zip(&self.mean)
+            .zip(&self.spread)
+            .zip(&gaps)
+            .map(|((((n, s), r), d), g)| CellGap {
+                name: n.0.clone(),
+                group: n.1.to_string(),
+                unit: n.2.to_string(),
+                sim: *s,
+                real: *r,
+                spread: *d,
+                gap: *g,
+            })
+            .collect();
+        let total = total_weighted(&self.weighted(sim));
+        out.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
+        GapReport {
+            cells: out,
+            total,
+            segments: SEGMENTS,
+        }
+    }
+}
+
+/// Root mean square of a set of cell gaps (used for subsets such as "where" cells).
+pub fn total_gap(gaps: &[f64]) -> f64 {
+    (gaps.iter().map(|g| g * g).sum::<f64>() / gaps.len().max(1) as f64).sqrt()
+}
+
+/// The total gap (sim-to-real.md: "one documented aggregate"): the root mean square of the
+/// cell gaps within each group (zone levels, zone shapes, statistics, envelope cells),
+/// averaged over the groups, i.e. `√(Σ (w·gap)²)` with [`Reference::weight`]; for several
+/// records, `weighted` holds all their weighted gaps and the result is the root mean
+/// square over records. 1 means the simulation is, on average, one measured
+/// segment-to-segment standard deviation away from the measurement; every group counts
+/// equally however many cells it has (the 1/3-octave shape has far more cells than the
+/// statistics).
+pub fn total_weighted(weighted: &[f64]) -> f64 {
+    weighted.iter().map(|g| g * g).sum::<f64>().sqrt()
+}
+
+fn group_weights(names: &[(String, &'static str, &'static str)]) -> Vec<f64> {
+    let mut groups: Vec<(&str, usize)> = vec![];
+    for (_, g, _) in names {
+        match groups.iter_mut().find(|(n, _)| n == g) {
+            Some((_, c)) => *c += 1,
+            None => groups.push((g, 1)),
+        }
+    }
+    let ng = groups.len().max(1) as f64;
+    names
+        .iter()
+        .map(|(_, g, _)| {
+            let n = groups
+                .iter()
+                .find(|(x, _)| x == g)
+                .map_or(1, |(_, c)| *c) as f64;
+            1.0 / (ng * n).sqrt()
+        })
+        .collect()
+}
+
 /// The gap of simulated record `sim` against measured record `real`, both at the spec's
 /// sample rate and kinematics.
 pub fn gap(sim: &[f64], real: &[f64], spec: &CellSpec) -> Result<GapReport, AnalysisError> {
-    let s = segment_cells(sim, spec)?;
-    let r = segment_cells(real, spec)?;
-    let Some(first) = r.first() else {
-        return Err(AnalysisError::Empty);
-    };
-    let mut out = vec![];
-    for (i, c) in first.iter().enumerate() {
-        let rv: Vec<f64> = r
-            .iter()
-            .filter_map(|seg| seg.get(i).map(|c| c.value))
-            .collect();
-        let sv: Vec<f64> = s
-            .iter()
-            .filter_map(|seg| seg.get(i).map(|c| c.value))
-            .collect();
-        let (rm, rs) = mean_std(&rv);
-        let (sm, _) = mean_std(&sv);
-        let spread = rs.max(spread_floor(c.unit));
-        out.push(CellGap {
-            name: c.name.clone(),
-            group: c.group.to_string(),
-            unit: c.unit.to_string(),
-            sim: sm,
-            real: rm,
-            spread,
-            gap: (sm - rm) / spread,
-        });
-    }
-    let total = (out.iter().map(|c| c.gap * c.gap).sum::<f64>() / out.len().max(1) as f64).sqrt();
-    out.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
-    Ok(GapReport {
-        cells: out,
-        total,
-        segments: SEGMENTS,
-    })
+    let r = Reference::new(real, spec)?;
+    let s = r.sim_means(sim)?;
+    Ok(r.report(&s))
 }

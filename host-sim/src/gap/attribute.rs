@@ -1,0 +1,303 @@
+//! Attribution (sim-to-real.md, "Which" and "How far"): every candidate effect alone is
+//! fitted on the training records and judged on the held-out ones; the effects are ranked
+//! by the held-out shrink of the total gap; then effects are added greedily, each refitted
+//! on top of those already added, while each still shrinks the held-out gap by at least
+//! [`Options::min_shrink`]. Every conclusion that the numbers do not support is reported
+//! as a finding instead of a ranking with false confidence.
+
+use super::fit::{fit, Fit, FittedParam};
+use super::matched::{Evaluator, Gaps, Matched};
+use super::space::FitSpace;
+use super::total_gap;
+use serde::Serialize;
+use std::time::Instant;
+use wearsim_core::effects::Effects;
+
+/// Attribution settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Options {
+    /// Smallest relative shrink of the held-out total gap for an effect to count (and to
+    /// be added by the greedy step).
+    pub min_shrink: f64,
+    /// Most effects the greedy step adds.
+    pub max_effects: usize,
+    /// Candidates refitted at each greedy step after the first (the best by single shrink).
+    pub greedy_candidates: usize,
+    /// Two effects whose single shrinks differ by less than this are reported as not told
+    /// apart by the cells.
+    pub tie: f64,
+    /// A held-out baseline gap below this is within the measurement's own variability.
+    pub significant_gap: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            min_shrink: 0.05,
+            max_effects: 4,
+            greedy_candidates: usize::MAX,
+            tie: 0.02,
+            significant_gap: 1.5,
+        }
+    }
+}
+
+/// One effect alone on top of the baseline.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// Effect name.
+    pub effect: String,
+    /// Fitted parameters with uncertainty.
+    pub params: Vec<FittedParam>,
+    /// Total gap on the training records with the effect.
+    pub train_gap: f64,
+    /// Total gap on the held-out records with the effect.
+    pub holdout_gap: f64,
+    /// `1 − holdout_gap / baseline held-out gap` (negative: the effect makes it worse).
+    pub shrink: f64,
+    /// The same shrink over the cells where the baseline's held-out gap lies (its
+    /// [`WHERE_CELLS`] largest cells).
+    pub where_shrink: f64,
+    /// The fit converged.
+    pub converged: bool,
+    /// Objective evaluations of the fit.
+    pub evaluations: usize,
+}
+
+/// One greedy step.
+#[derive(Debug, Clone, Serialize)]
+pub struct Step {
+    /// Effect added.
+    pub effect: String,
+    /// Its parameters, fitted on top of the effects added before.
+    pub params: Vec<FittedParam>,
+    /// Held-out total gap before the step.
+    pub before: f64,
+    /// Held-out total gap after the step.
+    pub after: f64,
+    /// `1 − after/before`.
+    pub shrink: f64,
+}
+
+/// The answer to "which" and "how far".
+#[derive(Debug, Clone, Serialize)]
+pub struct Attribution {
+    /// Baseline total gap on the training records.
+    pub baseline_train: f64,
+    /// Baseline total gap on the held-out records.
+    pub baseline_holdout: f64,
+    /// Effects ranked by held-out shrink, best first.
+    pub ranking: Vec<Ranked>,
+    /// Effects added greedily, in order.
+    pub greedy: Vec<Step>,
+    /// Held-out total gap after the greedy additions.
+    pub final_holdout: f64,
+    /// The effect the diagnosis names first, if any effect shrinks the gap meaningfully.
+    pub identified: Option<String>,
+    /// Effects whose shrink ties with the first one (not told apart by the cells).
+    pub tied_with: Vec<String>,
+    /// Conclusions and limits in words (what could not be determined, and why).
+    pub findings: Vec<String>,
+    /// Simulations run.
+    pub simulations: usize,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+    /// The effects switched on at the end.
+    #[serde(skip)]
+    pub final_effects: Effects,
+    /// Held-out cell gaps of the baseline.
+    #[serde(skip)]
+    pub holdout_before: Gaps,
+    /// Held-out cell gaps at the end.
+    #[serde(skip)]
+    pub holdout_after: Gaps,
+}
+
+/// Cells that define "where the gap lies" for [`Ranked::where_shrink`].
+pub const WHERE_CELLS: usize = 5;
+
+fn where_indices(r: &[f64]) -> Vec<usize> {
+    let mut idx: Vec<usize> = (0..r.len()).collect();
+    idx.sort_by(|a, b| {
+        let x = r.get(*a).copied().unwrap_or(0.0).abs();
+        let y = r.get(*b).copied().unwrap_or(0.0).abs();
+        y.total_cmp(&x)
+    });
+    idx.truncate(WHERE_CELLS);
+    idx
+}
+
+fn sub(r: &[f64], idx: &[usize]) -> Vec<f64> {
+    idx.iter().filter_map(|i| r.get(*i).copied()).collect()
+}
+
+/// Attributes the gap of `holdout` (after fitting on `train`) to the effects of `spaces`,
+/// on top of the baseline effects `base`.
+pub fn attribute(
+    spaces: &[FitSpace],
+    base: &Effects,
+    train: &[Matched],
+    holdout: &[Matched],
+    ev: &Evaluator,
+    opt: &Options,
+) -> Result<Attribution, String> {
+    let t0 = Instant::now();
+    let sims0 = ev.sims();
+    let train0 = ev.residuals(train, base)?.total();
+    let hold_r0 = ev.residuals(holdout, base)?;
+    let hold0 = hold_r0.total();
+    let widx = where_indices(&hold_r0.gaps);
+    let where0 = total_gap(&sub(&hold_r0.gaps, &widx));
+    let mut findings = vec![];
+
+    // Each effect alone.
+    let mut ranking = vec![];
+    let mut fits: Vec<(Fit, &FitSpace)> = vec![];
+    for s in spaces {
+        let f = fit(s, base, train, ev);
+        let fx = f.effects(s, base);
+        let r = ev.residuals(holdout, &fx).unwrap_or_default();
+        let g = if r.records == 0 {
+            f64::INFINITY
+        } else {
+            r.total()
+        };
+        let wg = total_gap(&sub(&r.gaps, &widx));
+        ranking.push(Ranked {
+            effect: s.effect.to_string(),
+            params: f.params.clone(),
+            train_gap: f.train_gap,
+            holdout_gap: g,
+            shrink: 1.0 - g / hold0,
+            where_shrink: 1.0 - wg / where0,
+            converged: f.converged,
+            evaluations: f.evaluations,
+        });
+        fits.push((f, s));
+    }
+    ranking.sort_by(|a, b| b.shrink.total_cmp(&a.shrink));
+
+    for r in &ranking {
+        if !r.converged {
+            findings.push(format!(
+                "the fit of `{}` did not converge within its budget; its parameters are the best found, not an optimum",
+                r.effect
+            ));
+        }
+        if r.train_gap < (1.0 - opt.min_shrink) * train0 && r.shrink < 0.0 {
+            findings.push(format!("`{}` fits the training records but not the held-out ones", r.effect));
+        }
+        for p in &r.params {
+            if p.at_bound && r.shrink >= opt.min_shrink {
+                findings.push(format!(
+                    "`{}`: {} = {:.4} sits on the edge of its fitted range; the effect may need more than the range allows",
+                    r.effect, p.name, p.value
+                ));
+            }
+        }
+    }
+    if hold0 < opt.significant_gap {
+        findings.push(format!(
+            "the baseline's held-out total gap ({hold0:.2}) is within the measurement's own segment-to-segment variability (< {:.1}): no effect is needed, and the ranking is not evidence for any",
+            opt.significant_gap
+        ));
+    }
+    let best = ranking.first().filter(|r| r.shrink >= opt.min_shrink);
+    let identified = best.map(|r| r.effect.clone());
+    let tied_with: Vec<String> = match best {
+        Some(b) => ranking
+            .iter()
+            .skip(1)
+            .filter(|r| b.shrink - r.shrink < opt.tie)
+            .map(|r| r.effect.clone())
+            .collect(),
+        None => vec![],
+    };
+    if best.is_none() {
+        findings.push(format!(
+            "no candidate effect shrinks the held-out gap by {:.0} % or more: the gap is not explained by the effect library",
+            100.0 * opt.min_shrink
+        ));
+    }
+    if let (Some(b), false) = (best, tied_with.is_empty()) {
+        findings.push(format!(
+            "`{}` and {} shrink the held-out gap by the same amount (within {:.0} %): the cells cannot tell them apart on these records",
+            b.effect,
+            tied_with.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", "),
+            100.0 * opt.tie
+        ));
+    }
+
+    // Greedy addition.
+    let mut current = *base;
+    let mut cur = hold0;
+    let mut cur_r = hold_r0.clone();
+    let mut greedy = vec![];
+    let mut used: Vec<String> = vec![];
+    if let Some(b) = best {
+        if let Some((f, s)) = fits.iter().find(|(f, _)| f.effect == b.effect) {
+            current = f.effects(s, &current);
+            cur_r = ev.residuals(holdout, &current)?;
+            greedy.push(Step {
+                effect: b.effect.clone(),
+                params: f.params.clone(),
+                before: cur,
+                after: b.holdout_gap,
+                shrink: b.shrink,
+            });
+            cur = b.holdout_gap;
+            used.push(b.effect.clone());
+        }
+    }
+    while !used.is_empty() && greedy.len() < opt.max_effects {
+        let cands: Vec<&FitSpace> = ranking
+            .iter()
+            .filter(|r| !used.contains(&r.effect))
+            .take(opt.greedy_candidates)
+            .filter_map(|r| spaces.iter().find(|s| s.effect == r.effect))
+            .collect();
+        let mut best_step: Option<(Fit, &FitSpace, f64, Effects, Gaps)> = None;
+        for s in cands {
+            let f = fit(s, &current, train, ev);
+            let fx = f.effects(s, &current);
+            let Ok(r) = ev.residuals(holdout, &fx) else {
+                continue;
+            };
+            let g = r.total();
+            if best_step.as_ref().is_none_or(|b| g < b.2) {
+                best_step = Some((f, s, g, fx, r));
+            }
+        }
+        match best_step {
+            Some((f, s, g, fx, r)) if 1.0 - g / cur >= opt.min_shrink => {
+                greedy.push(Step {
+                    effect: s.effect.to_string(),
+                    params: f.params.clone(),
+                    before: cur,
+                    after: g,
+                    shrink: 1.0 - g / cur,
+                });
+                used.push(s.effect.to_string());
+                current = fx;
+                cur = g;
+                cur_r = r;
+            }
+            _ => break,
+        }
+    }
+    Ok(Attribution {
+        baseline_train: train0,
+        baseline_holdout: hold0,
+        ranking,
+        greedy,
+        final_holdout: cur,
+        identified,
+        tied_with,
+        findings,
+        simulations: ev.sims() - sims0,
+        seconds: t0.elapsed().as_secs_f64(),
+        final_effects: current,
+        holdout_before: hold_r0,
+        holdout_after: cur_r,
+    })
+}

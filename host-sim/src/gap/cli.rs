@@ -1,0 +1,403 @@
+//! `wearsim gap`: arguments, training/held-out selection, the attribution run, and the
+//! report (Markdown, JSON, plots) answering where / which / how far.
+
+use super::attribute::{attribute, Attribution, Options};
+use super::matched::{Evaluator, Matched};
+use super::records::{self, Overrides, RealRecord, MIN_PART_S};
+use super::space;
+use crate::cli::CliError;
+use clap::Args;
+use serde::Serialize;
+use std::path::PathBuf;
+use wearsim_core::effects::Effects;
+
+/// `wearsim gap` arguments.
+#[derive(Debug, Clone, Args)]
+pub struct GapArgs {
+    /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
+    #[arg(long = "real", required = true, num_args = 1..)]
+    pub real: Vec<PathBuf>,
+    /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
+    #[arg(long)]
+    pub bearing: Option<String>,
+    /// Shaft speed (rpm) of every record (default: from the file, else the spectrum).
+    #[arg(long)]
+    pub rpm: Option<f64>,
+    /// Defect of every record: LOCATION:SIZE[:DEPTH] with LOCATION none, inner, outer,
+    /// outer@3, outer@6, outer@12, ball and sizes with `in` or `mm` (default: the file's
+    /// label; depth 0.011 in).
+    #[arg(long)]
+    pub defect: Option<String>,
+    /// Training records: comma-separated 1-based positions in --real or substrings of
+    /// their file names (default: one record → its first part; several → the first).
+    #[arg(long)]
+    pub train: Option<String>,
+    /// Held-out records (same syntax; default: one record → its second part; several →
+    /// all but the training ones).
+    #[arg(long)]
+    pub holdout: Option<String>,
+    /// Seconds of each record (or record part) analysed, 0.5..=30.
+    #[arg(long, default_value_t = 2.0)]
+    pub seconds: f64,
+    /// Candidate effects to try, comma-separated (default: all that act on the records).
+    #[arg(long, value_delimiter = ',')]
+    pub effects: Vec<String>,
+    /// Channel (CWRU: DE, FE, BA).
+    #[arg(long)]
+    pub channel: Option<String>,
+    /// Sample rate (Hz), overriding the file.
+    #[arg(long)]
+    pub fs: Option<f64>,
+    /// Mains frequency (Hz) of the hum candidate, 40..=70.
+    #[arg(long, default_value_t = 60.0)]
+    pub mains: f64,
+    /// Seed of the matched simulations.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Worker threads (default: all cores; 1 for the one-core benchmark).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Output directory.
+    #[arg(long, default_value = "wearsim-gap")]
+    pub out: PathBuf,
+    /// Machine-readable report on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// A cell of "where", aggregated over the held-out records.
+#[derive(Debug, Clone, Serialize)]
+pub struct WhereCell {
+    /// Cell name.
+    pub cell: String,
+    /// Group.
+    pub group: String,
+    /// Unit.
+    pub unit: String,
+    /// Simulated value (mean over held-out records).
+    pub sim: f64,
+    /// Measured value (mean over held-out records).
+    pub real: f64,
+    /// Measured spread (mean over held-out records).
+    pub spread: f64,
+    /// Gap of the baseline (mean over held-out records).
+    pub gap: f64,
+    /// Gap with the greedily added effects.
+    pub gap_after: f64,
+}
+
+/// The whole `gap` report.
+#[derive(Debug, Clone, Serialize)]
+pub struct GapOutput {
+    /// Records and their roles.
+    pub records: Vec<RecordRole>,
+    /// Cells ranked by |baseline gap| (where).
+    #[serde(rename = "where")]
+    pub where_: Vec<WhereCell>,
+    /// Effects ranked by held-out shrink (which).
+    pub ranking: Vec<super::attribute::Ranked>,
+    /// Effects added greedily (how far).
+    pub greedy: Vec<super::attribute::Step>,
+    /// Totals before and after.
+    pub totals: Totals,
+    /// The effect named first, if any.
+    pub identified: Option<String>,
+    /// Effects tied with it.
+    pub tied_with: Vec<String>,
+    /// Findings and limits in words.
+    pub findings: Vec<String>,
+    /// Simulations run and wall-clock time of the attribution (s).
+    pub simulations: usize,
+    /// Wall-clock time of the attribution (s).
+    pub seconds: f64,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+/// Total gaps.
+#[derive(Debug, Clone, Serialize)]
+pub struct Totals {
+    /// Baseline, training records.
+    pub train_before: f64,
+    /// Baseline, held-out records.
+    pub before: f64,
+    /// Held-out after the greedy additions.
+    pub after: f64,
+    /// `1 − after/before`.
+    pub shrink: f64,
+}
+
+/// A record in the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct RecordRole {
+    /// `train` or `holdout`.
+    pub role: String,
+    /// Part label.
+    pub part: String,
+    /// Resolved metadata.
+    pub meta: RealRecord,
+}
+
+fn select(spec: &str, recs: &[RealRecord]) -> Result<Vec<usize>, String> {
+    let mut out = vec![];
+    for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        if let Ok(i) = item.parse::<usize>() {
+            if i == 0 || i > recs.len() {
+                return Err(format!(
+                    "record position {i} is out of range 1..={}",
+                    recs.len()
+                ));
+            }
+            out.push(i - 1);
+            continue;
+        }
+        let hits: Vec<usize> = recs
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| {
+                r.file
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy().contains(item))
+            })
+            .map(|(i, _)| i)
+            .collect();
+        if hits.is_empty() {
+            return Err(format!("`{item}` matches no --real file name"));
+        }
+        out.extend(hits);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Ok(out)
+}
+
+impl GapArgs {
+    fn check(&self) -> Result<(), CliError> {
+        if !(self.seconds.is_finite() && (MIN_PART_S..=30.0).contains(&self.seconds)) {
+            return Err(CliError::input(format!(
+                "--seconds {} is out of range {MIN_PART_S}..=30",
+                self.seconds
+            )));
+        }
+        if !(self.mains.is_finite() && (40.0..=70.0).contains(&self.mains)) {
+            return Err(CliError::input(format!(
+                "--mains {} Hz is out of range 40..=70",
+                self.mains
+            )));
+        }
+        if self.jobs == Some(0) {
+            return Err(CliError::input("--jobs 0: give at least 1"));
+        }
+        for e in &self.effects {
+            if wearsim_core::effects::info(e).is_none() {
+                return Err(CliError::input(format!(
+                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Loads the records and builds the training and held-out matched parts.
+pub fn prepare(a: &GapArgs) -> Result<(Vec<RecordRole>, Vec<Matched>, Vec<Matched>), CliError> {
+    a.check()?;
+    let defect = match &a.defect {
+        Some(d) => Some(records::parse_defect(d).map_err(CliError::input)?),
+        None => None,
+    };
+    let o = Overrides {
+        bearing: a.bearing.clone(),
+        rpm: a.rpm,
+        defect,
+        channel: a.channel.clone(),
+        fs: a.fs,
+    };
+    let recs: Vec<RealRecord> = a
+        .real
+        .iter()
+        .map(|p| records::load(p, &o))
+        .collect::<Result<_, _>>()
+        .map_err(CliError::input)?;
+    let mut roles = vec![];
+    let (mut train, mut hold) = (vec![], vec![]);
+    if recs.len() == 1 && a.train.is_none() && a.holdout.is_none() {
+        let Some(r) = recs.first() else {
+            return Err(CliError::input("--real: no file"));
+        };
+        let half = r.accel.len() / 2;
+        let len = half.min((a.seconds * r.fs).round() as usize);
+        for (start, tag, set) in [(0, "train", &mut train), (half, "holdout", &mut hold)] {
+            let m = records::part(r, start, len, a.seed + start as u64, tag).map_err(CliError::input)?;
+            roles.push(RecordRole {
+                role: tag.into(),
+                part: m.label.clone(),
+                meta: r.clone(),
+            });
+            set.push(m);
+        }
+    } else {
+        let ti = match &a.train {
+            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--train: {e}")))?,
+            None => vec![0],
+        };
+        let hi = match &a.holdout {
+            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--holdout: {e}")))?,
+            None => (0..recs.len()).filter(|i| !ti.contains(i)).collect(),
+        };
+        if let Some(i) = ti.iter().find(|i| hi.contains(i)) {
+            return Err(CliError::input(format!(
+                "--train and --holdout both hold {}: a held-out record must not be fitted on",
+                recs.get(*i).map_or_else(String::new, |r| r.file.display().to_string())
+            )));
+        }
+        if ti.is_empty() || hi.is_empty() {
+            return Err(CliError::input(
+                "--train/--holdout: give at least one training and one held-out record",
+            ));
+        }
+        for (idx, tag) in [(&ti, "train"), (&hi, "holdout")] {
+            for (k, i) in idx.iter().enumerate() {
+                let Some(r) = recs.get(*i) else { continue };
+                let len = r.accel.len().min((a.seconds * r.fs).round() as usize);
+                let m = records::part(r, 0, len, a.seed + 1000 * k as u64 + 7 * *i as u64, tag)
+                    .map_err(CliError::input)?;
+                roles.push(RecordRole {
+                    role: tag.into(),
+                    part: m.label.clone(),
+                    meta: r.clone(),
+                });
+                if tag == "train" {
+                    train.push(m);
+                } else {
+                    hold.push(m);
+                }
+            }
+        }
+    }
+    Ok((roles, train, hold))
+}
+
+fn rms(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
+}
+
+/// Runs the attribution on prepared records.
+pub fn diagnose(
+    a: &GapArgs,
+    train: &[Matched],
+    hold: &[Matched],
+    recs: &[RecordRole],
+) -> Result<Attribution, CliError> {
+    let first = train
+        .first()
+        .ok_or_else(|| CliError::input("no training record"))?;
+    let level = recs
+        .iter()
+        .find(|r| r.role == "train")
+        .map_or(1.0, |r| rms(&r.meta.accel));
+    let ctx = space::context(first.spec(), level, a.mains);
+    let has_defect = train.iter().chain(hold).any(|m| m.base.defect.is_some());
+    let only = (!a.effects.is_empty()).then_some(a.effects.as_slice());
+    let spaces = space::applicable(&ctx, has_defect, only);
+    if spaces.is_empty() {
+        return Err(CliError::input(
+            "--effects: none of the chosen effects acts on these records (slip, load-zone and edge-shape need a defect)",
+        ));
+    }
+    let ev = Evaluator::new(
+        a.jobs
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+    );
+    attribute(&spaces, &Effects::NONE, train, hold, &ev, &Options::default())
+        .map_err(CliError::run)
+}
+
+/// "Where", aggregated over the held-out records.
+pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
+    let Some(first) = hold.first() else {
+        return vec![];
+    };
+    let n = first.reference.names.len();
+    let mut out: Vec<WhereCell> = (0..n)
+        .filter_map(|i| {
+            let (name, group, unit) = first.reference.names.get(i)?;
+            let mut acc = (0.0, 0.0, 0.0, 0.0, 0.0, 0usize);
+            for (k, m) in hold.iter().enumerate() {
+                let j = k * n + i;
+                let (Some(g0), Some(g1), Some(r), Some(s)) = (
+                    at.holdout_before.gaps.get(j),
+                    at.holdout_after.gaps.get(j),
+                    m.reference.mean.get(i),
+                    m.reference.spread.get(i),
+                ) else {
+                    continue;
+                };
+                acc.0 += r + g0 * s;
+                acc.1 += r;
+                acc.2 += s;
+                acc.3 += g0;
+                acc.4 += g1;
+                acc.5 += 1;
+            }
+            let c = acc.5.max(1) as f64;
+            Some(WhereCell {
+                cell: name.clone(),
+                group: group.to_string(),
+                unit: unit.to_string(),
+                sim: acc.0 / c,
+                real: acc.1 / c,
+                spread: acc.2 / c,
+                gap: acc.3 / c,
+                gap_after: acc.4 / c,
+            })
+        })
+        .collect();
+    out.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
+    out
+}
+
+/// `wearsim gap`.
+pub fn run(a: &GapArgs) -> Result<(), CliError> {
+    let (roles, train, hold) = prepare(a)?;
+    let at = diagnose(a, &train, &hold, &roles)?;
+    let mut findings: Vec<String> = roles
+        .iter()
+        .flat_map(|r| {
+            r.meta
+                .warnings
+                .iter()
+                .map(move |w| format!("{}: {w}", r.part))
+        })
+        .collect();
+    findings.dedup();
+    findings.extend(at.findings.iter().cloned());
+    let mut out = GapOutput {
+        records: roles,
+        where_: where_cells(&hold, &at),
+        ranking: at.ranking.clone(),
+        greedy: at.greedy.clone(),
+        totals: Totals {
+            train_before: at.baseline_train,
+            before: at.baseline_holdout,
+            after: at.final_holdout,
+            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
+        },
+        identified: at.identified.clone(),
+        tied_with: at.tied_with.clone(),
+        findings,
+        simulations: at.simulations,
+        seconds: at.seconds,
+        files: vec![],
+    };
+    out.files = super::report::write(&a.out, &out, &hold, &at)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::run)?
+        );
+    } else {
+        print!("{}", super::report::markdown(&out));
+    }
+    Ok(())
+}

@@ -1,0 +1,335 @@
+//! Fitting one candidate effect's parameters on training records (sim-to-real.md, "Which"):
+//! minimise the training total gap over the effect's fit space by a coarse grid followed
+//! by a pattern search, then estimate the parameters' uncertainty from the local
+//! sensitivity of the cell gaps (nonlinear least squares: `cov = s² (JᵀJ)⁻¹`, `J` the
+//! Jacobian of the cell gaps by finite differences, `s²` the residual variance per degree
+//! of freedom, at least the variance `2/K` of a gap between two `K`-segment means).
+//!
+//! The simulation seed is the same for every evaluation of a fit (common random numbers),
+//! so the objective is a deterministic function of the parameters and the search does not
+//! chase realisation noise.
+
+use super::matched::{merge, Evaluator, Matched};
+use super::space::FitSpace;
+use super::SEGMENTS;
+use serde::Serialize;
+use wearsim_core::effects::Effects;
+
+/// Pattern-search step below which a fit counts as converged (normalised coordinates).
+pub const STEP_TOL: f64 = 1.0 / 64.0;
+/// Objective evaluations allowed in the pattern search after the grid.
+pub const MAX_SEARCH: usize = 40;
+
+/// One fitted parameter with its uncertainty.
+#[derive(Debug, Clone, Serialize)]
+pub struct FittedParam {
+    /// Catalogue name.
+    pub name: String,
+    /// Fitted value (catalogue unit).
+    pub value: f64,
+    /// One standard deviation (catalogue unit, linearised); `null` when the cells do not
+    /// constrain the parameter (singular sensitivity).
+    pub std: Option<f64>,
+    /// Catalogue unit.
+    pub unit: String,
+    /// The optimum lies on the edge of the fitted range.
+    pub at_bound: bool,
+}
+
+/// The result of fitting one effect.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fit {
+    /// Effect name.
+    pub effect: String,
+    /// Fitted parameters.
+    pub params: Vec<FittedParam>,
+    /// Normalised coordinates of the optimum.
+    #[serde(skip)]
+    pub coords: Vec<f64>,
+    /// Training total gap at the optimum.
+    pub train_gap: f64,
+    /// The pattern search reached its step tolerance within its budget.
+    pub converged: bool,
+    /// Objective evaluations (each simulates every training record once).
+    pub evaluations: usize,
+}
+
+impl Fit {
+    /// The effect with its fitted values added to `fx`.
+    pub fn effects(&self, space: &FitSpace, fx: &Effects) -> Effects {
+        let mut out = *fx;
+        let mut one = Effects::NONE;
+        if space.apply(&mut one, &self.coords).is_ok() {
+            merge(&mut out, &one);
+        }
+        out
+    }
+}
+
+fn with(space: &FitSpace, base: &Effects, u: &[f64]) -> Option<Effects> {
+    let mut one = Effects::NONE;
+    space.apply(&mut one, u).ok()?;
+    let mut fx = *base;
+    merge(&mut fx, &one);
+    Some(fx)
+}
+
+fn grid(p: usize) -> Vec<Vec<f64>> {
+    match p {
+        0 => vec![vec![]],
+        1 => (0..=8).map(|i| vec![i as f64 / 8.0]).collect(),
+        _ => {
+            let k = if p == 2 { 5 } else { 4 };
+            let axis: Vec<f64> = (0..k).map(|i| i as f64 / (k - 1) as f64).collect();
+            let mut out = vec![vec![]];
+            for _ in 0..p {
+                out = out
+                    .into_iter()
+                    .flat_map(|v: Vec<f64>| {
+                        axis.iter().map(move |a| {
+                            let mut w = v.clone();
+                            w.push(*a);
+                            w
+                        })
+                    })
+                    .collect();
+            }
+            out
+        }
+    }
+}
+
+/// Fits `space` on `train`, on top of the effects `base` already switched on.
+pub fn fit(space: &FitSpace, base: &Effects, train: &[Matched], ev: &Evaluator) -> Fit {
+    let p = space.fitted.len();
+    let objective = |u: &Vec<f64>| match with(space, base, u) {
+        Some(fx) => ev.total(train, &fx),
+        None => f64::INFINITY,
+    };
+    // Coarse grid.
+    let pts = grid(p);
+    let vals = ev.map(&pts, objective);
+    let mut evaluations = pts.len();
+    let (mut best_u, mut best) = pts
+        .iter()
+        .zip(&vals)
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map(|(u, v)| (u.clone(), *v))
+        .unwrap_or((vec![0.5; p], f64::INFINITY));
+    // Pattern search: poll ±step along every axis (in parallel), move to the best
+    // improvement, halve the step when none improves.
+    let mut step = if p == 1 { 1.0 / 16.0 } else { 1.0 / 8.0 };
+    let mut searched = 0;
+    while p > 0 && step >= STEP_TOL && searched < MAX_SEARCH {
+        let polls: Vec<Vec<f64>> = (0..p)
+            .flat_map(|i| {
+                [-1.0, 1.0].into_iter().filter_map({
+                    let best_u = best_u.clone();
+                    move |s| {
+                        let mut u = best_u.clone();
+                        let x = u.get(i).copied().unwrap_or(0.5) + s * step;
+                        if !(0.0..=1.0).contains(&x) {
+                            return None;
+                        }
+                        if let Some(c) = u.get_mut(i) {
+                            *c = x;
+                        }
+                        Some(u)
+                    }
+                })
+            })
+            .collect();
+        let v = ev.map(&polls, objective);
+        searched += polls.len();
+        evaluations += polls.len();
+        match polls
+            .iter()
+            .zip(&v)
+            .filter(|(_, v)| **v < best - 1e-9)
+            .min_by(|a, b| a.1.total_cmp(b.1))
+        {
+            Some((u, v)) => {
+                best_u = u.clone();
+                best = *v;
+            }
+            None => step *= 0.5,
+        }
+    }
+    let converged = p == 0 || (step < STEP_TOL && best.is_finite());
+    let (stds, extra) = uncertainty(space, base, train, ev, &best_u);
+    evaluations += extra;
+    let info = wearsim_core::effects::info(space.effect);
+    let params = space
+        .fitted
+        .iter()
+        .zip(&best_u)
+        .zip(&stds)
+        .map(|((f, u), s)| FittedParam {
+            name: f.name.to_string(),
+            value: f.value(*u),
+            std: s.map(|s| s * f.slope(*u)),
+            unit: info
+                .and_then(|i| i.params.iter().find(|q| q.name == f.name))
+                .map(|q| q.unit.to_string())
+                .unwrap_or_default(),
+            at_bound: *u <= 1e-9 || *u >= 1.0 - 1e-9,
+        })
+        .collect();
+    Fit {
+        effect: space.effect.to_string(),
+        params,
+        coords: best_u,
+        train_gap: best,
+        converged,
+        evaluations,
+    }
+}
+
+/// Standard deviation of each normalised coordinate at `u` (None: unconstrained), and the
+/// evaluations spent.
+fn uncertainty(
+    space: &FitSpace,
+    base: &Effects,
+    train: &[Matched],
+    ev: &Evaluator,
+    u: &[f64],
+) -> (Vec<Option<f64>>, usize) {
+    let p = u.len();
+    if p == 0 {
+        return (vec![], 0);
+    }
+    let h = 0.02;
+    let res = |u: &Vec<f64>| with(space, base, u).and_then(|fx| ev.residuals(train, &fx).ok());
+    let mut pts = vec![u.to_vec()];
+    for i in 0..p {
+        for s in [-h, h] {
+            let mut w = u.to_vec();
+            if let Some(c) = w.get_mut(i) {
+                *c = (*c + s).clamp(0.0, 1.0);
+            }
+            pts.push(w);
+        }
+    }
+    let r = ev.map(&pts, res);
+    let n = pts.len();
+    let Some(Some(r0)) = r.first() else {
+        return (vec![None; p], n);
+    };
+    // Jacobian columns by central (or one-sided at a bound) differences.
+    let mut jac: Vec<Vec<f64>> = vec![];
+    for i in 0..p {
+        let (Some(Some(lo)), Some(Some(hi)), Some(ulo), Some(uhi)) = (
+            r.get(1 + 2 * i),
+            r.get(2 + 2 * i),
+            pts.get(1 + 2 * i).and_then(|w| w.get(i)),
+            pts.get(2 + 2 * i).and_then(|w| w.get(i)),
+        ) else {
+            return (vec![None; p], n);
+        };
+        let du = uhi - ulo;
+        if du <= 0.0 {
+            return (vec![None; p], n);
+        }
+        jac.push(lo.gaps.iter().zip(&hi.gaps).map(|(a, b)| (b - a) / du).collect());
+    }
+    // Weighted least squares (weights W = w² of the total gap) with every cell gap of
+    // variance s² (the mean square residual, at least that of a gap between two
+    // K-segment means): cov = s² (JᵀWJ)⁻¹ (JᵀW²J) (JᵀWJ)⁻¹.
+    let m = r0.gaps.len().max(1);
+    let s2 = (r0.gaps.iter().map(|x| x * x).sum::<f64>() / m as f64).max(2.0 / SEGMENTS as f64);
+    let w2: Vec<f64> = r0.weights.iter().map(|w| w * w).collect();
+    let gram = |pow: i32| -> Vec<Vec<f64>> {
+        (0..p)
+            .map(|i| {
+                (0..p)
+                    .map(|j| match (jac.get(i), jac.get(j)) {
+                        (Some(x), Some(y)) => x
+                            .iter()
+                            .zip(y)
+                            .zip(&w2)
+                            .map(|((a, b), w)| a * b * w.powi(pow))
+                            .sum(),
+                        _ => 0.0,
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let mut a = gram(1);
+    let b = gram(2);
+    let Some(inv) = invert(&mut a) else {
+        return (vec![None; p], n);
+    };
+    let cov = mul(&mul(&inv, &b), &inv);
+    (
+        (0..p)
+            .map(|i| {
+                cov.get(i)
+                    .and_then(|row| row.get(i))
+                    .filter(|d| d.is_finite() && **d > 0.0)
+                    .map(|d| (s2 * d).sqrt())
+            })
+            .collect(),
+        n,
+    )
+}
+
+fn mul(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    a.iter()
+        .map(|row| {
+            (0..b.first().map_or(0, |r| r.len()))
+                .map(|j| {
+                    row.iter()
+                        .zip(b)
+                        .map(|(x, brow)| x * brow.get(j).copied().unwrap_or(0.0))
+                        .sum()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Inverse of a small symmetric matrix by Gauss–Jordan with partial pivoting; `None` when
+/// it is numerically singular (a parameter the cells do not see).
+fn invert(a: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
+    let n = a.len();
+    let scale = a
+        .iter()
+        .enumerate()
+        .map(|(i, r)| r.get(i).copied().unwrap_or(0.0).abs())
+        .fold(0.0, f64::max);
+    if scale <= 0.0 {
+        return None;
+    }
+    let mut inv: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect();
+    for c in 0..n {
+        let piv = (c..n).max_by(|&x, &y| {
+            let vx = a.get(x).and_then(|r| r.get(c)).copied().unwrap_or(0.0).abs();
+            let vy = a.get(y).and_then(|r| r.get(c)).copied().unwrap_or(0.0).abs();
+            vx.total_cmp(&vy)
+        })?;
+        a.swap(c, piv);
+        inv.swap(c, piv);
+        let d = a.get(c).and_then(|r| r.get(c)).copied().unwrap_or(0.0);
+        if d.abs() <= 1e-10 * scale {
+            return None;
+        }
+        let (ra, ri) = (a.get(c)?.clone(), inv.get(c)?.clone());
+        for r in 0..n {
+            let f = a.get(r).and_then(|row| row.get(c)).copied().unwrap_or(0.0) / d;
+            let (Some(row_a), Some(row_i)) = (a.get_mut(r), inv.get_mut(r)) else {
+                continue;
+            };
+            if r == c {
+                row_a.iter_mut().for_each(|x| *x /= d);
+                row_i.iter_mut().for_each(|x| *x /= d);
+            } else {
+                row_a.iter_mut().zip(&ra).for_each(|(x, y)| *x -= f * y);
+                row_i.iter_mut().zip(&ri).for_each(|(x, y)| *x -= f * y);
+            }
+        }
+    }
+    Some(inv)
+}

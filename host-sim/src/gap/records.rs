@@ -1,0 +1,361 @@
+//! Measured records for `wearsim gap`: reading the files, resolving each record's metadata
+//! (bearing, speed, defect, unit) from the file, its label and the command line, checking
+//! that metadata against the content, and building the matched simulations of the
+//! training and held-out parts.
+
+use super::matched::Matched;
+use super::validate::spec_of;
+use super::Reference;
+use crate::analysis::{self, WelchParams};
+use crate::io::{self, mat::CwruFault, ReadOptions, Record};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use wearsim_core::forces::defect::{DefectConfig, DefectLocation, DefectModel};
+use wearsim_core::speed::SpeedProfile;
+use wearsim_core::{presets, topography::Topography, ModelConfig, Real};
+
+/// Standard gravity (m/s² per g), for records in g.
+pub const G: f64 = 9.80665;
+/// Depth of a defect given without one (m): the CWRU EDM depth, 0.011 in.
+pub const DEFAULT_DEPTH: f64 = 0.011 * 0.0254;
+/// Shortest part (training or held-out) of a record the gap accepts (s): 8 segments of
+/// at least 0.0625 s, i.e. ≥ 5 periods of a 100 Hz fault frequency per segment.
+pub const MIN_PART_S: f64 = 0.5;
+
+/// A defect as the command line or a label gives it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DefectSpec {
+    /// `inner`, `outer@6`, `outer@3`, `outer@12`, `ball`.
+    pub location: &'static str,
+    /// Size along the track and across it (m).
+    pub size: f64,
+    /// Depth (m).
+    pub depth: f64,
+}
+
+/// Locations `--defect` accepts.
+pub const LOCATIONS: &str = "none, inner, outer (= outer@6), outer@3, outer@6, outer@12, ball";
+
+fn parse_len(s: &str, what: &str) -> Result<f64, String> {
+    let s = s.trim();
+    let (num, scale) = if let Some(n) = s.strip_suffix("in") {
+        (n, 0.0254)
+    } else if let Some(n) = s.strip_suffix("mm") {
+        (n, 1e-3)
+    } else {
+        return Err(format!(
+            "--defect: {what} `{s}` needs a unit: `in` or `mm` (e.g. 0.007in, 0.18mm)"
+        ));
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| format!("--defect: {what} `{s}` is not a number"))?;
+    let m = v * scale;
+    if !(m.is_finite() && (1e-6..=0.02).contains(&m)) {
+        return Err(format!(
+            "--defect: {what} {s} is out of range 0.001 mm ..= 20 mm"
+        ));
+    }
+    Ok(m)
+}
+
+/// Parses `LOCATION:SIZE[:DEPTH]` (`none` alone for a healthy record).
+pub fn parse_defect(s: &str) -> Result<Option<DefectSpec>, String> {
+    let parts: Vec<&str> = s.split(':').map(str::trim).collect();
+    let loc = parts.first().copied().unwrap_or("");
+    if loc == "none" {
+        return Ok(None);
+    }
+    let location = match loc {
+        "inner" => "inner",
+        "outer" | "outer@6" => "outer@6",
+        "outer@3" => "outer@3",
+        "outer@12" => "outer@12",
+        "ball" => "ball",
+        other => {
+            return Err(format!(
+                "--defect: unknown location `{other}`; the model knows: {LOCATIONS}"
+            ))
+        }
+    };
+    let Some(size) = parts.get(1) else {
+        return Err(format!(
+            "--defect {s}: give the size, LOCATION:SIZE[:DEPTH] (e.g. inner:0.007in)"
+        ));
+    };
+    let size = parse_len(size, "size")?;
+    let depth = match parts.get(2) {
+        Some(d) => parse_len(d, "depth")?,
+        None => DEFAULT_DEPTH,
+    };
+    if parts.len() > 3 {
+        return Err(format!("--defect {s}: expected LOCATION:SIZE[:DEPTH]"));
+    }
+    Ok(Some(DefectSpec {
+        location,
+        size,
+        depth,
+    }))
+}
+
+/// The defect a CWRU file name states (None: normal; Err: not a CWRU name).
+fn cwru_defect(path: &Path) -> Option<Option<DefectSpec>> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let label = io::mat::parse_cwru_name(&name)?;
+    let size = label.diameter_in.map(|d| d * 0.0254);
+    let location = match label.fault {
+        CwruFault::Normal => return Some(None),
+        CwruFault::InnerRace => "inner",
+        CwruFault::Ball => "ball",
+        CwruFault::OuterRace { clock: 3 } => "outer@3",
+        CwruFault::OuterRace { clock: 12 } => "outer@12",
+        CwruFault::OuterRace { .. } => "outer@6",
+    };
+    Some(size.map(|size| DefectSpec {
+        location,
+        size,
+        depth: DEFAULT_DEPTH,
+    }))
+}
+
+/// One measured record with its resolved metadata.
+#[derive(Debug, Clone, Serialize)]
+pub struct RealRecord {
+    /// File.
+    pub file: PathBuf,
+    /// Samples in m/s².
+    #[serde(skip)]
+    pub accel: Vec<f64>,
+    /// Sample rate (Hz).
+    pub fs: f64,
+    /// Shaft speed (rpm) used.
+    pub rpm: f64,
+    /// Where the speed came from: `argument`, `file`, `spectrum`.
+    pub rpm_source: String,
+    /// Bearing preset.
+    pub bearing: String,
+    /// Defect (None: healthy).
+    pub defect: Option<DefectSpec>,
+    /// Unit of the file and the factor to m/s².
+    pub unit: String,
+    /// Things the metadata and the content disagree on, in words.
+    pub warnings: Vec<String>,
+}
+
+/// Shaft frequency (Hz) read from the spectrum: the strongest line within ±25 % of
+/// `nominal_hz` that stands at least 10 dB above the median of its neighbourhood; None
+/// when there is no such line (speed not estimable).
+pub fn estimate_shaft_hz(x: &[f64], fs: f64, nominal_hz: f64) -> Option<f64> {
+    let nperseg = (x.len() / 2).next_power_of_two().clamp(1024, 1 << 16);
+    let psd = analysis::welch_psd(
+        x,
+        fs,
+        &WelchParams {
+            nperseg,
+            ..WelchParams::default()
+        },
+    )
+    .ok()?;
+    let k0 = psd.bin_of(0.75 * nominal_hz).max(1);
+    let k1 = psd.bin_of(1.25 * nominal_hz);
+    let (k, v) = (k0..=k1)
+        .filter_map(|k| psd.values.get(k).map(|v| (k, *v)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let w = ((5.0 / psd.df) as usize).max(3);
+    let mut nb: Vec<f64> = (k.saturating_sub(w)..=k + w)
+        .filter(|j| j.abs_diff(k) > 1)
+        .filter_map(|j| psd.values.get(j).copied())
+        .collect();
+    nb.sort_by(f64::total_cmp);
+    let med = *nb.get(nb.len() / 2)?;
+    (v > 10.0 * med && med > 0.0).then(|| psd.freq(k))
+}
+
+/// What the command line says about every record.
+#[derive(Debug, Clone, Default)]
+pub struct Overrides {
+    /// `--bearing`.
+    pub bearing: Option<String>,
+    /// `--rpm`.
+    pub rpm: Option<f64>,
+    /// `--defect` (Some(None) = `none`).
+    pub defect: Option<Option<DefectSpec>>,
+    /// `--channel`.
+    pub channel: Option<String>,
+    /// `--fs`.
+    pub fs: Option<f64>,
+}
+
+/// Reads `path` and resolves its metadata; the error names the file and what is missing
+/// or contradictory.
+pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
+    let rec: Record = io::read_any(
+        path,
+        &ReadOptions {
+            channel: o.channel.clone(),
+            fs: o.fs,
+            rpm: None,
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let p = path.display();
+    let mut warnings = vec![];
+    let bearing = match (&o.bearing, &rec.bearing) {
+        (Some(b), Some(f)) if b != f => {
+            warnings.push(format!("--bearing {b} overrides the file's bearing {f}"));
+            b.clone()
+        }
+        (Some(b), _) => b.clone(),
+        (None, Some(f)) => f.clone(),
+        (None, None) => {
+            return Err(format!(
+                "{p}: the bearing is not known from the file; give --bearing PRESET (see `wearsim presets`)"
+            ))
+        }
+    };
+    let preset = presets::by_name(&bearing).ok_or_else(|| {
+        format!("--bearing: unknown preset `{bearing}` (see `wearsim presets`)")
+    })?;
+    let scale = match rec.unit.as_str() {
+        "g" => G,
+        "m/s^2" => 1.0,
+        u => {
+            return Err(format!(
+                "{p}: samples in unit `{u}` cannot be compared with simulated m/s²; give a calibrated file (unit g or m/s^2, e.g. in the JSON sidecar)"
+            ))
+        }
+    };
+    let accel: Vec<f64> = rec.samples.iter().map(|v| v * scale).collect();
+    let fs = rec.fs;
+    let need = 2.0 * MIN_PART_S;
+    if rec.duration_s() < need {
+        return Err(format!(
+            "{p}: {} samples at {fs} Hz are {:.3} s; the gap needs at least {need} s (a training and a held-out part of {MIN_PART_S} s) — is the sample rate right?",
+            accel.len(),
+            rec.duration_s()
+        ));
+    }
+    // Speed: argument, file, or the spectrum.
+    let nominal = preset.speed.shaft_hz(0.0) as f64;
+    let from_spectrum = estimate_shaft_hz(&accel, fs, nominal);
+    let (rpm, rpm_source) = match (o.rpm, rec.rpm) {
+        (Some(r), _) => (r, "argument"),
+        (None, Some(r)) => (r, "file"),
+        (None, None) => match from_spectrum {
+            Some(f) => (60.0 * f, "spectrum"),
+            None => {
+                return Err(format!(
+                    "{p}: the shaft speed is not in the file and not estimable from the spectrum (no line within ±25 % of the preset's {:.0} rpm); give --rpm",
+                    60.0 * nominal
+                ))
+            }
+        },
+    };
+    if !(rpm.is_finite() && (1.0..=1.0e6).contains(&rpm)) {
+        return Err(format!("{p}: rpm {rpm} is out of range 1..=1e6"));
+    }
+    if let (Some(f), false) = (from_spectrum, rpm_source == "spectrum") {
+        let rel = (60.0 * f / rpm - 1.0).abs();
+        if rel > 0.05 {
+            warnings.push(format!(
+                "the stated {rpm:.0} rpm contradicts the spectrum's strongest line near 1x at {:.1} Hz ({:.0} rpm)",
+                f,
+                60.0 * f
+            ));
+        }
+    }
+    // Defect: argument or label; both and different is a contradiction.
+    let labelled = cwru_defect(path);
+    let defect = match (o.defect, labelled) {
+        (Some(a), Some(l)) if a.map(|d| d.location) != l.map(|d| d.location) => {
+            return Err(format!(
+                "{p}: --defect {} contradicts the file's label ({}); remove one",
+                a.map_or("none", |d| d.location),
+                l.map_or("none", |d| d.location)
+            ))
+        }
+        (Some(a), _) => a,
+        (None, Some(l)) => l,
+        (None, None) => {
+            warnings.push("no defect given and none in the file's label: simulated healthy".into());
+            None
+        }
+    };
+    Ok(RealRecord {
+        file: path.to_path_buf(),
+        accel,
+        fs,
+        rpm,
+        rpm_source: rpm_source.into(),
+        bearing,
+        defect,
+        unit: rec.unit,
+        warnings,
+    })
+}
+
+/// The matched baseline configuration of a record.
+pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
+    let mut cfg = presets::by_name(&r.bearing)
+        .ok_or_else(|| format!("unknown preset `{}`", r.bearing))?;
+    cfg.speed = SpeedProfile::Constant((r.rpm / 60.0) as Real);
+    cfg.output_rate = r.fs as Real;
+    cfg.defect = match r.defect {
+        None => None,
+        Some(d) => {
+            let location = match d.location {
+                "inner" => DefectLocation::InnerRace { angle: 0.0 },
+                "ball" => DefectLocation::Ball { element: 0 },
+                "outer@3" => DefectLocation::OuterRace { angle: 0.0 },
+                "outer@12" => DefectLocation::OuterRace {
+                    angle: -core::f64::consts::FRAC_PI_2 as Real,
+                },
+                _ => DefectLocation::OuterRace {
+                    angle: core::f64::consts::FRAC_PI_2 as Real,
+                },
+            };
+            let asperity = cfg.defect.map_or(5e-6, |d| d.topography.asperity_height);
+            Some(DefectConfig {
+                location,
+                model: DefectModel::FiveStep,
+                topography: Topography {
+                    asperity_height: asperity,
+                    length: d.size as Real,
+                    width: d.size as Real,
+                    depth: d.depth as Real,
+                    count: 1,
+                    debris: 0.0,
+                },
+                sassi_k_impact: 0.0,
+            })
+        }
+    };
+    // Validate now, so a record the model cannot take is named here.
+    wearsim_core::Model::new_checked(cfg.clone())
+        .map_err(|e| format!("{}: the matched model is invalid: {e}", r.file.display()))?;
+    Ok(cfg)
+}
+
+/// A matched part `[start, start + len)` of `r`.
+pub fn part(r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str) -> Result<Matched, String> {
+    let cfg = matched_config(r)?;
+    let spec = spec_of(&cfg)?;
+    let x = r
+        .accel
+        .get(start..start + len)
+        .ok_or_else(|| format!("{}: part out of range", r.file.display()))?;
+    Ok(Matched {
+        label: format!(
+            "{} [{tag}: {:.2}–{:.2} s]",
+            r.file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            start as f64 / r.fs,
+            (start + len) as f64 / r.fs
+        ),
+        base: cfg,
+        reference: Reference::new(x, &spec).map_err(|e| format!("{}: {e}", r.file.display()))?,
+        samples: len,
+        seed,
+        real: x.to_vec(),
+    })
+}

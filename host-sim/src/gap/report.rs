@@ -1,0 +1,310 @@
+//! The `wearsim gap` report: Markdown, JSON and plots (overlaid spectra and envelope
+//! spectra of the first held-out record — measured, baseline, with the added effects —
+//! and the cell gaps before and after as bars). The JSON is written last, so a directory
+//! with `gap.json` holds a complete report.
+
+use super::attribute::Attribution;
+use super::cli::GapOutput;
+use super::matched::Matched;
+use crate::analysis::{self, Spectrum, WelchParams};
+use crate::cli::CliError;
+use crate::life::output::write_atomic;
+use crate::plot::{db, e, points, range, register_fonts, render, FONT, R};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+fn fmt_params(p: &[super::fit::FittedParam]) -> String {
+    p.iter()
+        .map(|q| {
+            let std = q.std.map_or_else(|| " ± ?".to_string(), |s| format!(" ± {s:.3}"));
+            let edge = if q.at_bound { " (edge)" } else { "" };
+            format!("{} = {:.4}{std} {}{edge}", q.name, q.value, q.unit)
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The report as Markdown.
+pub fn markdown(o: &GapOutput) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Sim-to-real gap\n");
+    let _ = writeln!(s, "## Records\n");
+    let _ = writeln!(s, "| role | part | rpm (source) | bearing | defect |");
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for r in &o.records {
+        let d = r.meta.defect.map_or("none".to_string(), |d| {
+            format!("{} {:.3} mm × {:.3} mm deep", d.location, 1e3 * d.size, 1e3 * d.depth)
+        });
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.0} ({}) | {} | {} |",
+            r.role, r.part, r.meta.rpm, r.meta.rpm_source, r.meta.bearing, d
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Where: cells by baseline gap (held-out)\n\nGap = (simulated − measured) / measured segment-to-segment spread; |gap| < 1 is within the measurement's own variability.\n"
+    );
+    let _ = writeln!(s, "| cell | unit | measured | simulated | spread | gap | gap after |");
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|");
+    for c in o.where_.iter().take(15) {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.3} | {:.3} | {:.3} | {:+.2} | {:+.2} |",
+            c.cell, c.unit, c.real, c.sim, c.spread, c.gap, c.gap_after
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Which: each effect alone, fitted on training, judged held-out\n"
+    );
+    let _ = writeln!(
+        s,
+        "| rank | effect | fitted parameters (± 1 σ) | train gap | held-out gap | shrink | shrink where | converged |"
+    );
+    let _ = writeln!(s, "|---:|---|---|---:|---:|---:|---:|---|");
+    for (i, r) in o.ranking.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.2} | {:.2} | {:+.0} % | {:+.0} % | {} |",
+            i + 1,
+            r.effect,
+            fmt_params(&r.params),
+            r.train_gap,
+            r.holdout_gap,
+            100.0 * r.shrink,
+            100.0 * r.where_shrink,
+            if r.converged { "yes" } else { "no" }
+        );
+    }
+    let _ = writeln!(s, "\n## How far: greedy addition (held-out total gap)\n");
+    let _ = writeln!(
+        s,
+        "Baseline: training {:.2}, held-out {:.2}.\n",
+        o.totals.train_before, o.totals.before
+    );
+    if o.greedy.is_empty() {
+        let _ = writeln!(s, "No effect was added.");
+    } else {
+        let _ = writeln!(s, "| step | effect | parameters | before | after | shrink |");
+        let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
+        for (i, g) in o.greedy.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {:.2} | {:.2} | {:.0} % |",
+                i + 1,
+                g.effect,
+                fmt_params(&g.params),
+                g.before,
+                g.after,
+                100.0 * g.shrink
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nTotal held-out gap: {:.2} → {:.2} ({:.0} % smaller).\n",
+        o.totals.before,
+        o.totals.after,
+        100.0 * o.totals.shrink
+    );
+    match &o.identified {
+        Some(e) => {
+            let _ = writeln!(s, "Named first: **{e}**.");
+        }
+        None => {
+            let _ = writeln!(s, "Named first: none (no effect shrinks the gap meaningfully).");
+        }
+    }
+    if !o.findings.is_empty() {
+        let _ = writeln!(s, "\n## Findings and limits\n");
+        for f in &o.findings {
+            let _ = writeln!(s, "* {f}");
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\n{} simulations in {:.1} s.",
+        o.simulations, o.seconds
+    );
+    s
+}
+
+fn psd(x: &[f64], fs: f64) -> Option<Spectrum> {
+    let nperseg = (x.len() / 8).next_power_of_two().clamp(256, 4096);
+    analysis::welch_psd(
+        x,
+        fs,
+        &WelchParams {
+            nperseg,
+            ..WelchParams::default()
+        },
+    )
+    .ok()
+}
+
+const REAL_C: RGBColor = RGBColor(40, 40, 40);
+const BASE_C: RGBColor = RGBColor(210, 40, 40);
+const FINAL_C: RGBColor = RGBColor(20, 90, 200);
+
+fn draw_lines<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    x1: f64,
+    series: &[(&str, RGBColor, Vec<(f64, f64)>)],
+) -> R {
+    e(root.fill(&WHITE))?;
+    let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.2.iter().copied()).collect();
+    let (lo, hi) = range(&all, 0.05, 0.1);
+    let mut chart = e(ChartBuilder::on(&root)
+        .caption(title, (FONT, 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..x1, lo..hi))?;
+    e(chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc(ylabel)
+        .label_style((FONT, 13))
+        .draw())?;
+    for (name, col, pts) in series {
+        let col = *col;
+        e(chart.draw_series(LineSeries::new(pts.clone(), col.stroke_width(1))))?
+            .label(*name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2)));
+    }
+    e(chart
+        .configure_series_labels()
+        .label_font((FONT, 13))
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw())?;
+    e(root.present())
+}
+
+fn draw_bars<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, o: &GapOutput) -> R {
+    e(root.fill(&WHITE))?;
+    let cells: Vec<_> = o.where_.iter().take(20).collect();
+    let n = cells.len().max(1);
+    let m = cells
+        .iter()
+        .flat_map(|c| [c.gap.abs(), c.gap_after.abs()])
+        .fold(1.0, f64::max)
+        * 1.1;
+    let mut chart = e(ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "cell gaps, held-out: total {:.2} → {:.2}",
+                o.totals.before, o.totals.after
+            ),
+            (FONT, 18),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(170)
+        .build_cartesian_2d(-m..m, 0.0..n as f64))?;
+    e(chart
+        .configure_mesh()
+        .disable_y_mesh()
+        .y_labels(n)
+        .y_label_formatter(&|y: &f64| {
+            let i = n.saturating_sub(1 + y.floor() as usize);
+            cells.get(i).map_or_else(String::new, |c| c.cell.clone())
+        })
+        .x_desc("gap (simulated − measured) / measured spread")
+        .label_style((FONT, 12))
+        .draw())?;
+    for (i, c) in cells.iter().enumerate() {
+        let y = (n - 1 - i) as f64;
+        e(chart.draw_series(std::iter::once(Rectangle::new(
+            [(0.0, y + 0.5), (c.gap, y + 0.9)],
+            BASE_C.filled(),
+        ))))?;
+        e(chart.draw_series(std::iter::once(Rectangle::new(
+            [(0.0, y + 0.1), (c.gap_after, y + 0.5)],
+            FINAL_C.filled(),
+        ))))?;
+    }
+    e(chart.draw_series(std::iter::once(PathElement::new(
+        vec![(0.0, 0.0), (0.0, n as f64)],
+        BLACK.stroke_width(1),
+    ))))?;
+    e(root.present())
+}
+
+/// Writes the plots, `gap.md` and (last) `gap.json` into `dir`; returns the files.
+pub fn write(
+    dir: &Path,
+    o: &GapOutput,
+    hold: &[Matched],
+    at: &Attribution,
+) -> Result<Vec<PathBuf>, CliError> {
+    register_fonts();
+    std::fs::create_dir_all(dir)
+        .map_err(|err| CliError::input(format!("--out {}: {err}", dir.display())))?;
+    let mut files = vec![];
+    if let Some(m) = hold.first() {
+        let fs = m.spec().fs;
+        let base = m.simulate(&wearsim_core::effects::Effects::NONE).map_err(CliError::run)?;
+        let fin = m.simulate(&at.final_effects).map_err(CliError::run)?;
+        let spectra: Vec<Option<Spectrum>> = [&m.real, &base, &fin].iter().map(|x| psd(x, fs)).collect();
+        let pts = |s: &Option<Spectrum>, f1: f64| {
+            s.as_ref()
+                .map_or_else(Vec::new, |s| points(s, 0.0, f1, |v| 10.0 * v.max(1e-30).log10()))
+        };
+        let nyq = 0.5 * fs;
+        let ser = [
+            ("measured", REAL_C, pts(&spectra[0], nyq)),
+            ("baseline", BASE_C, pts(&spectra[1], nyq)),
+            ("with added effects", FINAL_C, pts(&spectra[2], nyq)),
+        ];
+        let title = format!("PSD, held-out: {}", m.label);
+        files.extend(render(
+            dir,
+            "gap-spectra",
+            |r| draw_lines(r, &title, "frequency (Hz)", "PSD (dB re 1 (m/s²)²/Hz)", nyq, &ser),
+            |r| draw_lines(r, &title, "frequency (Hz)", "PSD (dB re 1 (m/s²)²/Hz)", nyq, &ser),
+        )?);
+        let ff = &m.spec().ff;
+        let f1 = 6.0 * ff.bpfi.max(ff.bpfo).max(2.0 * ff.bsf);
+        let env: Vec<Vec<(f64, f64)>> = [&m.real, &base, &fin]
+            .iter()
+            .map(|x| {
+                analysis::envelope_spectrum(x, fs, None)
+                    .map(|s| points(&s, 0.0, f1, db))
+                    .unwrap_or_default()
+            })
+            .collect();
+        let eser = [
+            ("measured", REAL_C, env[0].clone()),
+            ("baseline", BASE_C, env[1].clone()),
+            ("with added effects", FINAL_C, env[2].clone()),
+        ];
+        let title = format!("envelope spectrum, held-out: {}", m.label);
+        files.extend(render(
+            dir,
+            "gap-envelope",
+            |r| draw_lines(r, &title, "frequency (Hz)", "envelope amplitude (dB re 1 m/s²)", f1, &eser),
+            |r| draw_lines(r, &title, "frequency (Hz)", "envelope amplitude (dB re 1 m/s²)", f1, &eser),
+        )?);
+    }
+    files.extend(render(dir, "gap-cells", |r| draw_bars(r, o), |r| draw_bars(r, o))?);
+    let md = dir.join("gap.md");
+    write_atomic(&md, markdown(o).as_bytes())
+        .map_err(|err| CliError::run(format!("{}: {err}", md.display())))?;
+    files.push(md);
+    let js = dir.join("gap.json");
+    files.push(js.clone());
+    let mut full = o.clone();
+    full.files = files.clone();
+    let text = serde_json::to_string_pretty(&full).map_err(CliError::run)?;
+    write_atomic(&js, text.as_bytes())
+        .map_err(|err| CliError::run(format!("{}: {err}", js.display())))?;
+    Ok(files)
+}

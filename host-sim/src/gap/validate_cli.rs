@@ -1,0 +1,154 @@
+//! `wearsim gap-validate`: arguments, the run, and the printed confusion matrix.
+
+use super::validate::{validate, TwinOptions, TwinReport};
+use crate::cli::{CliError, Progress};
+use clap::Args;
+
+/// `wearsim gap-validate` arguments.
+#[derive(Debug, Clone, Args)]
+pub struct GapValidateArgs {
+    /// Trials per effect, 1..=1000 (the acceptance uses ≥ 20).
+    #[arg(long, default_value_t = 20)]
+    pub trials: usize,
+    /// Effects to withhold, comma-separated (default: every effect of `wearsim effects`).
+    #[arg(long, value_delimiter = ',')]
+    pub effects: Vec<String>,
+    /// Additional trials withholding two effects at once.
+    #[arg(long, default_value_t = 0)]
+    pub pairs: usize,
+    /// Seed of the parameter draws and realisations.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Length of each half (training, held-out) of a twin record (s), 0.5..=10.
+    #[arg(long, default_value_t = 1.0)]
+    pub half: f64,
+    /// White measurement noise added to the twins, fraction of their RMS, 0..=0.5.
+    #[arg(long, default_value_t = 0.01)]
+    pub noise: f64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Machine-readable report on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl GapValidateArgs {
+    /// Checked options.
+    pub fn options(&self) -> Result<TwinOptions, CliError> {
+        if !(1..=1000).contains(&self.trials) {
+            return Err(CliError::input(format!(
+                "--trials {} is out of range 1..=1000",
+                self.trials
+            )));
+        }
+        if self.pairs > 1000 {
+            return Err(CliError::input(format!(
+                "--pairs {} is out of range 0..=1000",
+                self.pairs
+            )));
+        }
+        if !(self.half.is_finite() && (0.5..=10.0).contains(&self.half)) {
+            return Err(CliError::input(format!(
+                "--half {} s is out of range 0.5..=10",
+                self.half
+            )));
+        }
+        if !(self.noise.is_finite() && (0.0..=0.5).contains(&self.noise)) {
+            return Err(CliError::input(format!(
+                "--noise {} is out of range 0..=0.5 (fraction of the RMS)",
+                self.noise
+            )));
+        }
+        if self.jobs == Some(0) {
+            return Err(CliError::input("--jobs 0: give at least 1"));
+        }
+        for e in &self.effects {
+            if wearsim_core::effects::info(e).is_none() {
+                return Err(CliError::input(format!(
+                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
+                )));
+            }
+        }
+        let d = TwinOptions::default();
+        Ok(TwinOptions {
+            trials: self.trials,
+            effects: self.effects.clone(),
+            pair_trials: self.pairs,
+            seed: self.seed,
+            half_s: self.half,
+            noise: self.noise,
+            jobs: self.jobs.unwrap_or(d.jobs),
+        })
+    }
+}
+
+/// Prints the report as a table.
+pub fn print(r: &TwinReport) {
+    println!("twin experiments: {}", r.scenario);
+    println!(
+        "noise-only held-out gap (median): {:.2}; {} simulations in {:.1} s",
+        r.noise_only_gap, r.simulations, r.seconds
+    );
+    println!();
+    println!(
+        "{:<18} {:>6} {:>6} {:>7} {:>10} {:>13} {:>14}",
+        "withheld", "trials", "top-1", "rate", "top-1 class", "median shrink", "after / noise"
+    );
+    for e in &r.rates {
+        println!(
+            "{:<18} {:>6} {:>6} {:>6.0}% {:>10} {:>12.0}% {:>14.2}",
+            e.effect,
+            e.trials,
+            e.top1,
+            100.0 * e.rate,
+            e.top1_class,
+            100.0 * e.median_shrink,
+            e.median_after_over_noise
+        );
+    }
+    println!();
+    println!("confusion (rows: withheld; columns: ranked first)");
+    let short = |s: &str| s.chars().take(6).collect::<String>();
+    print!("{:<18}", "");
+    for c in &r.columns {
+        print!(" {:>6}", short(c));
+    }
+    println!();
+    for (l, row) in r.labels.iter().zip(&r.confusion) {
+        print!("{l:<18}");
+        for v in row {
+            print!(" {v:>6}");
+        }
+        println!();
+    }
+    if let Some((n, any, both)) = r.pairs {
+        println!();
+        println!(
+            "two effects withheld ({n} trials): first-ranked is one of them {:.0} %, both added by the greedy step {:.0} %",
+            100.0 * any,
+            100.0 * both
+        );
+    }
+    println!();
+    for (a, b, why) in &r.indistinguishable {
+        println!("indistinguishable: {a} / {b}: {why}");
+    }
+}
+
+/// `wearsim gap-validate`.
+pub fn run(a: &GapValidateArgs) -> Result<(), CliError> {
+    let opt = a.options()?;
+    let bar = Progress::new(!a.json, "twins");
+    let r = validate(&opt, &|d, t| bar.update(d, t)).map_err(CliError::run)?;
+    bar.finish();
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&r).map_err(CliError::run)?
+        );
+    } else {
+        print(&r);
+    }
+    Ok(())
+}
