@@ -14,13 +14,15 @@ use crate::topography::Topography;
 
 const MAGIC: u32 = 0x5753_4350; // "WSCP"
 /// Version 2 appends the effects' memories (transfer path, sensor, running-in); version 1
-/// checkpoints (no effects) are still read.
+/// checkpoints (no effects) are still read. The ninth scalar, reserved (0) before ball
+/// defects existed, carries the spin angle of a ball defect; older checkpoints read it as 0,
+/// which is what their (race-defect) states had.
 const VERSION: u32 = 2;
 
 /// Bytes needed to encode a `State<NB>`.
 pub const fn encoded_len(nb: usize) -> usize {
     4 + 4 + 4 // magic, version, NB
-        + 8 * 10 // y, v, g_prev, time, shaft_hz, three angles, ... (see encode)
+        + 8 * 10 // y, v, g_prev, time, shaft_hz, four angles, one reserved (see encode)
         + 8 * 6 // phasors
         + 1 + 8 // has_prev, steps
         + 16 // rng
@@ -116,7 +118,7 @@ impl<const NB: usize> State<NB> {
             p.shaft_angle,
             p.cage_angle,
             p.wave_angle,
-            0.0,
+            p.spin_angle,
             0.0,
         ] {
             w.real(v)?;
@@ -240,7 +242,8 @@ impl<const NB: usize> State<NB> {
             revs = r.real()?;
             run_in = r.real()?;
         }
-        let [y, v, g_prev, time, shaft_hz, shaft_angle, cage_angle, wave_angle, _, _] = scalars;
+        let [y, v, g_prev, time, shaft_hz, shaft_angle, cage_angle, wave_angle, spin_angle, _] =
+            scalars;
         st.restore(crate::model::StateParts {
             y,
             v,
@@ -252,6 +255,7 @@ impl<const NB: usize> State<NB> {
             shaft_angle,
             cage_angle,
             wave_angle,
+            spin_angle,
             shaft_cs: cs[0],
             cage_cs: cs[1],
             wave_cs: cs[2],

@@ -162,6 +162,12 @@ pub struct Model {
     aa: AntiAlias,
     rot: Option<Rotations>,
     defect_offset_cs: (Real, Real),
+    /// Spin order of a ball defect (BSF, spin angle per shaft angle); 0 without one, which
+    /// also skips the spin bookkeeping of the step.
+    spin_order: Real,
+    /// Spin angle of a ball defect per radian of its element's slip offset: the rolling
+    /// distance on the outer race over the ball radius, `R_o/r_b` (–).
+    slip_spin: Real,
     outer_radius: Real,
     rough_scale: Real,
     transfer: Option<TransferPath>,
@@ -221,6 +227,7 @@ impl Model {
         }
         if let Some(d) = cfg.defect {
             DefectConfig::new_checked(d)?;
+            d.location.check_fit(&bearing, &d.topography)?;
         }
         if let Some(s) = cfg.slip {
             Slip::new_checked(s)?;
@@ -331,11 +338,18 @@ impl Model {
         } else {
             None
         };
+        // Race defects: the defect's angle. Ball defects: the defective element's angle
+        // in the cage, so that the element loop's window (rotated by the cage) selects it.
         let defect_offset_cs = match cfg.defect.map(|d| d.location) {
             Some(DefectLocation::OuterRace { angle })
             | Some(DefectLocation::InnerRace { angle }) => (cos(angle), sin(angle)),
-            _ => (1.0, 0.0),
+            Some(DefectLocation::Ball { element, .. }) => {
+                elem_cs.get(element as usize).copied().unwrap_or((1.0, 0.0))
+            }
+            None => (1.0, 0.0),
         };
+        let ball = cfg.defect.is_some_and(|d| d.location.is_ball());
+        let rb = 0.5 * bearing.element_diameter;
         Ok(Model {
             contact,
             orders,
@@ -353,6 +367,12 @@ impl Model {
             aa: AntiAlias::design(ratio),
             rot,
             defect_offset_cs,
+            spin_order: if ball { orders.bsf } else { 0.0 },
+            slip_spin: if ball {
+                bearing.outer_race_radius() / rb
+            } else {
+                0.0
+            },
             outer_radius: bearing.outer_race_radius(),
             rough_scale: fx.roughness.map(|r| r.scale).unwrap_or(1.0),
             transfer: fx
@@ -532,10 +552,18 @@ impl Model {
         let (cw, sw) = k.wave_cs;
         let defect = self.cfg.defect;
         let shape = &st.shape;
-        // Defect phasor (position of defect 0) and the candidate window.
+        // Defect phasor (position of defect 0; of the defective element for a ball
+        // defect) and the candidate window.
         let (dc, ds) = match defect.map(|d| d.location) {
             Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, self.defect_offset_cs),
+            Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, self.defect_offset_cs),
             _ => self.defect_offset_cs,
+        };
+        // A ball defect's terms are computed out of line before the loop (a call inside it
+        // would cost the race defects' path registers).
+        let ball = match defect {
+            Some(d) if d.location.is_ball() => Some(self.ball_defect(st, k, d)),
+            _ => None,
         };
         let mut fy = 0.0;
         // Equal-length slices zipped without `take`, so the loop compiles to plain indexed
@@ -576,45 +604,52 @@ impl Model {
                 let cos_rel = cos_t * dc + sin_t * ds;
                 if cos_rel > st.window_cos {
                     let theta = k.cage_angle + *elem_angle + *slip;
-                    let base = match d.location {
-                        DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
-                        DefectLocation::OuterRace { angle } => angle,
-                        DefectLocation::Ball { .. } => 0.0,
-                    };
-                    let inner = matches!(d.location, DefectLocation::InnerRace { .. });
                     let mut dd = 0.0;
-                    for kd in 0..shape.count {
-                        let centre = base + kd as Real * shape.spacing_angle;
-                        let mut psi = angle_diff(theta, centre);
-                        if inner {
-                            psi = -psi;
-                        }
-                        let xi = psi / shape.length_angle + 0.5;
-                        if xi < 0.0 || xi >= 1.0 + st.tail {
-                            continue;
-                        }
-                        match d.model {
-                            DefectModel::FiveStep => {
-                                let ls = shape.load.eval(xi);
-                                unload += ls.unload;
-                                dd += ls.extra_deflection;
+                    if let Some(terms) = ball {
+                        // Only the defective element is in the window (half an element pitch
+                        // wide).
+                        (unload, dd, add) = terms;
+                    } else {
+                        let base = match d.location {
+                            DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
+                            DefectLocation::OuterRace { angle } => angle,
+                            DefectLocation::Ball { .. } => 0.0,
+                        };
+                        let inner = matches!(d.location, DefectLocation::InnerRace { .. });
+                        for kd in 0..shape.count {
+                            let centre = base + kd as Real * shape.spacing_angle;
+                            let mut psi = angle_diff(theta, centre);
+                            if inner {
+                                psi = -psi;
                             }
-                            DefectModel::Deflection => dd -= shape.geometric_drop(xi),
-                            DefectModel::Sassi => {
-                                add += shape.sassi(xi, angle_diff(theta, PI / 2.0))
+                            let xi = psi / shape.length_angle + 0.5;
+                            if xi < 0.0 || xi >= 1.0 + st.tail {
+                                continue;
                             }
-                            DefectModel::Impulse => {
-                                let w_rel = if inner {
-                                    k.shaft_omega - k.cage_omega
-                                } else {
-                                    k.cage_omega
-                                };
-                                add += shape.impulse(xi, w_rel * shape.race_radius);
+                            match d.model {
+                                DefectModel::FiveStep => {
+                                    let ls = shape.load.eval(xi);
+                                    unload += ls.unload;
+                                    dd += ls.extra_deflection;
+                                }
+                                DefectModel::Deflection => dd -= shape.geometric_drop(xi),
+                                DefectModel::Sassi => {
+                                    add += shape.sassi(xi, angle_diff(theta, PI / 2.0))
+                                }
+                                DefectModel::Impulse => {
+                                    let w_rel = if inner {
+                                        k.shaft_omega - k.cage_omega
+                                    } else {
+                                        k.cage_omega
+                                    };
+                                    add += shape.impulse(xi, w_rel * shape.race_radius);
+                                }
                             }
                         }
                     }
                     // Load-zone effect: the element's angle from the load-zone centre (π/2)
-                    // has cos ψ = sin θ; the defect's whole force term is scaled.
+                    // has cos ψ = sin θ; the defect's whole force term is scaled (for a ball
+                    // defect the element orbits with the cage: modulation at FTF).
                     if let Some(p) = &self.cfg.effects.load_zone {
                         let g = p.gain(sin_t);
                         unload *= g;
@@ -637,6 +672,57 @@ impl Model {
             fy -= (q + add) * sin_t;
         }
         fy
+    }
+
+    /// Terms `(unload, extra deflection (m), additive force (N))` of ball defect `d` on the
+    /// defective element for kinematics `k` (see [`crate::forces::defect`]); the element
+    /// loop applies them to that element. The spin angle of
+    /// this evaluation is the state's, advanced by BSF × the shaft's advance within the
+    /// step; the element's slip offset shifts it by the rolling distance on the outer race,
+    /// `slip·R_o/r_b`. The defect point is under the outer race at spin phase 0 and under
+    /// the inner race at π; each of the `count` defects is evaluated against both contacts.
+    /// Rolling speed over either contact: `BSF·ω_shaft·r_b`.
+    #[inline(never)]
+    fn ball_defect<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        k: &Kinematics,
+        d: DefectConfig,
+    ) -> (Real, Real, Real) {
+        let shape = &st.shape;
+        let e = match d.location {
+            DefectLocation::Ball { element, .. } => element as usize,
+            _ => 0,
+        };
+        let slip = st.slip.get(e).copied().unwrap_or(0.0);
+        let theta = k.cage_angle + self.elem_angle.get(e).copied().unwrap_or(0.0) + slip;
+        let spin = st.spin_angle
+            + self.spin_order * angle_diff(k.shaft_angle, st.shaft_angle)
+            + self.slip_spin * slip;
+        let (mut unload, mut dd, mut add) = (0.0, 0.0, 0.0);
+        for contact in [0.0, PI] {
+            for kd in 0..shape.count {
+                let centre = contact + kd as Real * shape.spacing_angle;
+                let xi = angle_diff(spin, centre) / shape.length_angle + 0.5;
+                if xi < 0.0 || xi >= 1.0 + st.tail {
+                    continue;
+                }
+                match d.model {
+                    DefectModel::FiveStep => {
+                        let ls = shape.load.eval(xi);
+                        unload += ls.unload;
+                        dd += ls.extra_deflection;
+                    }
+                    DefectModel::Deflection => dd -= shape.geometric_drop(xi),
+                    DefectModel::Sassi => add += shape.sassi(xi, angle_diff(theta, PI / 2.0)),
+                    DefectModel::Impulse => {
+                        let v = self.spin_order * k.shaft_omega * shape.race_radius;
+                        add += shape.impulse(xi, v);
+                    }
+                }
+            }
+        }
+        (unload, dd, add)
     }
 
     /// Hertz element load `K δ^p` (N). In `f32` builds point contacts use `δ²·(1/√δ)` with
@@ -880,9 +966,13 @@ impl Model {
         if !st.steps.is_multiple_of(SLIP_CHECK_EVERY) {
             return;
         }
+        // A ball defect travels with its element: its offset is redrawn once per cage turn,
+        // when the element is opposite the load-zone centre (unloaded), so that the jump in
+        // its spin phase never falls on an impact.
         let (dc, ds) = match d.location {
             DefectLocation::InnerRace { .. } => rotate(st.shaft_cs, self.defect_offset_cs),
-            _ => self.defect_offset_cs,
+            DefectLocation::Ball { .. } => (0.0, 1.0),
+            DefectLocation::OuterRace { .. } => self.defect_offset_cs,
         };
         let (cc, sc) = st.cage_cs;
         let n = self.cfg.bearing.elements;
@@ -921,6 +1011,9 @@ impl Model {
         st.shaft_angle = advance_angle(st.shaft_angle, ds);
         st.cage_angle = advance_angle(st.cage_angle, dc);
         st.wave_angle = advance_angle(st.wave_angle, wrap_angle(dc * self.wave_order as Real));
+        if self.spin_order != 0.0 {
+            st.spin_angle = advance_angle(st.spin_angle, ds * self.spin_order);
+        }
         match self.rot {
             Some(r) if !st.steps.is_multiple_of(1024) => {
                 st.shaft_cs = renorm(rotate(st.shaft_cs, r.shaft));
@@ -970,6 +1063,7 @@ pub struct State<const NB: usize> {
     shaft_angle: Real,
     cage_angle: Real,
     wave_angle: Real,
+    spin_angle: Real,
     shaft_cs: (Real, Real),
     cage_cs: (Real, Real),
     wave_cs: (Real, Real),
@@ -1005,6 +1099,7 @@ pub(crate) struct StateParts<const NB: usize> {
     pub shaft_angle: Real,
     pub cage_angle: Real,
     pub wave_angle: Real,
+    pub spin_angle: Real,
     pub shaft_cs: (Real, Real),
     pub cage_cs: (Real, Real),
     pub wave_cs: (Real, Real),
@@ -1034,6 +1129,7 @@ impl<const NB: usize> State<NB> {
             shaft_angle: self.shaft_angle,
             cage_angle: self.cage_angle,
             wave_angle: self.wave_angle,
+            spin_angle: self.spin_angle,
             shaft_cs: self.shaft_cs,
             cage_cs: self.cage_cs,
             wave_cs: self.wave_cs,
@@ -1062,6 +1158,7 @@ impl<const NB: usize> State<NB> {
         self.shaft_angle = p.shaft_angle;
         self.cage_angle = p.cage_angle;
         self.wave_angle = p.wave_angle;
+        self.spin_angle = p.spin_angle;
         self.shaft_cs = p.shaft_cs;
         self.cage_cs = p.cage_cs;
         self.wave_cs = p.wave_cs;
@@ -1106,6 +1203,10 @@ impl<const NB: usize> State<NB> {
             shaft_angle: 0.0,
             cage_angle: 0.0,
             wave_angle: 0.0,
+            spin_angle: match model.cfg.defect.map(|d| d.location) {
+                Some(DefectLocation::Ball { phase, .. }) => wrap_angle(phase),
+                _ => 0.0,
+            },
             shaft_cs: (1.0, 0.0),
             cage_cs: (1.0, 0.0),
             wave_cs: (1.0, 0.0),
@@ -1146,6 +1247,7 @@ impl<const NB: usize> State<NB> {
             });
         };
         let t = Topography::new_checked(t)?;
+        d.location.check_fit(&model.cfg.bearing, &t)?;
         let shape = model.defect_shape(&t);
         let tail = shape.tail(d.model);
         let slip_margin = model
@@ -1156,7 +1258,15 @@ impl<const NB: usize> State<NB> {
         let span = shape.length_angle * (0.5 + tail)
             + shape.spacing_angle * (shape.count.saturating_sub(1)) as Real
             + slip_margin;
-        self.window_cos = if span >= PI { -2.0 } else { cos(span) };
+        // A ball defect's window selects its element alone: half an element pitch about
+        // it (the element loop compares the unslipped element angles).
+        self.window_cos = if d.location.is_ball() {
+            cos(PI / model.cfg.bearing.elements as Real)
+        } else if span >= PI {
+            -2.0
+        } else {
+            cos(span)
+        };
         self.rough_sigma = model.rough_sigma(self.shaft_hz, Some(t)) * self.run_in;
         self.tail = tail;
         self.shape = shape;
@@ -1201,5 +1311,10 @@ impl<const NB: usize> State<NB> {
     /// Shaft angle (rad), wrapped to [0, 2π).
     pub fn shaft_angle(&self) -> Real {
         self.shaft_angle
+    }
+    /// Spin angle of a ball defect (rad), wrapped to [0, 2π): `φ₀ + BSF·θ_shaft` (without
+    /// the slip offset); 0 for other defects.
+    pub fn spin_angle(&self) -> Real {
+        self.spin_angle
     }
 }

@@ -222,13 +222,17 @@ pub struct RoughnessSection {
     pub debris_gain: Option<f64>,
 }
 
-/// `[defect]`.
+/// `[defect]`. `location = "ball"` puts the defect on rolling element `element` (index
+/// 0 ..= N − 1, default 0); its `angle_deg` is then the defect's spin phase on the ball at
+/// t = 0 (0° = at the outer-race contact, 180° = at the inner-race contact; default 0).
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DefectSection {
     pub enabled: Option<bool>,
     pub location: Option<String>,
     pub angle_deg: Option<f64>,
+    /// Defective element of a ball defect (`location = "ball"` only).
+    pub element: Option<u8>,
     pub model: Option<String>,
     pub topography: Option<String>,
     pub asperity_height: Option<f64>,
@@ -546,11 +550,15 @@ impl ScenarioFile {
             Some("inner") => DefectLocation::InnerRace {
                 angle: angle.unwrap_or(0.0),
             },
+            Some("ball") => DefectLocation::Ball {
+                element: s.element.unwrap_or(0),
+                phase: angle.unwrap_or(0.0),
+            },
             Some(other) => {
                 return Err(ConfigFileError::Choice {
                     key: "defect.location",
                     value: other.into(),
-                    allowed: "outer, inner, none".into(),
+                    allowed: "outer, inner, ball, none".into(),
                 })
             }
             None => match (b.location, angle) {
@@ -560,9 +568,21 @@ impl ScenarioFile {
                 (DefectLocation::InnerRace { .. }, Some(a)) => {
                     DefectLocation::InnerRace { angle: a }
                 }
+                (DefectLocation::Ball { element, phase }, a) => DefectLocation::Ball {
+                    element: s.element.unwrap_or(element),
+                    phase: a.unwrap_or(phase),
+                },
                 (l, _) => l,
             },
         };
+        if s.element.is_some() && !location.is_ball() {
+            return Err(ConfigFileError::Core(
+                wearsim_core::ConfigError::Inconsistent {
+                    field: "defect.element",
+                    reason: "applies to a ball defect only (location = \"ball\")",
+                },
+            ));
+        }
         let model = match &s.model {
             Some(m) => choice("defect.model", m, &DEFECT_MODELS)?,
             None => b.model,

@@ -142,6 +142,21 @@ fn bad_inputs_are_named_and_leave_nothing() {
             "exactly one of",
         ),
         ("toml syntax", vec!["preset = \n"], "scenario.toml"),
+        (
+            "ball element out of range",
+            vec!["preset = \"cwru-6205-de\"\n[defect]\nlocation = \"ball\"\nelement = 9\n"],
+            "defect.element = 9 is out of range: allowed 0 ..= 8",
+        ),
+        (
+            "element of a race defect",
+            vec!["preset = \"cwru-6205-de\"\n[defect]\nlocation = \"outer\"\nelement = 1\n"],
+            "defect.element: applies to a ball defect only",
+        ),
+        (
+            "bad location",
+            vec!["preset = \"cwru-6205-de\"\n[defect]\nlocation = \"cage\"\n"],
+            "outer, inner, ball, none",
+        ),
     ];
     for (what, text, needle) in cases {
         let cfg = write_config(dir.path(), text[0]);
@@ -242,4 +257,73 @@ fn presets_and_bench_json() {
     assert!(v["rtf"].as_f64().unwrap() > 0.0);
     assert!(v["ns_per_step"].as_f64().unwrap() > 0.0);
     assert_eq!(v["oversample"], 2);
+}
+
+/// `[defect] location = "ball"`: the element and the spin phase (`angle_deg`) reach the core,
+/// and the simulation's envelope spectrum is labelled with the ball's lines.
+#[test]
+fn a_ball_defect_config_runs() {
+    use wearsim_core::forces::defect::DefectLocation;
+    let text = r#"
+preset = "cwru-6205-de"
+duration = 1.0
+[defect]
+location = "ball"
+element = 3
+angle_deg = 90.0
+"#;
+    let (cfg, _) = wearsim_host::config::ScenarioFile::parse(text, "ball.toml")
+        .unwrap()
+        .resolve()
+        .unwrap();
+    match cfg.defect.unwrap().location {
+        DefectLocation::Ball { element, phase } => {
+            assert_eq!(element, 3);
+            assert!((phase - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+        }
+        other => panic!("{other:?}"),
+    }
+    // The element and the phase default to 0.
+    let (cfg, _) = wearsim_host::config::ScenarioFile::parse(
+        "preset = \"cwru-6205-de\"\n[defect]\nlocation = \"ball\"\n",
+        "ball0.toml",
+    )
+    .unwrap()
+    .resolve()
+    .unwrap();
+    assert_eq!(
+        cfg.defect.unwrap().location,
+        DefectLocation::Ball {
+            element: 0,
+            phase: 0.0
+        }
+    );
+
+    let dir = tempfile::tempdir().unwrap();
+    let path = write_config(dir.path(), text);
+    let out = dir.path().join("o");
+    let o = wearsim(&[
+        "simulate",
+        "--config",
+        &path,
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let labels: Vec<&str> = v["summary"]["envelope_peaks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["nearest"].as_str().unwrap())
+        .collect();
+    println!("envelope peaks: {labels:?}");
+    assert!(labels.contains(&"2x BSF"), "{labels:?}");
+    assert!(
+        !labels
+            .iter()
+            .any(|l| l.ends_with("BPFO") || l.ends_with("BPFI")),
+        "{labels:?}"
+    );
 }

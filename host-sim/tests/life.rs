@@ -298,6 +298,11 @@ fn life_command_outputs_and_errors() {
             "lambda",
         ),
         (
+            "preset = \"thesis-61810\"\n[defect]\nlocation = \"ball\"\n",
+            vec![],
+            "defect.location: a rolling-element (ball) defect in a wear-life run",
+        ),
+        (
             "preset = \"thesis-61810\"\n",
             vec!["--load-scale", "100"],
             "load_scale",

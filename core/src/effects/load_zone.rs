@@ -15,8 +15,9 @@
 //!   only a level change when the defect sits off the load-zone centre).
 //! * Inner-race defects rotate with the shaft: the impacts are modulated at 1× shaft,
 //!   giving sidebands at BPFI ± k·f_shaft in the envelope spectrum.
-//! * Ball defects would be modulated at FTF, but the core has no ball defect (it is
-//!   rejected as unsupported), so this effect does not model it.
+//! * Ball defects orbit with the cage: the gain follows the defective element's angle,
+//!   so the impacts (at 2×BSF) are modulated at FTF, giving sidebands at 2×BSF ± k·FTF and
+//!   a stronger FTF line in the envelope spectrum.
 
 use crate::error::{check_range, ConfigError};
 use crate::real::{pow_3_2, Real};

@@ -1,7 +1,7 @@
-//! Localized defect on a race (thesis eq. 11–16, publication III eq. 4–12): where it is,
-//! which published formulation turns it into a force, and the geometry derived from its
-//! topography. The element loop in `crate::model` asks [`DefectShape`] what an element at
-//! normalised position `ξ` along the defect experiences.
+//! Localized defect on a race or a rolling element (thesis eq. 11–16, publication III
+//! eq. 4–12): where it is, which published formulation turns it into a force, and the
+//! geometry derived from its topography. The element loop in `crate::model` asks
+//! [`DefectShape`] what an element at normalised position `ξ` along the defect experiences.
 //!
 //! Formulations ([`DefectModel`]):
 //! * `FiveStep` (default; thesis Fig. 3): see [`super::load_function`];
@@ -14,6 +14,20 @@
 //! * `Impulse` (publication III §2.1): at the trailing edge a half-sine pulse carrying the
 //!   radial momentum `∫F_y dt = m w₁ (1 − 5h/(7r)) L/2`, `w₁ = v/r_b`, over the asperity
 //!   crossing length.
+//!
+//! Ball (rolling-element) defects. The defect sits on the surface of one ball, which spins
+//! relative to the cage; neglecting slip the inner race (contact radius
+//! `r_i = (P − B_d cos φ)/2`) rolls on the ball (radius `r_b = B_d/2`), so the spin angle is
+//! `φ_spin = (θ_shaft − θ_cage)(P − B_d cos φ)/B_d`. With `θ_cage = FTF·θ_shaft` this is
+//! `φ_spin = BSF·θ_shaft`, BSF the spin order of thesis eq. 20 (Harris 1966,
+//! [`crate::kinematics::FaultOrders::bsf`]). The defect point meets the outer race when
+//! `φ_spin + φ₀ ≡ 0 (mod 2π)` and the inner race when it is ≡ π: one over-rolling per race
+//! per spin turn, impacts at 2×BSF (Randall & Antoni 2011, MSSP 25 §2.1). Every formulation
+//! above applies unchanged with the angles measured on the ball: `ξ = ψ/(L/r_b) + ½`, `ψ`
+//! the spin angle from the contact point. In the single-degree-of-freedom model both
+//! contacts of a ball are in series in one deflection `δ`, so a defect at either contact
+//! changes that ball's `δ` in the same way. The ball orbits with the cage, so its Hertz
+//! load (in and out of the load zone) modulates the impacts at FTF.
 
 use crate::bearing::BearingGeometry;
 use crate::error::{check_range, ConfigError};
@@ -35,10 +49,14 @@ pub enum DefectLocation {
         /// Angular position at t = 0 (rad).
         angle: Real,
     },
-    /// On a rolling element (not implemented in this version: rejected by validation).
+    /// On the surface of one rolling element (see the module docs for the kinematics).
     Ball {
-        /// Index of the defective element.
+        /// Index of the defective element, `0 ..= elements − 1`; element `j` sits at cage
+        /// angle `2πj/N` (thesis eq. 7).
         element: u8,
+        /// Initial spin phase `φ₀` of the defect on the ball (rad): 0 = at the outer-race
+        /// contact at t = 0, π = at the inner-race contact.
+        phase: Real,
     },
 }
 
@@ -76,17 +94,43 @@ impl DefectConfig {
         Topography::new_checked(d.topography)?;
         check_range("defect.sassi_k_impact", d.sassi_k_impact, 0.0, 1e3)?;
         match d.location {
-            DefectLocation::OuterRace { angle } | DefectLocation::InnerRace { angle } => {
+            DefectLocation::OuterRace { angle }
+            | DefectLocation::InnerRace { angle }
+            | DefectLocation::Ball { phase: angle, .. } => {
                 check_range("defect.angle", angle, -10.0, 10.0)?;
-            }
-            DefectLocation::Ball { .. } => {
-                return Err(ConfigError::Unsupported {
-                    field: "defect.location",
-                    what: "a rolling-element (ball) defect",
-                })
             }
         }
         Ok(d)
+    }
+}
+
+impl DefectLocation {
+    /// Checks what depends on the bearing and the topography `t`: a ball defect's
+    /// `element` must be in `0 ..= elements − 1` (`defect.element`), and its extent along
+    /// the ball, `L (1 + 1.5 (count − 1))` (defects at the pitch of [`DefectShape`]), at
+    /// most half the ball's circumference `π r_b` (`defect.length`, maximum
+    /// `π r_b / (1 + 1.5 (count − 1))`): a longer defect would be under both races at once,
+    /// which is no longer a localized defect. Race defects have no such limits here.
+    pub fn check_fit(&self, bearing: &BearingGeometry, t: &Topography) -> Result<(), ConfigError> {
+        if let DefectLocation::Ball { element, .. } = *self {
+            let n = bearing.elements;
+            check_range(
+                "defect.element",
+                element as Real,
+                0.0,
+                n.saturating_sub(1) as Real,
+            )?;
+            let spread = 1.0 + 1.5 * t.count.saturating_sub(1) as Real;
+            let max = PI * 0.5 * bearing.element_diameter / spread;
+            check_range("defect.length", t.length, 1e-7, max)?;
+        }
+        Ok(())
+    }
+
+    /// Whether the defect is on a rolling element.
+    #[inline(always)]
+    pub fn is_ball(&self) -> bool {
+        matches!(self, DefectLocation::Ball { .. })
     }
 }
 
@@ -107,9 +151,11 @@ pub struct StaticReference {
 /// topography changes (wear evolution), never per step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DefectShape {
-    /// Defect length as an angle on its race (rad): `L/R`.
+    /// Defect length as an angle on the surface carrying it (rad): `L/R` on a race of
+    /// radius `R`, `L/r_b` on a ball.
     pub length_angle: Real,
-    /// Angular pitch between successive defects of a multi-defect topography (rad).
+    /// Angular pitch between successive defects of a multi-defect topography (rad): 1.5
+    /// defect lengths on the same surface.
     pub spacing_angle: Real,
     /// Number of defects.
     pub count: u8,
@@ -125,7 +171,9 @@ pub struct DefectShape {
     pub depth: Real,
     /// Defect length (m).
     pub length: Real,
-    /// Race radius the defect sits on (m).
+    /// Radius of the surface the defect sits on (m): the race radius of a race defect,
+    /// the element radius `r_b` of a ball defect. Rolling speed over the defect =
+    /// relative angular speed of that surface × this radius.
     pub race_radius: Real,
     /// Sassi: `Q_max (1 + K_impact ΔV²)` (N).
     pub sassi_force: Real,
@@ -137,6 +185,19 @@ pub struct DefectShape {
 
 impl DefectShape {
     /// Derives the shape of topography `t` at `location` on `bearing`.
+    ///
+    /// Ball defects: the angles are measured on the ball (`length_angle = L/r_b`,
+    /// `race_radius = r_b`); every other quantity is the race defect's. The geometric drop
+    /// `s` of two bodies into a pit of length `L` depends on their relative curvature in the
+    /// rolling direction, not on which of them carries the pit (Harris & Kotzalas 2006:
+    /// the contact geometry enters through the curvature sum only), so the project's race-defect
+    /// approximation with the ball radius alone, `r_b − √(r_b² − L²/4)`, is kept; so are the
+    /// descent and asperity-crossing lengths `√(2 r_b s)` and `2b + √(2 r_b h)`. The Sassi
+    /// velocity change `(10/28) g (L/B_d)²` is written for any defect length over the ball
+    /// diameter (Sassi et al. 2007 model ball defects with it too), and the impulse keeps the
+    /// ball's mass and radius (publication III: the radial momentum of the ball's centre as
+    /// it climbs the trailing edge, the same whether the edge is on the race or on the
+    /// ball).
     pub fn derive(
         t: &Topography,
         location: &DefectLocation,
@@ -147,7 +208,8 @@ impl DefectShape {
         let rb = 0.5 * bearing.element_diameter;
         let race_radius = match location {
             DefectLocation::InnerRace { .. } => bearing.inner_race_radius(),
-            _ => bearing.outer_race_radius(),
+            DefectLocation::OuterRace { .. } => bearing.outer_race_radius(),
+            DefectLocation::Ball { .. } => rb,
         };
         let l = t.length;
         let half = 0.5 * l;

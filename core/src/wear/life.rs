@@ -510,9 +510,29 @@ impl Life {
         }
     }
 
+    /// Checks that the dynamic model `base` of a life run can carry the wear history. The
+    /// stage machine is written for a race defect: it counts the defect's over-rollings as
+    /// element passes (BPFO per revolution), takes its pressures from the outer-race Hertz
+    /// contact, and grows the defect along thesis Table 1's race topographies up to a 3 mm
+    /// spall. None of that holds for a defect on a ball (over-rolled 2×BSF times per
+    /// revolution by both races, loaded only in the load-zone half of each cage turn, on a
+    /// surface a few millimetres round), so a ball defect is rejected:
+    /// `ConfigError::Unsupported` naming `defect.location`. Race defects and no defect pass.
+    pub fn check_base(base: &crate::model::ModelConfig) -> Result<(), ConfigError> {
+        match base.defect {
+            Some(d) if d.location.is_ball() => Err(ConfigError::Unsupported {
+                field: "defect.location",
+                what: "a rolling-element (ball) defect in a wear-life run (the wear stages \
+                       model race defects)",
+            }),
+            _ => Ok(()),
+        }
+    }
+
     /// The dynamic-model configuration for wear state `st`: `base` with the state's defect
     /// topography (on `base`'s defect location and formulation, or the outer race at the
     /// load-zone centre), roughness scaled by running-in and slip grown with the stage.
+    /// `base` is expected to pass [`Life::check_base`].
     pub fn model_config(
         &self,
         base: &crate::model::ModelConfig,

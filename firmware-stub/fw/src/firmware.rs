@@ -525,6 +525,9 @@ mod life {
     impl Wear {
         /// Wear of `base` (its defect is replaced by the wear state) at output `rate`.
         pub fn new(base: &ModelConfig, rate: Real, seed: u64) -> Self {
+            if Life::check_base(base).is_err() {
+                fatal("life: the wear stages model race defects, not a ball defect")
+            }
             let Ok(probe) = Model::new_checked(ModelConfig {
                 defect: None,
                 ..base.clone()

@@ -167,6 +167,7 @@ pub struct LifeRun {
 impl LifeRun {
     /// Validates the specification.
     pub fn new(spec: LifeSpec) -> Result<Self, LifeError> {
+        Life::check_base(&spec.model)?;
         let base = Model::new_checked(ModelConfig {
             defect: None,
             ..spec.model.clone()
