@@ -306,7 +306,10 @@ pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
         Some(d) => {
             let location = match d.location {
                 "inner" => DefectLocation::InnerRace { angle: 0.0 },
-                "ball" => DefectLocation::Ball { element: 0 },
+                "ball" => DefectLocation::Ball {
+                    element: 0,
+                    phase: 0.0,
+                },
                 "outer@3" => DefectLocation::OuterRace { angle: 0.0 },
                 "outer@12" => DefectLocation::OuterRace {
                     angle: -core::f64::consts::FRAC_PI_2 as Real,
