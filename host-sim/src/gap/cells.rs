@@ -68,6 +68,7 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
         },
     )?;
     let zones = ZoneBands::new(&spec.ff, spec.resonance_hz, fs)?;
+    let amp = analysis::amplitude_spectrum(x, fs, analysis::Window::Hann).ok();
     // The natural-frequency zone of the cells spans every structural resonance band between
     // the fault zone and the high zone (the thesis's zone is the model's one resonance ±30 %;
     // a measured record's housing modes lie anywhere above the fault zone, and a mode in a
@@ -84,6 +85,33 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
     ] {
         let level = analysis::zones::band_rms(&psd, band);
         push(&mut v, format!("zone:{name}"), "zone", "dB", db(level));
+        if name == "rotating" {
+            // The rotating zone is lines, not bands: the levels of the 1×–5× shaft
+            // harmonics (largest amplitude within ±¼ order of each, from one Hann-windowed
+            // FFT of the segment), relative to the zone level. Fractional-octave bands at
+            // these frequencies are narrower than a segment's frequency resolution.
+            for k in 1..=5 {
+                let f = k as f64 * spec.ff.shaft_hz;
+                let a = amp
+                    .as_ref()
+                    .map(|a| {
+                        let k0 = a.bin_of((f - 0.25 * spec.ff.shaft_hz).max(0.0));
+                        let k1 = a.bin_of(f + 0.25 * spec.ff.shaft_hz);
+                        (k0..=k1)
+                            .filter_map(|j| a.values.get(j).copied())
+                            .fold(0.0, f64::max)
+                    })
+                    .unwrap_or(0.0);
+                push(
+                    &mut v,
+                    format!("shape:rotating:{k}x"),
+                    "shape",
+                    "dB",
+                    (db(a / std::f64::consts::SQRT_2) - db(level)).max(-80.0),
+                );
+            }
+            continue;
+        }
         // Fractional-octave bands inside the zone, relative to the zone level.
         let step = 2f64.powf(1.0 / per_octave);
         let mut f = band.0.max(psd.df * 2.0);

@@ -60,6 +60,10 @@ pub struct GapArgs {
     /// Output directory.
     #[arg(long, default_value = "wearsim-gap")]
     pub out: PathBuf,
+    /// Also withhold each greedily added effect from the full model and check that the
+    /// diagnosis names it (costs one attribution per added effect).
+    #[arg(long)]
+    pub leave_one_out: bool,
     /// Machine-readable report on stdout.
     #[arg(long)]
     pub json: bool,
@@ -106,7 +110,9 @@ pub struct GapOutput {
     pub tied_with: Vec<String>,
     /// Findings and limits in words.
     pub findings: Vec<String>,
-    /// Simulations run and wall-clock time of the attribution (s).
+    /// Leave-one-out checks (with `--leave-one-out`).
+    pub leave_one_out: Option<Vec<super::attribute::LeaveOneOut>>,
+    /// Simulations run.
     pub simulations: usize,
     /// Wall-clock time of the attribution (s).
     pub seconds: f64,
@@ -282,13 +288,14 @@ fn rms(x: &[f64]) -> f64 {
     (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
 }
 
-/// Runs the attribution on prepared records.
+/// Runs the attribution on prepared records; returns it with the fit spaces and the
+/// evaluator (for further checks on the same records).
 pub fn diagnose(
     a: &GapArgs,
     train: &[Matched],
     hold: &[Matched],
     recs: &[RecordRole],
-) -> Result<Attribution, CliError> {
+) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), CliError> {
     let first = train
         .first()
         .ok_or_else(|| CliError::input("no training record"))?;
@@ -309,8 +316,9 @@ pub fn diagnose(
         a.jobs
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
-    attribute(&spaces, &Effects::NONE, train, hold, &ev, &Options::default())
-        .map_err(CliError::run)
+    let at = attribute(&spaces, &Effects::NONE, train, hold, &ev, &Options::default())
+        .map_err(CliError::run)?;
+    Ok((at, spaces, ev))
 }
 
 /// "Where", aggregated over the held-out records.
@@ -360,7 +368,24 @@ pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
 /// `wearsim gap`.
 pub fn run(a: &GapArgs) -> Result<(), CliError> {
     let (roles, train, hold) = prepare(a)?;
-    let at = diagnose(a, &train, &hold, &roles)?;
+    let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
+    let loo = if a.leave_one_out {
+        let added: Vec<String> = at.greedy.iter().map(|g| g.effect.clone()).collect();
+        Some(
+            super::attribute::leave_one_out(
+                &spaces,
+                &at.final_effects,
+                &added,
+                &train,
+                &hold,
+                &ev,
+                &Options::default(),
+            )
+            .map_err(CliError::run)?,
+        )
+    } else {
+        None
+    };
     let mut findings: Vec<String> = roles
         .iter()
         .flat_map(|r| {
@@ -386,7 +411,8 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
         identified: at.identified.clone(),
         tied_with: at.tied_with.clone(),
         findings,
-        simulations: at.simulations,
+        leave_one_out: loo,
+        simulations: ev.sims(),
         seconds: at.seconds,
         files: vec![],
     };

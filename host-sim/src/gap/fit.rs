@@ -16,9 +16,9 @@ use serde::Serialize;
 use wearsim_core::effects::Effects;
 
 /// Pattern-search step below which a fit counts as converged (normalised coordinates).
-pub const STEP_TOL: f64 = 1.0 / 64.0;
+pub const STEP_TOL: f64 = 1.0 / 128.0;
 /// Objective evaluations allowed in the pattern search after the grid.
-pub const MAX_SEARCH: usize = 40;
+pub const MAX_SEARCH: usize = 60;
 
 /// One fitted parameter with its uncertainty.
 #[derive(Debug, Clone, Serialize)]

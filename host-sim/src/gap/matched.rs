@@ -106,6 +106,23 @@ impl Gaps {
     }
 }
 
+/// `fx` with effect `name` switched off.
+pub fn without(fx: &Effects, name: &str) -> Effects {
+    let mut out = *fx;
+    match name {
+        "slip" => out.slip = None,
+        "load-zone" => out.load_zone = None,
+        "transfer-path" => out.transfer_path = None,
+        "speed-fluctuation" => out.speed_fluctuation = None,
+        "sensor" => out.sensor = None,
+        "shaft-harmonics" => out.shaft_harmonics = None,
+        "running-in" => out.running_in = None,
+        "roughness" => out.roughness = None,
+        _ => out.edge_shape = None,
+    }
+    out
+}
+
 /// Runs simulations against sets of matched records and counts them.
 #[derive(Debug, Default)]
 pub struct Evaluator {

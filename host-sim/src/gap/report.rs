@@ -118,6 +118,22 @@ pub fn markdown(o: &GapOutput) -> String {
             let _ = writeln!(s, "Named first: none (no effect shrinks the gap meaningfully).");
         }
     }
+    if let Some(loo) = &o.leave_one_out {
+        let _ = writeln!(s, "\n## Leave one effect out\n");
+        let _ = writeln!(s, "| withheld | gap full model | gap without | named first | named |");
+        let _ = writeln!(s, "|---|---:|---:|---|---|");
+        for l in loo {
+            let _ = writeln!(
+                s,
+                "| {} | {:.2} | {:.2} | {} | {} |",
+                l.effect,
+                l.full,
+                l.without,
+                l.named_first.as_deref().unwrap_or("none"),
+                if l.named { "yes" } else { "no" }
+            );
+        }
+    }
     if !o.findings.is_empty() {
         let _ = writeln!(s, "\n## Findings and limits\n");
         for f in &o.findings {

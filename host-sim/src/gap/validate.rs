@@ -126,13 +126,21 @@ pub struct TwinReport {
 
 /// Pairs of effects that act through the same term for a stationary record, so no cell
 /// can separate them (reported, and counted as one class for [`EffectRate::top1_class`]).
-pub const INDISTINGUISHABLE: [(&str, &str, &str); 1] = [(
-    "running-in",
-    "roughness",
-    "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
-)];
+pub const INDISTINGUISHABLE: [(&str, &str, &str); 2] = [
+    (
+        "running-in",
+        "roughness",
+        "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
+    ),
+    (
+        "slip",
+        "speed-fluctuation",
+        "both spread the element-pass times and so smear the envelope's fault harmonics alike; the shaft lines that speed fluctuation also spreads move by less than a bin of a 1 s record at the jitter a drive shows",
+    ),
+];
 
-fn same_class(a: &str, b: &str) -> bool {
+/// Whether effects `a` and `b` are the same or an [`INDISTINGUISHABLE`] pair.
+pub fn same_class(a: &str, b: &str) -> bool {
     a == b
         || INDISTINGUISHABLE
             .iter()
@@ -222,6 +230,8 @@ fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
                 ("edge-shape", "asperity_scale") => (0.4, 1.0),
                 ("sensor", "hum") => (0.3, 1.0),
                 ("transfer-path", "path_gain") => (0.2, 0.9),
+                ("slip", _) => (0.55, 1.0),
+                ("speed-fluctuation", _) => (0.65, 1.0),
                 _ => (0.4, 1.0),
             };
             lo + (hi - lo) * u01()
