@@ -13,14 +13,22 @@ use wearsim_host::gap::cli::{diagnose, prepare, GapArgs};
 fn args(dir: &Path, family: &str) -> GapArgs {
     let files: Vec<PathBuf> = (0..4)
         .filter_map(|hp| {
-            std::fs::read_dir(dir).ok()?.filter_map(|e| e.ok()).find_map(|e| {
-                let n = e.file_name().to_string_lossy().into_owned();
-                n.starts_with(&format!("12k_Drive_End_{family}_{hp}_"))
-                    .then(|| e.path())
-            })
+            std::fs::read_dir(dir)
+                .ok()?
+                .filter_map(|e| e.ok())
+                .find_map(|e| {
+                    let n = e.file_name().to_string_lossy().into_owned();
+                    n.starts_with(&format!("12k_Drive_End_{family}_{hp}_"))
+                        .then(|| e.path())
+                })
         })
         .collect();
-    assert_eq!(files.len(), 4, "{family}: expected the 0-3 hp files in {}", dir.display());
+    assert_eq!(
+        files.len(),
+        4,
+        "{family}: expected the 0-3 hp files in {}",
+        dir.display()
+    );
     GapArgs {
         real: files,
         bearing: None,
@@ -58,7 +66,11 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         at.seconds
     );
     for r in &at.ranking {
-        println!("  alone: {:<18} shrink {:+.0} %", r.effect, 100.0 * r.shrink);
+        println!(
+            "  alone: {:<18} shrink {:+.0} %",
+            r.effect,
+            100.0 * r.shrink
+        );
     }
     for g in &at.greedy {
         println!(
@@ -73,7 +85,11 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
     // The record's metadata is matched, the gap is large (the baseline is a bare bearing
     // seen at its own ring, the measurement is a motor housing): it must be far outside
     // the measurement's variability before, and shrink substantially held out.
-    assert!(at.baseline_holdout > 3.0, "{family}: baseline gap {}", at.baseline_holdout);
+    assert!(
+        at.baseline_holdout > 3.0,
+        "{family}: baseline gap {}",
+        at.baseline_holdout
+    );
     assert!(
         at.final_holdout < 0.5 * at.baseline_holdout,
         "{family}: held-out gap only {:.2} -> {:.2}",
@@ -120,10 +136,7 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         assert!(
             l.named,
             "{family}: withholding {} grows the gap {:.2} -> {:.2} but the diagnosis names {:?}",
-            l.effect,
-            l.full,
-            l.without,
-            l.named_first
+            l.effect, l.full, l.without, l.named_first
         );
     }
     println!("  leave-one-out: {named}/{} named", loo.len());

@@ -33,7 +33,11 @@ fn twins_name_the_withheld_effect() {
     for (l, row) in r.labels.iter().zip(&r.confusion) {
         println!("{l:<18} {row:?}");
     }
-    assert!(r.noise_only_gap < 1.0, "noise-only gap {}", r.noise_only_gap);
+    assert!(
+        r.noise_only_gap < 1.0,
+        "noise-only gap {}",
+        r.noise_only_gap
+    );
     let paired = |e: &str| INDISTINGUISHABLE.iter().any(|(a, b, _)| *a == e || *b == e);
     for e in &r.rates {
         assert_eq!(e.trials, 20);

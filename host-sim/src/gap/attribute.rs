@@ -185,7 +185,10 @@ pub fn attribute(
             ));
         }
         if r.train_gap < (1.0 - opt.min_shrink) * train0 && r.shrink < 0.0 {
-            findings.push(format!("`{}` fits the training records but not the held-out ones", r.effect));
+            findings.push(format!(
+                "`{}` fits the training records but not the held-out ones",
+                r.effect
+            ));
         }
         for p in &r.params {
             if p.at_bound && r.shrink >= opt.min_shrink {

@@ -234,7 +234,8 @@ pub fn prepare(a: &GapArgs) -> Result<(Vec<RecordRole>, Vec<Matched>, Vec<Matche
         let half = r.accel.len() / 2;
         let len = half.min((a.seconds * r.fs).round() as usize);
         for (start, tag, set) in [(0, "train", &mut train), (half, "holdout", &mut hold)] {
-            let m = records::part(r, start, len, a.seed + start as u64, tag).map_err(CliError::input)?;
+            let m = records::part(r, start, len, a.seed + start as u64, tag)
+                .map_err(CliError::input)?;
             roles.push(RecordRole {
                 role: tag.into(),
                 part: m.label.clone(),
@@ -254,7 +255,8 @@ pub fn prepare(a: &GapArgs) -> Result<(Vec<RecordRole>, Vec<Matched>, Vec<Matche
         if let Some(i) = ti.iter().find(|i| hi.contains(i)) {
             return Err(CliError::input(format!(
                 "--train and --holdout both hold {}: a held-out record must not be fitted on",
-                recs.get(*i).map_or_else(String::new, |r| r.file.display().to_string())
+                recs.get(*i)
+                    .map_or_else(String::new, |r| r.file.display().to_string())
             )));
         }
         if ti.is_empty() || hi.is_empty() {
@@ -316,8 +318,15 @@ pub fn diagnose(
         a.jobs
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
-    let at = attribute(&spaces, &Effects::NONE, train, hold, &ev, &Options::default())
-        .map_err(CliError::run)?;
+    let at = attribute(
+        &spaces,
+        &Effects::NONE,
+        train,
+        hold,
+        &ev,
+        &Options::default(),
+    )
+    .map_err(CliError::run)?;
     Ok((at, spaces, ev))
 }
 

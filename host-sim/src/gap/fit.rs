@@ -230,7 +230,13 @@ fn uncertainty(
         if du <= 0.0 {
             return (vec![None; p], n);
         }
-        jac.push(lo.gaps.iter().zip(&hi.gaps).map(|(a, b)| (b - a) / du).collect());
+        jac.push(
+            lo.gaps
+                .iter()
+                .zip(&hi.gaps)
+                .map(|(a, b)| (b - a) / du)
+                .collect(),
+        );
     }
     // Weighted least squares (weights W = w² of the total gap) with every cell gap of
     // variance s² (the mean square residual, at least that of a gap between two
@@ -306,8 +312,18 @@ fn invert(a: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
         .collect();
     for c in 0..n {
         let piv = (c..n).max_by(|&x, &y| {
-            let vx = a.get(x).and_then(|r| r.get(c)).copied().unwrap_or(0.0).abs();
-            let vy = a.get(y).and_then(|r| r.get(c)).copied().unwrap_or(0.0).abs();
+            let vx = a
+                .get(x)
+                .and_then(|r| r.get(c))
+                .copied()
+                .unwrap_or(0.0)
+                .abs();
+            let vy = a
+                .get(y)
+                .and_then(|r| r.get(c))
+                .copied()
+                .unwrap_or(0.0)
+                .abs();
             vx.total_cmp(&vy)
         })?;
         a.swap(c, piv);

@@ -4,7 +4,7 @@
 //! returns the cell gaps. The evaluator counts every simulation it runs, so a report can
 //! say how many were needed and how long they took.
 
-use super::{Reference, CellSpec};
+use super::{CellSpec, Reference};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wearsim_core::effects::Effects;
 use wearsim_core::{Model, ModelConfig, Sample, State};

@@ -216,10 +216,7 @@ fn group_weights(names: &[(String, &'static str, &'static str)]) -> Vec<f64> {
     names
         .iter()
         .map(|(_, g, _)| {
-            let n = groups
-                .iter()
-                .find(|(x, _)| x == g)
-                .map_or(1, |(_, c)| *c) as f64;
+            let n = groups.iter().find(|(x, _)| x == g).map_or(1, |(_, c)| *c) as f64;
             1.0 / (ng * n).sqrt()
         })
         .collect()

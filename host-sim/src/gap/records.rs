@@ -214,9 +214,8 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             ))
         }
     };
-    let preset = presets::by_name(&bearing).ok_or_else(|| {
-        format!("--bearing: unknown preset `{bearing}` (see `wearsim presets`)")
-    })?;
+    let preset = presets::by_name(&bearing)
+        .ok_or_else(|| format!("--bearing: unknown preset `{bearing}` (see `wearsim presets`)"))?;
     let scale = match rec.unit.as_str() {
         "g" => G,
         "m/s^2" => 1.0,
@@ -297,8 +296,8 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
 
 /// The matched baseline configuration of a record.
 pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
-    let mut cfg = presets::by_name(&r.bearing)
-        .ok_or_else(|| format!("unknown preset `{}`", r.bearing))?;
+    let mut cfg =
+        presets::by_name(&r.bearing).ok_or_else(|| format!("unknown preset `{}`", r.bearing))?;
     cfg.speed = SpeedProfile::Constant((r.rpm / 60.0) as Real);
     cfg.output_rate = r.fs as Real;
     cfg.defect = match r.defect {
@@ -341,7 +340,13 @@ pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
 }
 
 /// A matched part `[start, start + len)` of `r`.
-pub fn part(r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str) -> Result<Matched, String> {
+pub fn part(
+    r: &RealRecord,
+    start: usize,
+    len: usize,
+    seed: u64,
+    tag: &str,
+) -> Result<Matched, String> {
     let cfg = matched_config(r)?;
     let spec = spec_of(&cfg)?;
     let x = r
@@ -351,7 +356,9 @@ pub fn part(r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str) -> R
     Ok(Matched {
         label: format!(
             "{} [{tag}: {:.2}–{:.2} s]",
-            r.file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+            r.file
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
             start as f64 / r.fs,
             (start + len) as f64 / r.fs
         ),

@@ -18,7 +18,9 @@ use std::path::{Path, PathBuf};
 fn fmt_params(p: &[super::fit::FittedParam]) -> String {
     p.iter()
         .map(|q| {
-            let std = q.std.map_or_else(|| " ± ?".to_string(), |s| format!(" ± {s:.3}"));
+            let std = q
+                .std
+                .map_or_else(|| " ± ?".to_string(), |s| format!(" ± {s:.3}"));
             let edge = if q.at_bound { " (edge)" } else { "" };
             format!("{} = {:.4}{std} {}{edge}", q.name, q.value, q.unit)
         })
@@ -35,7 +37,12 @@ pub fn markdown(o: &GapOutput) -> String {
     let _ = writeln!(s, "|---|---|---|---|---|");
     for r in &o.records {
         let d = r.meta.defect.map_or("none".to_string(), |d| {
-            format!("{} {:.3} mm × {:.3} mm deep", d.location, 1e3 * d.size, 1e3 * d.depth)
+            format!(
+                "{} {:.3} mm × {:.3} mm deep",
+                d.location,
+                1e3 * d.size,
+                1e3 * d.depth
+            )
         });
         let _ = writeln!(
             s,
@@ -47,7 +54,10 @@ pub fn markdown(o: &GapOutput) -> String {
         s,
         "\n## Where: cells by baseline gap (held-out)\n\nGap = (simulated − measured) / measured segment-to-segment spread; |gap| < 1 is within the measurement's own variability.\n"
     );
-    let _ = writeln!(s, "| cell | unit | measured | simulated | spread | gap | gap after |");
+    let _ = writeln!(
+        s,
+        "| cell | unit | measured | simulated | spread | gap | gap after |"
+    );
     let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|");
     for c in o.where_.iter().take(15) {
         let _ = writeln!(
@@ -88,7 +98,10 @@ pub fn markdown(o: &GapOutput) -> String {
     if o.greedy.is_empty() {
         let _ = writeln!(s, "No effect was added.");
     } else {
-        let _ = writeln!(s, "| step | effect | parameters | before | after | shrink |");
+        let _ = writeln!(
+            s,
+            "| step | effect | parameters | before | after | shrink |"
+        );
         let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
         for (i, g) in o.greedy.iter().enumerate() {
             let _ = writeln!(
@@ -115,12 +128,18 @@ pub fn markdown(o: &GapOutput) -> String {
             let _ = writeln!(s, "Named first: **{e}**.");
         }
         None => {
-            let _ = writeln!(s, "Named first: none (no effect shrinks the gap meaningfully).");
+            let _ = writeln!(
+                s,
+                "Named first: none (no effect shrinks the gap meaningfully)."
+            );
         }
     }
     if let Some(loo) = &o.leave_one_out {
         let _ = writeln!(s, "\n## Leave one effect out\n");
-        let _ = writeln!(s, "| withheld | gap full model | gap without | named first | named |");
+        let _ = writeln!(
+            s,
+            "| withheld | gap full model | gap without | named first | named |"
+        );
         let _ = writeln!(s, "|---|---:|---:|---|---|");
         for l in loo {
             let _ = writeln!(
@@ -140,11 +159,7 @@ pub fn markdown(o: &GapOutput) -> String {
             let _ = writeln!(s, "* {f}");
         }
     }
-    let _ = writeln!(
-        s,
-        "\n{} simulations in {:.1} s.",
-        o.simulations, o.seconds
-    );
+    let _ = writeln!(s, "\n{} simulations in {:.1} s.", o.simulations, o.seconds);
     s
 }
 
@@ -267,12 +282,16 @@ pub fn write(
     let mut files = vec![];
     if let Some(m) = hold.first() {
         let fs = m.spec().fs;
-        let base = m.simulate(&wearsim_core::effects::Effects::NONE).map_err(CliError::run)?;
+        let base = m
+            .simulate(&wearsim_core::effects::Effects::NONE)
+            .map_err(CliError::run)?;
         let fin = m.simulate(&at.final_effects).map_err(CliError::run)?;
-        let spectra: Vec<Option<Spectrum>> = [&m.real, &base, &fin].iter().map(|x| psd(x, fs)).collect();
+        let spectra: Vec<Option<Spectrum>> =
+            [&m.real, &base, &fin].iter().map(|x| psd(x, fs)).collect();
         let pts = |s: &Option<Spectrum>, f1: f64| {
-            s.as_ref()
-                .map_or_else(Vec::new, |s| points(s, 0.0, f1, |v| 10.0 * v.max(1e-30).log10()))
+            s.as_ref().map_or_else(Vec::new, |s| {
+                points(s, 0.0, f1, |v| 10.0 * v.max(1e-30).log10())
+            })
         };
         let nyq = 0.5 * fs;
         let ser = [
@@ -284,8 +303,26 @@ pub fn write(
         files.extend(render(
             dir,
             "gap-spectra",
-            |r| draw_lines(r, &title, "frequency (Hz)", "PSD (dB re 1 (m/s²)²/Hz)", nyq, &ser),
-            |r| draw_lines(r, &title, "frequency (Hz)", "PSD (dB re 1 (m/s²)²/Hz)", nyq, &ser),
+            |r| {
+                draw_lines(
+                    r,
+                    &title,
+                    "frequency (Hz)",
+                    "PSD (dB re 1 (m/s²)²/Hz)",
+                    nyq,
+                    &ser,
+                )
+            },
+            |r| {
+                draw_lines(
+                    r,
+                    &title,
+                    "frequency (Hz)",
+                    "PSD (dB re 1 (m/s²)²/Hz)",
+                    nyq,
+                    &ser,
+                )
+            },
         )?);
         let ff = &m.spec().ff;
         let f1 = 6.0 * ff.bpfi.max(ff.bpfo).max(2.0 * ff.bsf);
@@ -306,11 +343,34 @@ pub fn write(
         files.extend(render(
             dir,
             "gap-envelope",
-            |r| draw_lines(r, &title, "frequency (Hz)", "envelope amplitude (dB re 1 m/s²)", f1, &eser),
-            |r| draw_lines(r, &title, "frequency (Hz)", "envelope amplitude (dB re 1 m/s²)", f1, &eser),
+            |r| {
+                draw_lines(
+                    r,
+                    &title,
+                    "frequency (Hz)",
+                    "envelope amplitude (dB re 1 m/s²)",
+                    f1,
+                    &eser,
+                )
+            },
+            |r| {
+                draw_lines(
+                    r,
+                    &title,
+                    "frequency (Hz)",
+                    "envelope amplitude (dB re 1 m/s²)",
+                    f1,
+                    &eser,
+                )
+            },
         )?);
     }
-    files.extend(render(dir, "gap-cells", |r| draw_bars(r, o), |r| draw_bars(r, o))?);
+    files.extend(render(
+        dir,
+        "gap-cells",
+        |r| draw_bars(r, o),
+        |r| draw_bars(r, o),
+    )?);
     let md = dir.join("gap.md");
     write_atomic(&md, markdown(o).as_bytes())
         .map_err(|err| CliError::run(format!("{}: {err}", md.display())))?;

@@ -268,7 +268,11 @@ impl TwinSetup {
         let mut cfg = self.base.clone();
         cfg.effects = self.floor;
         merge(&mut cfg.effects, fx);
-        let x = record(&cfg, seed.wrapping_mul(7919).wrapping_add(13), 2 * self.half)?;
+        let x = record(
+            &cfg,
+            seed.wrapping_mul(7919).wrapping_add(13),
+            2 * self.half,
+        )?;
         let (a, b) = x.split_at(self.half);
         let m = |part: &[f64], k: u64, label: &str| -> Result<Matched, String> {
             Ok(Matched {
@@ -296,11 +300,18 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let half = (opt.half_s * spec.fs).round() as usize;
     let level = rms(&record(&base, 1, half)?);
     let mut floor = Effects::NONE;
-    floor.set(
-        "sensor",
-        &[(opt.noise * level) as wearsim_core::Real, 0.0, 0.0, 60.0, 0.0],
-    )
-    .map_err(|e| format!("--noise: {e}"))?;
+    floor
+        .set(
+            "sensor",
+            &[
+                (opt.noise * level) as wearsim_core::Real,
+                0.0,
+                0.0,
+                60.0,
+                0.0,
+            ],
+        )
+        .map_err(|e| format!("--noise: {e}"))?;
     let setup = TwinSetup {
         half,
         spec: spec.clone(),
@@ -345,9 +356,9 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let noise_gap = median(noise_only);
     let mut trials = vec![];
     let run = |withheld: &[&FitSpace],
-                   seed: u64,
-                   rng: &mut Xoshiro128pp,
-                   max_effects: usize|
+               seed: u64,
+               rng: &mut Xoshiro128pp,
+               max_effects: usize|
      -> Result<(Trial, Vec<String>), String> {
         let mut fx = Effects::NONE;
         let mut params = vec![];

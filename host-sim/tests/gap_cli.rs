@@ -1,0 +1,156 @@
+//! `wearsim gap` and `gap-validate` on bad input: exit code 2, a message naming the field
+//! and what is allowed, and nothing written.
+
+use std::path::Path;
+use std::process::Command;
+
+fn wearsim(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(args)
+        .output()
+        .expect("run wearsim");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// A CSV record in m/s² of `n` samples of a deterministic broadband signal.
+fn csv(dir: &Path, name: &str, n: usize) -> String {
+    let mut s = String::from("accel_m_s2\n");
+    let mut x: u64 = 12345;
+    for _ in 0..n {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        s.push_str(&format!(
+            "{}\n",
+            ((x >> 33) as f64 / (1u64 << 31) as f64) - 0.5
+        ));
+    }
+    let p = dir.join(name);
+    std::fs::write(&p, s).unwrap();
+    p.display().to_string()
+}
+
+fn bad(args: &[&str], needle: &str, out: &Path) {
+    let (code, err) = wearsim(args);
+    assert_eq!(code, 2, "{args:?}: exit {code}, stderr {err}");
+    assert!(err.contains(needle), "{args:?}: `{needle}` not in: {err}");
+    assert!(!out.join("gap.json").exists(), "{args:?} wrote a report");
+}
+
+#[test]
+fn gap_rejects_bad_input_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = out.display().to_string();
+    let long = csv(dir.path(), "noise.csv", 24_000);
+    let short = csv(dir.path(), "short.csv", 3_000);
+    let common = ["--fs", "12000", "--bearing", "cwru-6205-de", "--out", &o];
+    let with = |extra: &[&str], file: &str| -> Vec<String> {
+        let mut v = vec!["gap".to_string(), "--real".into(), file.to_string()];
+        v.extend(common.iter().map(|s| s.to_string()));
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v
+    };
+    let run = |v: Vec<String>, needle: &str| {
+        let a: Vec<&str> = v.iter().map(String::as_str).collect();
+        bad(&a, needle, &out);
+    };
+    // Sample rate vs length.
+    run(
+        with(&["--rpm", "1797"], &short),
+        "is the sample rate right?",
+    );
+    // Speed missing and not estimable from a broadband record.
+    run(with(&[], &long), "not estimable");
+    // Unknown defect location, size without unit, out-of-range size.
+    run(
+        with(&["--rpm", "1797", "--defect", "cage:1mm"], &long),
+        "the model knows: none, inner",
+    );
+    run(
+        with(&["--rpm", "1797", "--defect", "inner:0.007"], &long),
+        "needs a unit",
+    );
+    run(
+        with(&["--rpm", "1797", "--defect", "inner:50mm"], &long),
+        "out of range",
+    );
+    // Unknown effect; out-of-range arguments.
+    run(
+        with(&["--rpm", "1797", "--effects", "magic"], &long),
+        "unknown effect `magic`",
+    );
+    run(
+        with(&["--rpm", "1797", "--seconds", "0.1"], &long),
+        "--seconds 0.1 is out of range",
+    );
+    run(
+        with(&["--rpm", "1797", "--mains", "100"], &long),
+        "--mains 100 Hz is out of range",
+    );
+    run(with(&["--rpm", "-5"], &long), "rpm");
+    // A held-out record must not be fitted on.
+    let mut v = with(
+        &["--rpm", "1797", "--train", "1", "--holdout", "1,2"],
+        &long,
+    );
+    v.insert(3, long.clone());
+    run(v, "must not be fitted on");
+}
+
+#[test]
+fn gap_contradicting_label_and_unknown_bearing() {
+    let Some(data) = wearsim_host::io::data_dir().unwrap() else {
+        return;
+    };
+    let f = data.join("cwru/12k_Drive_End_IR007_0_105.mat");
+    let f = f.display().to_string();
+    let dir = tempfile::tempdir().unwrap();
+    let o = dir.path().join("out").display().to_string();
+    bad(
+        &[
+            "gap",
+            "--real",
+            &f,
+            "--defect",
+            "outer:0.007in",
+            "--out",
+            &o,
+        ],
+        "contradicts the file's label",
+        &dir.path().join("out"),
+    );
+    bad(
+        &["gap", "--real", &f, "--bearing", "skf-9999", "--out", &o],
+        "unknown preset `skf-9999`",
+        &dir.path().join("out"),
+    );
+}
+
+#[test]
+fn gap_validate_rejects_bad_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, needle) in [
+        (
+            vec!["gap-validate", "--trials", "0"],
+            "--trials 0 is out of range",
+        ),
+        (
+            vec!["gap-validate", "--noise", "2"],
+            "--noise 2 is out of range",
+        ),
+        (
+            vec!["gap-validate", "--effects", "warp"],
+            "unknown effect `warp`",
+        ),
+        (
+            vec!["gap-validate", "--half", "0.1"],
+            "--half 0.1 s is out of range",
+        ),
+    ] {
+        bad(&args, needle, dir.path());
+    }
+}
