@@ -78,12 +78,18 @@ fn twin_records_are_within_their_spread_and_a_missing_mode_is_located() {
     );
     // The mode rings after every impact: the largest gaps are the impulsiveness (kurtosis,
     // crest) and the level of the zone that holds 4.5 kHz, all negative (the simulation
-    // lacks the mode's energy).
+    // lacks the mode's energy); within the high zone the 1/6-octave shape then puts the
+    // simulation's relative energy away from the mode (a positive shape gap elsewhere).
     let top: Vec<&str> = g.cells.iter().take(4).map(|c| c.name.as_str()).collect();
     assert!(top.contains(&"zone:high"), "top cells {top:?}");
     let high = g.cells.iter().find(|c| c.name == "zone:high").unwrap();
     assert!(high.gap < -10.0, "zone:high gap {}", high.gap);
-    assert!(g.cells.iter().take(4).all(|c| c.gap < 0.0));
+    assert!(g
+        .cells
+        .iter()
+        .filter(|c| c.group != "shape")
+        .take(3)
+        .all(|c| c.gap < 0.0));
     // Zones the mode does not reach stay close.
     let rot = g.cells.iter().find(|c| c.name == "zone:rotating").unwrap();
     assert!(rot.gap.abs() < 3.0, "zone:rotating gap {}", rot.gap);

@@ -205,8 +205,11 @@ impl GapArgs {
     }
 }
 
+/// Records with their roles, training parts, held-out parts.
+pub type Prepared = (Vec<RecordRole>, Vec<Matched>, Vec<Matched>);
+
 /// Loads the records and builds the training and held-out matched parts.
-pub fn prepare(a: &GapArgs) -> Result<(Vec<RecordRole>, Vec<Matched>, Vec<Matched>), CliError> {
+pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
     a.check()?;
     let defect = match &a.defect {
         Some(d) => Some(records::parse_defect(d).map_err(CliError::input)?),

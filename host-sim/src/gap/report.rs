@@ -180,13 +180,16 @@ const REAL_C: RGBColor = RGBColor(40, 40, 40);
 const BASE_C: RGBColor = RGBColor(210, 40, 40);
 const FINAL_C: RGBColor = RGBColor(20, 90, 200);
 
+/// One curve: legend, colour, points.
+type Series<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+
 fn draw_lines<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     title: &str,
     xlabel: &str,
     ylabel: &str,
     x1: f64,
-    series: &[(&str, RGBColor, Vec<(f64, f64)>)],
+    series: &[Series],
 ) -> R {
     e(root.fill(&WHITE))?;
     let all: Vec<(f64, f64)> = series.iter().flat_map(|s| s.2.iter().copied()).collect();

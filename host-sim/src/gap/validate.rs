@@ -216,6 +216,7 @@ pub fn record(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>, 
 /// harmonics, a roughness scale near 1 and an edge shape near the baseline's are the
 /// baseline within the measurement's variability, and would test nothing).
 fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
+    #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
     let mut u01 = || 0.5 * (rng.uniform_pm1() as f64 + 1.0);
     space
         .fitted
