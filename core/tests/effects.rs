@@ -289,7 +289,10 @@ fn transfer_path_impulse_response_peaks_at_the_modes() {
     let mut sq = Default::default();
     for (i, v) in ir.iter().enumerate() {
         let q = quiet.filter(&mut sq, if i == 0 { 1.0 } else { 0.0 });
-        assert!((q - 0.125 * v).abs() <= 1e-12 * v.abs().max(1e-300), "{i}: {q} vs {v}");
+        assert!(
+            (q - 0.125 * v).abs() <= 1e-12 * v.abs().max(1e-300),
+            "{i}: {q} vs {v}"
+        );
     }
     let mag = |f: f64| {
         let (mut re, mut im) = (0.0, 0.0);
