@@ -20,6 +20,7 @@ pub struct Equilibrium {
 
 /// Solves the equilibrium for `n` elements, radial load `w` (N), structural stiffness `k`
 /// (N/m) and radial clearance `gamma` (m) by bisection (the left side is monotonic in y).
+/// A negative `gamma` is a uniform preload: every element with positive deflection counts.
 pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Real) -> Equilibrium {
     let mut y_sum = 0.0;
     let mut k_sum = 0.0;
@@ -30,13 +31,15 @@ pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Rea
             let mut f = k * y;
             for j in 0..n {
                 let s = sin(angle(j));
-                if s > 0.0 {
+                // Without preload (γ ≥ 0) only the lower half can touch; with it (γ < 0)
+                // every element whose deflection is positive carries load.
+                if s > 0.0 || gamma < 0.0 {
                     f += contact.load(y * s - gamma) * s;
                 }
             }
             f - w
         };
-        let (mut lo, mut hi) = (0.0 as Real, gamma + 1e-9);
+        let (mut lo, mut hi) = (0.0 as Real, gamma.max(0.0) + 1e-9);
         let mut guard = 0;
         while net(hi) < 0.0 && guard < 200 {
             hi *= 2.0;
@@ -55,7 +58,7 @@ pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Rea
         for j in 0..n {
             let a = angle(j);
             let s = sin(a);
-            if s > 0.0 {
+            if s > 0.0 || gamma < 0.0 {
                 let d = y * s - gamma;
                 k_sum += contact.tangent_stiffness(d) * s * s;
                 let q = contact.load(d);

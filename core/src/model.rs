@@ -149,6 +149,12 @@ pub struct Model {
     contact: ElementContact,
     orders: FaultOrders,
     eq: Equilibrium,
+    /// Contact offset `γ` of the element deflections (m): the radial clearance less a
+    /// load-zone preload (negative when preloaded).
+    gamma: Real,
+    /// Elements with `sin θ` at or below this are out of contact and skipped: 0 without
+    /// preload (the upper half), −2 (none) with it.
+    sin_skip: Real,
     h: Real,
     ratio: u32,
     disc: Discretization,
@@ -245,13 +251,28 @@ impl Model {
         let contact = ElementContact::of(&bearing);
         let orders = FaultOrders::of(&bearing);
         let s = &cfg.structure;
-        let eq = equilibrium(
+        let eq0 = equilibrium(
             &contact,
             bearing.elements,
             cfg.radial_load,
             s.stiffness,
             cfg.clearance,
         );
+        // Load-zone preload: a uniform contact deflection in units of the unpreloaded
+        // static displacement, i.e. a negative clearance (effects/load_zone.rs).
+        let preload = fx.load_zone.map_or(0.0, |p| p.preload) * eq0.y0;
+        let gamma = cfg.clearance - preload;
+        let eq = if preload > 0.0 {
+            equilibrium(
+                &contact,
+                bearing.elements,
+                cfg.radial_load,
+                s.stiffness,
+                gamma,
+            )
+        } else {
+            eq0
+        };
         let kl = s.stiffness + eq.contact_stiffness;
         let wave_order = cfg
             .waviness
@@ -354,6 +375,10 @@ impl Model {
             contact,
             orders,
             eq,
+            gamma,
+            // Without preload the upper half cannot touch (skipped, as in the thesis's
+            // model); with it every element is evaluated.
+            sin_skip: if gamma < 0.0 { -2.0 } else { 0.0 },
             h: h as Real,
             ratio,
             disc,
@@ -546,7 +571,8 @@ impl Model {
         mut draw: Option<(&mut Xoshiro128pp, Real)>,
     ) -> Real {
         let n = self.cfg.bearing.elements as usize;
-        let gamma = self.cfg.clearance;
+        let gamma = self.gamma;
+        let sin_skip = self.sin_skip;
         let wave_amp = self.cfg.waviness.map(|w| w.amplitude).unwrap_or(0.0);
         let (cc, sc) = k.cage_cs;
         let (cw, sw) = k.wave_cs;
@@ -585,11 +611,11 @@ impl Model {
             let (ce, se) = *ecs;
             let sin_t = sc * ce + cc * se;
             let rough = match draw.as_mut() {
-                Some((rng, sigma)) if sin_t > -0.05 => *sigma * rng.uniform_pm1(),
+                Some((rng, sigma)) if sin_t > sin_skip - 0.05 => *sigma * rng.uniform_pm1(),
                 Some(_) => 0.0,
                 None => *rough,
             };
-            if sin_t <= 0.0 {
+            if sin_t <= sin_skip {
                 continue;
             }
             let mut delta = y * sin_t - gamma - rough;
@@ -892,7 +918,7 @@ impl Model {
             .zip(self.elem_cs.get(..n).unwrap_or(&[]))
         {
             let sin_t = sc * ce + cc * se;
-            *rough = if sin_t > -0.05 {
+            *rough = if sin_t > self.sin_skip - 0.05 {
                 sigma * st.rng.uniform_pm1()
             } else {
                 0.0

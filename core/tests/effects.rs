@@ -196,6 +196,93 @@ fn slip_smears_the_higher_fault_harmonics() {
     assert!(r1 < 0.35 * r0, "{r0} -> {r1}");
 }
 
+/// Squared acceleration averaged synchronously over an inner-race defect's angle ψ from the
+/// load-zone centre, in 36 bins of 10° from ψ = 0 (defect angle = shaft angle; centre at
+/// π/2), skipping the first 1000 samples.
+fn synchronous_energy(m: &Model, a: &[f64], fr: f64) -> Vec<f64> {
+    let mut e = [0.0f64; 36];
+    let mut n = [0usize; 36];
+    for (i, v) in a.iter().enumerate().skip(1000) {
+        let ang = TAU * fr * m.output_time(i as u64) - std::f64::consts::FRAC_PI_2;
+        let b = (ang.rem_euclid(TAU) / TAU * 36.0) as usize % 36;
+        e[b] += v * v;
+        n[b] += 1;
+    }
+    e.iter().zip(n).map(|(x, k)| x / k.max(1) as f64).collect()
+}
+
+#[test]
+fn load_zone_preload_widens_the_zone_as_stribeck_harris_says() {
+    let base = ModelConfig {
+        slip: None,
+        defect: Some(DefectConfig {
+            location: DefectLocation::InnerRace { angle: 0.0 },
+            ..thesis().defect.unwrap()
+        }),
+        ..clean()
+    };
+    let m0 = Model::new_checked(base.clone()).unwrap();
+    let y0 = m0.equilibrium().y0;
+    let pre = with(
+        base.clone(),
+        "load-zone",
+        &[("depth", 0.0), ("preload", 2.0)],
+    );
+    let m1 = Model::new_checked(pre.clone()).unwrap();
+    let y1 = m1.equilibrium().y0;
+    // Static balance of the preloaded bearing, element by element (K y + Σ Q_j sin θ_j =
+    // W with Q_j = K_h (y sin θ_j + δ_p)^{3/2} over every element, δ_p = 2 y₀), at the two
+    // cage positions the equilibrium averages.
+    let c = pre.clone();
+    let n = c.bearing.elements as usize;
+    let dp = 2.0 * y0;
+    let mut balance = 0.0;
+    for offset in [0.0, 0.5] {
+        // Solve this cage position's balance by bisection, as an independent check.
+        let net = |y: f64| {
+            c.structure.stiffness * y
+                + (0..n)
+                    .map(|j| {
+                        let s = ((j as f64 + offset) * TAU / n as f64).sin();
+                        m1.contact().load(y * s + dp) * s
+                    })
+                    .sum::<f64>()
+                - c.radial_load
+        };
+        let (mut lo, mut hi) = (0.0, y0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if net(mid) < 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
+        }
+        balance += 0.5 * lo;
+    }
+    println!("preload 2 y0: y {y0:.3e} -> {y1:.3e} m (independent balance {balance:.3e})");
+    assert!((y1 - balance).abs() < 1e-3 * balance, "{y1} vs {balance}");
+    // Stiffer and wider: the displacement falls and ε = ½(1 + δ_p/y) exceeds 1 (every
+    // element loaded; the top element's load ((δ_p − y)/(δ_p + y))^{3/2} of the bottom's).
+    let eps = 0.5 * (1.0 + dp / y1);
+    assert!(y1 < y0 && eps > 1.0, "y {y0} -> {y1}, eps {eps}");
+    // Dynamics: the defect now impacts at the top of the bearing (ψ = 180°), where the
+    // half-circle zone of the baseline has no contact at all.
+    let fr = presets::THESIS_SHAFT_HZ;
+    let (_, a0) = accel(base, 3, 2.0);
+    let (_, a1) = accel(pre, 3, 2.0);
+    let top = |a: &[f64]| {
+        let e = synchronous_energy(&m0, a, fr);
+        (e[17] + e[18] + e[19]) / 3.0 / ((e[0] + e[35]) / 2.0)
+    };
+    let (t0, t1) = (top(&a0), top(&a1));
+    println!("preload: energy at the top / centre {t0:.4} -> {t1:.4}");
+    // Hertz: Q_top/Q_bottom = ((δ_p − y)/(δ_p + y))^{3/2} ≈ 0.3 here; the impact energy
+    // falls faster than the load, but the top must carry a clear fraction of it and far
+    // more than without preload.
+    assert!(t1 > 0.05 && t1 > 5.0 * t0, "{t0} -> {t1}");
+}
+
 #[test]
 fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
     let base = ModelConfig {
@@ -213,18 +300,8 @@ fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
         3,
         2.0,
     );
-    // Squared acceleration averaged synchronously over the defect's angle ψ from the
-    // load-zone centre (defect angle = shaft angle; centre at π/2).
     let profile = |a: &[f64]| {
-        let mut e = [0.0f64; 36];
-        let mut n = [0usize; 36];
-        for (i, v) in a.iter().enumerate().skip(1000) {
-            let ang = TAU * fr * m.output_time(i as u64) - std::f64::consts::FRAC_PI_2;
-            let b = (ang.rem_euclid(TAU) / TAU * 36.0) as usize % 36;
-            e[b] += v * v;
-            n[b] += 1;
-        }
-        let e: Vec<f64> = e.iter().zip(n).map(|(x, k)| x / k.max(1) as f64).collect();
+        let e = synchronous_energy(&m, a, fr);
         // Energy on the entering flank, ψ in −70°..−40° (the trailing flank is blurred by
         // the ringing of the impacts), over the energy at |ψ| < 10°.
         (e[29] + e[30] + e[31]) / 3.0 / ((e[0] + e[35]) / 2.0)
@@ -239,6 +316,7 @@ fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
     let p = effects::load_zone::Params {
         depth: 1.0,
         epsilon: 0.5,
+        preload: 0.0,
     };
     assert!((p.gain(1.0) - 1.0).abs() < 1e-12);
     assert!(p.gain(0.0).abs() < 1e-12 && p.gain(-1.0) == 0.0);

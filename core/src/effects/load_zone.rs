@@ -22,6 +22,10 @@
 use crate::error::{check_range, ConfigError};
 use crate::real::{pow_3_2, Real};
 
+/// Largest accepted [`Params::preload`] (–): four static displacements load every element
+/// of any radially loaded bearing.
+pub const MAX_PRELOAD: Real = 4.0;
+
 /// Parameters of the `load-zone` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Params {
@@ -30,6 +34,16 @@ pub struct Params {
     /// Load-distribution factor ε (–), in [0.2, 1]: the load zone spans
     /// `|ψ| ≤ arccos(1 − 2ε)`; ε = 0.5 is a half-circle.
     pub epsilon: Real,
+    /// Uniform contact preload `δ_p/y₀` (–), in [0, 4]: every element's contact deflection
+    /// is raised by `δ_p`, `y₀` being the static radial displacement of the bearing without
+    /// it (a negative internal clearance: an interference fit, or an axial spring preload
+    /// seen in the radial plane). The contacts then carry load beyond the half-circle, the
+    /// Stribeck–Harris factor becomes `ε = ½(1 + δ_p/y)` (Harris & Kotzalas 2006, eq. 7.24
+    /// with `P_d = −2δ_p`; `y` the new, smaller displacement), and at `δ_p ≥ y` every
+    /// element is loaded: an inner-race defect's impacts are then modulated far less than
+    /// the half-circle's on/off at 1× shaft. The contacts also stiffen (the resonance
+    /// rises). 0 = the baseline's contacts.
+    pub preload: Real,
 }
 
 impl Params {
@@ -37,6 +51,7 @@ impl Params {
     pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
         check_range("load-zone.depth", p.depth, 0.0, 1.0)?;
         check_range("load-zone.epsilon", p.epsilon, 0.2, 1.0)?;
+        check_range("load-zone.preload", p.preload, 0.0, MAX_PRELOAD)?;
         Ok(p)
     }
 

@@ -99,10 +99,11 @@ pub const CATALOGUE: [EffectInfo; 9] = [
     },
     EffectInfo {
         name: "load-zone",
-        summary: "Stribeck load-zone modulation of the defect impact (inner race: at 1x shaft; ball defects are not in the core)",
+        summary: "Stribeck load-zone modulation of the defect impact (inner race: at 1x shaft; ball: at FTF), narrowed by an extra Stribeck factor or widened by a contact preload",
         params: &[
             p("depth", "-", 1.0, 0.0, 1.0, "modulation depth: 0 = baseline, 1 = full Stribeck factor"),
             p("epsilon", "-", 0.5, 0.2, 1.0, "load-distribution factor (0.5 = half-circle load zone)"),
+            p("preload", "-", 0.0, 0.0, 4.0, "uniform contact preload in static displacements (0 = none; >= 1 loads every element)"),
         ],
     },
     EffectInfo {
@@ -228,6 +229,7 @@ impl Effects {
                 self.load_zone = Some(load_zone::Params::new_checked(load_zone::Params {
                     depth: v(values, 0),
                     epsilon: v(values, 1),
+                    preload: v(values, 2),
                 })?)
             }
             "transfer-path" => {

@@ -79,6 +79,19 @@ pub struct Step {
     pub shrink: f64,
 }
 
+/// An effect taken out again after a later one made it redundant (stepwise selection).
+#[derive(Debug, Clone, Serialize)]
+pub struct Dropped {
+    /// Effect removed.
+    pub effect: String,
+    /// The addition after which it stopped mattering.
+    pub after: String,
+    /// Held-out total gap with it.
+    pub with: f64,
+    /// Held-out total gap without it.
+    pub without: f64,
+}
+
 /// The answer to "which" and "how far".
 #[derive(Debug, Clone, Serialize)]
 pub struct Attribution {
@@ -90,6 +103,11 @@ pub struct Attribution {
     pub ranking: Vec<Ranked>,
     /// Effects added greedily, in order.
     pub greedy: Vec<Step>,
+    /// Effects removed again because a later addition made them redundant: withholding
+    /// them from the model no longer grew the held-out gap by the minimum shrink.
+    pub dropped: Vec<Dropped>,
+    /// The effects of the final model, in the order they were added.
+    pub kept: Vec<String>,
     /// Held-out total gap after the greedy additions.
     pub final_holdout: f64,
     /// The effect the diagnosis names first, if any effect shrinks the gap meaningfully.
@@ -237,6 +255,8 @@ pub fn attribute(
     let mut cur_r = hold_r0.clone();
     let mut greedy = vec![];
     let mut used: Vec<String> = vec![];
+    let mut kept: Vec<String> = vec![];
+    let mut dropped: Vec<Dropped> = vec![];
     if let Some(b) = best {
         if let Some((f, s)) = fits.iter().find(|(f, _)| f.effect == b.effect) {
             current = f.effects(s, &current);
@@ -250,6 +270,7 @@ pub fn attribute(
             });
             cur = b.holdout_gap;
             used.push(b.effect.clone());
+            kept.push(b.effect.clone());
         }
     }
     while !used.is_empty() && greedy.len() < opt.max_effects {
@@ -281,9 +302,45 @@ pub fn attribute(
                     shrink: 1.0 - g / cur,
                 });
                 used.push(s.effect.to_string());
+                kept.push(s.effect.to_string());
                 current = fx;
                 cur = g;
                 cur_r = r;
+                // Backward step: an earlier effect that the new one made redundant (its
+                // removal no longer grows the held-out gap by the minimum shrink) is
+                // taken out, the least needed first, one at a time.
+                loop {
+                    let mut weakest: Option<(String, f64, Effects, Gaps)> = None;
+                    for e in kept.iter().filter(|e| *e != s.effect) {
+                        let fx = without(&current, e);
+                        let Ok(r) = ev.residuals(holdout, &fx) else {
+                            continue;
+                        };
+                        let g = r.total();
+                        if 1.0 - cur / g < opt.min_shrink
+                            && weakest.as_ref().is_none_or(|w| g < w.1)
+                        {
+                            weakest = Some((e.clone(), g, fx, r));
+                        }
+                    }
+                    let Some((e, g, fx, r)) = weakest else {
+                        break;
+                    };
+                    findings.push(format!(
+                        "`{e}` was taken out again after `{}` was added: without it the held-out gap is {g:.2} against {cur:.2} with it (redundant)",
+                        s.effect
+                    ));
+                    dropped.push(Dropped {
+                        effect: e.clone(),
+                        after: s.effect.to_string(),
+                        with: cur,
+                        without: g,
+                    });
+                    kept.retain(|k| *k != e);
+                    current = fx;
+                    cur = g;
+                    cur_r = r;
+                }
             }
             _ => break,
         }
@@ -294,6 +351,8 @@ pub fn attribute(
         ranking,
         greedy,
         final_holdout: cur,
+        dropped,
+        kept,
         identified,
         tied_with,
         findings,
@@ -320,12 +379,14 @@ pub struct LeaveOneOut {
     /// Whether that is the withheld effect (or one the cells cannot tell apart from it,
     /// [`super::validate::INDISTINGUISHABLE`]).
     pub named: bool,
+    /// The reduced model's ranking, best first (at most three): effect and held-out shrink.
+    pub ranking: Vec<(String, f64)>,
 }
 
 /// Leave one effect out (sim-to-real.md, "Checked on data whose effect is withheld"): for
 /// every effect switched on in `full` (named in `added`), withhold it, check how far the
 /// held-out gap grows, and let the attribution (single-effect ranking, on top of the
-/// remaining effects) name the missing one.
+/// remaining effects, among the effects the reduced model lacks) name the missing one.
 pub fn leave_one_out(
     spaces: &[FitSpace],
     full: &Effects,
@@ -340,8 +401,16 @@ pub fn leave_one_out(
     for name in added {
         let reduced = without(full, name);
         let g = ev.residuals(holdout, &reduced)?.total();
+        // The candidates are the effects the reduced model lacks: the withheld one and
+        // those never added. Re-fitting an effect the model already has is not naming a
+        // missing one (a refit path gain can absorb part of any level change).
+        let lacking: Vec<FitSpace> = spaces
+            .iter()
+            .filter(|s| s.effect == name || !added.iter().any(|a| a == s.effect))
+            .cloned()
+            .collect();
         let a = attribute(
-            spaces,
+            &lacking,
             &reduced,
             train,
             holdout,
@@ -360,6 +429,12 @@ pub fn leave_one_out(
                 .as_deref()
                 .is_some_and(|f| super::validate::same_class(f, name)),
             named_first: a.identified,
+            ranking: a
+                .ranking
+                .iter()
+                .take(3)
+                .map(|r| (r.effect.clone(), r.shrink))
+                .collect(),
         });
     }
     Ok(out)

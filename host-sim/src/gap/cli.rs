@@ -102,6 +102,10 @@ pub struct GapOutput {
     pub ranking: Vec<super::attribute::Ranked>,
     /// Effects added greedily (how far).
     pub greedy: Vec<super::attribute::Step>,
+    /// Effects taken out again because a later addition made them redundant.
+    pub dropped: Vec<super::attribute::Dropped>,
+    /// The effects of the final model, in the order they were added.
+    pub kept: Vec<String>,
     /// Totals before and after.
     pub totals: Totals,
     /// The effect named first, if any.
@@ -382,7 +386,7 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
     let (roles, train, hold) = prepare(a)?;
     let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
     let loo = if a.leave_one_out {
-        let added: Vec<String> = at.greedy.iter().map(|g| g.effect.clone()).collect();
+        let added = at.kept.clone();
         Some(
             super::attribute::leave_one_out(
                 &spaces,
@@ -414,6 +418,8 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
         where_: where_cells(&hold, &at),
         ranking: at.ranking.clone(),
         greedy: at.greedy.clone(),
+        dropped: at.dropped.clone(),
+        kept: at.kept.clone(),
         totals: Totals {
             train_before: at.baseline_train,
             before: at.baseline_holdout,

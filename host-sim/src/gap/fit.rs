@@ -18,7 +18,7 @@ use wearsim_core::effects::Effects;
 /// Pattern-search step below which a fit counts as converged (normalised coordinates).
 pub const STEP_TOL: f64 = 1.0 / 128.0;
 /// Objective evaluations allowed in the pattern search after the grid.
-pub const MAX_SEARCH: usize = 60;
+pub const MAX_SEARCH: usize = 240;
 
 /// One fitted parameter with its uncertainty.
 #[derive(Debug, Clone, Serialize)]
@@ -32,7 +32,8 @@ pub struct FittedParam {
     pub std: Option<f64>,
     /// Catalogue unit.
     pub unit: String,
-    /// The optimum lies on the edge of the fitted range.
+    /// The optimum lies on the edge of the fitted range and the cells constrain the
+    /// parameter (normalised standard deviation < 0.25 of the range).
     pub at_bound: bool,
 }
 
@@ -79,7 +80,7 @@ fn grid(p: usize) -> Vec<Vec<f64>> {
         0 => vec![vec![]],
         1 => (0..=8).map(|i| vec![i as f64 / 8.0]).collect(),
         _ => {
-            let k = if p == 2 { 5 } else { 4 };
+            let k = 5;
             let axis: Vec<f64> = (0..k).map(|i| i as f64 / (k - 1) as f64).collect();
             let mut out = vec![vec![]];
             for _ in 0..p {
@@ -172,7 +173,10 @@ pub fn fit(space: &FitSpace, base: &Effects, train: &[Matched], ev: &Evaluator) 
                 .and_then(|i| i.params.iter().find(|q| q.name == f.name))
                 .map(|q| q.unit.to_string())
                 .unwrap_or_default(),
-            at_bound: *u <= 1e-9 || *u >= 1.0 - 1e-9,
+            // Only a parameter the cells constrain (normalised std below a quarter of
+            // its range) is reported on the edge: one they do not constrain can sit
+            // anywhere, its edge says nothing about the range being too small.
+            at_bound: (*u <= 1e-9 || *u >= 1.0 - 1e-9) && s.is_some_and(|s| s < 0.25),
         })
         .collect();
     Fit {

@@ -70,6 +70,35 @@ fn mean_std(v: &[f64]) -> (f64, f64) {
     (m, var.sqrt())
 }
 
+/// The per-segment cell whose segment-to-segment wander is itself a cell: the offset of
+/// the measured fault frequency from the kinematic one (%).
+const WANDER_OF: &str = "env:slip";
+
+/// Name of the between-segment cell: the standard deviation over the segments of
+/// [`WANDER_OF`], in dB re 1 % (floored at 0.01 %). A speed that fluctuates slower than a
+/// segment moves the fault line from segment to segment without changing the segments'
+/// mean, so no mean-based cell sees it; random slip of the element passes (independent
+/// from pass to pass) averages out within a segment's 20-odd passes and barely moves it.
+pub const WANDER: &str = "env:wander";
+
+/// Spread (dB) the [`WANDER`] cell is normalised by: the sampling standard deviation of a
+/// standard deviation estimated from `n` = [`SEGMENTS`] values, in dB,
+/// `20/ln 10 · 1/√(2(n−1))` (normal values; 2.3 dB for 8 segments).
+pub fn wander_spread_db() -> f64 {
+    20.0 / std::f64::consts::LN_10 / (2.0 * (SEGMENTS as f64 - 1.0)).sqrt()
+}
+
+/// [`WANDER`] of a record's segment cells (dB re 1 %), `None` when the segments have no
+/// [`WANDER_OF`] cell.
+fn wander_db(segs: &[Vec<CellValue>]) -> Option<f64> {
+    let i = segs.first()?.iter().position(|c| c.name == WANDER_OF)?;
+    let v: Vec<f64> = segs
+        .iter()
+        .filter_map(|s| s.get(i).map(|c| c.value))
+        .collect();
+    Some(20.0 * mean_std(&v).1.max(0.01).log10())
+}
+
 /// Cell values of each of `SEGMENTS` equal segments of `x`.
 pub fn segment_cells(x: &[f64], spec: &CellSpec) -> Result<Vec<Vec<CellValue>>, AnalysisError> {
     let len = x.len() / SEGMENTS;
@@ -115,6 +144,11 @@ impl Reference {
             mean.push(m);
             spread.push(s.max(spread_floor(c.unit)));
         }
+        if let Some(w) = wander_db(&r) {
+            names.push((WANDER.to_string(), "env", "dB"));
+            mean.push(w);
+            spread.push(wander_spread_db());
+        }
         let weight = group_weights(&names);
         Ok(Reference {
             names,
@@ -128,7 +162,8 @@ impl Reference {
     /// Mean cell values of simulated record `sim` over its segments.
     pub fn sim_means(&self, sim: &[f64]) -> Result<Vec<f64>, AnalysisError> {
         let s = segment_cells(sim, &self.spec)?;
-        Ok((0..self.mean.len())
+        let per_segment = s.first().map_or(0, Vec::len);
+        let mut out: Vec<f64> = (0..per_segment)
             .map(|i| {
                 let v: Vec<f64> = s
                     .iter()
@@ -136,7 +171,11 @@ impl Reference {
                     .collect();
                 mean_std(&v).0
             })
-            .collect())
+            .collect();
+        if self.names.iter().any(|n| n.0 == WANDER) {
+            out.push(wander_db(&s).unwrap_or(-40.0));
+        }
+        Ok(out)
     }
 
     /// Normalised gaps `(sim − real)/spread` of simulated cell means `sim`, in cell order.

@@ -116,6 +116,22 @@ pub fn markdown(o: &GapOutput) -> String {
             );
         }
     }
+    for d in &o.dropped {
+        let _ = writeln!(
+            s,
+            "\n`{}` was taken out again after `{}` was added: held-out gap {:.2} without it, {:.2} with it.",
+            d.effect, d.after, d.without, d.with
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nFinal model: {}.",
+        if o.kept.is_empty() {
+            "the baseline".to_string()
+        } else {
+            o.kept.join(" + ")
+        }
+    );
     let _ = writeln!(
         s,
         "\nTotal held-out gap: {:.2} → {:.2} ({:.0} % smaller).\n",

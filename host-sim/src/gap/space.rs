@@ -137,7 +137,9 @@ fn fp(name: &'static str, lo: f64, hi: f64, log: bool) -> FitParam {
 /// and fifty simulations):
 /// * `slip`: fraction 0.2–10 % of the pitch, log (below 0.2 % the envelope lines do not
 ///   broaden at the record's resolution).
-/// * `load-zone`: depth 0–1 and ε 0.2–1, linear.
+/// * `load-zone`: depth 0–1, ε 0.2–1 and preload 0–4 static displacements, linear: the
+///   zone narrowed by the extra Stribeck factor or widened by the preload (a measured
+///   inner race modulated less than the half-circle zone needs the preload).
 /// * `transfer-path`: broadband path gain 0.01–10 (log) and one mode, frequency 5–40 % of
 ///   fs (log) and added gain 0.2–10 (log), damping held at 5 % (a second and third mode
 ///   are not fitted: with the gain they trade off against each other and make the fit
@@ -183,10 +185,14 @@ fn raw_spaces(ctx: &Context) -> Vec<FitSpace> {
         },
         FitSpace {
             effect: "load-zone",
-            fitted: vec![fp("depth", 0.0, 1.0, false), fp("epsilon", 0.2, 1.0, false)],
+            fitted: vec![
+                fp("depth", 0.0, 1.0, false),
+                fp("epsilon", 0.2, 1.0, false),
+                fp("preload", 0.0, 4.0, false),
+            ],
             fixed: vec![],
             needs_defect: true,
-            note: "Stribeck modulation of the impacts: 1x sidebands (inner race), FTF (ball); a level only for a stationary outer-race defect",
+            note: "load zone of the defect's impacts: narrowed by an extra Stribeck factor (depth, epsilon) or widened by a contact preload; 1x sidebands (inner race), FTF (ball); a level only for a stationary outer-race defect",
         },
         FitSpace {
             effect: "transfer-path",

@@ -92,19 +92,27 @@ pub fn print(r: &TwinReport) {
     );
     println!();
     println!(
-        "{:<18} {:>6} {:>6} {:>7} {:>10} {:>13} {:>14}",
-        "withheld", "trials", "top-1", "rate", "top-1 class", "median shrink", "after / noise"
+        "{:<18} {:>6} {:>6} {:>7} {:>10} {:>13} {:>14} {:>8}",
+        "withheld",
+        "trials",
+        "top-1",
+        "rate",
+        "top-1 class",
+        "median shrink",
+        "after / noise",
+        "redraws"
     );
     for e in &r.rates {
         println!(
-            "{:<18} {:>6} {:>6} {:>6.0}% {:>10} {:>12.0}% {:>14.2}",
+            "{:<18} {:>6} {:>6} {:>6.0}% {:>10} {:>12.0}% {:>14.2} {:>8}",
             e.effect,
             e.trials,
             e.top1,
             100.0 * e.rate,
             e.top1_class,
             100.0 * e.median_shrink,
-            e.median_after_over_noise
+            e.median_after_over_noise,
+            e.redraws
         );
     }
     println!();
