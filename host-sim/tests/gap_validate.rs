@@ -5,13 +5,14 @@
 //! and the held-out gap after adding the named effect relative to the trial's noise-only
 //! gap (the exactly right model on another realisation).
 //!
-//! Thresholds: the acceptance asks ≥ 90 % top-1 and ≤ 1.5× the noise-only gap. The
-//! effects that meet it are held to it; the ones that do not yet (measured on this
-//! configuration: transfer-path 80 % and 2.1×, shaft-harmonics 1.7×, the slip /
-//! speed-fluctuation and running-in / roughness classes 70–90 %) are held to their
-//! measured level minus a margin, so that a regression fails and an improvement shows.
+//! Thresholds are the acceptance's: every effect ranked first in ≥ 90 % of its trials
+//! (counting the one indistinguishable pair, running-in / roughness, as one class, and
+//! requiring its misses to stay inside the pair), and a median held-out gap after adding
+//! the named effect ≤ 1.5× the trial's noise-only gap. Twins whose withheld effect the
+//! baseline cannot see (its held-out gap below 2× the noise-only gap) are redrawn and
+//! counted, never scored.
 
-use wearsim_host::gap::validate::{validate, TwinOptions, INDISTINGUISHABLE};
+use wearsim_host::gap::validate::{same_class, validate, TwinOptions, INDISTINGUISHABLE};
 
 #[test]
 fn twins_name_the_withheld_effect() {
@@ -39,29 +40,46 @@ fn twins_name_the_withheld_effect() {
         r.noise_only_gap
     );
     let paired = |e: &str| INDISTINGUISHABLE.iter().any(|(a, b, _)| *a == e || *b == e);
-    for e in &r.rates {
+    for (e, row) in r.rates.iter().zip(&r.confusion) {
         assert_eq!(e.trials, 20);
-        let (rate_min, ratio_max) = match e.effect.as_str() {
-            "transfer-path" => (0.7, 2.5),
-            "shaft-harmonics" => (0.9, 2.0),
-            _ if paired(&e.effect) => (0.6, 1.5),
-            _ => (0.9, 1.5),
-        };
-        let rate = e.top1_class as f64 / e.trials as f64;
+        let rate = if paired(&e.effect) {
+            e.top1_class
+        } else {
+            e.top1
+        } as f64
+            / e.trials as f64;
         assert!(
-            rate >= rate_min,
-            "{}: identified (class) in {:.0} % of trials, need {:.0} %",
+            rate >= 0.9,
+            "{}: ranked first in {:.0} % of trials, need 90 %",
             e.effect,
-            100.0 * rate,
-            100.0 * rate_min
+            100.0 * rate
         );
         assert!(
-            e.median_after_over_noise <= ratio_max,
-            "{}: held-out gap after adding it is {:.2}x the noise-only gap (limit {ratio_max})",
+            e.median_after_over_noise <= 1.5,
+            "{}: held-out gap after adding it is {:.2}x the noise-only gap (limit 1.5)",
             e.effect,
             e.median_after_over_noise
         );
+        // Misses of a paired effect go to its partner, nowhere else.
+        if paired(&e.effect) {
+            let outside: usize = row
+                .iter()
+                .zip(&r.columns)
+                .filter(|(_, c)| !same_class(c, &e.effect))
+                .map(|(n, _)| n)
+                .sum();
+            assert!(
+                outside <= 2,
+                "{}: {outside} misses outside its pair",
+                e.effect
+            );
+        }
         // Whatever is named, the gap must shrink when the withheld effect is real.
-        assert!(e.median_shrink > 0.0 || e.effect == "speed-fluctuation");
+        assert!(
+            e.median_shrink > 0.2,
+            "{}: median shrink {}",
+            e.effect,
+            e.median_shrink
+        );
     }
 }

@@ -142,18 +142,11 @@ pub struct TwinReport {
 
 /// Pairs of effects that act through the same term for a stationary record, so no cell
 /// can separate them (reported, and counted as one class for [`EffectRate::top1_class`]).
-pub const INDISTINGUISHABLE: [(&str, &str, &str); 2] = [
-    (
-        "running-in",
-        "roughness",
-        "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
-    ),
-    (
-        "slip",
-        "speed-fluctuation",
-        "both spread the element-pass times and so smear the envelope's fault harmonics alike; the shaft lines that speed fluctuation also spreads move by less than a bin of a 1 s record at the jitter a drive shows",
-    ),
-];
+pub const INDISTINGUISHABLE: [(&str, &str, &str); 1] = [(
+    "running-in",
+    "roughness",
+    "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
+)];
 
 /// Whether effects `a` and `b` are the same or an [`INDISTINGUISHABLE`] pair.
 pub fn same_class(a: &str, b: &str) -> bool {
