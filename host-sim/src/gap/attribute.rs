@@ -5,7 +5,7 @@
 //! [`Options::min_shrink`]. Every conclusion that the numbers do not support is reported
 //! as a finding instead of a ranking with false confidence.
 
-use super::fit::{fit, Fit, FittedParam};
+use super::fit::{fit, fit_from, Fit, FittedParam};
 use super::matched::{without, Evaluator, Gaps, Matched};
 use super::space::FitSpace;
 use super::total_gap;
@@ -282,7 +282,11 @@ pub fn attribute(
             .collect();
         let mut best_step: Option<(Fit, &FitSpace, f64, Effects, Gaps)> = None;
         for s in cands {
-            let f = fit(s, &current, train, ev);
+            let hint = fits
+                .iter()
+                .find(|(f, _)| f.effect == s.effect)
+                .map(|(f, _)| f.coords.as_slice());
+            let f = fit_from(s, &current, train, ev, hint);
             let fx = f.effects(s, &current);
             let Ok(r) = ev.residuals(holdout, &fx) else {
                 continue;

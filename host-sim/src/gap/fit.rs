@@ -78,9 +78,17 @@ fn with(space: &FitSpace, base: &Effects, u: &[f64]) -> Option<Effects> {
 fn grid(p: usize) -> Vec<Vec<f64>> {
     match p {
         0 => vec![vec![]],
-        1 => (0..=8).map(|i| vec![i as f64 / 8.0]).collect(),
+        1 => grid_k(1, 9),
+        _ => grid_k(p, 5),
+    }
+}
+
+/// `k` points per axis (k ≥ 2), every combination.
+fn grid_k(p: usize, k: usize) -> Vec<Vec<f64>> {
+    match p {
+        0 => vec![vec![]],
         _ => {
-            let k = 5;
+            let k = k.max(2);
             let axis: Vec<f64> = (0..k).map(|i| i as f64 / (k - 1) as f64).collect();
             let mut out = vec![vec![]];
             for _ in 0..p {
@@ -102,13 +110,35 @@ fn grid(p: usize) -> Vec<Vec<f64>> {
 
 /// Fits `space` on `train`, on top of the effects `base` already switched on.
 pub fn fit(space: &FitSpace, base: &Effects, train: &[Matched], ev: &Evaluator) -> Fit {
+    fit_from(space, base, train, ev, None)
+}
+
+/// [`fit`] started from a known optimum `hint` (normalised coordinates, e.g. the
+/// effect's fit alone on the baseline, when it is refitted on top of other effects): the
+/// coarse grid shrinks to three points per axis plus the hint, and the pattern search
+/// refines as before. Multi-start instead of a fine grid: a greedy step refits every
+/// remaining effect, and the grid is most of a fit's simulations.
+pub fn fit_from(
+    space: &FitSpace,
+    base: &Effects,
+    train: &[Matched],
+    ev: &Evaluator,
+    hint: Option<&[f64]>,
+) -> Fit {
     let p = space.fitted.len();
     let objective = |u: &Vec<f64>| match with(space, base, u) {
         Some(fx) => ev.total(train, &fx),
         None => f64::INFINITY,
     };
-    // Coarse grid.
-    let pts = grid(p);
+    // Coarse grid (or a sparser one around a hint).
+    let pts = match hint.filter(|h| h.len() == p) {
+        Some(h) => {
+            let mut v = grid_k(p, 3);
+            v.push(h.to_vec());
+            v
+        }
+        None => grid(p),
+    };
     let vals = ev.map(&pts, objective);
     let mut evaluations = pts.len();
     let (mut best_u, mut best) = pts
