@@ -181,7 +181,11 @@ pub struct Model {
     /// Whether an effect needs per-step work (transfer path, running-in): one check per
     /// step keeps the baseline's step unchanged.
     per_step_effects: bool,
-    shaft_harmonics: bool,
+    /// Whether an effect adds a force outside the element loop (shaft harmonics, the
+    /// summits of running-in): one check per force evaluation.
+    extra_force: bool,
+    /// Force (N) of one running-in summit contact over a step; 0 without summits.
+    summit_force: Real,
 }
 
 impl Model {
@@ -371,6 +375,19 @@ impl Model {
         };
         let ball = cfg.defect.is_some_and(|d| d.location.is_ball());
         let rb = 0.5 * bearing.element_diameter;
+        // Running-in summits: the Hertz load increase of the most loaded element for a
+        // summit `s` µm high, over its transit time `λ_r/v` (effects::running_in).
+        let summit_force = match (fx.running_in, cfg.roughness) {
+            (Some(p), Some(r)) if p.summits > 0.0 => {
+                let q = &eq.reference;
+                let s = p.summit_height * 1e-6;
+                let v = TAU * cfg.speed.shaft_hz(0.0) * orders.ftf * bearing.outer_race_radius();
+                let tau = if v > 0.0 { r.wavelength / v } else { h as Real };
+                let dq = contact.load(q.delta_max + s) - contact.load(q.delta_max);
+                crate::effects::running_in::summit_force(dq, tau, h as Real)
+            }
+            _ => 0.0,
+        };
         Ok(Model {
             contact,
             orders,
@@ -405,7 +422,8 @@ impl Model {
                 .map(|t| TransferPath::design(&t, h as Real)),
             sensor_chain: fx.sensor.map(|t| SensorChain::design(&t, cfg.output_rate)),
             per_step_effects: fx.transfer_path.is_some() || fx.running_in.is_some(),
-            shaft_harmonics: fx.shaft_harmonics.is_some(),
+            extra_force: fx.shaft_harmonics.is_some() || summit_force > 0.0,
+            summit_force,
             cfg: ModelConfig { bearing, ..cfg },
         })
     }
@@ -551,8 +569,8 @@ impl Model {
         if let Some(imb) = &self.cfg.imbalance {
             f += imb.force(k, y, v);
         }
-        if self.shaft_harmonics {
-            f += self.shaft_harmonics_force(k);
+        if self.extra_force {
+            f += self.extra_force(st, k);
         }
         f + self.element_forces(st, k, y, stats, draw)
     }
@@ -792,6 +810,9 @@ impl Model {
         if self.cfg.integrator == IntegratorKind::Rk4 {
             self.draw_random(st);
         }
+        if self.extra_force {
+            self.draw_summit(st);
+        }
         let mut stats = StepStats::default();
         let (y, v) = (st.y, st.v);
         let kl_m = self.kl_m;
@@ -949,15 +970,41 @@ impl Model {
         }
     }
 
-    /// Force of the shaft-harmonics effect (N), out of line so that the baseline's force
+    /// Forces of the effects outside the element loop (N): shaft harmonics and the
+    /// running-in summit contact of this step; out of line so that the baseline's force
     /// sum only pays for the check.
     #[inline(never)]
-    fn shaft_harmonics_force(&self, k: &Kinematics) -> Real {
-        self.cfg
+    fn extra_force<const NB: usize>(&self, st: &State<NB>, k: &Kinematics) -> Real {
+        let harmonics = self
+            .cfg
             .effects
             .shaft_harmonics
             .map(|p| p.force(k))
-            .unwrap_or(0.0)
+            .unwrap_or(0.0);
+        harmonics + st.summit
+    }
+
+    /// Decides whether a running-in summit passes through a contact during this step
+    /// (Poisson, `S exp(−n/n_d)` per revolution) and sets the step's summit force: the
+    /// load increase of the most loaded element, scaled by a uniform draw in [½, 1] for
+    /// where in the load zone it happens, pushing the shaft like an element load (the
+    /// element forces are `−Σ Q_i sin θ_i`). Decided at the start of the step that uses it
+    /// from the state's generator, so a checkpoint between steps loses nothing.
+    #[inline(never)]
+    fn draw_summit<const NB: usize>(&self, st: &mut State<NB>) {
+        st.summit = 0.0;
+        let Some(p) = self.cfg.effects.running_in else {
+            return;
+        };
+        if self.summit_force <= 0.0 {
+            return;
+        }
+        let rate = p.summit_rate(st.revs) * st.shaft_hz * self.h;
+        let u = 0.5 * (st.rng.uniform_pm1() + 1.0);
+        if u < rate {
+            let w = 0.75 + 0.25 * st.rng.uniform_pm1();
+            st.summit = -self.summit_force * w;
+        }
     }
 
     /// Per-step work of the effects that need it, kept out of line so that the baseline
@@ -1110,6 +1157,8 @@ pub struct State<const NB: usize> {
     sensor: SensorState,
     revs: Real,
     run_in: Real,
+    /// Running-in summit force of the current step (N); set at the step's start.
+    summit: Real,
 }
 
 /// The plain fields of a [`State`], for checkpoints (`crate::checkpoint`).
@@ -1253,6 +1302,7 @@ impl<const NB: usize> State<NB> {
             sensor: SensorState::new(seed),
             revs: 0.0,
             run_in: 1.0,
+            summit: 0.0,
         };
         if let Some(p) = model.cfg.effects.running_in {
             st.run_in = p.scale(0.0);

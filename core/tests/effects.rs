@@ -612,6 +612,106 @@ fn running_in_raises_roughness_early_then_decays() {
     ));
 }
 
+/// Separate events in `x`: runs of samples above `thr`, a new event when more than `gap`
+/// samples passed since the last sample above it (an impact's ringing is one event).
+fn events(x: &[f64], thr: f64, gap: usize) -> Vec<usize> {
+    let mut out: Vec<usize> = vec![];
+    let mut last: Option<usize> = None;
+    for (i, v) in x.iter().enumerate() {
+        if v.abs() > thr {
+            if last.is_none_or(|l| i - l > gap) {
+                out.push(i);
+            }
+            last = Some(i);
+        }
+    }
+    out
+}
+
+fn kurtosis(x: &[f64]) -> f64 {
+    let m = x.iter().sum::<f64>() / x.len() as f64;
+    let v = x.iter().map(|a| (a - m).powi(2)).sum::<f64>() / x.len() as f64;
+    x.iter().map(|a| (a - m).powi(4)).sum::<f64>() / x.len() as f64 / (v * v)
+}
+
+#[test]
+fn running_in_summits_arrive_as_a_decaying_poisson_stream_of_impacts() {
+    let base = ModelConfig {
+        roughness: thesis().roughness,
+        ..clean()
+    };
+    let fr = presets::THESIS_SHAFT_HZ;
+    let seconds = 8.0;
+    let (m, a0) = accel(base.clone(), 3, seconds);
+    let fs = m.config().output_rate;
+    // Steady stream (decay far beyond the record): S contacts per revolution, sparse
+    // enough (5 a second) that two rarely fall within one impact's ringing.
+    let s = 0.2;
+    let (_, a1) = accel(
+        with(
+            base.clone(),
+            "running-in",
+            &[
+                ("factor", 1.0),
+                ("decay_revs", 1e9),
+                ("summits", s),
+                ("summit_height", 3.0),
+            ],
+        ),
+        3,
+        seconds,
+    );
+    // Each impact rings the structure for a few ms: 3 ms below the threshold end one.
+    let thr = 6.0 * rms(&a0);
+    let gap = (0.003 * fs) as usize;
+    let skip = (0.05 * fs) as usize;
+    let n0 = events(&a0[skip..], thr, gap).len();
+    let n1 = events(&a1[skip..], thr, gap).len() as f64;
+    let expect = s * fr * (seconds - 0.05);
+    println!("summits: {n1} impacts (expected {expect:.1}), {n0} without");
+    assert_eq!(n0, 0, "the baseline has no impacts above {thr}");
+    assert!(
+        (n1 - expect).abs() < 4.0 * expect.sqrt() + 2.0,
+        "{n1} impacts against a Poisson mean of {expect}"
+    );
+    // Sparse impacts raise crest factor and kurtosis far faster than the level (a
+    // Gaussian level change leaves both unchanged).
+    let crest = |x: &[f64]| x.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / rms(x);
+    let (k0, k1) = (kurtosis(&a0[skip..]), kurtosis(&a1[skip..]));
+    let (c0, c1) = (crest(&a0[skip..]), crest(&a1[skip..]));
+    let r = rms(&a1[skip..]) / rms(&a0[skip..]);
+    println!("summits: kurtosis {k0:.2} -> {k1:.2}, crest {c0:.2} -> {c1:.2}, rms x{r:.3}");
+    assert!(k1 / k0 > 10.0 * r && c1 / c0 > 2.0 * r, "not impulsive");
+
+    // Decaying: S·n_d·(1 − e^(−n/n_d)) contacts in the first n revolutions, none late.
+    let nd = 20.0;
+    let s = 1.0;
+    let (_, a2) = accel(
+        with(
+            base,
+            "running-in",
+            &[
+                ("factor", 1.0),
+                ("decay_revs", nd),
+                ("summits", s),
+                ("summit_height", 3.0),
+            ],
+        ),
+        4,
+        seconds,
+    );
+    let ev = events(&a2[skip..], thr, gap);
+    let t = |i: &usize| (i + skip) as f64 / fs;
+    let early = ev.iter().filter(|i| t(i) < 1.0).count() as f64;
+    let late = ev.iter().filter(|i| t(i) >= 3.0 && t(i) < 4.0).count();
+    let revs = |t: f64| fr * t;
+    let expect = s * nd * ((-revs(0.05) / nd).exp() - (-revs(1.0) / nd).exp());
+    let expect_late = s * nd * ((-revs(3.0) / nd).exp() - (-revs(4.0) / nd).exp());
+    println!("summits decaying: {early} in the first second (expected {expect:.1}), {late} in 3-4 s (expected {expect_late:.2})");
+    assert!((early - expect).abs() < 4.0 * expect.sqrt() + 2.0);
+    assert!(late <= 2, "{late} impacts late in the run");
+}
+
 #[test]
 fn roughness_scales_the_broadband_level() {
     let base = ModelConfig {

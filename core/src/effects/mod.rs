@@ -158,6 +158,8 @@ pub const CATALOGUE: [EffectInfo; 9] = [
             p("factor", "-", 3.0, 1.0, 10.0, "initial roughness factor"),
             p("decay_revs", "rev", 1.0e4, 1.0, 1.0e9, "revolutions over which the excess decays by 1/e"),
             p("start_revs", "rev", 0.0, 0.0, 1.0e12, "revolutions already run when the simulation starts"),
+            p("summits", "1/rev", 0.0, 0.0, 1000.0, "summit contacts per shaft revolution at the start (decaying likewise; 0 = none)"),
+            p("summit_height", "µm", 1.0, 0.0, 20.0, "height of the summits above the mean surface"),
         ],
     },
     EffectInfo {
@@ -276,6 +278,8 @@ impl Effects {
                     factor: v(values, 0),
                     decay_revs: v(values, 1),
                     start_revs: v(values, 2),
+                    summits: v(values, 3),
+                    summit_height: v(values, 4),
                 })?)
             }
             "roughness" => {
