@@ -5,8 +5,8 @@
 //! [`Options::min_shrink`]. Every conclusion that the numbers do not support is reported
 //! as a finding instead of a ranking with false confidence.
 
-use super::fit::{fit, fit_from, Fit, FittedParam};
-use super::matched::{without, Evaluator, Gaps, Matched};
+use super::fit::{fit_from, Budget, Fit, FittedParam};
+use super::matched::{without, Evaluator, Gaps, Target};
 use super::space::FitSpace;
 use super::total_gap;
 use serde::Serialize;
@@ -28,6 +28,8 @@ pub struct Options {
     pub tie: f64,
     /// A held-out baseline gap below this is within the measurement's own variability.
     pub significant_gap: f64,
+    /// How far each fit may search.
+    pub budget: Budget,
 }
 
 impl Default for Options {
@@ -38,6 +40,7 @@ impl Default for Options {
             greedy_candidates: usize::MAX,
             tie: 0.02,
             significant_gap: 1.5,
+            budget: Budget::DEFAULT,
         }
     }
 }
@@ -151,11 +154,11 @@ fn sub(r: &[f64], idx: &[usize]) -> Vec<f64> {
 
 /// Attributes the gap of `holdout` (after fitting on `train`) to the effects of `spaces`,
 /// on top of the baseline effects `base`.
-pub fn attribute(
+pub fn attribute<T: Target>(
     spaces: &[FitSpace],
     base: &Effects,
-    train: &[Matched],
-    holdout: &[Matched],
+    train: &[T],
+    holdout: &[T],
     ev: &Evaluator,
     opt: &Options,
 ) -> Result<Attribution, String> {
@@ -172,7 +175,7 @@ pub fn attribute(
     let mut ranking = vec![];
     let mut fits: Vec<(Fit, &FitSpace)> = vec![];
     for s in spaces {
-        let f = fit(s, base, train, ev);
+        let f = fit_from(s, base, train, ev, None, opt.budget);
         let fx = f.effects(s, base);
         let r = ev.residuals(holdout, &fx).unwrap_or_default();
         let g = if r.records == 0 {
@@ -286,7 +289,7 @@ pub fn attribute(
                 .iter()
                 .find(|(f, _)| f.effect == s.effect)
                 .map(|(f, _)| f.coords.as_slice());
-            let f = fit_from(s, &current, train, ev, hint);
+            let f = fit_from(s, &current, train, ev, hint, opt.budget);
             let fx = f.effects(s, &current);
             let Ok(r) = ev.residuals(holdout, &fx) else {
                 continue;
@@ -391,12 +394,12 @@ pub struct LeaveOneOut {
 /// every effect switched on in `full` (named in `added`), withhold it, check how far the
 /// held-out gap grows, and let the attribution (single-effect ranking, on top of the
 /// remaining effects, among the effects the reduced model lacks) name the missing one.
-pub fn leave_one_out(
+pub fn leave_one_out<T: Target>(
     spaces: &[FitSpace],
     full: &Effects,
     added: &[String],
-    train: &[Matched],
-    holdout: &[Matched],
+    train: &[T],
+    holdout: &[T],
     ev: &Evaluator,
     opt: &Options,
 ) -> Result<Vec<LeaveOneOut>, String> {

@@ -9,7 +9,7 @@
 //! so the objective is a deterministic function of the parameters and the search does not
 //! chase realisation noise.
 
-use super::matched::{merge, Evaluator, Matched};
+use super::matched::{merge, Evaluator, Target};
 use super::space::FitSpace;
 use super::SEGMENTS;
 use serde::Serialize;
@@ -19,6 +19,41 @@ use wearsim_core::effects::Effects;
 pub const STEP_TOL: f64 = 1.0 / 128.0;
 /// Objective evaluations allowed in the pattern search after the grid.
 pub const MAX_SEARCH: usize = 240;
+
+/// How far a fit may search: the pattern search stops at step `step_tol` (normalised
+/// coordinates) or after `max_search` evaluations. The default suits records of seconds;
+/// whole lives, each evaluation a life, use [`Budget::LIFE`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Budget {
+    /// Step below which the fit counts as converged.
+    pub step_tol: f64,
+    /// Evaluations allowed after the grid.
+    pub max_search: usize,
+    /// Grid points per axis of a fit with two or more parameters (nine for one).
+    pub axis: usize,
+}
+
+impl Budget {
+    /// For records of seconds: [`STEP_TOL`], [`MAX_SEARCH`].
+    pub const DEFAULT: Budget = Budget {
+        step_tol: STEP_TOL,
+        max_search: MAX_SEARCH,
+        axis: 5,
+    };
+    /// For whole lives: a step of 1/32 of the range (3 % of a decade on a log axis),
+    /// 48 evaluations, 4 grid points per axis (64 lives for three parameters).
+    pub const LIFE: Budget = Budget {
+        step_tol: 1.0 / 32.0,
+        max_search: 48,
+        axis: 4,
+    };
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget::DEFAULT
+    }
+}
 
 /// One fitted parameter with its uncertainty.
 #[derive(Debug, Clone, Serialize)]
@@ -75,11 +110,11 @@ fn with(space: &FitSpace, base: &Effects, u: &[f64]) -> Option<Effects> {
     Some(fx)
 }
 
-fn grid(p: usize) -> Vec<Vec<f64>> {
+fn grid(p: usize, axis: usize) -> Vec<Vec<f64>> {
     match p {
         0 => vec![vec![]],
         1 => grid_k(1, 9),
-        _ => grid_k(p, 5),
+        _ => grid_k(p, axis),
     }
 }
 
@@ -109,8 +144,8 @@ fn grid_k(p: usize, k: usize) -> Vec<Vec<f64>> {
 }
 
 /// Fits `space` on `train`, on top of the effects `base` already switched on.
-pub fn fit(space: &FitSpace, base: &Effects, train: &[Matched], ev: &Evaluator) -> Fit {
-    fit_from(space, base, train, ev, None)
+pub fn fit<T: Target>(space: &FitSpace, base: &Effects, train: &[T], ev: &Evaluator) -> Fit {
+    fit_from(space, base, train, ev, None, Budget::DEFAULT)
 }
 
 /// [`fit`] started from a known optimum `hint` (normalised coordinates, e.g. the
@@ -118,12 +153,13 @@ pub fn fit(space: &FitSpace, base: &Effects, train: &[Matched], ev: &Evaluator) 
 /// coarse grid shrinks to three points per axis plus the hint, and the pattern search
 /// refines as before. Multi-start instead of a fine grid: a greedy step refits every
 /// remaining effect, and the grid is most of a fit's simulations.
-pub fn fit_from(
+pub fn fit_from<T: Target>(
     space: &FitSpace,
     base: &Effects,
-    train: &[Matched],
+    train: &[T],
     ev: &Evaluator,
     hint: Option<&[f64]>,
+    budget: Budget,
 ) -> Fit {
     let p = space.fitted.len();
     let objective = |u: &Vec<f64>| match with(space, base, u) {
@@ -137,7 +173,7 @@ pub fn fit_from(
             v.push(h.to_vec());
             v
         }
-        None => grid(p),
+        None => grid(p, budget.axis),
     };
     let vals = ev.map(&pts, objective);
     let mut evaluations = pts.len();
@@ -151,7 +187,7 @@ pub fn fit_from(
     // improvement, halve the step when none improves.
     let mut step = if p == 1 { 1.0 / 16.0 } else { 1.0 / 8.0 };
     let mut searched = 0;
-    while p > 0 && step >= STEP_TOL && searched < MAX_SEARCH {
+    while p > 0 && step >= budget.step_tol && searched < budget.max_search {
         let polls: Vec<Vec<f64>> = (0..p)
             .flat_map(|i| {
                 [-1.0, 1.0].into_iter().filter_map({
@@ -186,7 +222,7 @@ pub fn fit_from(
             None => step *= 0.5,
         }
     }
-    let converged = p == 0 || (step < STEP_TOL && best.is_finite());
+    let converged = p == 0 || (step < budget.step_tol && best.is_finite());
     let (stds, extra) = uncertainty(space, base, train, ev, &best_u);
     evaluations += extra;
     let info = wearsim_core::effects::info(space.effect);
@@ -221,10 +257,10 @@ pub fn fit_from(
 
 /// Standard deviation of each normalised coordinate at `u` (None: unconstrained), and the
 /// evaluations spent.
-fn uncertainty(
+fn uncertainty<T: Target>(
     space: &FitSpace,
     base: &Effects,
-    train: &[Matched],
+    train: &[T],
     ev: &Evaluator,
     u: &[f64],
 ) -> (Vec<Option<f64>>, usize) {

@@ -63,6 +63,25 @@ impl Matched {
     }
 }
 
+/// A measured record that the attribution can hold simulations against: a stretch of a
+/// stationary record ([`Matched`]) or a whole measured life
+/// ([`super::lifetime::LifeTarget`]). Fits, ranking, greedy addition and leave-one-out
+/// only see these gaps, so they work the same on both.
+pub trait Target: Sync {
+    /// Normalised cell gaps `(sim − real)/spread` with effects `fx` added to the matched
+    /// baseline, and each cell's weight in the record's total gap (Σ w² = 1). Every
+    /// simulation actually run adds one to `sims`.
+    fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String>;
+}
+
+impl Target for Matched {
+    fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
+        sims.fetch_add(1, Ordering::Relaxed);
+        let c = self.sim_cells(fx)?;
+        Ok((self.reference.residuals(&c), self.reference.weight.clone()))
+    }
+}
+
 /// Switches on in `into` every effect that is on in `add` (the added one wins).
 pub fn merge(into: &mut Effects, add: &Effects) {
     macro_rules! m {
@@ -146,13 +165,12 @@ impl Evaluator {
     }
 
     /// Cell gaps of every record in `set` with effects `fx`.
-    pub fn residuals(&self, set: &[Matched], fx: &Effects) -> Result<Gaps, String> {
+    pub fn residuals<T: Target>(&self, set: &[T], fx: &Effects) -> Result<Gaps, String> {
         let mut out = Gaps::default();
         for m in set {
-            self.sims.fetch_add(1, Ordering::Relaxed);
-            let c = m.sim_cells(fx)?;
-            out.gaps.extend(m.reference.residuals(&c));
-            out.weights.extend(&m.reference.weight);
+            let (g, w) = m.gaps(fx, &self.sims)?;
+            out.gaps.extend(g);
+            out.weights.extend(w);
             out.records += 1;
         }
         Ok(out)
@@ -160,7 +178,7 @@ impl Evaluator {
 
     /// Total gap of `set` with effects `fx`; +∞ when the simulation is rejected (a
     /// parameter combination the model refuses).
-    pub fn total(&self, set: &[Matched], fx: &Effects) -> f64 {
+    pub fn total<T: Target>(&self, set: &[T], fx: &Effects) -> f64 {
         self.residuals(set, fx)
             .map(|r| r.total())
             .unwrap_or(f64::INFINITY)
