@@ -154,3 +154,107 @@ fn gap_validate_rejects_bad_arguments() {
         bad(&args, needle, dir.path());
     }
 }
+
+/// A lifetime table in the layout of IMS `test2_timefeatures.csv` (12 features for each
+/// of 4 bearings, a time stamp every 10 minutes), `rows` snapshots of a steady bearing.
+fn life_table(dir: &Path, name: &str, rows: usize) -> String {
+    let feats = [
+        "mean",
+        "std",
+        "skew",
+        "kurtosis",
+        "entropy",
+        "rms",
+        "max",
+        "p2p",
+        "crest",
+        "clearence",
+        "shape",
+        "impulse",
+    ];
+    let mut s = String::new();
+    for b in 1..=4 {
+        for f in feats {
+            s.push_str(&format!(",B{b}_{f}"));
+        }
+    }
+    s.push('\n');
+    for r in 0..rows {
+        let (d, m) = (r / 144, r % 144);
+        s.push_str(&format!(
+            "2004-02-{:02} {:02}:{:02}:00",
+            12 + d,
+            m / 6,
+            10 * (m % 6)
+        ));
+        for _ in 1..=4 {
+            let w = 1.0 + 0.01 * ((r * 7919 % 13) as f64 - 6.0) / 6.0;
+            let v = [
+                0.06 * w,
+                0.075 * w,
+                0.0,
+                0.4,
+                4.8,
+                0.075 * w,
+                0.4,
+                0.8,
+                5.3,
+                0.05,
+                1.25,
+                6.6,
+            ];
+            for x in v {
+                s.push_str(&format!(",{x}"));
+            }
+        }
+        s.push('\n');
+    }
+    let p = dir.join(name);
+    std::fs::write(&p, s).unwrap();
+    p.display().to_string()
+}
+
+#[test]
+fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = out.display().to_string();
+    let life = life_table(dir.path(), "test2_timefeatures.csv", 400);
+    let few = life_table(dir.path(), "few_timefeatures.csv", 8);
+    let cwru = csv(dir.path(), "noise.csv", 24_000);
+    let run = |extra: &[&str], file: &str, needle: &str| {
+        let mut v = vec!["gap", "--real", file, "--out", &o];
+        v.extend(extra);
+        bad(&v, needle, &out);
+    };
+    run(&["--rpm", "1800"], &life, "--rpm: a lifetime record");
+    run(&["--defect", "outer:0.007in"], &life, "--defect");
+    run(&["--train", "B9"], &life, "--train: `B9` is not a bearing");
+    run(&["--train", "B1,B2"], &life, "trains on one bearing");
+    run(
+        &["--train", "B1", "--holdout", "B2,B1"],
+        &life,
+        "both hold bearing 1",
+    );
+    run(&["--effects", "slip"], &life, "acts within a snapshot");
+    run(&["--effects", "warp"], &life, "unknown effect `warp`");
+    run(&["--jobs", "0"], &life, "--jobs 0");
+    // A bearing the table does not have, and too short a life: input errors found before
+    // any simulation runs.
+    let five = [
+        "gap",
+        "--real",
+        &life,
+        "--out",
+        &o,
+        "--train",
+        "B1",
+        "--holdout",
+        "5",
+    ];
+    bad(&five, "bearing 5 is not in the table", &out);
+    run(&[], &few, "fewer than 3 snapshots in the running-in stage");
+    // A lifetime table is diagnosed alone.
+    let two = ["gap", "--real", &life, "--real", &cwru, "--out", &o];
+    bad(&two, "diagnosed alone", &out);
+}

@@ -15,6 +15,8 @@ use wearsim_core::effects::Effects;
 #[derive(Debug, Clone, Args)]
 pub struct GapArgs {
     /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
+    /// An IMS feature table (`timefeatures.csv`) is a lifetime record: it is diagnosed
+    /// alone along life, and --train/--holdout name its bearings (B1, B2, ...).
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
     /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
@@ -383,6 +385,9 @@ pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
 
 /// `wearsim gap`.
 pub fn run(a: &GapArgs) -> Result<(), CliError> {
+    if a.real.iter().any(|p| super::life_report::is_life_table(p)) {
+        return super::life_report::run(a);
+    }
     let (roles, train, hold) = prepare(a)?;
     let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
     let loo = if a.leave_one_out {

@@ -8,6 +8,8 @@ pub mod attribute;
 pub mod cells;
 pub mod cli;
 pub mod fit;
+pub mod life_report;
+pub mod lifetime;
 pub mod matched;
 pub mod records;
 pub mod report;
@@ -243,7 +245,7 @@ pub fn total_weighted(weighted: &[f64]) -> f64 {
     weighted.iter().map(|g| g * g).sum::<f64>().sqrt()
 }
 
-fn group_weights(names: &[(String, &'static str, &'static str)]) -> Vec<f64> {
+pub(crate) fn group_weights(names: &[(String, &'static str, &'static str)]) -> Vec<f64> {
     let mut groups: Vec<(&str, usize)> = vec![];
     for (_, g, _) in names {
         match groups.iter_mut().find(|(n, _)| n == g) {

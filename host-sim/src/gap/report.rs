@@ -15,7 +15,7 @@ use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-fn fmt_params(p: &[super::fit::FittedParam]) -> String {
+pub(crate) fn fmt_params(p: &[super::fit::FittedParam]) -> String {
     p.iter()
         .map(|q| {
             let std = q
@@ -192,14 +192,14 @@ fn psd(x: &[f64], fs: f64) -> Option<Spectrum> {
     .ok()
 }
 
-const REAL_C: RGBColor = RGBColor(40, 40, 40);
-const BASE_C: RGBColor = RGBColor(210, 40, 40);
-const FINAL_C: RGBColor = RGBColor(20, 90, 200);
+pub(crate) const REAL_C: RGBColor = RGBColor(40, 40, 40);
+pub(crate) const BASE_C: RGBColor = RGBColor(210, 40, 40);
+pub(crate) const FINAL_C: RGBColor = RGBColor(20, 90, 200);
 
 /// One curve: legend, colour, points.
-type Series<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+pub(crate) type Series<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
 
-fn draw_lines<DB: DrawingBackend>(
+pub(crate) fn draw_lines<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     title: &str,
     xlabel: &str,
@@ -239,22 +239,36 @@ fn draw_lines<DB: DrawingBackend>(
 }
 
 fn draw_bars<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, o: &GapOutput) -> R {
-    e(root.fill(&WHITE))?;
-    let cells: Vec<_> = o.where_.iter().take(20).collect();
-    let n = cells.len().max(1);
-    let m = cells
+    let rows: Vec<(String, f64, f64)> = o
+        .where_
         .iter()
-        .flat_map(|c| [c.gap.abs(), c.gap_after.abs()])
+        .take(20)
+        .map(|c| (c.cell.clone(), c.gap, c.gap_after))
+        .collect();
+    let title = format!(
+        "cell gaps, held-out: total {:.2} → {:.2}",
+        o.totals.before, o.totals.after
+    );
+    draw_gap_bars(root, &title, &rows)
+}
+
+/// Horizontal bars of gaps before (red, upper) and after (blue, lower), one row per
+/// `(label, before, after)`, first row on top.
+pub(crate) fn draw_gap_bars<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    title: &str,
+    rows: &[(String, f64, f64)],
+) -> R {
+    e(root.fill(&WHITE))?;
+    let n = rows.len().max(1);
+    let m = rows
+        .iter()
+        .flat_map(|c| [c.1.abs(), c.2.abs()])
+        .filter(|v| v.is_finite())
         .fold(1.0, f64::max)
         * 1.1;
     let mut chart = e(ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "cell gaps, held-out: total {:.2} → {:.2}",
-                o.totals.before, o.totals.after
-            ),
-            (FONT, 18),
-        )
+        .caption(title, (FONT, 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(170)
@@ -265,19 +279,19 @@ fn draw_bars<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, o: &GapOutput) ->
         .y_labels(n)
         .y_label_formatter(&|y: &f64| {
             let i = n.saturating_sub(1 + y.floor() as usize);
-            cells.get(i).map_or_else(String::new, |c| c.cell.clone())
+            rows.get(i).map_or_else(String::new, |c| c.0.clone())
         })
         .x_desc("gap (simulated − measured) / measured spread")
         .label_style((FONT, 12))
         .draw())?;
-    for (i, c) in cells.iter().enumerate() {
+    for (i, c) in rows.iter().enumerate() {
         let y = (n - 1 - i) as f64;
         e(chart.draw_series(std::iter::once(Rectangle::new(
-            [(0.0, y + 0.5), (c.gap, y + 0.9)],
+            [(0.0, y + 0.5), (c.1, y + 0.9)],
             BASE_C.filled(),
         ))))?;
         e(chart.draw_series(std::iter::once(Rectangle::new(
-            [(0.0, y + 0.1), (c.gap_after, y + 0.5)],
+            [(0.0, y + 0.1), (c.2, y + 0.5)],
             FINAL_C.filled(),
         ))))?;
     }

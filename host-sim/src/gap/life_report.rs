@@ -1,0 +1,536 @@
+//! `wearsim gap` on a lifetime record (an IMS feature table): arguments, the report
+//! (Markdown, plots of the statistics along life and of the stage gaps, JSON written last)
+//! answering where along life / which effect / how far.
+
+use super::attribute::{Dropped, LeaveOneOut, Ranked, Step};
+use super::cli::{GapArgs, Totals};
+use super::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifeOptions, LifePoint, StageGap};
+use super::report::{draw_gap_bars, draw_lines, fmt_params, Series, BASE_C, FINAL_C, REAL_C};
+use crate::cli::CliError;
+use crate::life::output::write_atomic;
+use crate::plot::{register_fonts, render};
+use plotters::style::RGBColor;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Whether `path` is a lifetime record: a CSV whose header has per-bearing `B<k>_rms` and
+/// `B<k>_kurtosis` columns (an IMS timefeatures table).
+pub fn is_life_table(path: &Path) -> bool {
+    if !path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+    {
+        return false;
+    }
+    let Ok(f) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut line = String::new();
+    let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(f), &mut line);
+    line.contains("B1_rms") && line.contains("B1_kurtosis")
+}
+
+/// The early-life part of the answer.
+#[derive(Debug, Clone, Serialize)]
+pub struct Early {
+    /// Stages counted as early life (their end ≤ this fraction of life).
+    pub until: f64,
+    /// Held-out early-life gap of the baseline.
+    pub before: f64,
+    /// With the final model of the whole life.
+    pub after: f64,
+    /// Each effect alone, best first.
+    pub effects: Vec<EarlyShrink>,
+    /// The effect that closes the early-life part, if one shrinks it by 5 % or more.
+    pub closed_by: Option<String>,
+    /// Held-out early-life gap a correct model would leave by sampling alone.
+    pub noise_only: f64,
+}
+
+/// The lifetime report (`--json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct LifeGapOutput {
+    /// `lifetime`.
+    pub mode: &'static str,
+    /// Training lives.
+    pub train: Vec<String>,
+    /// Held-out lives.
+    pub holdout: Vec<String>,
+    /// Every cell of every life ranked by |baseline gap| ("where").
+    #[serde(rename = "where")]
+    pub where_: Vec<LifeCell>,
+    /// Stages ranked by their baseline gap, training life.
+    pub stages_train: Vec<StageGap>,
+    /// Stages of the held-out lives.
+    pub stages_holdout: Vec<StageGap>,
+    /// Effects ranked by held-out shrink.
+    pub ranking: Vec<Ranked>,
+    /// Greedy additions.
+    pub greedy: Vec<Step>,
+    /// Effects taken out again.
+    pub dropped: Vec<Dropped>,
+    /// Effects of the final model.
+    pub kept: Vec<String>,
+    /// Held-out totals.
+    pub totals: Totals,
+    /// Effect named first.
+    pub identified: Option<String>,
+    /// Effects tied with it.
+    pub tied_with: Vec<String>,
+    /// The early-life part.
+    pub early: Early,
+    /// Calibrated life factor (on the training bearing's measured life).
+    pub life_factor: f64,
+    /// Training bearing's measured life (revolutions).
+    pub measured_revs: f64,
+    /// Held-out gap of the whole life a correct model would leave by sampling alone.
+    pub noise_only: f64,
+    /// Findings and limits in words.
+    pub findings: Vec<String>,
+    /// Leave-one-out checks (with `--leave-one-out`).
+    pub leave_one_out: Option<Vec<LeaveOneOut>>,
+    /// Lives simulated (calibration included).
+    pub simulations: usize,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+    /// Files written.
+    pub files: Vec<PathBuf>,
+}
+
+fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
+    let mut out = vec![];
+    for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let digits = item.trim_start_matches(['B', 'b']);
+        match digits.parse::<usize>() {
+            Ok(b) if (1..=8).contains(&b) => out.push(b),
+            _ => {
+                return Err(CliError::input(format!(
+                    "{what}: `{item}` is not a bearing of a lifetime table; give B1..B8 (or 1..8)"
+                )))
+            }
+        }
+    }
+    Ok(out)
+}
+
+impl GapArgs {
+    /// Lifetime options from the arguments; options that only make sense for raw records
+    /// are refused rather than ignored.
+    fn life_options(&self) -> Result<LifeOptions, CliError> {
+        if self.real.len() != 1 {
+            return Err(CliError::input(format!(
+                "--real: a lifetime record (IMS feature table) is diagnosed alone; got {} files",
+                self.real.len()
+            )));
+        }
+        for (flag, given) in [
+            ("--bearing", self.bearing.is_some()),
+            ("--rpm", self.rpm.is_some()),
+            ("--defect", self.defect.is_some()),
+            ("--channel", self.channel.is_some()),
+            ("--fs", self.fs.is_some()),
+        ] {
+            if given {
+                return Err(CliError::input(format!(
+                    "{flag}: a lifetime record is matched to the ims-za2115 preset (Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot) and its life; {flag} does not apply"
+                )));
+            }
+        }
+        if self.jobs == Some(0) {
+            return Err(CliError::input("--jobs 0: give at least 1"));
+        }
+        let train = match &self.train {
+            Some(s) => bearings(s, "--train")?,
+            None => vec![1],
+        };
+        let [train] = train.as_slice() else {
+            return Err(CliError::input(
+                "--train: a lifetime diagnosis trains on one bearing (the one whose life defines the time line)",
+            ));
+        };
+        let holdout = match &self.holdout {
+            Some(s) => bearings(s, "--holdout")?,
+            None => (1..=4).filter(|b| b != train).collect(),
+        };
+        if holdout.contains(train) {
+            return Err(CliError::input(format!(
+                "--train and --holdout both hold bearing {train}: a held-out life must not be fitted on"
+            )));
+        }
+        if holdout.is_empty() {
+            return Err(CliError::input(
+                "--holdout: give at least one held-out bearing",
+            ));
+        }
+        let known = ["running-in", "roughness", "sensor", "edge-shape"];
+        for e in &self.effects {
+            if wearsim_core::effects::info(e).is_none() {
+                return Err(CliError::input(format!(
+                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
+                )));
+            }
+            if !known.contains(&e.as_str()) {
+                return Err(CliError::input(format!(
+                    "--effects: `{e}` acts within a snapshot and changes no statistic along a life; the lifetime candidates are {}",
+                    known.join(", ")
+                )));
+            }
+        }
+        Ok(LifeOptions {
+            train: *train,
+            holdout,
+            seed: self.seed,
+            jobs: self
+                .jobs
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+            effects: self.effects.clone(),
+            leave_one_out: self.leave_one_out,
+        })
+    }
+}
+
+fn findings(g: &LifeGap) -> Vec<String> {
+    let mut f = vec![format!(
+        "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not",
+        g.life_factor, g.measured_revs
+    )];
+    f.push(format!(
+        "held-out lives are compared on the stages before {:.0} % of the test: they did not fail, and their late stages carry the failing neighbour's vibration through the shaft; the late-life part of the diagnosis (stages after that) rests on the training life alone",
+        100.0 * lifetime::HOLDOUT_T_MAX
+    ));
+    f.extend(g.attribution.findings.iter().cloned());
+    f.extend(g.early_findings.iter().map(|x| format!("early life: {x}")));
+    let threshold = lifetime::SIGNIFICANCE * g.noise_only.1;
+    f.push(format!(
+        "a correct model would leave a held-out gap of {:.2} over the whole life and {:.2} over its early part by sampling alone (stage means of n measured snapshots and m simulated windows: variance 1/n + 1/m per cell); a gap counts from {:.0}× that",
+        g.noise_only.0,
+        g.noise_only.1,
+        lifetime::SIGNIFICANCE
+    ));
+    if g.early_before < threshold {
+        f.push(format!(
+            "the held-out early-life gap of the baseline ({:.2}) is below {threshold:.2}: within the sampling variability, the early life needs no effect",
+            g.early_before
+        ));
+    }
+    match &g.early_effect {
+        Some(e) => {
+            if let Some(x) = g.early.first() {
+                f.push(format!(
+                    "`{e}` closes the early-life part: held-out early-life gap {:.2} → {:.2} ({:.0} % smaller) with it alone, fitted on the training life's early stages",
+                    g.early_before,
+                    x.gap,
+                    100.0 * x.shrink
+                ));
+            }
+        }
+        None if g.early_before >= threshold => f.push(
+            "no candidate effect shrinks the held-out early-life gap by 5 % or more".to_string(),
+        ),
+        None => {}
+    }
+    f
+}
+
+/// Builds the report from a diagnosis.
+pub fn output(g: &LifeGap) -> LifeGapOutput {
+    let at = &g.attribution;
+    LifeGapOutput {
+        mode: "lifetime",
+        train: g.train.clone(),
+        holdout: g.holdout.clone(),
+        where_: g.cells.clone(),
+        stages_train: g.stages_train.clone(),
+        stages_holdout: g.stages_holdout.clone(),
+        ranking: at.ranking.clone(),
+        greedy: at.greedy.clone(),
+        dropped: at.dropped.clone(),
+        kept: at.kept.clone(),
+        totals: Totals {
+            train_before: at.baseline_train,
+            before: at.baseline_holdout,
+            after: at.final_holdout,
+            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
+        },
+        identified: at.identified.clone(),
+        tied_with: at.tied_with.clone(),
+        early: Early {
+            until: lifetime::EARLY_T_MAX,
+            before: g.early_before,
+            after: g.early_after,
+            effects: g.early.clone(),
+            closed_by: g.early_effect.clone(),
+            noise_only: g.noise_only.1,
+        },
+        life_factor: g.life_factor,
+        measured_revs: g.measured_revs,
+        noise_only: g.noise_only.0,
+        findings: findings(g),
+        leave_one_out: (!g.leave_one_out.is_empty()).then(|| g.leave_one_out.clone()),
+        simulations: g.simulations,
+        seconds: g.seconds,
+        files: vec![],
+    }
+}
+
+fn stage_table(s: &mut String, title: &str, stages: &[StageGap]) {
+    let _ = writeln!(s, "### {title}\n");
+    let _ = writeln!(
+        s,
+        "| stage | life | gap before | gap after | largest cell | simulated | measured | its gap |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---|---:|---:|---:|");
+    for g in stages {
+        let _ = writeln!(
+            s,
+            "| {} | {:.0}–{:.0} % | {:.2} | {:.2} | {} | {:.3} | {:.3} | {:+.2} |",
+            g.stage,
+            100.0 * g.span.0,
+            100.0 * g.span.1,
+            g.before,
+            g.after,
+            g.worst.0,
+            g.worst.1,
+            g.worst.2,
+            g.worst.3
+        );
+    }
+    let _ = writeln!(s);
+}
+
+/// The report as Markdown.
+pub fn markdown(o: &LifeGapOutput) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Sim-to-real gap along a life\n");
+    let _ = writeln!(
+        s,
+        "Training life: {}. Held-out: {}. Simulated: `ims-za2115` with the core's stress-driven wear, life factor {:.3e} (calibrated on the training life, {:.3e} revolutions).\n",
+        o.train.join(", "),
+        o.holdout.join(", "),
+        o.life_factor,
+        o.measured_revs
+    );
+    let _ = writeln!(
+        s,
+        "## Where along life\n\nCells: the steady stage (10–50 % of life) holds the absolute kurtosis, crest factor and skewness; every other stage its contrast to the steady stage (RMS in dB re the steady median, differences of the others). Gap = (simulated − measured) / the measured snapshot-to-snapshot spread of the stage.\n"
+    );
+    stage_table(&mut s, "Training life", &o.stages_train);
+    stage_table(&mut s, "Held-out lives", &o.stages_holdout);
+    let _ = writeln!(s, "Largest cells:\n");
+    let _ = writeln!(
+        s,
+        "| record | cell | measured | simulated | spread | gap | simulated after | gap after |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|");
+    for c in o.where_.iter().take(12) {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.3} | {:.3} | {:.3} | {:+.2} | {:.3} | {:+.2} |",
+            c.record, c.cell, c.real, c.sim, c.spread, c.gap, c.sim_after, c.gap_after
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Which: each effect alone (fitted on the training life, judged on the held-out lives)\n"
+    );
+    let _ = writeln!(s, "| effect | parameters | held-out gap | shrink |");
+    let _ = writeln!(s, "|---|---|---:|---:|");
+    for r in &o.ranking {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:+.0} % |",
+            r.effect,
+            fmt_params(&r.params),
+            r.holdout_gap,
+            100.0 * r.shrink
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n### The early-life part (stages before {:.0} % of life)\n\nEach effect fitted on the training life's early stages alone and judged on the held-out lives' early stages (their contrasts to the steady stage).\n",
+        100.0 * o.early.until
+    );
+    let _ = writeln!(s, "| effect | parameters | held-out early gap | shrink |");
+    let _ = writeln!(s, "|---|---|---:|---:|");
+    for e in &o.early.effects {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:+.0} % |",
+            e.effect,
+            fmt_params(&e.params),
+            e.gap,
+            100.0 * e.shrink
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nHeld-out early-life gap {:.2} (baseline; {:.2} by sampling alone) → {:.2} (final model of the whole life); closed by: {}.\n",
+        o.early.before,
+        o.early.noise_only,
+        o.early.after,
+        o.early.closed_by.as_deref().unwrap_or("none")
+    );
+    let _ = writeln!(s, "## How far: greedy addition\n");
+    let _ = writeln!(
+        s,
+        "| effect | parameters | held-out before | after | shrink |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|");
+    for g in &o.greedy {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.2} | {:.2} | {:.0} % |",
+            g.effect,
+            fmt_params(&g.params),
+            g.before,
+            g.after,
+            100.0 * g.shrink
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nTotal held-out gap {:.2} → {:.2} ({:.0} % smaller; {:.2} by sampling alone); training life before: {:.2}. Final model: {}.\n",
+        o.totals.before,
+        o.totals.after,
+        100.0 * o.totals.shrink,
+        o.noise_only,
+        o.totals.train_before,
+        if o.kept.is_empty() {
+            "the baseline".to_string()
+        } else {
+            o.kept.join(" + ")
+        }
+    );
+    if let Some(loo) = &o.leave_one_out {
+        let _ = writeln!(s, "## Leave one out\n");
+        let _ = writeln!(s, "| withheld | gap full | gap without | named first |");
+        let _ = writeln!(s, "|---|---:|---:|---|");
+        for l in loo {
+            let _ = writeln!(
+                s,
+                "| {} | {:.2} | {:.2} | {} |",
+                l.effect,
+                l.full,
+                l.without,
+                l.named_first.as_deref().unwrap_or("none")
+            );
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s, "## Findings\n");
+    for f in &o.findings {
+        let _ = writeln!(s, "* {f}");
+    }
+    let _ = writeln!(
+        s,
+        "\n{} lives simulated in {:.1} s.",
+        o.simulations, o.seconds
+    );
+    s
+}
+
+/// Per-snapshot statistic `i` (0 RMS dB re the steady median, 1 kurtosis) of a series.
+fn along(pts: &[LifePoint], i: usize) -> Vec<(f64, f64)> {
+    let steady = &lifetime::STAGES[lifetime::STEADY];
+    let mut r: Vec<f64> = pts
+        .iter()
+        .filter(|p| p.t >= steady.lo && p.t < steady.hi)
+        .map(|p| p.rms)
+        .collect();
+    r.sort_by(|a, b| a.total_cmp(b));
+    let med = r.get(r.len() / 2).copied().unwrap_or(1.0).max(1e-300);
+    pts.iter()
+        .map(|p| {
+            let y = if i == 0 {
+                20.0 * (p.rms / med).max(1e-12).log10()
+            } else {
+                p.kurtosis
+            };
+            (p.t, y)
+        })
+        .collect()
+}
+
+/// Writes plots, `gap.md` and (last) `gap.json`; returns the files.
+pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>, CliError> {
+    register_fonts();
+    std::fs::create_dir_all(dir)
+        .map_err(|err| CliError::input(format!("--out {}: {err}", dir.display())))?;
+    let mut files = vec![];
+    const HOLD_C: RGBColor = RGBColor(160, 160, 160);
+    for (i, name, ylabel) in [
+        (0, "gap-life-rms", "RMS (dB re steady median)"),
+        (1, "gap-life-kurtosis", "kurtosis"),
+    ] {
+        let mut ser: Vec<Series> = vec![];
+        for (k, (label, pts)) in g.measured.iter().enumerate() {
+            let col = if k == 0 { REAL_C } else { HOLD_C };
+            ser.push((label.as_str(), col, along(pts, i)));
+        }
+        for ((label, pts), col) in g.series.iter().zip([BASE_C, FINAL_C]) {
+            ser.push((label.as_str(), col, along(pts, i)));
+        }
+        let title = format!("{ylabel} along life: measured and simulated");
+        files.extend(render(
+            dir,
+            name,
+            |r| draw_lines(r, &title, "fraction of life", ylabel, 1.0, &ser),
+            |r| draw_lines(r, &title, "fraction of life", ylabel, 1.0, &ser),
+        )?);
+    }
+    let rows: Vec<(String, f64, f64)> = o
+        .stages_train
+        .iter()
+        .map(|s| (format!("train {}", s.stage), s.before, s.after))
+        .chain(
+            o.stages_holdout
+                .iter()
+                .map(|s| (format!("held-out {}", s.stage), s.before, s.after)),
+        )
+        .collect();
+    let title = format!(
+        "stage gaps: held-out total {:.2} → {:.2}",
+        o.totals.before, o.totals.after
+    );
+    files.extend(render(
+        dir,
+        "gap-life-stages",
+        |r| draw_gap_bars(r, &title, &rows),
+        |r| draw_gap_bars(r, &title, &rows),
+    )?);
+    let md = dir.join("gap.md");
+    write_atomic(&md, markdown(o).as_bytes())
+        .map_err(|err| CliError::run(format!("{}: {err}", md.display())))?;
+    files.push(md);
+    let js = dir.join("gap.json");
+    files.push(js.clone());
+    let mut full = o.clone();
+    full.files = files.clone();
+    let text = serde_json::to_string_pretty(&full).map_err(CliError::run)?;
+    write_atomic(&js, text.as_bytes())
+        .map_err(|err| CliError::run(format!("{}: {err}", js.display())))?;
+    Ok(files)
+}
+
+/// `wearsim gap` on a lifetime record.
+pub fn run(a: &GapArgs) -> Result<(), CliError> {
+    let o = a.life_options()?;
+    let path = a
+        .real
+        .first()
+        .ok_or_else(|| CliError::input("--real: no file"))?;
+    let m = lifetime::measured(path, &o).map_err(CliError::input)?;
+    let g = lifetime::diagnose(&m, &o).map_err(CliError::run)?;
+    let mut out = output(&g);
+    out.files = write(&a.out, &out, &g)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::run)?
+        );
+    } else {
+        print!("{}", markdown(&out));
+    }
+    Ok(())
+}
