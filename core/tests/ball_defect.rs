@@ -312,7 +312,7 @@ fn load_zone_effect_deepens_the_ftf_modulation_of_a_ball_defect() {
     };
     let (m, x0) = accel(base.clone(), 5);
     // Full Stribeck gain with ε = 0.25: zero beyond |ψ| = 60°, 0.27 at 45°.
-    let (_, x1) = accel(with_effect(base, "load-zone", &[1.0, 0.25]), 5);
+    let (_, x1) = accel(with_effect(base, "load-zone", &[1.0, 0.25, 0.0]), 5);
     let fs = m.config().output_rate;
     let fr = m.config().speed.shaft_hz(0.0);
     let o = m.orders();
