@@ -139,6 +139,18 @@ pub struct Totals {
     pub shrink: f64,
 }
 
+impl Totals {
+    /// The totals of an attribution.
+    pub fn of(at: &Attribution) -> Self {
+        Totals {
+            train_before: at.baseline_train,
+            before: at.baseline_holdout,
+            after: at.final_holdout,
+            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
+        }
+    }
+}
+
 /// A record in the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordRole {
@@ -425,12 +437,7 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
         kept: at.kept.clone(),
-        totals: Totals {
-            train_before: at.baseline_train,
-            before: at.baseline_holdout,
-            after: at.final_holdout,
-            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
-        },
+        totals: Totals::of(&at),
         identified: at.identified.clone(),
         tied_with: at.tied_with.clone(),
         findings,

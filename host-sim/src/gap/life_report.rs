@@ -5,9 +5,10 @@
 use super::attribute::{Dropped, LeaveOneOut, Ranked, Step};
 use super::cli::{GapArgs, Totals};
 use super::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifeOptions, LifePoint, StageGap};
-use super::report::{draw_gap_bars, draw_lines, fmt_params, Series, BASE_C, FINAL_C, REAL_C};
+use super::report::{
+    draw_gap_bars, draw_lines, finish, fmt_params, Series, BASE_C, FINAL_C, REAL_C,
+};
 use crate::cli::CliError;
-use crate::life::output::write_atomic;
 use crate::plot::{register_fonts, render};
 use plotters::style::RGBColor;
 use serde::Serialize;
@@ -247,12 +248,7 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
         kept: at.kept.clone(),
-        totals: Totals {
-            train_before: at.baseline_train,
-            before: at.baseline_holdout,
-            after: at.final_holdout,
-            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
-        },
+        totals: Totals::of(at),
         identified: at.identified.clone(),
         tied_with: at.tied_with.clone(),
         early: Early {
@@ -499,18 +495,10 @@ pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>,
         |r| draw_gap_bars(r, &title, &rows),
         |r| draw_gap_bars(r, &title, &rows),
     )?);
-    let md = dir.join("gap.md");
-    write_atomic(&md, markdown(o).as_bytes())
-        .map_err(|err| CliError::run(format!("{}: {err}", md.display())))?;
-    files.push(md);
-    let js = dir.join("gap.json");
-    files.push(js.clone());
-    let mut full = o.clone();
-    full.files = files.clone();
-    let text = serde_json::to_string_pretty(&full).map_err(CliError::run)?;
-    write_atomic(&js, text.as_bytes())
-        .map_err(|err| CliError::run(format!("{}: {err}", js.display())))?;
-    Ok(files)
+    finish(dir, &markdown(o), files, |f| LifeGapOutput {
+        files: f,
+        ..o.clone()
+    })
 }
 
 /// `wearsim gap` on a lifetime record.

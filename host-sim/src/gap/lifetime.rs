@@ -291,11 +291,7 @@ impl LifeReference {
 
     /// `(sim − real)/spread` of simulated cell values.
     pub fn residuals(&self, sim: &[f64]) -> Vec<f64> {
-        sim.iter()
-            .zip(&self.mean)
-            .zip(&self.spread)
-            .map(|((s, r), d)| (s - r) / d)
-            .collect()
+        super::normalised(sim, &self.mean, &self.spread)
     }
 }
 
@@ -659,43 +655,51 @@ fn fp(name: &'static str, lo: f64, hi: f64, log: bool) -> FitParam {
 /// they are diagnosed on the raw records (`wearsim gap` on CWRU files).
 pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
     let r = steady_rms.max(1e-6);
-    vec![
-        FitSpace {
-            effect: "running-in",
-            fitted: vec![
-                fp("summits", 0.01, 300.0, true),
-                fp("summit_height", 0.1, 5.0, true),
-                fp("decay_revs", 1.0e4, 2.0e6, true),
-            ],
-            fixed: vec![("factor", 1.0), ("start_revs", 0.0)],
-            needs_defect: false,
-            note: "summits of the new surface, flattened over the first revolutions",
-        },
-        FitSpace {
-            effect: "roughness",
-            fitted: vec![fp("scale", 0.1, 20.0, true)],
-            fixed: vec![],
-            needs_defect: false,
-            note: "distributed roughness level over the whole life",
-        },
-        FitSpace {
-            effect: "sensor",
-            fitted: vec![fp("noise", 0.01 * r, 3.0 * r, true)],
-            fixed: vec![("hum", 0.0), ("corner_hz", 0.0)],
-            needs_defect: false,
-            note: "background floor (other machinery, sensor), scaled to the bearing's steady RMS",
-        },
-        FitSpace {
-            effect: "edge-shape",
-            fitted: vec![
-                fp("length_scale", 0.2, 5.0, true),
-                fp("asperity_scale", 0.0, 5.0, false),
-            ],
-            fixed: vec![],
-            needs_defect: false,
-            note: "edges of the defects the wear grows: impact length and trailing-edge asperity",
-        },
+    // Roughness and edge-shape as for records of seconds (their ranges do not depend on
+    // the record); a life grows its own defects, so edge-shape needs none to start with.
+    let stationary = super::space::spaces(&super::space::Context {
+        fs: 20_000.0,
+        shaft_hz: 2000.0 / 60.0,
+        rms: r,
+        mains_hz: 60.0,
+    });
+    let shared = |name: &str| {
+        stationary
+            .iter()
+            .find(|s| s.effect == name)
+            .cloned()
+            .map(|s| FitSpace {
+                needs_defect: false,
+                ..s
+            })
+    };
+    let running_in = FitSpace {
+        effect: "running-in",
+        fitted: vec![
+            fp("summits", 0.01, 300.0, true),
+            fp("summit_height", 0.1, 5.0, true),
+            fp("decay_revs", 1.0e4, 2.0e6, true),
+        ],
+        fixed: vec![("factor", 1.0), ("start_revs", 0.0)],
+        needs_defect: false,
+        note: "summits of the new surface, flattened over the first revolutions",
+    };
+    let sensor = FitSpace {
+        effect: "sensor",
+        fitted: vec![fp("noise", 0.01 * r, 3.0 * r, true)],
+        fixed: vec![("hum", 0.0), ("corner_hz", 0.0)],
+        needs_defect: false,
+        note: "background floor (other machinery, sensor), scaled to the bearing's steady RMS",
+    };
+    [
+        Some(running_in),
+        shared("roughness"),
+        Some(sensor),
+        shared("edge-shape"),
     ]
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 /// Calibrates the life factor so that the simulated baseline life lasts `target`
@@ -1126,4 +1130,103 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
         simulations: ev.sims() + cal_runs,
         seconds: t0.elapsed().as_secs_f64(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A steady life of `n` snapshots with RMS 1, kurtosis 3, crest 4, skewness 0, and a
+    /// bump `db` dB, `dk` in kurtosis in the first 1 %.
+    fn series(n: usize, db: f64, dk: f64) -> Vec<LifePoint> {
+        (0..n)
+            .map(|i| {
+                let t = i as f64 / (n - 1) as f64;
+                let early = t < 0.01;
+                // A small deterministic scatter so that spreads are defined.
+                let w = 1.0 + 0.01 * ((i * 7919 % 13) as f64 - 6.0) / 6.0;
+                LifePoint {
+                    t,
+                    rms: w * if early { 10f64.powf(db / 20.0) } else { 1.0 },
+                    kurtosis: 3.0 * w + if early { dk } else { 0.0 },
+                    crest: 4.0 * w,
+                    skewness: 0.0,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn stage_cells_hold_the_steady_level_and_contrasts_elsewhere() {
+        let r = LifeReference::new("synthetic", &series(1000, 1.0, 0.5), 1.0).expect("cells");
+        let get = |name: &str| {
+            r.names
+                .iter()
+                .position(|(n, _, _)| n == name)
+                .map(|i| r.mean[i])
+                .expect(name)
+        };
+        // 7 stages × 4 statistics, less the steady stage's RMS (the unit of the others).
+        assert_eq!(r.names.len(), 27);
+        assert!((get("life:running-in:rms") - 1.0).abs() < 0.05);
+        assert!((get("life:running-in:kurtosis") - 0.5).abs() < 0.02);
+        assert!(get("life:early:rms").abs() < 0.05);
+        assert!((get("life:steady:kurtosis") - 3.0).abs() < 0.02);
+        assert!((r.weight.iter().map(|w| w * w).sum::<f64>() - 1.0).abs() < 1e-12);
+        // A simulation equal to the measurement has no gap.
+        let v = r.values(&series(1000, 1.0, 0.5)).expect("values");
+        assert!(r.residuals(&v).iter().all(|g| g.abs() < 1e-9));
+    }
+
+    #[test]
+    fn noise_only_gap_is_the_sampling_error_of_stage_means() {
+        let m = series(1000, 0.0, 0.0);
+        let r = LifeReference::new("synthetic", &m, 1.0).expect("cells");
+        // Same number of simulated windows as measured snapshots in every stage: each
+        // cell's gap variance is 2/n, so the total is √(Σ w² · 2/n).
+        let expect: f64 = r
+            .weight
+            .iter()
+            .zip(&r.count)
+            .map(|(w, n)| w * w * 2.0 / *n as f64)
+            .sum::<f64>()
+            .sqrt();
+        assert!((r.noise_only(&m) - expect).abs() < 1e-12);
+        // A sparser simulation leaves more.
+        let sparse: Vec<LifePoint> = m.iter().step_by(10).copied().collect();
+        assert!(r.noise_only(&sparse) > 2.0 * expect);
+    }
+
+    #[test]
+    fn too_few_snapshots_in_a_stage_is_an_error_naming_it() {
+        let e = LifeReference::new("short", &series(150, 0.0, 0.0), 1.0).unwrap_err();
+        assert!(e.contains("running-in stage"), "{e}");
+    }
+
+    #[test]
+    fn life_spaces_are_the_four_effects_that_act_along_a_life() {
+        let s = life_spaces(1.0);
+        let names: Vec<&str> = s.iter().map(|s| s.effect).collect();
+        assert_eq!(names, ["running-in", "roughness", "sensor", "edge-shape"]);
+        assert!(s.iter().all(|s| !s.needs_defect));
+        let rough = &s[1].fitted[0];
+        assert_eq!(
+            (rough.name, rough.lo, rough.hi, rough.log),
+            ("scale", 0.1, 20.0, true)
+        );
+        let edge: Vec<(&str, f64, f64)> =
+            s[3].fitted.iter().map(|f| (f.name, f.lo, f.hi)).collect();
+        assert_eq!(
+            edge,
+            [("length_scale", 0.2, 5.0), ("asperity_scale", 0.0, 5.0)]
+        );
+        // Every space applies cleanly at both ends of its ranges.
+        for sp in &s {
+            for u in [0.0, 1.0] {
+                let mut fx = Effects::NONE;
+                sp.apply(&mut fx, &vec![u; sp.fitted.len()])
+                    .expect(sp.effect);
+            }
+        }
+    }
 }

@@ -182,11 +182,7 @@ impl Reference {
 
     /// Normalised gaps `(sim − real)/spread` of simulated cell means `sim`, in cell order.
     pub fn residuals(&self, sim: &[f64]) -> Vec<f64> {
-        sim.iter()
-            .zip(&self.mean)
-            .zip(&self.spread)
-            .map(|((s, r), d)| (s - r) / d)
-            .collect()
+        normalised(sim, &self.mean, &self.spread)
     }
 
     /// Weighted gaps `w·(sim − real)/spread` (their root sum of squares is the total gap).
@@ -226,6 +222,15 @@ impl Reference {
             segments: SEGMENTS,
         }
     }
+}
+
+/// Gaps `(sim − real)/spread`, cell by cell.
+pub(crate) fn normalised(sim: &[f64], real: &[f64], spread: &[f64]) -> Vec<f64> {
+    sim.iter()
+        .zip(real)
+        .zip(spread)
+        .map(|((s, r), d)| (s - r) / d)
+        .collect()
 }
 
 /// Root mean square of a set of cell gaps (used for subsets such as "where" cells).

@@ -404,15 +404,28 @@ pub fn write(
         |r| draw_bars(r, o),
         |r| draw_bars(r, o),
     )?);
-    let md = dir.join("gap.md");
-    write_atomic(&md, markdown(o).as_bytes())
-        .map_err(|err| CliError::run(format!("{}: {err}", md.display())))?;
-    files.push(md);
+    finish(dir, &markdown(o), files, |f| GapOutput {
+        files: f,
+        ..o.clone()
+    })
+}
+
+/// Writes `gap.md` (text `md`) and, last, `gap.json` into `dir` after the plots `files`:
+/// a directory holding `gap.json` holds a complete report. `with_files` gives the JSON
+/// document listing every file written (itself included). Returns that list.
+pub(crate) fn finish<T: serde::Serialize>(
+    dir: &Path,
+    md: &str,
+    mut files: Vec<PathBuf>,
+    with_files: impl FnOnce(Vec<PathBuf>) -> T,
+) -> Result<Vec<PathBuf>, CliError> {
+    let path = dir.join("gap.md");
+    write_atomic(&path, md.as_bytes())
+        .map_err(|err| CliError::run(format!("{}: {err}", path.display())))?;
+    files.push(path);
     let js = dir.join("gap.json");
     files.push(js.clone());
-    let mut full = o.clone();
-    full.files = files.clone();
-    let text = serde_json::to_string_pretty(&full).map_err(CliError::run)?;
+    let text = serde_json::to_string_pretty(&with_files(files.clone())).map_err(CliError::run)?;
     write_atomic(&js, text.as_bytes())
         .map_err(|err| CliError::run(format!("{}: {err}", js.display())))?;
     Ok(files)
