@@ -29,6 +29,13 @@
 //! before any failure (t < [`HOLDOUT_T_MAX`]): the bearings ran on one shaft, were new
 //! together and did not fail, so their late stages carry the failing neighbour's
 //! vibration through the shaft rather than their own wear.
+//!
+//! **The early-life part** is attributed again on the early stages' cells alone (their
+//! contrasts to the steady stage), so that the steady level, which dominates the total,
+//! cannot decide which effect explains the first hours. **Significance**: a cell compares a
+//! stage mean of `n` measured snapshots with one of `m` simulated windows, so a correct
+//! model leaves a gap of variance `1/n + 1/m` per cell by sampling alone
+//! ([`LifeReference::noise_only`]); a gap counts from [`SIGNIFICANCE`] times that.
 
 use super::attribute::{attribute, leave_one_out, Attribution, LeaveOneOut, Options};
 use super::fit::Budget;
@@ -394,7 +401,7 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
 /// measured ones), coarser where the wear machine's own transitions add windows anyway.
 pub const SCHEDULE: [(f64, f64); 3] = [(0.03, 0.001), (0.1, 0.01), (1.0, 0.02)];
 
-/// Most windows of one simulated life (the schedule needs about 130).
+/// Most windows of one simulated life (the schedule needs about 90).
 pub const MAX_WINDOWS: u64 = 2_000;
 
 /// Samples per simulated window: the measured snapshot's length (crest factor and
@@ -703,8 +710,9 @@ pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
 }
 
 /// Calibrates the life factor so that the simulated baseline life lasts `target`
-/// revolutions (secant steps on the part of life the factor scales, as in
-/// `wearsim ims-compare`); returns the factor, the life's revolutions and the lives run.
+/// revolutions within 1 %: proportional steps (the factor scales the fatigue part, most of
+/// the life; the rest makes the steps converge geometrically), as `wearsim ims-compare`
+/// calibrates its life. Returns the factor, the life's revolutions and the lives run.
 pub fn calibrate(preset: &str, seed: u64, target: f64) -> Result<(f64, f64, usize), String> {
     let mut a = 1.0;
     let mut runs = 0;
