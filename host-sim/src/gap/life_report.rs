@@ -4,9 +4,11 @@
 
 use super::attribute::{Dropped, LeaveOneOut, Ranked, Step};
 use super::cli::{GapArgs, Totals};
+use super::fit::FittedParam;
 use super::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifeOptions, LifePoint, StageGap};
 use super::report::{
-    draw_gap_bars, draw_lines, finish, fmt_params, Series, BASE_C, FINAL_C, REAL_C,
+    draw_gap_bars, draw_lines, findings_section, finish, fmt_params, greedy_section,
+    leave_one_out_section, Series, BASE_C, FINAL_C, REAL_C,
 };
 use crate::cli::CliError;
 use crate::plot::{register_fonts, render};
@@ -295,6 +297,25 @@ fn stage_table(s: &mut String, title: &str, stages: &[StageGap]) {
     let _ = writeln!(s);
 }
 
+/// One effect at a time: effect, fitted parameters, the held-out gap with it (column
+/// `gap`), its shrink.
+fn alone_table<'a>(
+    s: &mut String,
+    gap: &str,
+    rows: impl Iterator<Item = (&'a str, &'a [FittedParam], f64, f64)>,
+) {
+    let _ = writeln!(s, "| effect | parameters | {gap} | shrink |");
+    let _ = writeln!(s, "|---|---|---:|---:|");
+    for (effect, params, g, shrink) in rows {
+        let _ = writeln!(
+            s,
+            "| {effect} | {} | {g:.2} | {:+.0} % |",
+            fmt_params(params),
+            100.0 * shrink
+        );
+    }
+}
+
 /// The report as Markdown.
 pub fn markdown(o: &LifeGapOutput) -> String {
     let mut s = String::new();
@@ -330,35 +351,31 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         s,
         "\n## Which: each effect alone (fitted on the training life, judged on the held-out lives)\n"
     );
-    let _ = writeln!(s, "| effect | parameters | held-out gap | shrink |");
-    let _ = writeln!(s, "|---|---|---:|---:|");
-    for r in &o.ranking {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {:.2} | {:+.0} % |",
-            r.effect,
-            fmt_params(&r.params),
-            r.holdout_gap,
-            100.0 * r.shrink
-        );
-    }
+    alone_table(
+        &mut s,
+        "held-out gap",
+        o.ranking.iter().map(|r| {
+            (
+                r.effect.as_str(),
+                r.params.as_slice(),
+                r.holdout_gap,
+                r.shrink,
+            )
+        }),
+    );
     let _ = writeln!(
         s,
         "\n### The early-life part (stages before {:.0} % of life)\n\nEach effect fitted on the training life's early stages alone and judged on the held-out lives' early stages (their contrasts to the steady stage).\n",
         100.0 * o.early.until
     );
-    let _ = writeln!(s, "| effect | parameters | held-out early gap | shrink |");
-    let _ = writeln!(s, "|---|---|---:|---:|");
-    for e in &o.early.effects {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {:.2} | {:+.0} % |",
-            e.effect,
-            fmt_params(&e.params),
-            e.gap,
-            100.0 * e.shrink
-        );
-    }
+    alone_table(
+        &mut s,
+        "held-out early gap",
+        o.early
+            .effects
+            .iter()
+            .map(|e| (e.effect.as_str(), e.params.as_slice(), e.gap, e.shrink)),
+    );
     let _ = writeln!(
         s,
         "\nHeld-out early-life gap {:.2} (baseline; {:.2} by sampling alone) → {:.2} (final model of the whole life); closed by: {}.\n",
@@ -368,56 +385,20 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         o.early.closed_by.as_deref().unwrap_or("none")
     );
     let _ = writeln!(s, "## How far: greedy addition\n");
+    greedy_section(&mut s, &o.greedy, &o.dropped, &o.kept);
     let _ = writeln!(
         s,
-        "| effect | parameters | held-out before | after | shrink |"
-    );
-    let _ = writeln!(s, "|---|---|---:|---:|---:|");
-    for g in &o.greedy {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {:.2} | {:.2} | {:.0} % |",
-            g.effect,
-            fmt_params(&g.params),
-            g.before,
-            g.after,
-            100.0 * g.shrink
-        );
-    }
-    let _ = writeln!(
-        s,
-        "\nTotal held-out gap {:.2} → {:.2} ({:.0} % smaller; {:.2} by sampling alone); training life before: {:.2}. Final model: {}.\n",
+        "\nTotal held-out gap {:.2} → {:.2} ({:.0} % smaller; {:.2} by sampling alone); training life before: {:.2}.",
         o.totals.before,
         o.totals.after,
         100.0 * o.totals.shrink,
         o.noise_only,
-        o.totals.train_before,
-        if o.kept.is_empty() {
-            "the baseline".to_string()
-        } else {
-            o.kept.join(" + ")
-        }
+        o.totals.train_before
     );
     if let Some(loo) = &o.leave_one_out {
-        let _ = writeln!(s, "## Leave one out\n");
-        let _ = writeln!(s, "| withheld | gap full | gap without | named first |");
-        let _ = writeln!(s, "|---|---:|---:|---|");
-        for l in loo {
-            let _ = writeln!(
-                s,
-                "| {} | {:.2} | {:.2} | {} |",
-                l.effect,
-                l.full,
-                l.without,
-                l.named_first.as_deref().unwrap_or("none")
-            );
-        }
-        let _ = writeln!(s);
+        leave_one_out_section(&mut s, loo);
     }
-    let _ = writeln!(s, "## Findings\n");
-    for f in &o.findings {
-        let _ = writeln!(s, "* {f}");
-    }
+    findings_section(&mut s, &o.findings);
     let _ = writeln!(
         s,
         "\n{} lives simulated in {:.1} s.",

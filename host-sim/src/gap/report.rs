@@ -3,7 +3,7 @@
 //! and the cell gaps before and after as bars). The JSON is written last, so a directory
 //! with `gap.json` holds a complete report.
 
-use super::attribute::Attribution;
+use super::attribute::{Attribution, Dropped, LeaveOneOut, Step};
 use super::cli::GapOutput;
 use super::matched::Matched;
 use crate::analysis::{self, Spectrum, WelchParams};
@@ -95,43 +95,7 @@ pub fn markdown(o: &GapOutput) -> String {
         "Baseline: training {:.2}, held-out {:.2}.\n",
         o.totals.train_before, o.totals.before
     );
-    if o.greedy.is_empty() {
-        let _ = writeln!(s, "No effect was added.");
-    } else {
-        let _ = writeln!(
-            s,
-            "| step | effect | parameters | before | after | shrink |"
-        );
-        let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
-        for (i, g) in o.greedy.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {:.2} | {:.2} | {:.0} % |",
-                i + 1,
-                g.effect,
-                fmt_params(&g.params),
-                g.before,
-                g.after,
-                100.0 * g.shrink
-            );
-        }
-    }
-    for d in &o.dropped {
-        let _ = writeln!(
-            s,
-            "\n`{}` was taken out again after `{}` was added: held-out gap {:.2} without it, {:.2} with it.",
-            d.effect, d.after, d.without, d.with
-        );
-    }
-    let _ = writeln!(
-        s,
-        "\nFinal model: {}.",
-        if o.kept.is_empty() {
-            "the baseline".to_string()
-        } else {
-            o.kept.join(" + ")
-        }
-    );
+    greedy_section(&mut s, &o.greedy, &o.dropped, &o.kept);
     let _ = writeln!(
         s,
         "\nTotal held-out gap: {:.2} → {:.2} ({:.0} % smaller).\n",
@@ -151,32 +115,89 @@ pub fn markdown(o: &GapOutput) -> String {
         }
     }
     if let Some(loo) = &o.leave_one_out {
-        let _ = writeln!(s, "\n## Leave one effect out\n");
+        leave_one_out_section(&mut s, loo);
+    }
+    findings_section(&mut s, &o.findings);
+    let _ = writeln!(s, "\n{} simulations in {:.1} s.", o.simulations, o.seconds);
+    s
+}
+
+/// The greedy additions as a table ("No effect was added." when none), the effects taken
+/// out again, and the final model.
+pub(crate) fn greedy_section(
+    s: &mut String,
+    greedy: &[Step],
+    dropped: &[Dropped],
+    kept: &[String],
+) {
+    if greedy.is_empty() {
+        let _ = writeln!(s, "No effect was added.");
+    } else {
         let _ = writeln!(
             s,
-            "| withheld | gap full model | gap without | named first | named |"
+            "| step | effect | parameters | before | after | shrink |"
         );
-        let _ = writeln!(s, "|---|---:|---:|---|---|");
-        for l in loo {
+        let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
+        for (i, g) in greedy.iter().enumerate() {
             let _ = writeln!(
                 s,
-                "| {} | {:.2} | {:.2} | {} | {} |",
-                l.effect,
-                l.full,
-                l.without,
-                l.named_first.as_deref().unwrap_or("none"),
-                if l.named { "yes" } else { "no" }
+                "| {} | {} | {} | {:.2} | {:.2} | {:.0} % |",
+                i + 1,
+                g.effect,
+                fmt_params(&g.params),
+                g.before,
+                g.after,
+                100.0 * g.shrink
             );
         }
     }
-    if !o.findings.is_empty() {
+    for d in dropped {
+        let _ = writeln!(
+            s,
+            "\n`{}` was taken out again after `{}` was added: held-out gap {:.2} without it, {:.2} with it.",
+            d.effect, d.after, d.without, d.with
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nFinal model: {}.",
+        if kept.is_empty() {
+            "the baseline".to_string()
+        } else {
+            kept.join(" + ")
+        }
+    );
+}
+
+/// The leave-one-out checks as a table.
+pub(crate) fn leave_one_out_section(s: &mut String, loo: &[LeaveOneOut]) {
+    let _ = writeln!(s, "\n## Leave one effect out\n");
+    let _ = writeln!(
+        s,
+        "| withheld | gap full model | gap without | named first | named |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---|---|");
+    for l in loo {
+        let _ = writeln!(
+            s,
+            "| {} | {:.2} | {:.2} | {} | {} |",
+            l.effect,
+            l.full,
+            l.without,
+            l.named_first.as_deref().unwrap_or("none"),
+            if l.named { "yes" } else { "no" }
+        );
+    }
+}
+
+/// The findings as a list (nothing when there are none).
+pub(crate) fn findings_section(s: &mut String, findings: &[String]) {
+    if !findings.is_empty() {
         let _ = writeln!(s, "\n## Findings and limits\n");
-        for f in &o.findings {
+        for f in findings {
             let _ = writeln!(s, "* {f}");
         }
     }
-    let _ = writeln!(s, "\n{} simulations in {:.1} s.", o.simulations, o.seconds);
-    s
 }
 
 fn psd(x: &[f64], fs: f64) -> Option<Spectrum> {
