@@ -1024,7 +1024,7 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
         })
         .collect();
     let ev = Evaluator::new(o.jobs);
-    let base = sim.points(&Effects::NONE, &AtomicUsize::new(0))?;
+    let base = sim.points(&Effects::NONE, ev.counter())?;
     let steady = stage_points(&base, &STAGES[STEADY]);
     let steady_rms = median(steady.iter().map(|p| p.rms).collect()).unwrap_or(1.0);
     let spaces: Vec<FitSpace> = life_spaces(steady_rms)
@@ -1093,7 +1093,7 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     };
     let train_before = ev.residuals(&train, &Effects::NONE)?;
     let train_after = ev.residuals(&train, &at.final_effects)?;
-    let fin = sim.points(&at.final_effects, &AtomicUsize::new(0))?;
+    let fin = sim.points(&at.final_effects, ev.counter())?;
     let vals = |ts: &[LifeTarget], p: &[LifePoint]| -> Vec<Vec<f64>> {
         ts.iter()
             .map(|t| t.reference.values(p).unwrap_or_default())

@@ -164,6 +164,12 @@ impl Evaluator {
         self.sims.load(Ordering::Relaxed)
     }
 
+    /// The counter itself, for simulations run outside [`Evaluator::residuals`] (a
+    /// baseline life simulated to scale the fit spaces).
+    pub fn counter(&self) -> &AtomicUsize {
+        &self.sims
+    }
+
     /// Cell gaps of every record in `set` with effects `fx`.
     pub fn residuals<T: Target>(&self, set: &[T], fx: &Effects) -> Result<Gaps, String> {
         let mut out = Gaps::default();
