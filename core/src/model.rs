@@ -190,7 +190,11 @@ pub struct Model {
     /// Whether an effect adds a force outside the element loop (shaft harmonics, the
     /// summits of running-in): one check per force evaluation.
     extra_force: bool,
-    /// Force (N) of one running-in summit contact over a step; 0 without summits.
+    /// Whether running-in draws summits (a flag, not `summit_force > 0`: a float compare
+    /// per step costs the M4F 40 instructions per sample).
+    summits: bool,
+    /// Force (N) of one running-in summit contact over a step; 0 without summits (then
+    /// no summit is drawn and `State::summit` stays 0).
     summit_force: Real,
     cfg: ModelConfig,
 }
@@ -430,6 +434,7 @@ impl Model {
             sensor_chain: fx.sensor.map(|t| SensorChain::design(&t, cfg.output_rate)),
             per_step_effects: fx.transfer_path.is_some() || fx.running_in.is_some(),
             extra_force: fx.shaft_harmonics.is_some() || summit_force > 0.0,
+            summits: summit_force > 0.0,
             summit_force,
             cfg: ModelConfig { bearing, ..cfg },
         })
@@ -817,7 +822,7 @@ impl Model {
         if self.cfg.integrator == IntegratorKind::Rk4 {
             self.draw_random(st);
         }
-        if self.extra_force {
+        if self.summits {
             self.draw_summit(st);
         }
         let mut stats = StepStats::default();
@@ -1003,9 +1008,6 @@ impl Model {
         let Some(p) = self.cfg.effects.running_in else {
             return;
         };
-        if self.summit_force <= 0.0 {
-            return;
-        }
         let rate = p.summit_rate(st.revs) * st.shaft_hz * self.h;
         let u = 0.5 * (st.rng.uniform_pm1() + 1.0);
         if u < rate {
