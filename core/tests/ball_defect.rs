@@ -29,7 +29,7 @@ fn ball(element: u8, phase: f64) -> ModelConfig {
 }
 
 fn with_effect(mut cfg: ModelConfig, name: &str, values: &[f64]) -> ModelConfig {
-    cfg.effects.set(name, values).unwrap();
+    cfg.effects.set_named(name, values).unwrap();
     cfg
 }
 

@@ -41,7 +41,7 @@ fn with(mut cfg: ModelConfig, name: &str, params: &[(&str, f64)]) -> ModelConfig
                 .unwrap_or(p.default)
         })
         .collect();
-    cfg.effects.set(name, &values).unwrap();
+    cfg.effects.set_named(name, &values).unwrap();
     cfg
 }
 
@@ -118,7 +118,7 @@ fn catalogue_is_consistent() {
     for e in CATALOGUE.iter() {
         let defaults: Vec<f64> = e.params.iter().map(|p| p.default).collect();
         let mut fx = Effects::NONE;
-        fx.set(e.name, &defaults)
+        fx.set_named(e.name, &defaults)
             .unwrap_or_else(|err| panic!("{}: default rejected: {err}", e.name));
         assert!(fx.any());
         for (i, p) in e.params.iter().enumerate() {
@@ -135,7 +135,7 @@ fn catalogue_is_consistent() {
             ] {
                 let mut v = defaults.clone();
                 v[i] = bad;
-                match Effects::NONE.clone().set(e.name, &v) {
+                match Effects::NONE.clone().set_named(e.name, &v) {
                     Err(ConfigError::OutOfRange {
                         field, min, max, ..
                     }) => {
@@ -147,7 +147,7 @@ fn catalogue_is_consistent() {
             }
         }
     }
-    assert!(Effects::NONE.clone().set("ball-defect", &[]).is_err());
+    assert!(Effects::NONE.clone().set_named("ball-defect", &[]).is_err());
 }
 
 #[test]
@@ -156,7 +156,7 @@ fn all_effects_are_deterministic_and_off_means_baseline() {
     let mut all = base.clone();
     for e in CATALOGUE.iter() {
         let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
-        all.effects.set(e.name, &d).unwrap();
+        all.effects.set_named(e.name, &d).unwrap();
     }
     let (_, a) = accel(all.clone(), 7, 0.2);
     let (_, b) = accel(all, 7, 0.2);
@@ -785,7 +785,7 @@ fn checkpoint_with_all_effects_continues_bit_identically() {
     let mut cfg = thesis();
     for e in CATALOGUE.iter() {
         let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
-        cfg.effects.set(e.name, &d).unwrap();
+        cfg.effects.set_named(e.name, &d).unwrap();
     }
     let cfg = with(cfg, "sensor", &[("corner_hz", 3000.0), ("hum", 0.1)]);
     let cfg = with(cfg, "running-in", &[("decay_revs", 3.0)]);
@@ -804,4 +804,55 @@ fn checkpoint_with_all_effects_continues_bit_identically() {
         .iter()
         .zip(&rb)
         .all(|(x, y)| x.accel.to_bits() == y.accel.to_bits()));
+}
+
+/// The registry: names round-trip through `EffectKind`, every parameter's error field is
+/// `effect.param`, the values read back are those set, and a misspelled name is an error.
+#[test]
+fn registry_round_trips_and_rejects_unknown_names() {
+    use wearsim_core::effects::{EffectKind, EffectParams, COUNT};
+    assert_eq!(EffectKind::ALL.len(), COUNT);
+    for (k, e) in EffectKind::ALL.iter().zip(CATALOGUE.iter()) {
+        assert_eq!(k.spec(), e);
+        assert_eq!(EffectKind::from_name(k.name()), Ok(*k));
+        for p in e.params {
+            assert_eq!(p.field, format!("{}.{}", e.name, p.name));
+        }
+        for f in e.fit.fitted {
+            assert!(e.param(f.name).is_some(), "{}: fitted `{}`", e.name, f.name);
+        }
+        for (n, _) in e.fit.fixed {
+            assert!(e.param(n).is_some(), "{}: fixed `{n}`", e.name);
+        }
+        // Distinct in-bounds values read back unchanged and in order.
+        let v: Vec<f64> = e
+            .params
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                p.min + (p.max - p.min) * (i as f64 + 1.0) / (e.params.len() as f64 + 2.0)
+            })
+            .collect();
+        let mut fx = Effects::NONE;
+        fx.set(*k, &v).unwrap();
+        assert!(fx.is_on(*k));
+        let got = fx.get(*k).unwrap();
+        assert_eq!(&got[..v.len()], &v[..], "{}", e.name);
+        fx.clear(*k);
+        assert_eq!(fx, Effects::NONE);
+        // A wrong count is rejected.
+        assert!(fx.set(*k, &v[..v.len() - 1]).is_err());
+    }
+    // The per-file validation uses the same bounds.
+    let p = effects::slip::Params { fraction: 0.3 };
+    assert!(matches!(
+        p.checked(),
+        Err(ConfigError::OutOfRange { field: "slip.fraction", max, .. }) if max == 0.2
+    ));
+    for bad in ["edge_shape", "Slip", "loadzone", ""] {
+        assert!(EffectKind::from_name(bad).is_err(), "{bad}");
+        assert!(effects::info(bad).is_none());
+        let mut fx = Effects::NONE;
+        assert!(fx.set_named(bad, &[]).is_err());
+    }
 }

@@ -38,7 +38,7 @@ fn run(name: &str, all_effects: bool, n: usize) -> u64 {
                 })
                 .collect();
             cfg.effects
-                .set(e.name, &values)
+                .set_named(e.name, &values)
                 .expect("defaults are in bounds");
         }
     }

@@ -1,12 +1,13 @@
 //! Candidate effects on the command line (`--effect NAME[:PARAM=VALUE,...]`), in the
 //! scenario file (`[[effect]]` with `name` and `params`) and in `wearsim effects`. The
-//! catalogue (names, units, defaults, bounds) is the core's
-//! ([`wearsim_core::effects::CATALOGUE`]); parameters not given take their default.
+//! catalogue (names, units, defaults, bounds) is the core's effect registry
+//! ([`wearsim_core::effects::EffectKind`], each effect's [`EffectSpec`]); parameters not
+//! given take their default.
 
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
-use wearsim_core::effects::{self, EffectInfo, Effects, CATALOGUE};
+use wearsim_core::effects::{EffectKind, EffectSpec, Effects};
 
 /// One `[[effect]]` table, or one `--effect` argument.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -20,16 +21,21 @@ pub struct EffectSection {
 }
 
 fn names() -> String {
-    CATALOGUE
+    EffectKind::ALL
         .iter()
-        .map(|e| e.name)
+        .map(|k| k.name())
         .collect::<Vec<_>>()
         .join(", ")
 }
 
-fn lookup(name: &str) -> Result<&'static EffectInfo, String> {
-    effects::info(name)
-        .ok_or_else(|| format!("unknown effect `{name}`; known effects: {}", names()))
+/// The effect called `name`; an unknown name is an error listing the known ones.
+pub fn kind(name: &str) -> Result<EffectKind, String> {
+    EffectKind::from_name(name)
+        .map_err(|_| format!("unknown effect `{name}`; known effects: {}", names()))
+}
+
+fn lookup(name: &str) -> Result<(EffectKind, &'static EffectSpec), String> {
+    kind(name).map(|k| (k, k.spec()))
 }
 
 /// Parses `NAME[:PARAM=VALUE,...]`.
@@ -64,7 +70,7 @@ pub fn parse_arg(spec: &str) -> Result<EffectSection, String> {
 /// Switches `sec` on in `fx`: unknown effects or parameters and out-of-bounds values are
 /// rejected with a message naming them and the bounds.
 pub fn apply(fx: &mut Effects, sec: &EffectSection) -> Result<(), String> {
-    let info = lookup(&sec.name)?;
+    let (kind, info) = lookup(&sec.name)?;
     for k in sec.params.keys() {
         if !info.params.iter().any(|p| p.name == k) {
             let known: Vec<&str> = info.params.iter().map(|p| p.name).collect();
@@ -89,7 +95,7 @@ pub fn apply(fx: &mut Effects, sec: &EffectSection) -> Result<(), String> {
         }
         values.push(v);
     }
-    fx.set(info.name, &values)
+    fx.set(kind, &values)
         .map_err(|e| format!("effect `{}`: {e}", info.name))
 }
 
@@ -105,9 +111,10 @@ pub fn build(sections: &[EffectSection]) -> Result<Effects, String> {
 /// The catalogue as JSON: a list of effects with their parameters.
 pub fn catalogue_json() -> Value {
     Value::Array(
-        CATALOGUE
+        EffectKind::ALL
             .iter()
-            .map(|e| {
+            .map(|k| {
+                let e = k.spec();
                 json!({
                     "name": e.name,
                     "description": e.summary,
@@ -124,7 +131,7 @@ pub fn catalogue_json() -> Value {
 /// The catalogue as text.
 pub fn catalogue_text() -> String {
     let mut s = String::new();
-    for e in CATALOGUE.iter() {
+    for e in EffectKind::ALL.iter().map(|k| k.spec()) {
         s.push_str(&format!("{:<18} {}\n", e.name, e.summary));
         for p in e.params {
             s.push_str(&format!(

@@ -201,3 +201,64 @@ fn bad_effect_table_in_config_exits_2() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("fraction"), "{}", stderr(&o));
 }
+
+/// A misspelled effect name is an error in every entry point of the library (command
+/// line argument, scenario section, switching off in the attribution, fit spaces), never
+/// a silently different effect.
+#[test]
+fn misspelled_effect_name_is_an_error_everywhere() {
+    use wearsim_core::effects::{EffectKind, Effects};
+    use wearsim_host::effects::{apply, build, kind, parse_arg, EffectSection};
+    use wearsim_host::gap::matched::{merge, without};
+    let bad = "edge-shap";
+    assert!(kind(bad)
+        .unwrap_err()
+        .contains("unknown effect `edge-shap`"));
+    assert!(parse_arg("edge-shap:length_scale=0.5").is_err());
+    let sec = EffectSection {
+        name: bad.into(),
+        params: Default::default(),
+    };
+    let mut fx = Effects::NONE;
+    assert!(apply(&mut fx, &sec).is_err());
+    assert!(build(&[sec]).is_err());
+    let mut on = Effects::NONE;
+    apply(&mut on, &parse_arg("edge-shape:length_scale=0.5").unwrap()).unwrap();
+    assert!(without(&on, bad).is_err());
+    assert_eq!(without(&on, "edge-shape").unwrap(), Effects::NONE);
+    // merge copies exactly the effects that are on, by kind.
+    let mut into = Effects::NONE;
+    merge(&mut into, &on);
+    assert_eq!(into, on);
+    assert!(EffectKind::from_name(bad).is_err());
+    assert!(wearsim_core::effects::info(bad).is_none());
+    assert!(fx.set_named(bad, &[1.0, 1.0]).is_err());
+    assert_eq!(fx, Effects::NONE);
+    // Every registered effect has a fit space, named by kind, and every fitted or fixed
+    // parameter name is one of the effect's parameters.
+    let ctx = wearsim_host::gap::space::Context {
+        fs: 12_000.0,
+        shaft_hz: 30.0,
+        rms: 1.0,
+        mains_hz: 60.0,
+    };
+    let spaces = wearsim_host::gap::space::spaces(&ctx);
+    assert_eq!(spaces.len(), EffectKind::ALL.len());
+    for (s, k) in spaces.iter().zip(EffectKind::ALL) {
+        assert_eq!(s.kind, k);
+        let spec = k.spec();
+        for n in s
+            .fitted
+            .iter()
+            .map(|f| f.name)
+            .chain(s.fixed.iter().map(|f| f.0))
+        {
+            assert!(spec.param(n).is_some(), "{}: fit names `{n}`", spec.name);
+        }
+        // The values a fit produces are accepted.
+        let mid = vec![0.5; s.fitted.len()];
+        let mut fx = Effects::NONE;
+        s.apply(&mut fx, &mid).unwrap();
+        assert!(fx.is_on(k));
+    }
+}

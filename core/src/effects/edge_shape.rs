@@ -10,7 +10,7 @@
 //! at most ½ (two entries cannot overlap). Only the five-step and impulse formulations
 //! have edges; the others are unchanged.
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::forces::defect::DefectShape;
 use crate::real::Real;
 
@@ -23,13 +23,42 @@ pub struct Params {
     pub asperity_scale: Real,
 }
 
-impl Params {
-    /// Validates both scales.
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("edge-shape.length_scale", p.length_scale, 0.2, 5.0)?;
-        check_range("edge-shape.asperity_scale", p.asperity_scale, 0.0, 5.0)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "edge-shape",
+        summary: "defect edge sharpness: scales the five-step entry/impact lengths and the asperity",
+        params: &[
+            param("length_scale", "edge-shape.length_scale", "-", 1.0, 0.2, 5.0, "factor on the entry and impact lengths (< 1 = sharper)"),
+            param("asperity_scale", "edge-shape.asperity_scale", "-", 1.0, 0.0, 5.0, "factor on the trailing-edge asperity height"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::DefectForce,
+            moves: moves(true, true, true, false),
+        },
+        fit: FitSpec {
+            fitted: &[
+                fit("length_scale", FitBound::Abs(0.2), FitBound::Abs(5.0), true),
+                fit("asperity_scale", FitBound::Abs(0.0), FitBound::Abs(5.0), false),
+            ],
+            fixed: &[],
+            needs_defect: true,
+            note: "sharpness of the defect edges: impact length and trailing-edge asperity",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            length_scale: at(v, 0),
+            asperity_scale: at(v, 1),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.length_scale, self.asperity_scale]);
+    }
+}
+
+impl Params {
 
     /// Applies the scales to a derived defect shape.
     pub fn apply(&self, s: &mut DefectShape) {

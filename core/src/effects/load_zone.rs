@@ -19,7 +19,7 @@
 //!   so the impacts (at 2×BSF) are modulated at FTF, giving sidebands at 2×BSF ± k·FTF and
 //!   a stronger FTF line in the envelope spectrum.
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::real::{pow_3_2, Real};
 
 /// Largest accepted [`Params::preload`] (–): four static displacements load every element
@@ -46,14 +46,47 @@ pub struct Params {
     pub preload: Real,
 }
 
-impl Params {
-    /// Validates depth in [0, 1] and epsilon in [0.2, 1].
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("load-zone.depth", p.depth, 0.0, 1.0)?;
-        check_range("load-zone.epsilon", p.epsilon, 0.2, 1.0)?;
-        check_range("load-zone.preload", p.preload, 0.0, MAX_PRELOAD)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "load-zone",
+        summary: "Stribeck load-zone modulation of the defect impact (inner race: at 1x shaft; ball: at FTF), narrowed by an extra Stribeck factor or widened by a contact preload",
+        params: &[
+            param("depth", "load-zone.depth", "-", 1.0, 0.0, 1.0, "modulation depth: 0 = baseline, 1 = full Stribeck factor"),
+            param("epsilon", "load-zone.epsilon", "-", 0.5, 0.2, 1.0, "load-distribution factor (0.5 = half-circle load zone)"),
+            param("preload", "load-zone.preload", "-", 0.0, 0.0, MAX_PRELOAD as f64, "uniform contact preload in static displacements (0 = none; >= 1 loads every element)"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::DefectForce,
+            moves: moves(true, false, true, true),
+        },
+        // Linear: the zone narrowed by the extra Stribeck factor or widened by the preload
+        // (a measured inner race modulated less than the half-circle zone needs the preload).
+        fit: FitSpec {
+            fitted: &[
+                fit("depth", FitBound::Abs(0.0), FitBound::Abs(1.0), false),
+                fit("epsilon", FitBound::Abs(0.2), FitBound::Abs(1.0), false),
+                fit("preload", FitBound::Abs(0.0), FitBound::Abs(MAX_PRELOAD as f64), false),
+            ],
+            fixed: &[],
+            needs_defect: true,
+            note: "load zone of the defect's impacts: narrowed by an extra Stribeck factor (depth, epsilon) or widened by a contact preload; 1x sidebands (inner race), FTF (ball); a level only for a stationary outer-race defect",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            depth: at(v, 0),
+            epsilon: at(v, 1),
+            preload: at(v, 2),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.depth, self.epsilon, self.preload]);
+    }
+}
+
+impl Params {
 
     /// Gain `g(ψ)` for an element with `cos ψ = cos_psi` (ψ from the load-zone centre).
     #[inline]

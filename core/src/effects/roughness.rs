@@ -6,7 +6,7 @@
 //! by `s` ∈ [0, 20], which raises the broadband (natural-frequency and high-frequency
 //! zone) level by `20 log10 s` dB. Needs roughness in the model.
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::real::Real;
 
 /// Parameters of the `roughness` effect.
@@ -16,10 +16,28 @@ pub struct Params {
     pub scale: Real,
 }
 
-impl Params {
-    /// Validates the scale in [0, 20].
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("roughness.scale", p.scale, 0.0, 20.0)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "roughness",
+        summary: "distributed roughness level: scale of the roughness RMS (needs roughness)",
+        params: &[param("scale", "roughness.scale", "-", 1.0, 0.0, 20.0, "factor on the roughness RMS")],
+        signature: Signature {
+            mechanism: Mechanism::Surface,
+            moves: moves(true, true, false, false),
+        },
+        fit: FitSpec {
+            fitted: &[fit("scale", FitBound::Abs(0.1), FitBound::Abs(20.0), true)],
+            fixed: &[],
+            needs_defect: false,
+            note: "distributed roughness level",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params { scale: at(v, 0) }
+    }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.scale]);
     }
 }

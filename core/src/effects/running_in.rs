@@ -20,7 +20,7 @@
 //! Poisson process of `S exp(−n/n_d)` per shaft revolution: the summits are flattened
 //! over the same decay length as the roughness.
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::real::{exp, Real};
 
 /// Parameters of the `running-in` effect.
@@ -38,16 +38,50 @@ pub struct Params {
     pub summit_height: Real,
 }
 
-impl Params {
-    /// Validates the parameters (see the fields).
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("running-in.factor", p.factor, 1.0, 10.0)?;
-        check_range("running-in.decay_revs", p.decay_revs, 1.0, 1.0e9)?;
-        check_range("running-in.start_revs", p.start_revs, 0.0, 1.0e12)?;
-        check_range("running-in.summits", p.summits, 0.0, 1000.0)?;
-        check_range("running-in.summit_height", p.summit_height, 0.0, 20.0)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "running-in",
+        summary: "roughness raised by a factor decaying with revolutions (needs roughness)",
+        params: &[
+            param("factor", "running-in.factor", "-", 3.0, 1.0, 10.0, "initial roughness factor"),
+            param("decay_revs", "running-in.decay_revs", "rev", 1.0e4, 1.0, 1.0e9, "revolutions over which the excess decays by 1/e"),
+            param("start_revs", "running-in.start_revs", "rev", 0.0, 0.0, 1.0e12, "revolutions already run when the simulation starts"),
+            param("summits", "running-in.summits", "1/rev", 0.0, 0.0, 1000.0, "summit contacts per shaft revolution at the start (decaying likewise; 0 = none)"),
+            param("summit_height", "running-in.summit_height", "µm", 1.0, 0.0, 20.0, "height of the summits above the mean surface"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::Surface,
+            moves: moves(true, false, true, false),
+        },
+        // In a stationary record of seconds this is a constant roughness factor
+        // (identifiable only along life).
+        fit: FitSpec {
+            fitted: &[fit("factor", FitBound::Abs(1.0), FitBound::Abs(10.0), true)],
+            fixed: &[("decay_revs", FitBound::Abs(1.0e4)), ("start_revs", FitBound::Abs(0.0))],
+            needs_defect: false,
+            note: "roughness raised early in life; constant within a record of seconds",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            factor: at(v, 0),
+            decay_revs: at(v, 1),
+            start_revs: at(v, 2),
+            summits: at(v, 3),
+            summit_height: at(v, 4),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(
+            out,
+            &[self.factor, self.decay_revs, self.start_revs, self.summits, self.summit_height],
+        );
+    }
+}
+
+impl Params {
 
     /// Fraction of the initial excess left after `revs` revolutions of this run,
     /// `exp(−(n + n₀)/n_d)`.

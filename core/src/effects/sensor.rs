@@ -9,6 +9,7 @@
 //! (independent of the model's own stream, so switching the sensor on leaves the
 //! simulated vibration unchanged and only adds the measurement chain).
 
+use super::spec::*;
 use crate::error::{check_range, ConfigError};
 use crate::real::{exp, sin, Real, TAU};
 use crate::rng::Xoshiro128pp;
@@ -29,16 +30,57 @@ pub struct Params {
     pub hum_harmonics: Real,
 }
 
-impl Params {
-    /// Validates the parameters (see the fields).
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("sensor.noise", p.noise, 0.0, 100.0)?;
-        check_range("sensor.corner_hz", p.corner_hz, 0.0, 5.0e5)?;
-        check_range("sensor.hum", p.hum, 0.0, 100.0)?;
-        check_range("sensor.hum_hz", p.hum_hz, 40.0, 70.0)?;
-        check_range("sensor.hum_harmonics", p.hum_harmonics, 0.0, 1.0)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "sensor",
+        summary: "measurement chain: white noise floor, one-pole bandwidth, mains hum with harmonics",
+        params: &[
+            param("noise", "sensor.noise", "m/s^2", 0.01, 0.0, 100.0, "RMS of the white noise floor"),
+            param("corner_hz", "sensor.corner_hz", "Hz", 0.0, 0.0, 5.0e5, "one-pole low-pass corner (0 = none; at most fs/2)"),
+            param("hum", "sensor.hum", "m/s^2", 0.0, 0.0, 100.0, "mains fundamental amplitude"),
+            param("hum_hz", "sensor.hum_hz", "Hz", 50.0, 40.0, 70.0, "mains frequency"),
+            param("hum_harmonics", "sensor.hum_harmonics", "-", 0.3, 0.0, 1.0, "2nd and 3rd harmonic amplitude relative to the fundamental"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::Measurement,
+            moves: moves(true, true, true, false),
+        },
+        // No bandwidth limit is fitted: the records' own anti-alias filter is not
+        // distinguishable from the model's.
+        fit: FitSpec {
+            fitted: &[
+                fit("noise", FitBound::Rms(0.003), FitBound::Rms(1.0), true),
+                fit("hum", FitBound::Rms(0.001), FitBound::Rms(0.3), true),
+            ],
+            fixed: &[
+                ("corner_hz", FitBound::Abs(0.0)),
+                ("hum_hz", FitBound::Mains),
+                ("hum_harmonics", FitBound::Abs(0.3)),
+            ],
+            needs_defect: false,
+            note: "white noise floor and mains hum, scaled to the record's RMS",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            noise: at(v, 0),
+            corner_hz: at(v, 1),
+            hum: at(v, 2),
+            hum_hz: at(v, 3),
+            hum_harmonics: at(v, 4),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(
+            out,
+            &[self.noise, self.corner_hz, self.hum, self.hum_hz, self.hum_harmonics],
+        );
+    }
+}
+
+impl Params {
 
     /// Checks the corner against the output rate `fs` (Hz): at most fs/2.
     pub fn check_rate(&self, fs: Real) -> Result<(), ConfigError> {

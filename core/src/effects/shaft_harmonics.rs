@@ -6,7 +6,7 @@
 //! existing imbalance term; amplitudes are taken as independent of speed (kinematic
 //! misalignment forces set by the coupling stiffness and the offset).
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::forces::Kinematics;
 use crate::real::Real;
 
@@ -19,13 +19,42 @@ pub struct Params {
     pub f3: Real,
 }
 
-impl Params {
-    /// Validates both amplitudes in [0, 10⁴] N.
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("shaft-harmonics.f2", p.f2, 0.0, 1.0e4)?;
-        check_range("shaft-harmonics.f3", p.f3, 0.0, 1.0e4)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "shaft-harmonics",
+        summary: "misalignment/looseness forces at 2x and 3x shaft, added to the imbalance",
+        params: &[
+            param("f2", "shaft-harmonics.f2", "N", 10.0, 0.0, 1.0e4, "force amplitude at 2x shaft"),
+            param("f3", "shaft-harmonics.f3", "N", 0.0, 0.0, 1.0e4, "force amplitude at 3x shaft"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::ShaftForce,
+            moves: moves(true, false, false, true),
+        },
+        fit: FitSpec {
+            fitted: &[
+                fit("f2", FitBound::Abs(0.5), FitBound::Abs(500.0), true),
+                fit("f3", FitBound::Abs(0.5), FitBound::Abs(500.0), true),
+            ],
+            fixed: &[],
+            needs_defect: false,
+            note: "misalignment/looseness forces at 2x and 3x shaft",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            f2: at(v, 0),
+            f3: at(v, 1),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.f2, self.f3]);
+    }
+}
+
+impl Params {
 
     /// Radial force (N) at kinematics `k`, from the shaft phasor (no trigonometric calls):
     /// `sin 2θ = 2 s c`, `sin 3θ = s (3 − 4 s²)`.

@@ -6,7 +6,7 @@
 //! harmonics of the envelope spectrum. This effect exposes the existing
 //! [`crate::forces::slip::Slip`] term (it replaces `ModelConfig::slip` when switched on).
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::real::Real;
 
 /// Parameters of the `slip` effect.
@@ -17,10 +17,30 @@ pub struct Params {
     pub fraction: Real,
 }
 
-impl Params {
-    /// Validates `fraction` in [0, 0.2].
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("slip.fraction", p.fraction, 0.0, 0.2)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "slip",
+        summary: "random slip of the element passes (jitter of the impact times)",
+        params: &[param("fraction", "slip.fraction", "-", 0.01, 0.0, 0.2, "std. dev. of the element position at the defect, fraction of the element pitch")],
+        signature: Signature {
+            mechanism: Mechanism::Kinematics,
+            moves: moves(false, false, false, true),
+        },
+        // Below 0.2 % of the pitch the envelope lines do not broaden at a record's
+        // resolution.
+        fit: FitSpec {
+            fitted: &[fit("fraction", FitBound::Abs(0.002), FitBound::Abs(0.1), true)],
+            fixed: &[],
+            needs_defect: true,
+            note: "jitter of the element passes: broadens the envelope harmonics",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params { fraction: at(v, 0) }
+    }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.fraction]);
     }
 }

@@ -14,7 +14,7 @@
 //! elements, waviness) from this speed, and the imbalance follows its ω² and the
 //! tangential α term.
 
-use crate::error::{check_range, ConfigError};
+use super::spec::*;
 use crate::real::{sin, Real, TAU};
 
 /// Components of the random-phase multisine.
@@ -35,15 +35,45 @@ pub struct Params {
     pub jitter_hz: Real,
 }
 
-impl Params {
-    /// Validates the four parameters (see the fields).
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        check_range("speed-fluctuation.amplitude", p.amplitude, 0.0, 0.1)?;
-        check_range("speed-fluctuation.freq_hz", p.freq_hz, 0.01, 1000.0)?;
-        check_range("speed-fluctuation.jitter", p.jitter, 0.0, 0.1)?;
-        check_range("speed-fluctuation.jitter_hz", p.jitter_hz, 0.1, 1000.0)?;
-        Ok(p)
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "speed-fluctuation",
+        summary: "sinusoidal and random modulation of the shaft speed (all angles follow it)",
+        params: &[
+            param("amplitude", "speed-fluctuation.amplitude", "-", 0.01, 0.0, 0.1, "relative amplitude of the sinusoidal modulation"),
+            param("freq_hz", "speed-fluctuation.freq_hz", "Hz", 1.0, 0.01, 1000.0, "frequency of the sinusoidal modulation"),
+            param("jitter", "speed-fluctuation.jitter", "-", 0.0, 0.0, 0.1, "relative RMS of the random (multisine) modulation"),
+            param("jitter_hz", "speed-fluctuation.jitter_hz", "Hz", 5.0, 0.1, 1000.0, "highest frequency of the random modulation"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::Speed,
+            moves: moves(false, true, false, true),
+        },
+        // The sinusoidal part is off: slower modulation moves the whole spectrum between
+        // segments without changing any segment's cells, so the mean-based gap cannot see it.
+        fit: FitSpec {
+            fitted: &[fit("jitter", FitBound::Abs(5e-4), FitBound::Abs(0.1), true)],
+            fixed: &[("amplitude", FitBound::Abs(0.0)), ("jitter_hz", FitBound::Abs(20.0))],
+            needs_defect: false,
+            note: "random speed modulation up to 20 Hz (drive torque ripple)",
+        },
+    };
+
+    fn from_slice(v: &[Real]) -> Self {
+        Params {
+            amplitude: at(v, 0),
+            freq_hz: at(v, 1),
+            jitter: at(v, 2),
+            jitter_hz: at(v, 3),
+        }
     }
+
+    fn write(&self, out: &mut [Real]) {
+        put(out, &[self.amplitude, self.freq_hz, self.jitter, self.jitter_hz]);
+    }
+}
+
+impl Params {
 
     /// Speed factor at time `t` (s).
     #[inline]

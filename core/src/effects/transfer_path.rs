@@ -17,6 +17,7 @@
 //! Frequencies must lie in [100 Hz, fs/2.5] (fs the output rate) so that the modes stay
 //! inside the anti-alias pass band.
 
+use super::spec::*;
 use crate::error::{check_range, ConfigError};
 use crate::real::{cos, sin, Real, PI, TAU};
 
@@ -43,42 +44,73 @@ pub struct Params {
     pub path_gain: Real,
 }
 
-const FIELDS: [[&str; 3]; MODES] = [
-    [
-        "transfer-path.f1",
-        "transfer-path.zeta1",
-        "transfer-path.gain1",
-    ],
-    [
-        "transfer-path.f2",
-        "transfer-path.zeta2",
-        "transfer-path.gain2",
-    ],
-    [
-        "transfer-path.f3",
-        "transfer-path.zeta3",
-        "transfer-path.gain3",
-    ],
-];
+impl EffectParams for Params {
+    const SPEC: EffectSpec = EffectSpec {
+        name: "transfer-path",
+        summary: "path from bearing to sensor: broadband gain and up to three structural modes (band-pass resonators on the acceleration)",
+        params: &[
+            param("f1", "transfer-path.f1", "Hz", 2000.0, 100.0, 4.0e5, "mode 1 frequency (at most fs/2.5)"),
+            param("zeta1", "transfer-path.zeta1", "-", 0.05, 0.005, 0.2, "mode 1 damping ratio"),
+            param("gain1", "transfer-path.gain1", "-", 1.0, 0.0, 10.0, "mode 1 added peak gain (0 = off)"),
+            param("f2", "transfer-path.f2", "Hz", 3000.0, 100.0, 4.0e5, "mode 2 frequency (at most fs/2.5)"),
+            param("zeta2", "transfer-path.zeta2", "-", 0.05, 0.005, 0.2, "mode 2 damping ratio"),
+            param("gain2", "transfer-path.gain2", "-", 0.0, 0.0, 10.0, "mode 2 added peak gain (0 = off)"),
+            param("f3", "transfer-path.f3", "Hz", 4000.0, 100.0, 4.0e5, "mode 3 frequency (at most fs/2.5)"),
+            param("zeta3", "transfer-path.zeta3", "-", 0.05, 0.005, 0.2, "mode 3 damping ratio"),
+            param("gain3", "transfer-path.gain3", "-", 0.0, 0.0, 10.0, "mode 3 added peak gain (0 = off)"),
+            param("path_gain", "transfer-path.path_gain", "-", 1.0, 0.01, 10.0, "broadband gain of the path from bearing to sensor (1 = none)"),
+        ],
+        signature: Signature {
+            mechanism: Mechanism::Transmission,
+            moves: moves(true, true, false, false),
+        },
+        // One mode only: with the gain a second and third mode trade off against each
+        // other and make the fit ill-posed. Mode 1 between 5 % of fs and 0.8 of Nyquist.
+        fit: FitSpec {
+            fitted: &[
+                fit("path_gain", FitBound::Abs(0.01), FitBound::Abs(10.0), true),
+                fit("f1", FitBound::Fs(0.05), FitBound::Fs(0.4), true),
+                fit("gain1", FitBound::Abs(0.2), FitBound::Abs(10.0), true),
+            ],
+            fixed: &[
+                ("zeta1", FitBound::Abs(0.05)),
+                ("gain2", FitBound::Abs(0.0)),
+                ("gain3", FitBound::Abs(0.0)),
+            ],
+            needs_defect: false,
+            note: "path from bearing to sensor: broadband gain and one structural mode (frequency, gain; 5 % damping)",
+        },
+    };
 
-impl Params {
-    /// Validates each mode: frequency in [100, 4·10⁵] Hz (the model further limits it to
-    /// fs/2.5), ζ in [0.005, 0.2], gain in [0, 10].
-    pub fn new_checked(p: Params) -> Result<Self, ConfigError> {
-        for (m, [f, z, g]) in p.modes.iter().zip(FIELDS) {
-            check_range(f, m.freq_hz, 100.0, 4.0e5)?;
-            check_range(z, m.zeta, 0.005, 0.2)?;
-            check_range(g, m.gain, 0.0, 10.0)?;
+    fn from_slice(v: &[Real]) -> Self {
+        let mode = |i: usize| Mode {
+            freq_hz: at(v, 3 * i),
+            zeta: at(v, 3 * i + 1),
+            gain: at(v, 3 * i + 2),
+        };
+        Params {
+            modes: [mode(0), mode(1), mode(2)],
+            path_gain: at(v, 3 * MODES),
         }
-        check_range("transfer-path.path_gain", p.path_gain, 0.01, 10.0)?;
-        Ok(p)
     }
 
-    /// Checks the frequencies against the output rate `fs` (Hz): at most fs/2.5.
+    fn write(&self, out: &mut [Real]) {
+        for (m, o) in self.modes.iter().zip(out.chunks_mut(3)) {
+            put(o, &[m.freq_hz, m.zeta, m.gain]);
+        }
+        if let Some(o) = out.get_mut(3 * MODES) {
+            *o = self.path_gain;
+        }
+    }
+}
+
+impl Params {
+    /// Checks the frequencies of the modes that are on against the output rate `fs`
+    /// (Hz): at most fs/2.5, so that they stay inside the anti-alias pass band.
     pub fn check_rate(&self, fs: Real) -> Result<(), ConfigError> {
-        for (m, [f, _, _]) in self.modes.iter().zip(FIELDS) {
+        for (m, f) in self.modes.iter().zip(Self::SPEC.params.iter().step_by(3)) {
             if m.gain > 0.0 {
-                check_range(f, m.freq_hz, 100.0, fs / 2.5)?;
+                check_range(f.field, m.freq_hz, f.min as Real, fs / 2.5)?;
             }
         }
         Ok(())

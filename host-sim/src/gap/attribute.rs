@@ -319,7 +319,7 @@ pub fn attribute<T: Target>(
                 loop {
                     let mut weakest: Option<(String, f64, Effects, Gaps)> = None;
                     for e in kept.iter().filter(|e| *e != s.effect) {
-                        let fx = without(&current, e);
+                        let fx = without(&current, e)?;
                         let Ok(r) = ev.residuals(holdout, &fx) else {
                             continue;
                         };
@@ -406,7 +406,7 @@ pub fn leave_one_out<T: Target>(
     let g_full = ev.residuals(holdout, full)?.total();
     let mut out = vec![];
     for name in added {
-        let reduced = without(full, name);
+        let reduced = without(full, name)?;
         let g = ev.residuals(holdout, &reduced)?.total();
         // The candidates are the effects the reduced model lacks: the withheld one and
         // those never added. Re-fitting an effect the model already has is not naming a

@@ -48,7 +48,7 @@ use serde::Serialize;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
-use wearsim_core::effects::Effects;
+use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_core::wear::{LifeConfig, Material, Stage};
 
 /// A stage of normalised life: `[lo, hi)` (the last one includes 1).
@@ -670,10 +670,10 @@ pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
         rms: r,
         mains_hz: 60.0,
     });
-    let shared = |name: &str| {
+    let shared = |kind: EffectKind| {
         stationary
             .iter()
-            .find(|s| s.effect == name)
+            .find(|s| s.kind == kind)
             .cloned()
             .map(|s| FitSpace {
                 needs_defect: false,
@@ -681,7 +681,8 @@ pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
             })
     };
     let running_in = FitSpace {
-        effect: "running-in",
+        kind: EffectKind::RunningIn,
+        effect: EffectKind::RunningIn.name(),
         fitted: vec![
             fp("summits", 0.01, 300.0, true),
             fp("summit_height", 0.1, 5.0, true),
@@ -692,7 +693,8 @@ pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
         note: "summits of the new surface, flattened over the first revolutions",
     };
     let sensor = FitSpace {
-        effect: "sensor",
+        kind: EffectKind::Sensor,
+        effect: EffectKind::Sensor.name(),
         fitted: vec![fp("noise", 0.01 * r, 3.0 * r, true)],
         fixed: vec![("hum", 0.0), ("corner_hz", 0.0)],
         needs_defect: false,
@@ -700,9 +702,9 @@ pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
     };
     [
         Some(running_in),
-        shared("roughness"),
+        shared(EffectKind::Roughness),
         Some(sensor),
-        shared("edge-shape"),
+        shared(EffectKind::EdgeShape),
     ]
     .into_iter()
     .flatten()

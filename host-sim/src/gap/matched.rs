@@ -6,7 +6,7 @@
 
 use super::{CellSpec, Reference};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use wearsim_core::effects::Effects;
+use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Settling time simulated and discarded before a matched record (s): the structure's
@@ -84,20 +84,11 @@ impl Target for Matched {
 
 /// Switches on in `into` every effect that is on in `add` (the added one wins).
 pub fn merge(into: &mut Effects, add: &Effects) {
-    macro_rules! m {
-        ($($f:ident),*) => { $( if add.$f.is_some() { into.$f = add.$f; } )* };
+    for k in EffectKind::ALL {
+        if add.is_on(k) {
+            into.take(add, k);
+        }
     }
-    m!(
-        slip,
-        load_zone,
-        transfer_path,
-        speed_fluctuation,
-        sensor,
-        shaft_harmonics,
-        running_in,
-        roughness,
-        edge_shape
-    );
 }
 
 /// Cell gaps of a set of records, concatenated in record and cell order.
@@ -125,21 +116,11 @@ impl Gaps {
     }
 }
 
-/// `fx` with effect `name` switched off.
-pub fn without(fx: &Effects, name: &str) -> Effects {
+/// `fx` with effect `name` switched off; an unknown name is an error.
+pub fn without(fx: &Effects, name: &str) -> Result<Effects, String> {
     let mut out = *fx;
-    match name {
-        "slip" => out.slip = None,
-        "load-zone" => out.load_zone = None,
-        "transfer-path" => out.transfer_path = None,
-        "speed-fluctuation" => out.speed_fluctuation = None,
-        "sensor" => out.sensor = None,
-        "shaft-harmonics" => out.shaft_harmonics = None,
-        "running-in" => out.running_in = None,
-        "roughness" => out.roughness = None,
-        _ => out.edge_shape = None,
-    }
-    out
+    out.clear(crate::effects::kind(name)?);
+    Ok(out)
 }
 
 /// Runs simulations against sets of matched records and counts them.

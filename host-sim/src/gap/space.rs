@@ -1,11 +1,12 @@
 //! Fit spaces: for every candidate effect, which of its parameters the attribution fits,
 //! over which range (linear or logarithmic), and which it holds fixed. The catalogue
 //! bounds (`wearsim effects`) are the physical limits; a fit space is the part of them a
-//! record can tell apart, chosen per effect and scaled to the record (sample rate, level,
-//! shaft speed), and documented here because the ranking depends on it.
+//! record can tell apart. Each effect declares its space in its own file in the core
+//! ([`wearsim_core::effects::FitSpec`], with the reasons); here it is scaled to the record
+//! (sample rate, level, mains frequency) and clamped to the catalogue bounds.
 
 use super::cells::CellSpec;
-use wearsim_core::effects::{self, Effects};
+use wearsim_core::effects::{EffectKind, Effects, FitBound};
 
 /// One fitted parameter.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,6 +55,8 @@ impl FitParam {
 /// What an effect's fit varies and holds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitSpace {
+    /// The effect.
+    pub kind: EffectKind,
     /// Effect name (catalogue).
     pub effect: &'static str,
     /// Parameters fitted.
@@ -83,10 +86,9 @@ impl FitSpace {
     /// Parameter values in catalogue order for normalised coordinates `u` (one per fitted
     /// parameter); unfitted parameters take their fixed value or the catalogue default.
     pub fn values(&self, u: &[f64]) -> Vec<f64> {
-        let Some(info) = effects::info(self.effect) else {
-            return vec![];
-        };
-        info.params
+        self.kind
+            .spec()
+            .params
             .iter()
             .map(|p| {
                 if let Some((i, f)) = self
@@ -113,7 +115,7 @@ impl FitSpace {
             .iter()
             .map(|v| *v as wearsim_core::Real)
             .collect();
-        fx.set(self.effect, &vals)
+        fx.set(self.kind, &vals)
             .map_err(|e| format!("effect `{}`: {e}", self.effect))
     }
 
@@ -127,137 +129,44 @@ impl FitSpace {
     }
 }
 
-fn fp(name: &'static str, lo: f64, hi: f64, log: bool) -> FitParam {
-    FitParam { name, lo, hi, log }
-}
-
-/// The fit space of every catalogue effect for a record described by `ctx`.
-///
-/// Choices (each effect fits at most three parameters, so a fit costs tens to a hundred
-/// and fifty simulations):
-/// * `slip`: fraction 0.2–10 % of the pitch, log (below 0.2 % the envelope lines do not
-///   broaden at the record's resolution).
-/// * `load-zone`: depth 0–1, ε 0.2–1 and preload 0–4 static displacements, linear: the
-///   zone narrowed by the extra Stribeck factor or widened by the preload (a measured
-///   inner race modulated less than the half-circle zone needs the preload).
-/// * `transfer-path`: broadband path gain 0.01–10 (log) and one mode, frequency 5–40 % of
-///   fs (log) and added gain 0.2–10 (log), damping held at 5 % (a second and third mode
-///   are not fitted: with the gain they trade off against each other and make the fit
-///   ill-posed).
-/// * `speed-fluctuation`: random multisine jitter 0.05–10 % RMS up to 20 Hz (log); the
-///   sinusoidal part is off. Slower modulation moves the whole spectrum between segments
-///   without changing any segment's cells, so the mean-based gap cannot see it.
-/// * `sensor`: white noise 0.3–100 % of the record RMS (log) and mains hum at `mains_hz`
-///   0.1–30 % of the record RMS (log); no bandwidth limit (the records' own anti-alias
-///   filter is not distinguishable from the model's).
-/// * `shaft-harmonics`: 2× and 3× forces 0.5–500 N (log).
-/// * `running-in`: initial roughness factor 1–10 decaying over 10⁴ revolutions from the
-///   record's start; in a stationary record of seconds this is a constant roughness factor
-///   (identifiable only along life).
-/// * `roughness`: scale 0.1–20 (log).
-/// * `edge-shape`: entry/impact length scale 0.2–5 (log) and asperity scale 0–5.
+/// The fit space of every registered effect for a record described by `ctx`: each
+/// effect's [`wearsim_core::effects::FitSpec`] (the choices and their reasons are in the
+/// effect's file) resolved to the record and kept inside the catalogue bounds (a loud
+/// record could ask for a noise floor above the sensor's limit).
 pub fn spaces(ctx: &Context) -> Vec<FitSpace> {
-    let mut v = raw_spaces(ctx);
-    // Keep every range inside the catalogue bounds (a loud record could ask for a noise
-    // floor above the sensor's limit).
-    for s in &mut v {
-        if let Some(info) = effects::info(s.effect) {
-            for f in &mut s.fitted {
-                if let Some(p) = info.params.iter().find(|p| p.name == f.name) {
-                    f.hi = f.hi.clamp(p.min, p.max);
-                    f.lo = f.lo.clamp(p.min, f.hi);
-                }
-            }
-        }
-    }
-    v
+    EffectKind::ALL.iter().map(|k| space(*k, ctx)).collect()
 }
 
-fn raw_spaces(ctx: &Context) -> Vec<FitSpace> {
-    let nyq = 0.5 * ctx.fs;
-    vec![
-        FitSpace {
-            effect: "slip",
-            fitted: vec![fp("fraction", 0.002, 0.1, true)],
-            fixed: vec![],
-            needs_defect: true,
-            note: "jitter of the element passes: broadens the envelope harmonics",
-        },
-        FitSpace {
-            effect: "load-zone",
-            fitted: vec![
-                fp("depth", 0.0, 1.0, false),
-                fp("epsilon", 0.2, 1.0, false),
-                fp("preload", 0.0, 4.0, false),
-            ],
-            fixed: vec![],
-            needs_defect: true,
-            note: "load zone of the defect's impacts: narrowed by an extra Stribeck factor (depth, epsilon) or widened by a contact preload; 1x sidebands (inner race), FTF (ball); a level only for a stationary outer-race defect",
-        },
-        FitSpace {
-            effect: "transfer-path",
-            fitted: vec![
-                fp("path_gain", 0.01, 10.0, true),
-                fp("f1", 0.05 * ctx.fs, 0.8 * nyq, true),
-                fp("gain1", 0.2, 10.0, true),
-            ],
-            fixed: vec![("zeta1", 0.05), ("gain2", 0.0), ("gain3", 0.0)],
-            needs_defect: false,
-            note: "path from bearing to sensor: broadband gain and one structural mode (frequency, gain; 5 % damping)",
-        },
-        FitSpace {
-            effect: "speed-fluctuation",
-            fitted: vec![fp("jitter", 5e-4, 0.1, true)],
-            fixed: vec![("amplitude", 0.0), ("jitter_hz", 20.0)],
-            needs_defect: false,
-            note: "random speed modulation up to 20 Hz (drive torque ripple)",
-        },
-        FitSpace {
-            effect: "sensor",
-            fitted: vec![
-                fp("noise", 0.003 * ctx.rms, ctx.rms, true),
-                fp("hum", 0.001 * ctx.rms, 0.3 * ctx.rms, true),
-            ],
-            fixed: vec![
-                ("corner_hz", 0.0),
-                ("hum_hz", ctx.mains_hz),
-                ("hum_harmonics", 0.3),
-            ],
-            needs_defect: false,
-            note: "white noise floor and mains hum, scaled to the record's RMS",
-        },
-        FitSpace {
-            effect: "shaft-harmonics",
-            fitted: vec![fp("f2", 0.5, 500.0, true), fp("f3", 0.5, 500.0, true)],
-            fixed: vec![],
-            needs_defect: false,
-            note: "misalignment/looseness forces at 2x and 3x shaft",
-        },
-        FitSpace {
-            effect: "running-in",
-            fitted: vec![fp("factor", 1.0, 10.0, true)],
-            fixed: vec![("decay_revs", 1.0e4), ("start_revs", 0.0)],
-            needs_defect: false,
-            note: "roughness raised early in life; constant within a record of seconds",
-        },
-        FitSpace {
-            effect: "roughness",
-            fitted: vec![fp("scale", 0.1, 20.0, true)],
-            fixed: vec![],
-            needs_defect: false,
-            note: "distributed roughness level",
-        },
-        FitSpace {
-            effect: "edge-shape",
-            fitted: vec![
-                fp("length_scale", 0.2, 5.0, true),
-                fp("asperity_scale", 0.0, 5.0, false),
-            ],
-            fixed: vec![],
-            needs_defect: true,
-            note: "sharpness of the defect edges: impact length and trailing-edge asperity",
-        },
-    ]
+/// The fit space of effect `kind` for a record described by `ctx`.
+pub fn space(kind: EffectKind, ctx: &Context) -> FitSpace {
+    let spec = kind.spec();
+    let r = |b: &FitBound| b.resolve(ctx.fs, ctx.rms, ctx.mains_hz);
+    let fitted = spec
+        .fit
+        .fitted
+        .iter()
+        .map(|f| {
+            let mut p = FitParam {
+                name: f.name,
+                lo: r(&f.lo),
+                hi: r(&f.hi),
+                log: f.log,
+            };
+            if let Some(q) = spec.param(f.name) {
+                p.hi = p.hi.clamp(q.min, q.max);
+                p.lo = p.lo.clamp(q.min, p.hi);
+            }
+            p
+        })
+        .collect();
+    FitSpace {
+        kind,
+        effect: spec.name,
+        fitted,
+        fixed: spec.fit.fixed.iter().map(|(n, b)| (*n, r(b))).collect(),
+        needs_defect: spec.fit.needs_defect,
+        note: spec.fit.note,
+    }
 }
 
 /// The spaces that can act on a record: without a defect the defect effects are dropped.

@@ -315,7 +315,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let mut floor = Effects::NONE;
     floor
         .set(
-            "sensor",
+            wearsim_core::effects::EffectKind::Sensor,
             &[
                 (opt.noise * level) as wearsim_core::Real,
                 0.0,
