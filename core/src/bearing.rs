@@ -10,6 +10,7 @@ pub const MAX_ELEMENTS: usize = 32;
 /// (thesis eq. 4–10, after Harsha et al.): `Q = K δ^p`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ContactKind {
     /// Ball on race: point contact, `p = 3/2`.
     Point,
@@ -33,6 +34,7 @@ impl ContactKind {
 /// `pitch > element diameter > 0`, `1 ≤ elements ≤ MAX_ELEMENTS` and finite values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BearingGeometry {
     /// Number of rolling elements per row, `N` (thesis eq. 18).
     pub elements: u8,

@@ -15,6 +15,7 @@ pub const MAX_SHAFT_HZ: Real = 1000.0;
 /// One point of a speed table: time (s) and shaft frequency (Hz).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SpeedPoint {
     /// Time (s) from the start of the run.
     pub t: Real,
@@ -25,6 +26,7 @@ pub struct SpeedPoint {
 /// Shaft speed profile.
 #[derive(Debug, Clone, PartialEq)]
 #[allow(clippy::large_enum_variant)] // fixed capacity on purpose: no heap
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SpeedProfile {
     /// Constant shaft frequency (Hz).
     Constant(Real),

@@ -10,6 +10,7 @@ pub const MAX_DEFECTS: u8 = 8;
 /// Geometry of the current defect (SI units, m).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Topography {
     /// Height of the asperity (shoulder) at the defect's trailing edge (m).
     pub asperity_height: Real,

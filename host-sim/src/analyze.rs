@@ -85,8 +85,13 @@ impl Kinematics {
                 wearsim_core::presets::NAMES.join(", ")
             )
         })?;
-        let model = wearsim_core::Model::new_checked(cfg.clone())
-            .map_err(|e| format!("bearing preset {preset}: {e}"))?;
+        Self::of_config(&cfg, rpm).map_err(|e| format!("bearing preset {preset}: {e}"))
+    }
+
+    /// Frequencies of the bearing and structure of model configuration `cfg` (e.g. the
+    /// structured `model` of a wearsim sidecar) at `rpm` (rev/min).
+    pub fn of_config(cfg: &wearsim_core::ModelConfig, rpm: f64) -> Result<Self, String> {
+        let model = wearsim_core::Model::new_checked(cfg.clone()).map_err(|e| e.to_string())?;
         let shaft = rpm / 60.0;
         let f = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing).at(shaft);
         Ok(Kinematics {
@@ -187,7 +192,8 @@ pub struct Analysis {
     pub rpm: f64,
     /// Where the speed came from: `argument` or `file`.
     pub rpm_source: String,
-    /// Bearing preset used for the geometry.
+    /// Bearing preset used for the geometry (`custom`: the geometry of a wearsim
+    /// sidecar's structured model that is no preset's).
     pub bearing: String,
     /// Where the bearing came from: `argument` or `file`.
     pub bearing_source: String,
@@ -401,10 +407,20 @@ pub fn analyze_record(
     method: &Method,
 ) -> Result<(Analysis, Spectra), CliError> {
     let file = rec.source.display().to_string();
-    let (bearing, bearing_source) = match (bearing, rec.bearing.as_deref()) {
-        (Some(b), _) => (b.to_string(), "argument"),
-        (None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => (b.to_string(), "file"),
-        (None, other) => {
+    // A wearsim sidecar's structured model carries the geometry actually simulated (a
+    // `[bearing]` override included); other files name a preset.
+    let file_model = rec
+        .meta
+        .get("sidecar")
+        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
+    let (bearing, bearing_source, file_model) = match (bearing, file_model, rec.bearing.as_deref())
+    {
+        (Some(b), _, _) => (b.to_string(), "argument", None),
+        (None, Some(m), label) => (label.unwrap_or("custom").to_string(), "file", Some(m)),
+        (None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
+            (b.to_string(), "file", None)
+        }
+        (None, None, other) => {
             return Err(CliError::input(format!(
                 "{file}: no bearing geometry{}: pass --bearing PRESET (one of {})",
                 other.map_or(String::new(), |b| format!(
@@ -419,8 +435,11 @@ pub fn analyze_record(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
-    let kin = Kinematics::of_preset(&bearing, rpm)
-        .map_err(|e| CliError::input(format!("{file}: {e}")))?;
+    let kin = match &file_model {
+        Some(m) => Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}")),
+        None => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
+    }
+    .map_err(CliError::input)?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
         .map_err(|e| CliError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {

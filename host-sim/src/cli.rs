@@ -284,7 +284,7 @@ pub fn preset_description(name: &str) -> &'static str {
 /// Sidecar metadata of a simulation run.
 pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value {
     let cfg = sc.model.config();
-    json!({
+    let mut v = json!({
         "generator": "wearsim simulate",
         "version": env!("CARGO_PKG_VERSION"),
         "preset": sc.run.preset,
@@ -293,16 +293,21 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
         "duration_s": sc.run.duration,
         "settle_s": sc.run.settle,
         "rpm": sc.shaft_hz() * 60.0,
-        "bearing": sc.run.preset.as_deref().unwrap_or("custom"),
         "oversample": sc.model.oversample(),
         "internal_step_s": sc.model.step_size(),
         "integrator": format!("{:?}", cfg.integrator),
         "topography": cfg.defect.map(|d| format!("{:?}", d.topography)),
-        "model": format!("{cfg:?}"),
         "effects": sc_effects(sc, a),
         "summary": summary,
         "usable_band_hz": [0.0, 0.4 * cfg.output_rate],
-    })
+    });
+    if let Value::Object(m) = &mut v {
+        m.extend(crate::io::sidecar::model_metadata(
+            sc.run.preset.as_deref(),
+            cfg,
+        ));
+    }
+    v
 }
 
 /// The effects switched on (command line after file), for the sidecar.

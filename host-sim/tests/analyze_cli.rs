@@ -314,3 +314,95 @@ fn bad_input_exits_2_naming_the_problem() {
         &["short.csv"],
     );
 }
+
+/// A wearsim run whose `[bearing]` overrides the preset's geometry: the sidecar says
+/// `custom` and carries the resolved model as structured JSON, and `analyze` takes the
+/// geometry from it, so the fault frequencies are the simulated bearing's, not the preset's.
+#[test]
+fn simulate_output_with_a_bearing_override_is_analysed_with_its_geometry() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cfg = dir.path().join("scenario.toml");
+    std::fs::write(
+        &cfg,
+        format!("preset = \"{BEARING}\"\nduration = 1.0\n[bearing]\nelements = 12\n"),
+    )
+    .unwrap();
+    let out = dir.path().join("sim");
+    let o = wearsim(&[
+        "simulate",
+        "--config",
+        &cfg.to_string_lossy(),
+        "--out",
+        &out.to_string_lossy(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "simulate failed: {}", stderr(&o));
+    let side: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap()).unwrap();
+    assert_eq!(side["bearing"], "custom");
+    assert_eq!(side["model"]["bearing"]["elements"], 12);
+    let model: wearsim_core::ModelConfig =
+        serde_json::from_value(side["model"].clone()).expect("structured model");
+    let preset = Kinematics::of_preset(BEARING, RPM).unwrap();
+    let v = json_of(&wearsim(&[
+        "analyze",
+        &out.join("simulate.csv").to_string_lossy(),
+        "--json",
+    ]));
+    assert_eq!(v["bearing"], "custom");
+    assert_eq!(v["bearing_source"], "file");
+    let rpm = v["rpm"].as_f64().unwrap();
+    let want = wearsim_core::kinematics::FaultOrders::of(&model.bearing).at(rpm / 60.0);
+    let got = |k: &str| v["kinematics"][k].as_f64().unwrap();
+    for (k, w) in [("bpfo", want.bpfo), ("bpfi", want.bpfi), ("ftf", want.ftf)] {
+        assert!((got(k) - w).abs() < 1e-9 * w, "{k}: {} vs {w}", got(k));
+    }
+    // 12 elements instead of 9: BPFI is a third higher than the preset's.
+    assert!(
+        got("bpfi") > 1.3 * preset.bpfi,
+        "{} vs {}",
+        got("bpfi"),
+        preset.bpfi
+    );
+    // The preset's own run still names the preset (its geometry is the preset's).
+    let out2 = dir.path().join("sim2");
+    let o = wearsim(&[
+        "simulate",
+        "--preset",
+        BEARING,
+        "--duration",
+        "0.5",
+        "--out",
+        &out2.to_string_lossy(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let side: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out2.join("simulate.json")).unwrap()).unwrap();
+    assert_eq!(side["bearing"], BEARING);
+    assert!(side["model"].is_object());
+}
+
+/// A sidecar written before the structured model (`model` as a Rust `Debug` string) is
+/// still read for fs and rpm; its geometry is its `bearing` preset's.
+#[test]
+fn old_sidecar_with_a_debug_model_string_is_read() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (x, _) = outer_race_signal();
+    let csv = dir.path().join("old.csv");
+    let mut text = String::from("time_s,accel_m_s2\n");
+    for (i, v) in x.iter().enumerate() {
+        text.push_str(&format!("{},{v}\n", i as f64 / FS));
+    }
+    std::fs::write(&csv, text).unwrap();
+    std::fs::write(
+        dir.path().join("old.json"),
+        format!(
+            r#"{{"fs": {FS}, "rpm": {RPM}, "bearing": "{BEARING}", "model": "ModelConfig {{ bearing: BearingGeometry {{ .. }} }}"}}"#
+        ),
+    )
+    .unwrap();
+    let v = json_of(&wearsim(&["analyze", &csv.to_string_lossy(), "--json"]));
+    assert_eq!(v["bearing"], BEARING);
+    assert_eq!(v["fs"], FS);
+    assert_eq!(v["diagnosis"]["family"], "OuterRace");
+}

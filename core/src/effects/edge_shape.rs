@@ -16,6 +16,7 @@ use crate::real::Real;
 
 /// Parameters of the `edge-shape` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Scale of the entry and impact lengths (–), in [0.2, 5].
     pub length_scale: Real,

@@ -28,6 +28,7 @@ pub const MAX_PRELOAD: Real = 4.0;
 
 /// Parameters of the `load-zone` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Modulation depth `m` (–), in [0, 1]: 0 = baseline, 1 = full Stribeck factor.
     pub depth: Real,

@@ -72,6 +72,8 @@ macro_rules! registry {
 
         /// The switchable effects; `None` = off.
         #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+        #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
         pub struct Effects {
             $( $(#[$attr])* #[doc = $doc] pub $field: Option<$module::Params>, )*
         }

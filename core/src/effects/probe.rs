@@ -7,6 +7,7 @@ use crate::real::Real;
 
 /// Parameters of the `probe` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// A dimensionless level (–), in [0, 2].
     pub level: Real,

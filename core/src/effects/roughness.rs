@@ -11,6 +11,7 @@ use crate::real::Real;
 
 /// Parameters of the `roughness` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Scale of the roughness RMS (–), in [0, 20].
     pub scale: Real,

@@ -25,6 +25,7 @@ use crate::real::{exp, Real};
 
 /// Parameters of the `running-in` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Initial roughness factor `F` (–), in [1, 10].
     pub factor: Real,

@@ -16,6 +16,7 @@ use crate::rng::Xoshiro128pp;
 
 /// Parameters of the `sensor` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// RMS of the white noise floor (m/s²), in [0, 100].
     pub noise: Real,

@@ -12,6 +12,7 @@ use crate::real::Real;
 
 /// Parameters of the `shaft-harmonics` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Force amplitude at 2× shaft (N), in [0, 10⁴].
     pub f2: Real,

@@ -11,6 +11,7 @@ use crate::real::Real;
 
 /// Parameters of the `slip` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Standard deviation of the element position at the defect as a fraction of the
     /// element pitch `2π/N` (–), in [0, 0.2].

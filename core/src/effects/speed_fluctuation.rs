@@ -24,6 +24,7 @@ const PHASES: [Real; JITTER_LINES] = [0.0, 3.883, 1.483, 5.366, 2.966, 0.566, 4.
 
 /// Parameters of the `speed-fluctuation` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// Relative amplitude `a` of the sinusoidal modulation (–), in [0, 0.1].
     pub amplitude: Real,

@@ -26,6 +26,7 @@ pub const MODES: usize = 3;
 
 /// One structural mode.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Mode {
     /// Centre frequency (Hz), in [100, fs/2.5].
     pub freq_hz: Real,
@@ -37,6 +38,7 @@ pub struct Mode {
 
 /// Parameters of the `transfer-path` effect.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
     /// The modes.
     pub modes: [Mode; MODES],

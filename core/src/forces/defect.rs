@@ -38,6 +38,7 @@ use crate::topography::Topography;
 /// Where the defect sits.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DefectLocation {
     /// On the stationary outer race at `angle` (rad; π/2 = centre of the load zone).
     OuterRace {
@@ -63,6 +64,7 @@ pub enum DefectLocation {
 /// Which published formulation turns the defect into a force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DefectModel {
     /// Five-step load function through the Hertz contact (thesis Fig. 3).
     FiveStep,
@@ -77,6 +79,7 @@ pub enum DefectModel {
 /// Configuration of a localized defect.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DefectConfig {
     /// Location.
     pub location: DefectLocation,

@@ -9,6 +9,7 @@ use crate::real::Real;
 /// Imbalance mass and eccentricity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Imbalance {
     /// Unbalanced mass `m_u` (kg); thesis: 0.005 kg.
     pub mass: Real,

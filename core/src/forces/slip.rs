@@ -11,6 +11,7 @@ use crate::rng::Xoshiro128pp;
 /// Random slip of the element passes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Slip {
     /// Standard deviation of the element position at the defect, as a fraction of the
     /// element spacing `2π/N` (–). 0.01–0.02 is typical.

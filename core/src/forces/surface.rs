@@ -17,6 +17,7 @@ use crate::real::{Real, TAU};
 /// Outer-race waviness.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Waviness {
     /// Wave amplitude `Π_p` (m).
     pub amplitude: Real,
@@ -48,6 +49,7 @@ impl Waviness {
 /// Surface roughness (random, per element).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Roughness {
     /// RMS height σ (m) of the composite surface.
     pub rms: Real,

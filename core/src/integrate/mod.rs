@@ -23,6 +23,7 @@ use crate::real::Real;
 /// Which fixed-step integrator advances the state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum IntegratorKind {
     /// Classical RK4 (4 force evaluations per step).
     Rk4,

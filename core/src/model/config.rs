@@ -29,6 +29,7 @@ pub const OUTPUT_RATE_RANGE: (Real, Real) = (100.0, 1.0e6);
 /// Mass, stiffness and damping of the structure (thesis eq. 1: M, K, C).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Structure {
     /// Vibrating mass `M` (kg).
     pub mass: Real,
@@ -41,6 +42,7 @@ pub struct Structure {
 /// Which channels go through the anti-alias filter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Channels {
     /// Acceleration only (cheapest).
     Acceleration,
@@ -50,6 +52,7 @@ pub enum Channels {
 
 /// Everything that defines a simulation run. Validate with [`Model::new_checked`].
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ModelConfig {
     /// Bearing geometry and material.
     pub bearing: BearingGeometry,

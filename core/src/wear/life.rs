@@ -35,6 +35,7 @@ pub struct PassLoads {
 /// Configuration of a life run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct LifeConfig {
     /// Material and tribology constants.
     pub material: Material,

@@ -10,6 +10,7 @@ use crate::real::Real;
 /// Material and tribology constants (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Material {
     /// Young's modulus E (Pa): 208 GPa (Harris & Kotzalas 2006).
     pub youngs_modulus: Real,

@@ -7,11 +7,21 @@
 //! `fs` (Hz), `rpm`, `n_samples`, `columns`, `units` (column → unit), `bearing`,
 //! `wav.{column, unit, scale}` (`scale`: physical units per full scale of an integer WAV, or a
 //! factor applied to a float WAV), and `complete` (a sidecar saying `false` is an error).
+//!
+//! wearsim's own sidecars also carry the resolved model configuration as structured JSON
+//! (`model`: the core's `ModelConfig` with the `serde` feature, geometry included; see
+//! [`model_metadata`]) and set `bearing` to the preset only when the geometry is the
+//! preset's (`"custom"` otherwise). Readers take the geometry from `model` when it is
+//! there ([`Sidecar::model`]). Sidecars written before (with `model` as a Rust `Debug`
+//! string) are still read for `fs`, `rpm` and the rest; their `model` is ignored, so their
+//! geometry is the `bearing` preset's, as before.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde_json::Value;
+use serde_json::{json, Map, Value};
+use wearsim_core::bearing::BearingGeometry;
+use wearsim_core::ModelConfig;
 
 use super::error::IoError;
 use super::record::{check_fs, check_rpm};
@@ -40,8 +50,11 @@ pub struct Sidecar {
     pub wav_unit: Option<String>,
     /// Factor applied to WAV samples after integer normalisation to ±1 (default 1).
     pub wav_scale: Option<f64>,
-    /// Bearing preset name.
+    /// Bearing preset name (`"custom"` when a wearsim run overrode the geometry).
     pub bearing: Option<String>,
+    /// The resolved model configuration of a wearsim run (structured `model` key), if the
+    /// sidecar has one; its `bearing` is the geometry the samples were simulated with.
+    pub model: Option<ModelConfig>,
     /// The whole JSON object.
     pub raw: Value,
 }
@@ -214,8 +227,49 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         wav_unit,
         wav_scale,
         bearing: string(path, &raw, "bearing")?,
+        model: structured_model(&raw).map_err(|e| IoError::malformed(path, e))?,
         raw,
     })
+}
+
+/// Value of the `bearing` key for a run of `cfg`: the preset's name when the geometry is
+/// the preset's, `"custom"` otherwise (a `[bearing]` override, or no preset).
+pub fn bearing_label(preset: Option<&str>, cfg: &ModelConfig) -> String {
+    let preset_geometry = preset
+        .and_then(wearsim_core::presets::by_name)
+        .and_then(|p| BearingGeometry::new_checked(p.bearing).ok());
+    match (preset, preset_geometry) {
+        (Some(name), Some(g)) if g == cfg.bearing => name.to_string(),
+        _ => "custom".to_string(),
+    }
+}
+
+/// The sidecar keys describing the model of a run: `bearing` ([`bearing_label`]) and
+/// `model` (the resolved configuration `cfg` as structured JSON, geometry included).
+pub fn model_metadata(preset: Option<&str>, cfg: &ModelConfig) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("bearing".into(), json!(bearing_label(preset, cfg)));
+    m.insert(
+        "model".into(),
+        serde_json::to_value(cfg).unwrap_or(Value::Null),
+    );
+    m
+}
+
+/// The structured model configuration of a wearsim sidecar (`format` is
+/// [`super::write::SIDECAR_FORMAT`]): `None` for other sidecars, without a `model` key or
+/// when it is an old sidecar's `Debug` string; an error when it is an object that is not a
+/// valid configuration.
+pub fn structured_model(raw: &Value) -> Result<Option<ModelConfig>, String> {
+    if raw.get("format").and_then(Value::as_str) != Some(super::write::SIDECAR_FORMAT) {
+        return Ok(None);
+    }
+    match raw.get("model") {
+        Some(m @ Value::Object(_)) => serde_json::from_value::<ModelConfig>(m.clone())
+            .map(Some)
+            .map_err(|e| format!("sidecar \"model\" is not a wearsim model configuration: {e}")),
+        _ => Ok(None),
+    }
 }
 
 /// Where the sample rate of a record came from.
