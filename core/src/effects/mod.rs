@@ -15,7 +15,7 @@
 //! ([`EffectParams::checked`]), the catalogue ([`CATALOGUE`], `wearsim effects`), the
 //! command line and the gap's fit spaces all read them.
 //!
-//! The list below ([`registry!`](self)) is the one place that names every effect: from it
+//! The `registry!` list below is the one place that names every effect: from it
 //! come the module declaration, [`EffectKind`] and [`EffectKind::ALL`],
 //! [`EffectKind::name`]/[`EffectKind::from_name`] (an unknown name is a [`ConfigError`]),
 //! the [`Effects`] struct with one `Option<Params>` field per effect, [`Effects::NONE`],

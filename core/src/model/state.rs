@@ -4,7 +4,7 @@
 //! The fields are listed once, in `state_fields!` below, each tagged `[saved]` (restored
 //! from a checkpoint) or `[derived]` (re-derived from the model and the saved fields).
 //! The list generates the struct (in the listed order: field order sets offsets that the
-//! M4F pays for), its initial value, and the plain [`StateParts`] of the saved fields with
+//! M4F pays for), its initial value, and the plain `StateParts` of the saved fields with
 //! `parts`/`restore` that `crate::checkpoint` uses; adding a state field is one line here
 //! (plus, for a saved one, its bytes in the checkpoint's encoding).
 
