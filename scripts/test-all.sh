@@ -15,16 +15,22 @@ cargo fmt --all -- --check
 step "cargo clippy (deny warnings)"
 cargo clippy --workspace --all-targets -- -D warnings
 
-step "core: no_std builds for thumbv6m-none-eabi and thumbv7em-none-eabihf"
+step "core: no_std builds for thumbv6m-none-eabi and thumbv7em-none-eabihf, both precisions"
 for target in thumbv6m-none-eabi thumbv7em-none-eabihf; do
   cargo build -p wearsim-core --target "$target"
-  cargo build -p wearsim-core --target "$target" --features f32
+  cargo build -p wearsim-core-f32 --target "$target"
 done
-cargo build -p wearsim-core --target thumbv7em-none-eabihf --features fast-math,defmt
-cargo clippy -p wearsim-core --target thumbv7em-none-eabihf --features f32 -- -D warnings
+cargo build -p wearsim-core-f32 --target thumbv7em-none-eabihf --features fast-math,defmt
+cargo clippy -p wearsim-core-f32 --target thumbv7em-none-eabihf -- -D warnings
+
+step "every feature at once (features are additive)"
+cargo build --workspace --all-features
+
+step "docs build without warnings"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features
 
 step "core: fast-math approximation error"
-cargo test -p wearsim-core --features fast-math --test fast_math
+cargo test -p wearsim-core-f32 --features fast-math --test fast_math
 
 if [ -f firmware-stub/Cargo.toml ]; then
   step "firmware-stub: fmt and clippy"

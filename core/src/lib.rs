@@ -18,7 +18,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
-// `Real` is f64 or f32 by feature: casts that are no-ops in one build are needed in the other.
+// `Real` is f64 or f32 by package (`wearsim-core-f32`): casts that are no-ops in one build are needed in the other.
 #![allow(clippy::unnecessary_cast)]
 #![deny(
     clippy::unwrap_used,

@@ -1,17 +1,25 @@
 //! The scalar type of the model and the few transcendental functions it uses.
 //!
-//! `Real` is `f64` by default and `f32` with the `f32` feature (Cortex-M4F). All
+//! `Real` is `f64` in the `wearsim-core` package and `f32` in `wearsim-core-f32` (Cortex-M4F),
+//! a second package compiled from this same source with `cfg(wearsim_f32)` set by its build
+//! script: the two precisions are separate types (`wearsim_core::Model`,
+//! `wearsim_core_f32::Model`), so every feature stays additive and both can be linked into one
+//! program and tested on the host. All
 //! transcendental functions go through `libm` (pure Rust, identical results on every
 //! target for the same type). With the `fast-math` feature, sine and cosine come from
-//! `micromath` (max abs error 1.1·10⁻³, measured by `tests/fast_math.rs`); its square root
+//! `micromath` (single precision only; max abs error 1.1·10⁻³, measured by `tests/fast_math.rs`); its square root
 //! is not used: its 6 % relative error would become a 9 % error of every Hertz force.
 
 /// Floating-point type of every physical quantity in the core (SI units throughout).
-#[cfg(not(feature = "f32"))]
+#[cfg(not(wearsim_f32))]
 pub type Real = f64;
 /// Floating-point type of every physical quantity in the core (SI units throughout).
-#[cfg(feature = "f32")]
+#[cfg(wearsim_f32)]
 pub type Real = f32;
+
+/// Whether [`Real`] is `f32` (the `wearsim-core-f32` package): lets precision-specific code
+/// paths be chosen by a constant that the compiler folds, instead of a `cfg` outside this file.
+pub const SINGLE_PRECISION: bool = cfg!(wearsim_f32);
 
 /// π in [`Real`].
 pub const PI: Real = core::f64::consts::PI as Real;
@@ -30,18 +38,18 @@ macro_rules! math_fns {
             $(#[$doc])*
             #[inline(always)]
             pub fn $name($($arg: Real),+) -> Real {
-                #[cfg(not(feature = "f32"))]
+                #[cfg(not(wearsim_f32))]
                 { $f64($($arg),+) }
-                #[cfg(all(feature = "f32", not(feature = "fast-math")))]
+                #[cfg(all(wearsim_f32, not(feature = "fast-math")))]
                 { $f32($($arg),+) }
-                #[cfg(feature = "fast-math")]
+                #[cfg(all(wearsim_f32, feature = "fast-math"))]
                 { $fast($($arg),+) }
             }
         )*
     };
 }
 
-#[cfg(feature = "fast-math")]
+#[cfg(all(wearsim_f32, feature = "fast-math"))]
 mod fast {
     use super::Real;
     use micromath::F32Ext;

@@ -1,6 +1,12 @@
 //! Each force diagram and physical building block on its own, against published
 //! constants and closed forms.
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 
+mod common;
+
+use common::tol;
 use wearsim_core::bearing::ContactKind;
 use wearsim_core::contact::ElementContact;
 use wearsim_core::forces::defect::{DefectLocation, DefectShape, StaticReference};
@@ -9,11 +15,11 @@ use wearsim_core::forces::load_function::LoadFunction;
 use wearsim_core::forces::surface::{Roughness, Waviness};
 use wearsim_core::forces::{ForceDiagram, Kinematics};
 use wearsim_core::kinematics::FaultOrders;
-use wearsim_core::presets;
 use wearsim_core::ring_modes::{flexural_mode_rad_s, nsk_outer_ring_hz, ring_frequency_hz};
 use wearsim_core::rng::Xoshiro128pp;
 use wearsim_core::sensor::SensorScale;
 use wearsim_core::topography;
+use wearsim_core::{presets, Real};
 
 /// CWRU drive-end bearing (SKF 6205): the published multiples of shaft speed
 /// BPFO 3.5848, BPFI 5.4152, BSF 2.3573, FTF 0.39828 (CWRU bearing-information page).
@@ -44,7 +50,10 @@ fn cwru_fault_orders_match_published() {
         assert!((got - want).abs() < 1e-3, "{got} vs {want}");
     }
     // Identities of eq. 18–19.
-    assert!((o.bpfo - 9.0 * o.ftf).abs() < 1e-12 && (o.bpfi - 9.0 * (1.0 - o.ftf)).abs() < 1e-12);
+    assert!(
+        (o.bpfo - 9.0 * o.ftf).abs() < tol(1e-12)
+            && (o.bpfi - 9.0 * (1.0 - o.ftf)).abs() < tol(1e-12)
+    );
 }
 
 /// The thesis reference puts BPFO inside the reported ~170 Hz fault zone at 160 rad/s.
@@ -65,18 +74,18 @@ fn hertz_exponents_fitted_from_implementation() {
     ] {
         let c = ElementContact::of(&bearing);
         assert_eq!(c.kind == ContactKind::Point, p == 1.5);
-        let pts: Vec<(f64, f64)> = (0..20)
+        let pts: Vec<(Real, Real)> = (0..20)
             .map(|i| {
-                let d = 1e-7 * 10f64.powf(i as f64 * 0.12);
+                let d = 1e-7 * (10.0 as Real).powf(i as Real * 0.12);
                 (d.ln(), c.load(d).ln())
             })
             .collect();
-        let n = pts.len() as f64;
-        let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-        let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-        let slope = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
-            / pts.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<f64>();
-        assert!((slope - p).abs() < 1e-9, "slope {slope} vs {p}");
+        let n = pts.len() as Real;
+        let mx = pts.iter().map(|p| p.0).sum::<Real>() / n;
+        let my = pts.iter().map(|p| p.1).sum::<Real>() / n;
+        let slope = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum::<Real>()
+            / pts.iter().map(|(x, _)| (x - mx) * (x - mx)).sum::<Real>();
+        assert!((slope - p).abs() < tol(1e-9), "slope {slope} vs {p}");
         assert_eq!(c.load(-1e-6), 0.0);
     }
 }
@@ -97,7 +106,7 @@ fn hertz_constants_are_of_handbook_size() {
     assert!(p > 2.0e9 && p < 4.5e9, "p_max(800 N) = {p}");
     // p_max grows with Q^{1/3}.
     let r = c.inner.max_pressure(8000.0) / p;
-    assert!((r - 10f64.powf(1.0 / 3.0)).abs() < 1e-9);
+    assert!((r - (10.0 as Real).powf(1.0 / 3.0)).abs() < tol(1e-9));
 }
 
 /// Eq. 21 and the corrected eq. 22 give the same mode ratios n(n²−1)/√(n²+1); the printed
@@ -109,17 +118,18 @@ fn ring_mode_formulas_agree() {
             / flexural_mode_rad_s(n, 2e11, 1e-10, 0.1, 0.03);
         let r22 =
             nsk_outer_ring_hz(n + 1, 50.0, 65.0, 0.15) / nsk_outer_ring_hz(n, 50.0, 65.0, 0.15);
-        assert!((r21 - r22).abs() < 1e-12);
+        assert!((r21 - r22).abs() < tol(1e-12));
     }
     let f2 = nsk_outer_ring_hz(2, 50.0, 65.0, 0.15);
     assert!(f2 > 1000.0 && f2 < 2000.0, "61810 outer ring n=2: {f2} Hz");
     assert!(
-        (ring_frequency_hz(5900.0, 0.065) - 5900.0 / (std::f64::consts::PI * 0.065)).abs() < 1e-9
+        (ring_frequency_hz(5900.0, 0.065) - 5900.0 / (wearsim_core::real::PI * 0.065)).abs()
+            < tol(1e-9)
     );
     assert_eq!(flexural_mode_rad_s(1, 2e11, 1e-10, 0.1, 0.03), 0.0);
 }
 
-fn kin(shaft_angle: f64, omega: f64) -> Kinematics {
+fn kin(shaft_angle: Real, omega: Real) -> Kinematics {
     Kinematics {
         shaft_angle,
         shaft_cs: (shaft_angle.cos(), shaft_angle.sin()),
@@ -139,9 +149,9 @@ fn imbalance_force_magnitude() {
         mass: 0.005,
         radius: 0.1,
     };
-    let f = imb.force(&kin(std::f64::consts::FRAC_PI_2, 160.0), 0.0, 0.0);
-    assert!((f - 12.8).abs() < 1e-9);
-    assert!(imb.force(&kin(0.0, 160.0), 0.0, 0.0).abs() < 1e-12);
+    let f = imb.force(&kin(wearsim_core::real::PI / 2.0, 160.0), 0.0, 0.0);
+    assert!((f - 12.8).abs() < tol(1e-9));
+    assert!(imb.force(&kin(0.0, 160.0), 0.0, 0.0).abs() < tol(1e-12));
 }
 
 /// Waviness order from the track radius (not the thesis's 10 mm example's "80"), and the
@@ -154,7 +164,7 @@ fn surface_parameters() {
     };
     let r_o = presets::SKF_61810.outer_race_radius();
     let n = w.order(r_o);
-    assert_eq!(n, (std::f64::consts::TAU * r_o / 0.8e-3).round() as u32);
+    assert_eq!(n, (wearsim_core::real::TAU * r_o / 0.8e-3).round() as u32);
     assert!(n > 200, "61810 track holds {n} waves, not 80");
     let r = Roughness {
         rms: 1e-7,
@@ -164,12 +174,12 @@ fn surface_parameters() {
     // White regime: σ_step² · h constant.
     let (h1, h2) = (2.5e-5, 1.25e-5);
     let v = 0.1; // τ = 2e-4 > h: correlated regime → σ itself
-    assert!((r.step_sigma(h1, v, 0.0) - 1e-7).abs() < 1e-20);
+    assert!((r.step_sigma(h1, v, 0.0) - 1e-7).abs() < tol(1e-20));
     let v = 10.0; // τ = 2e-6 < h
     let p1 = r.step_sigma(h1, v, 0.0).powi(2) * h1;
     let p2 = r.step_sigma(h2, v, 0.0).powi(2) * h2;
-    assert!((p1 / p2 - 1.0).abs() < 1e-12);
-    assert!((r.step_sigma(h1, v, 1.0) / r.step_sigma(h1, v, 0.0) - 5.0).abs() < 1e-12);
+    assert!((p1 / p2 - 1.0).abs() < tol(1e-12));
+    assert!((r.step_sigma(h1, v, 1.0) / r.step_sigma(h1, v, 0.0) - 5.0).abs() < tol(1e-12));
 }
 
 /// The five-step load function: nominal, linear unloading, flat traverse, half-sine
@@ -183,15 +193,15 @@ fn five_step_load_function_shape() {
         impact: 0.1,
     };
     assert_eq!(lf.eval(-0.01).unload, 0.0);
-    assert!((lf.eval(0.1).unload - 0.3).abs() < 1e-12); // half-way down the entry ramp
-    assert!((lf.eval(0.5).unload - 0.6).abs() < 1e-12); // traverse
+    assert!((lf.eval(0.1).unload - 0.3).abs() < tol(1e-12)); // half-way down the entry ramp
+    assert!((lf.eval(0.5).unload - 0.6).abs() < tol(1e-12)); // traverse
     assert_eq!(lf.eval(0.5).extra_deflection, 0.0);
     let peak = lf.eval(1.05);
-    assert!((peak.extra_deflection - 10e-6).abs() < 1e-15); // crest of the half-sine
-    assert!((peak.unload - 0.6 * 0.75).abs() < 1e-12); // recovering
+    assert!((peak.extra_deflection - 10e-6).abs() < tol(1e-15)); // crest of the half-sine
+    assert!((peak.unload - 0.6 * 0.75).abs() < tol(1e-12)); // recovering
     assert_eq!(lf.eval(1.25).unload, 0.0);
     assert_eq!(lf.eval(1.25).extra_deflection, 0.0);
-    assert!((lf.tail() - 0.2).abs() < 1e-15);
+    assert!((lf.tail() - 0.2).abs() < tol(1e-15));
 }
 
 /// Defect shapes derived from Table 1 grow as the thesis orders them: the geometric drop
@@ -215,7 +225,7 @@ fn defect_shapes_follow_table_1() {
     assert!(dent.load.unload < medium.load.unload && medium.load.unload <= large.load.unload);
     assert!(smoothed_large.load.asperity < large.load.asperity / 5.0);
     // Geometric drop of a 50 µm dent under a 3.97 mm ball: L²/(8 r_b) ≈ 0.16 µm.
-    let expect = 50e-6f64.powi(2) / (8.0 * 3.969e-3 / 2.0);
+    let expect = (50e-6 as Real).powi(2) / (8.0 * 3.969e-3 / 2.0);
     assert!(
         (dent.drop / expect - 1.0).abs() < 1e-3,
         "{} vs {expect}",
@@ -244,9 +254,9 @@ fn rng_statistics() {
         let _ = b.gauss_approx();
         g2 += g * g;
     }
-    assert!((s / n as f64).abs() < 0.005);
-    assert!((s2 / n as f64 - 1.0 / 3.0).abs() < 0.005);
-    assert!((g2 / n as f64 - 1.0).abs() < 0.01);
+    assert!((s / n as Real).abs() < 0.005);
+    assert!((s2 / n as Real - 1.0 / 3.0).abs() < 0.005);
+    assert!((g2 / n as Real - 1.0).abs() < 0.01);
 }
 
 /// Sensor counts: Q1.15 of the full scale, saturating, with left-justified resolution.
@@ -260,8 +270,8 @@ fn sensor_counts() {
     assert_eq!(s.counts(-9.80665), -16384);
     assert_eq!(s.counts(1e6), i16::MAX);
     assert_eq!(s.counts(-1e6), i16::MIN);
-    assert_eq!(s.counts(f64::NAN), 0);
-    assert!((s.accel(16384) - 9.80665).abs() < 1e-12);
+    assert_eq!(s.counts(Real::NAN), 0);
+    assert!((s.accel(16384) - 9.80665).abs() < tol(1e-12));
     let s12 = SensorScale {
         full_scale_g: 2.0,
         bits: 12,

@@ -1,13 +1,16 @@
 //! The integrators and the output path against closed-form solutions of the linear
 //! single-degree-of-freedom oscillator `m y'' + c y' + k y = F(t)`.
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 
 mod common;
 
+use common::consts::{PI, TAU};
 use common::{constant, linear_sdof, run, sine_fit};
-use std::f64::consts::{PI, TAU};
 use wearsim_core::forces::imbalance::Imbalance;
 use wearsim_core::integrate::IntegratorKind;
-use wearsim_core::{Model, ModelConfig, State};
+use wearsim_core::{Model, ModelConfig, Real, State};
 
 const KINDS: [IntegratorKind; 3] = [
     IntegratorKind::Rk4,
@@ -19,9 +22,9 @@ const KINDS: [IntegratorKind; 3] = [
 /// with `ω_d = ω_n √(1 − ζ²)` and `ζ` within 0.1 % for every integrator.
 #[test]
 fn free_decay_matches_closed_form() {
-    let (m, k, zeta): (f64, f64, f64) = (1.0, 1.0e6, 0.01);
+    let (m, k, zeta): (Real, Real, Real) = (1.0, 1.0e6, 0.01);
     let c = 2.0 * zeta * (k * m).sqrt();
-    let wn: f64 = (k / m).sqrt();
+    let wn: Real = (k / m).sqrt();
     let fd = wn * (1.0 - zeta * zeta).sqrt() / TAU;
     for kind in KINDS {
         let model = Model::new_checked(linear_sdof(m, k, c, 20_000.0, 2, kind)).unwrap();
@@ -30,8 +33,8 @@ fn free_decay_matches_closed_form() {
         let n = 20_000;
         let mut out = vec![wearsim_core::Sample::default(); n];
         model.fill(&mut st, &mut out);
-        let t: Vec<f64> = (0..n as u64).map(|i| model.output_time(i)).collect();
-        let a: Vec<f64> = out.iter().map(|s| s.accel).collect();
+        let t: Vec<Real> = (0..n as u64).map(|i| model.output_time(i)).collect();
+        let a: Vec<Real> = out.iter().map(|s| s.accel).collect();
         // Zero crossings after the filter's start-up (t > 0.05 s).
         let mut crossings = vec![];
         for i in 1..n {
@@ -40,7 +43,7 @@ fn free_decay_matches_closed_form() {
                 crossings.push(t[i - 1] + frac * (t[i] - t[i - 1]));
             }
         }
-        let half_periods = (crossings.len() - 1) as f64;
+        let half_periods = (crossings.len() - 1) as Real;
         let f_meas = half_periods / 2.0 / (crossings.last().unwrap() - crossings[0]);
         assert!(
             (f_meas / fd - 1.0).abs() < 1e-3,
@@ -57,14 +60,14 @@ fn free_decay_matches_closed_form() {
                 ls.push(peak.ln());
             }
         }
-        let nn = ts.len() as f64;
-        let (mt, ml) = (ts.iter().sum::<f64>() / nn, ls.iter().sum::<f64>() / nn);
+        let nn = ts.len() as Real;
+        let (mt, ml) = (ts.iter().sum::<Real>() / nn, ls.iter().sum::<Real>() / nn);
         let slope = ts
             .iter()
             .zip(&ls)
             .map(|(t, l)| (t - mt) * (l - ml))
-            .sum::<f64>()
-            / ts.iter().map(|t| (t - mt) * (t - mt)).sum::<f64>();
+            .sum::<Real>()
+            / ts.iter().map(|t| (t - mt) * (t - mt)).sum::<Real>();
         let sigma = -slope;
         let wd = TAU * f_meas;
         let zeta_meas = sigma / (sigma * sigma + wd * wd).sqrt();
@@ -75,7 +78,7 @@ fn free_decay_matches_closed_form() {
     }
 }
 
-fn forced_config(kind: IntegratorKind, shaft_hz: f64, fs: f64, r: u32) -> ModelConfig {
+fn forced_config(kind: IntegratorKind, shaft_hz: Real, fs: Real, r: u32) -> ModelConfig {
     ModelConfig {
         imbalance: Some(Imbalance {
             mass: 1e-5,
@@ -94,17 +97,17 @@ fn forced_config(kind: IntegratorKind, shaft_hz: f64, fs: f64, r: u32) -> ModelC
 /// `convergence_orders`.)
 #[test]
 fn forced_response_amplitude_and_phase() {
-    let (m, k, c): (f64, f64, f64) = (1.0, 1.0e6, 20.0);
+    let (m, k, c): (Real, Real, Real) = (1.0, 1.0e6, 20.0);
     let fn_ = (k / m).sqrt() / TAU;
     for kind in [IntegratorKind::Rk4, IntegratorKind::ExactFoh] {
         for f in [50.0, fn_, 400.0] {
             let model = Model::new_checked(forced_config(kind, f, 20_000.0, 2)).unwrap();
             let n = 40_000; // 2 s; transient decays as e^{-10 t}
             let out = run(&model, 1, n);
-            let t: Vec<f64> = (n as u64 / 2..n as u64)
+            let t: Vec<Real> = (n as u64 / 2..n as u64)
                 .map(|i| model.output_time(i))
                 .collect();
-            let a: Vec<f64> = out[n / 2..].iter().map(|s| s.accel).collect();
+            let a: Vec<Real> = out[n / 2..].iter().map(|s| s.accel).collect();
             let (amp, phase) = sine_fit(&a, &t, f);
             let w = TAU * f;
             let force = 1e-5 * 0.1 * w * w;
@@ -118,7 +121,10 @@ fn forced_response_amplitude_and_phase() {
                 "{kind:?} f={f}: amp {amp} vs {}",
                 w * w * x
             );
-            assert!(dphi.abs() < 2e-3, "{kind:?} f={f}: phase error {dphi}");
+            // f32: the imbalance's shaft angle accumulates roundings over 80 000 steps
+            // (measured 3.3 mrad); a wrong phase model is off by tenths of a radian.
+            let limit = if common::SINGLE { 1e-2 } else { 2e-3 };
+            assert!(dphi.abs() < limit, "{kind:?} f={f}: phase error {dphi}");
         }
     }
 }
@@ -127,16 +133,16 @@ fn forced_response_amplitude_and_phase() {
 /// the measured orders are 4 (RK4), 1 (exact + ZOH) and 2 (exact + FOH), ±0.3.
 #[test]
 fn convergence_orders() {
-    let (m, k, c): (f64, f64, f64) = (1.0, 1.0e6, 20.0);
+    let (m, k, c): (Real, Real, Real) = (1.0, 1.0e6, 20.0);
     let f = 100.0;
     let w = TAU * f;
     let force = 1e-5 * 0.1 * w * w;
-    let wn: f64 = (k / m).sqrt();
+    let wn: Real = (k / m).sqrt();
     let sigma = c / (2.0 * m);
     let wd = (wn * wn - sigma * sigma).sqrt();
     let x = force / ((k - m * w * w).powi(2) + (c * w).powi(2)).sqrt();
     let lag = (c * w).atan2(k - m * w * w);
-    let exact = |t: f64| {
+    let exact = |t: Real| {
         let a = x * lag.sin();
         let b = (sigma * a - x * w * lag.cos()) / wd;
         x * (w * t - lag).sin() + (-sigma * t).exp() * (a * (wd * t).cos() + b * (wd * t).sin())
@@ -148,7 +154,14 @@ fn convergence_orders() {
         (IntegratorKind::ExactFoh, 2.0),
     ] {
         let mut errs = vec![];
-        for fs in [2_000.0, 4_000.0, 8_000.0, 16_000.0] {
+        // In f32 the finest steps hit the rounding floor (RK4 at 16 kHz: 2·10⁻¹¹ m against
+        // 3·10⁻¹³ at 8 kHz) and RK4's coarsest is not yet asymptotic: measure lower.
+        let rates: &[Real] = match (common::SINGLE, kind) {
+            (false, _) => &[2_000.0, 4_000.0, 8_000.0, 16_000.0],
+            (true, IntegratorKind::Rk4) => &[1_000.0, 2_000.0, 4_000.0],
+            (true, _) => &[500.0, 1_000.0, 2_000.0, 4_000.0],
+        };
+        for &fs in rates {
             let model = Model::new_checked(forced_config(kind, f, fs, 2)).unwrap();
             let mut st: State<32> = State::new(&model, 1).unwrap();
             st.set_motion(0.0, 0.0);
@@ -158,8 +171,8 @@ fn convergence_orders() {
             }
             errs.push((st.motion().0 - exact(t_end)).abs());
         }
-        let orders: Vec<f64> = errs.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
-        let mean = orders.iter().sum::<f64>() / orders.len() as f64;
+        let orders: Vec<Real> = errs.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
+        let mean = orders.iter().sum::<Real>() / orders.len() as Real;
         assert!(
             (mean - order).abs() < 0.3,
             "{kind:?}: measured orders {orders:?}, errors {errs:?}"
@@ -176,20 +189,20 @@ fn anti_alias_filter_removes_out_of_band_tone() {
     let reference = Model::new_checked(forced_config(kind, 750.0, 8_000.0, 2)).unwrap();
     let n = 16_000;
     let out = run(&reference, 1, n);
-    let t: Vec<f64> = (n as u64 / 2..n as u64)
+    let t: Vec<Real> = (n as u64 / 2..n as u64)
         .map(|i| reference.output_time(i))
         .collect();
-    let a: Vec<f64> = out[n / 2..].iter().map(|s| s.accel).collect();
+    let a: Vec<Real> = out[n / 2..].iter().map(|s| s.accel).collect();
     let (amp_true, _) = sine_fit(&a, &t, 750.0);
     assert!(amp_true > 0.0);
 
     let model = Model::new_checked(forced_config(kind, 750.0, 1_000.0, 4)).unwrap();
     let n = 2_000;
     let out = run(&model, 1, n);
-    let t: Vec<f64> = (n as u64 / 2..n as u64)
+    let t: Vec<Real> = (n as u64 / 2..n as u64)
         .map(|i| model.output_time(i))
         .collect();
-    let a: Vec<f64> = out[n / 2..].iter().map(|s| s.accel).collect();
+    let a: Vec<Real> = out[n / 2..].iter().map(|s| s.accel).collect();
     let (alias, _) = sine_fit(&a, &t, 250.0);
     assert!(alias < 1e-4 * amp_true, "alias {alias} vs tone {amp_true}");
 
@@ -198,10 +211,10 @@ fn anti_alias_filter_removes_out_of_band_tone() {
     let model = Model::new_checked(forced_config(IntegratorKind::Rk4, 300.0, 1_000.0, 8)).unwrap();
     let n = 2_000;
     let out = run(&model, 1, n);
-    let t: Vec<f64> = (n as u64 / 2..n as u64)
+    let t: Vec<Real> = (n as u64 / 2..n as u64)
         .map(|i| model.output_time(i))
         .collect();
-    let a: Vec<f64> = out[n / 2..].iter().map(|s| s.accel).collect();
+    let a: Vec<Real> = out[n / 2..].iter().map(|s| s.accel).collect();
     let (amp, _) = sine_fit(&a, &t, 300.0);
     let w = TAU * 300.0;
     let expect =
@@ -228,17 +241,17 @@ fn anti_alias_frequency_response() {
             }
             h.push(aa.output(&l));
         }
-        let resp = |f_over_fs_out: f64| {
-            let w = TAU * f_over_fs_out / r as f64;
+        let resp = |f_over_fs_out: Real| {
+            let w = TAU * f_over_fs_out / r as Real;
             let (mut re, mut im) = (0.0, 0.0);
             for (n, c) in h.iter().enumerate() {
-                re += c * (w * n as f64).cos();
-                im -= c * (w * n as f64).sin();
+                re += c * (w * n as Real).cos();
+                im -= c * (w * n as Real).sin();
             }
             (re * re + im * im).sqrt()
         };
         for i in 0..=40 {
-            let f = 0.4 * i as f64 / 40.0;
+            let f = 0.4 * i as Real / 40.0;
             assert!(
                 (resp(f) - 1.0).abs() < 1e-3,
                 "R={r}: passband |H({f})| = {}",
@@ -246,7 +259,7 @@ fn anti_alias_frequency_response() {
             );
         }
         for i in 0..=200 {
-            let f = 0.6 + (r as f64 / 2.0 - 0.6) * i as f64 / 200.0;
+            let f = 0.6 + (r as Real / 2.0 - 0.6) * i as Real / 200.0;
             assert!(resp(f) < 1e-4, "R={r}: stopband |H({f})| = {}", resp(f));
         }
     }
@@ -288,7 +301,9 @@ fn ramp_angle_is_integrated_from_speed() {
             let _ = model.step(&mut st);
         }
         assert!(
-            (st.shaft_angle() - PI).abs() < 1e-6,
+            // f32: 20 000 angle advances, each rounded (measured 4.6 mrad); an ω·t phase
+            // would end radians away.
+            (st.shaft_angle() - PI).abs() < if common::SINGLE { 1e-2 } else { 1e-6 },
             "{kind:?}: angle {}",
             st.shaft_angle()
         );

@@ -1,16 +1,19 @@
 //! Signature tests of the candidate effects (`wearsim_core::effects`): each effect, added
 //! to a baseline, must produce its physical signature (frequency content, sidebands,
 //! noise level…) with tolerances that a wrong implementation would fail.
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 #![allow(clippy::needless_range_loop)]
 
 mod common;
 
+use common::consts::TAU;
 use common::run;
-use std::f64::consts::TAU;
 use wearsim_core::effects::transfer_path::{Mode, TransferPath};
 use wearsim_core::effects::{self, Effects, CATALOGUE};
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
-use wearsim_core::{presets, ConfigError, Model, ModelConfig, Sample};
+use wearsim_core::{presets, ConfigError, Model, ModelConfig, Real, Sample};
 
 fn thesis() -> ModelConfig {
     presets::by_name("thesis-61810").unwrap()
@@ -28,9 +31,9 @@ fn clean() -> ModelConfig {
     }
 }
 
-fn with(mut cfg: ModelConfig, name: &str, params: &[(&str, f64)]) -> ModelConfig {
+fn with(mut cfg: ModelConfig, name: &str, params: &[(&str, Real)]) -> ModelConfig {
     let info = effects::info(name).unwrap();
-    let values: Vec<f64> = info
+    let values: Vec<Real> = info
         .params
         .iter()
         .map(|p| {
@@ -38,14 +41,14 @@ fn with(mut cfg: ModelConfig, name: &str, params: &[(&str, f64)]) -> ModelConfig
                 .iter()
                 .find(|(n, _)| *n == p.name)
                 .map(|(_, v)| *v)
-                .unwrap_or(p.default)
+                .unwrap_or(p.default as Real)
         })
         .collect();
     cfg.effects.set_named(name, &values).unwrap();
     cfg
 }
 
-fn accel(cfg: ModelConfig, seed: u64, seconds: f64) -> (Model, Vec<f64>) {
+fn accel(cfg: ModelConfig, seed: u64, seconds: Real) -> (Model, Vec<Real>) {
     let m = Model::new_checked(cfg).unwrap();
     let n = (seconds * m.config().output_rate) as usize;
     let a = run(&m, seed, n).iter().map(|s: &Sample| s.accel).collect();
@@ -54,13 +57,13 @@ fn accel(cfg: ModelConfig, seed: u64, seconds: f64) -> (Model, Vec<f64>) {
 
 /// Joint least-squares amplitudes of sinusoids at `freqs` in `x` sampled at `fs`
 /// (leakage between close lines is removed by fitting them together, plus a mean).
-fn amplitudes(x: &[f64], fs: f64, freqs: &[f64]) -> Vec<f64> {
+fn amplitudes(x: &[Real], fs: Real, freqs: &[Real]) -> Vec<Real> {
     let k = 2 * freqs.len() + 1;
     let mut ata = vec![vec![0.0; k]; k];
     let mut atb = vec![0.0; k];
     let mut row = vec![0.0; k];
     for (i, xi) in x.iter().enumerate() {
-        let t = i as f64 / fs;
+        let t = i as Real / fs;
         for (j, f) in freqs.iter().enumerate() {
             let (s, c) = (TAU * f * t).sin_cos();
             row[2 * j] = s;
@@ -91,21 +94,21 @@ fn amplitudes(x: &[f64], fs: f64, freqs: &[f64]) -> Vec<f64> {
             }
         }
     }
-    let sol: Vec<f64> = (0..k).map(|i| atb[i] / ata[i][i]).collect();
+    let sol: Vec<Real> = (0..k).map(|i| atb[i] / ata[i][i]).collect();
     (0..freqs.len())
         .map(|j| sol[2 * j].hypot(sol[2 * j + 1]))
         .collect()
 }
 
-fn rms(x: &[f64]) -> f64 {
-    let m = x.iter().sum::<f64>() / x.len() as f64;
-    (x.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / x.len() as f64).sqrt()
+fn rms(x: &[Real]) -> Real {
+    let m = x.iter().sum::<Real>() / x.len() as Real;
+    (x.iter().map(|v| (v - m) * (v - m)).sum::<Real>() / x.len() as Real).sqrt()
 }
 
 /// Squared envelope proxy: the squared signal with its mean removed.
-fn squared(x: &[f64]) -> Vec<f64> {
-    let sq: Vec<f64> = x.iter().map(|v| v * v).collect();
-    let m = sq.iter().sum::<f64>() / sq.len() as f64;
+fn squared(x: &[Real]) -> Vec<Real> {
+    let sq: Vec<Real> = x.iter().map(|v| v * v).collect();
+    let m = sq.iter().sum::<Real>() / sq.len() as Real;
     sq.iter().map(|v| v - m).collect()
 }
 
@@ -116,7 +119,7 @@ fn catalogue_is_consistent() {
     names.dedup();
     assert_eq!(names.len(), 9);
     for e in CATALOGUE.iter() {
-        let defaults: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        let defaults: Vec<Real> = e.params.iter().map(|p| p.default as Real).collect();
         let mut fx = Effects::NONE;
         fx.set_named(e.name, &defaults)
             .unwrap_or_else(|err| panic!("{}: default rejected: {err}", e.name));
@@ -134,13 +137,15 @@ fn catalogue_is_consistent() {
                 p.max + 1e-3 * (1.0 + p.max.abs()),
             ] {
                 let mut v = defaults.clone();
-                v[i] = bad;
+                v[i] = bad as Real;
                 match Effects::NONE.clone().set_named(e.name, &v) {
                     Err(ConfigError::OutOfRange {
                         field, min, max, ..
                     }) => {
                         assert_eq!(field, format!("{}.{}", e.name, p.name));
-                        assert_eq!((min, max), (p.min, p.max), "{field}");
+                        // The bounds are checked in the precision of `Real`.
+                        let bound = |b: f64| b as Real as f64;
+                        assert_eq!((min, max), (bound(p.min), bound(p.max)), "{field}");
                     }
                     other => panic!("{}.{} = {bad}: {other:?}", e.name, p.name),
                 }
@@ -155,7 +160,7 @@ fn all_effects_are_deterministic_and_off_means_baseline() {
     let base = thesis();
     let mut all = base.clone();
     for e in CATALOGUE.iter() {
-        let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        let d: Vec<Real> = e.params.iter().map(|p| p.default as Real).collect();
         all.effects.set_named(e.name, &d).unwrap();
     }
     let (_, a) = accel(all.clone(), 7, 0.2);
@@ -187,7 +192,7 @@ fn slip_smears_the_higher_fault_harmonics() {
     let fs = m.config().output_rate;
     let (m1, a1) = accel(with(base, "slip", &[("fraction", 0.08)]), 3, 2.0);
     assert_eq!(m1.config().slip.map(|s| s.fraction), Some(0.08));
-    let h = |a: &[f64]| amplitudes(&squared(a), fs, &[bpfo, 4.0 * bpfo]);
+    let h = |a: &[Real]| amplitudes(&squared(a), fs, &[bpfo, 4.0 * bpfo]);
     let (h0, h1) = (h(&a0), h(&a1));
     let (r0, r1) = (h0[1] / h0[0], h1[1] / h1[0]);
     // Gaussian jitter σ = 0.08 pitch attenuates harmonic k by exp(−(2πkσ)²/2): k = 1:
@@ -199,16 +204,16 @@ fn slip_smears_the_higher_fault_harmonics() {
 /// Squared acceleration averaged synchronously over an inner-race defect's angle ψ from the
 /// load-zone centre, in 36 bins of 10° from ψ = 0 (defect angle = shaft angle; centre at
 /// π/2), skipping the first 1000 samples.
-fn synchronous_energy(m: &Model, a: &[f64], fr: f64) -> Vec<f64> {
-    let mut e = [0.0f64; 36];
+fn synchronous_energy(m: &Model, a: &[Real], fr: Real) -> Vec<Real> {
+    let mut e = [(0.0 as Real); 36];
     let mut n = [0usize; 36];
     for (i, v) in a.iter().enumerate().skip(1000) {
-        let ang = TAU * fr * m.output_time(i as u64) - std::f64::consts::FRAC_PI_2;
+        let ang = TAU * fr * m.output_time(i as u64) - common::consts::FRAC_PI_2;
         let b = (ang.rem_euclid(TAU) / TAU * 36.0) as usize % 36;
         e[b] += v * v;
         n[b] += 1;
     }
-    e.iter().zip(n).map(|(x, k)| x / k.max(1) as f64).collect()
+    e.iter().zip(n).map(|(x, k)| x / k.max(1) as Real).collect()
 }
 
 #[test]
@@ -239,14 +244,14 @@ fn load_zone_preload_widens_the_zone_as_stribeck_harris_says() {
     let mut balance = 0.0;
     for offset in [0.0, 0.5] {
         // Solve this cage position's balance by bisection, as an independent check.
-        let net = |y: f64| {
+        let net = |y: Real| {
             c.structure.stiffness * y
                 + (0..n)
                     .map(|j| {
-                        let s = ((j as f64 + offset) * TAU / n as f64).sin();
+                        let s = ((j as Real + offset) * TAU / n as Real).sin();
                         m1.contact().load(y * s + dp) * s
                     })
-                    .sum::<f64>()
+                    .sum::<Real>()
                 - c.radial_load
         };
         let (mut lo, mut hi) = (0.0, y0);
@@ -271,7 +276,7 @@ fn load_zone_preload_widens_the_zone_as_stribeck_harris_says() {
     let fr = presets::THESIS_SHAFT_HZ;
     let (_, a0) = accel(base, 3, 2.0);
     let (_, a1) = accel(pre, 3, 2.0);
-    let top = |a: &[f64]| {
+    let top = |a: &[Real]| {
         let e = synchronous_energy(&m0, a, fr);
         (e[17] + e[18] + e[19]) / 3.0 / ((e[0] + e[35]) / 2.0)
     };
@@ -300,7 +305,7 @@ fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
         3,
         2.0,
     );
-    let profile = |a: &[f64]| {
+    let profile = |a: &[Real]| {
         let e = synchronous_energy(&m, a, fr);
         // Energy on the entering flank, ψ in −70°..−40° (the trailing flank is blurred by
         // the ringing of the impacts), over the energy at |ψ| < 10°.
@@ -320,7 +325,7 @@ fn load_zone_modulates_inner_race_impacts_at_shaft_speed() {
     };
     assert!((p.gain(1.0) - 1.0).abs() < 1e-12);
     assert!(p.gain(0.0).abs() < 1e-12 && p.gain(-1.0) == 0.0);
-    assert!((p.gain(0.5) - 0.5f64.powf(1.5)).abs() < 1e-12);
+    assert!((p.gain(0.5) - (0.5 as Real).powf(1.5)).abs() < 1e-12);
     let half = effects::load_zone::Params { depth: 0.5, ..p };
     assert!((half.gain(0.0) - 0.5).abs() < 1e-12);
 }
@@ -353,7 +358,7 @@ fn transfer_path_impulse_response_peaks_at_the_modes() {
         h,
     );
     let mut st = Default::default();
-    let ir: Vec<f64> = (0..40_000)
+    let ir: Vec<Real> = (0..40_000)
         .map(|i| tp.filter(&mut st, if i == 0 { 1.0 } else { 0.0 }))
         .collect();
     // The broadband path gain scales the whole response, modes included, and nothing else.
@@ -372,19 +377,19 @@ fn transfer_path_impulse_response_peaks_at_the_modes() {
             "{i}: {q} vs {v}"
         );
     }
-    let mag = |f: f64| {
+    let mag = |f: Real| {
         let (mut re, mut im) = (0.0, 0.0);
         for (i, v) in ir.iter().enumerate() {
-            let (s, c) = (TAU * f * i as f64 * h).sin_cos();
+            let (s, c) = (TAU * f * i as Real * h).sin_cos();
             re += v * c;
             im -= v * s;
         }
         re.hypot(im)
     };
-    let spectrum: Vec<(f64, f64)> = (10..1000)
-        .map(|k| (k as f64 * 10.0, mag(k as f64 * 10.0)))
+    let spectrum: Vec<(Real, Real)> = (10..1000)
+        .map(|k| (k as Real * 10.0, mag(k as Real * 10.0)))
         .collect();
-    let peaks: Vec<(f64, f64)> = spectrum
+    let peaks: Vec<(Real, Real)> = spectrum
         .windows(3)
         .filter(|w| w[1].1 > w[0].1 && w[1].1 > w[2].1 && w[1].1 > 1.2)
         .map(|w| w[1])
@@ -420,9 +425,9 @@ fn transfer_path_in_the_model_lifts_its_band() {
         5,
         1.0,
     );
-    let band = |a: &[f64], f0: f64| -> f64 {
+    let band = |a: &[Real], f0: Real| -> Real {
         (0..41)
-            .map(|k| f0 - 20.0 + k as f64)
+            .map(|k| f0 - 20.0 + k as Real)
             .map(|f| amplitudes(a, fs, &[f])[0].powi(2))
             .sum()
     };
@@ -469,9 +474,9 @@ fn speed_fluctuation_puts_sidebands_on_the_shaft_line() {
     // Reference: the imbalance force ω² sin θ with the same modulated speed, its lines
     // weighted by the accelerance ∝ f² well below resonance.
     let fsr = 20_000.0;
-    let reference: Vec<f64> = (0..80_000)
+    let reference: Vec<Real> = (0..80_000)
         .map(|i| {
-            let t = i as f64 / fsr;
+            let t = i as Real / fsr;
             let w = TAU * fr * (1.0 + a * (TAU * fm * t).sin());
             let th = TAU * fr * t - a * fr / fm * (TAU * fm * t).cos();
             w * w * th.sin()
@@ -507,11 +512,12 @@ fn sensor_adds_noise_hum_and_bandwidth() {
         9,
         1.0,
     );
-    let d: Vec<f64> = a1.iter().zip(&a0).map(|(x, y)| x - y).collect();
+    let d: Vec<Real> = a1.iter().zip(&a0).map(|(x, y)| x - y).collect();
     let h = amplitudes(&d, fs, &[50.0, 100.0, 150.0]);
     println!("sensor: hum {h:?}");
     assert!((h[0] - 0.2).abs() < 0.01 && (h[1] - 0.05).abs() < 0.01 && (h[2] - 0.05).abs() < 0.01);
-    let noise_rms = (rms(&d).powi(2) - 0.5 * (0.2f64.powi(2) + 2.0 * 0.05f64.powi(2))).sqrt();
+    let noise_rms =
+        (rms(&d).powi(2) - 0.5 * ((0.2 as Real).powi(2) + 2.0 * (0.05 as Real).powi(2))).sqrt();
     assert!((noise_rms - 0.5).abs() < 0.02, "{noise_rms}");
     // Low-pass: the output's lines are the input's times |H(f)| of a one-pole at 500 Hz.
     let p = effects::sensor::Params {
@@ -553,7 +559,7 @@ fn shaft_harmonics_give_lines_at_2x_and_3x() {
     let fn_ = m.natural_frequency_hz();
     let zeta = m.damping_ratio();
     let mass = m.config().structure.mass;
-    let expect = |f: f64, amp: f64| {
+    let expect = |f: Real, amp: Real| {
         let r = f / fn_;
         amp / mass * r * r / ((1.0 - r * r).powi(2) + (2.0 * zeta * r).powi(2)).sqrt()
     };
@@ -586,13 +592,13 @@ fn running_in_raises_roughness_early_then_decays() {
         2,
         2.0,
     );
-    let w = |a: &[f64], t0: f64, t1: f64| rms(&a[(t0 * fs) as usize..(t1 * fs) as usize]);
+    let w = |a: &[Real], t0: Real, t1: Real| rms(&a[(t0 * fs) as usize..(t1 * fs) as usize]);
     let fr = presets::THESIS_SHAFT_HZ;
     let early = w(&a1, 0.02, 0.06) / w(&a0, 0.02, 0.06);
     // Mean factor over 0.02..0.06 s.
-    let expect: f64 = (0..40)
-        .map(|i| 1.0 + 4.0 * (-(0.02 + i as f64 * 1e-3) * fr / 5.0).exp())
-        .sum::<f64>()
+    let expect: Real = (0..40)
+        .map(|i| 1.0 + 4.0 * (-(0.02 + i as Real * 1e-3) * fr / 5.0).exp())
+        .sum::<Real>()
         / 40.0;
     let late = w(&a1, 1.5, 2.0) / w(&a0, 1.5, 2.0);
     println!("running-in: early ratio {early:.3} (expected {expect:.3}), late {late:.3}");
@@ -614,7 +620,7 @@ fn running_in_raises_roughness_early_then_decays() {
 
 /// Separate events in `x`: runs of samples above `thr`, a new event when more than `gap`
 /// samples passed since the last sample above it (an impact's ringing is one event).
-fn events(x: &[f64], thr: f64, gap: usize) -> Vec<usize> {
+fn events(x: &[Real], thr: Real, gap: usize) -> Vec<usize> {
     let mut out: Vec<usize> = vec![];
     let mut last: Option<usize> = None;
     for (i, v) in x.iter().enumerate() {
@@ -628,10 +634,10 @@ fn events(x: &[f64], thr: f64, gap: usize) -> Vec<usize> {
     out
 }
 
-fn kurtosis(x: &[f64]) -> f64 {
-    let m = x.iter().sum::<f64>() / x.len() as f64;
-    let v = x.iter().map(|a| (a - m).powi(2)).sum::<f64>() / x.len() as f64;
-    x.iter().map(|a| (a - m).powi(4)).sum::<f64>() / x.len() as f64 / (v * v)
+fn kurtosis(x: &[Real]) -> Real {
+    let m = x.iter().sum::<Real>() / x.len() as Real;
+    let v = x.iter().map(|a| (a - m).powi(2)).sum::<Real>() / x.len() as Real;
+    x.iter().map(|a| (a - m).powi(4)).sum::<Real>() / x.len() as Real / (v * v)
 }
 
 #[test]
@@ -666,7 +672,7 @@ fn running_in_summits_arrive_as_a_decaying_poisson_stream_of_impacts() {
     let gap = (0.003 * fs) as usize;
     let skip = (0.05 * fs) as usize;
     let n0 = events(&a0[skip..], thr, gap).len();
-    let n1 = events(&a1[skip..], thr, gap).len() as f64;
+    let n1 = events(&a1[skip..], thr, gap).len() as Real;
     let expect = s * fr * (seconds - 0.05);
     println!("summits: {n1} impacts (expected {expect:.1}), {n0} without");
     assert_eq!(n0, 0, "the baseline has no impacts above {thr}");
@@ -676,7 +682,7 @@ fn running_in_summits_arrive_as_a_decaying_poisson_stream_of_impacts() {
     );
     // Sparse impacts raise crest factor and kurtosis far faster than the level (a
     // Gaussian level change leaves both unchanged).
-    let crest = |x: &[f64]| x.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / rms(x);
+    let crest = |x: &[Real]| x.iter().fold(0.0 as Real, |a, v| a.max(v.abs())) / rms(x);
     let (k0, k1) = (kurtosis(&a0[skip..]), kurtosis(&a1[skip..]));
     let (c0, c1) = (crest(&a0[skip..]), crest(&a1[skip..]));
     let r = rms(&a1[skip..]) / rms(&a0[skip..]);
@@ -701,10 +707,10 @@ fn running_in_summits_arrive_as_a_decaying_poisson_stream_of_impacts() {
         seconds,
     );
     let ev = events(&a2[skip..], thr, gap);
-    let t = |i: &usize| (i + skip) as f64 / fs;
-    let early = ev.iter().filter(|i| t(i) < 1.0).count() as f64;
+    let t = |i: &usize| (i + skip) as Real / fs;
+    let early = ev.iter().filter(|i| t(i) < 1.0).count() as Real;
     let late = ev.iter().filter(|i| t(i) >= 3.0 && t(i) < 4.0).count();
-    let revs = |t: f64| fr * t;
+    let revs = |t: Real| fr * t;
     let expect = s * nd * ((-revs(0.05) / nd).exp() - (-revs(1.0) / nd).exp());
     let expect_late = s * nd * ((-revs(3.0) / nd).exp() - (-revs(4.0) / nd).exp());
     println!("summits decaying: {early} in the first second (expected {expect:.1}), {late} in 3-4 s (expected {expect_late:.2})");
@@ -759,12 +765,12 @@ fn edge_shape_scales_the_five_step_function_and_the_impact() {
     // Dynamic signature: a sharper, higher edge gives a larger impact (peak and kurtosis).
     let (_, a0) = accel(base, 6, 1.0);
     let (_, a1) = accel(sharp, 6, 1.0);
-    let peak = |a: &[f64]| a[500..].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let kurt = |a: &[f64]| {
+    let peak = |a: &[Real]| a[500..].iter().fold(0.0 as Real, |m, v| m.max(v.abs()));
+    let kurt = |a: &[Real]| {
         let a = &a[500..];
-        let m = a.iter().sum::<f64>() / a.len() as f64;
-        let v = a.iter().map(|x| (x - m).powi(2)).sum::<f64>() / a.len() as f64;
-        a.iter().map(|x| (x - m).powi(4)).sum::<f64>() / a.len() as f64 / (v * v)
+        let m = a.iter().sum::<Real>() / a.len() as Real;
+        let v = a.iter().map(|x| (x - m).powi(2)).sum::<Real>() / a.len() as Real;
+        a.iter().map(|x| (x - m).powi(4)).sum::<Real>() / a.len() as Real / (v * v)
     };
     println!(
         "edge-shape: peak {:.3} -> {:.3}, kurtosis {:.2} -> {:.2}",
@@ -784,7 +790,7 @@ fn checkpoint_with_all_effects_continues_bit_identically() {
     use wearsim_core::State;
     let mut cfg = thesis();
     for e in CATALOGUE.iter() {
-        let d: Vec<f64> = e.params.iter().map(|p| p.default).collect();
+        let d: Vec<Real> = e.params.iter().map(|p| p.default as Real).collect();
         cfg.effects.set_named(e.name, &d).unwrap();
     }
     let cfg = with(cfg, "sensor", &[("corner_hz", 3000.0), ("hum", 0.1)]);
@@ -825,12 +831,12 @@ fn registry_round_trips_and_rejects_unknown_names() {
             assert!(e.param(n).is_some(), "{}: fixed `{n}`", e.name);
         }
         // Distinct in-bounds values read back unchanged and in order.
-        let v: Vec<f64> = e
+        let v: Vec<Real> = e
             .params
             .iter()
             .enumerate()
             .map(|(i, p)| {
-                p.min + (p.max - p.min) * (i as f64 + 1.0) / (e.params.len() as f64 + 2.0)
+                (p.min + (p.max - p.min) * (i as f64 + 1.0) / (e.params.len() as f64 + 2.0)) as Real
             })
             .collect();
         let mut fx = Effects::NONE;
@@ -847,7 +853,7 @@ fn registry_round_trips_and_rejects_unknown_names() {
     let p = effects::slip::Params { fraction: 0.3 };
     assert!(matches!(
         p.checked(),
-        Err(ConfigError::OutOfRange { field: "slip.fraction", max, .. }) if max == 0.2
+        Err(ConfigError::OutOfRange { field: "slip.fraction", max, .. }) if max == 0.2 as Real as f64
     ));
     for bad in ["edge_shape", "Slip", "loadzone", ""] {
         assert!(EffectKind::from_name(bad).is_err(), "{bad}");

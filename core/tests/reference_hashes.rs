@@ -7,6 +7,9 @@
 //! `Real` only, so it compiles and runs in both precisions.
 //!
 //! `WEARSIM_PRINT_HASHES=1` prints the computed values.
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 
 use wearsim_core::effects::CATALOGUE;
 use wearsim_core::{presets, Model, Real, Sample, State};

@@ -1,14 +1,17 @@
 //! Invalid configuration is rejected with a typed error naming the field; random valid
 //! configurations never produce NaN/inf or panic (property tests).
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 
 use proptest::prelude::*;
 use wearsim_core::error::ConfigError;
 use wearsim_core::forces::defect::DefectModel;
 use wearsim_core::forces::slip::Slip;
 use wearsim_core::integrate::IntegratorKind;
-use wearsim_core::presets;
 use wearsim_core::speed::SpeedProfile;
 use wearsim_core::topography::Topography;
+use wearsim_core::{presets, Real};
 use wearsim_core::{Model, ModelConfig, Sample, State, Structure};
 
 fn reference() -> ModelConfig {
@@ -36,7 +39,7 @@ fn bad_values_name_their_field() {
     assert_eq!(
         field_of(ModelConfig {
             structure: Structure {
-                mass: f64::NAN,
+                mass: Real::NAN,
                 ..s
             },
             ..r.clone()
@@ -56,7 +59,7 @@ fn bad_values_name_their_field() {
     assert_eq!(
         field_of(ModelConfig {
             structure: Structure {
-                damping: f64::INFINITY,
+                damping: Real::INFINITY,
                 ..s
             },
             ..r.clone()
@@ -193,22 +196,22 @@ fn reference_preset_zones() {
 fn config_strategy() -> impl Strategy<Value = ModelConfig> {
     (
         (
-            1.0f64..200.0,
-            0.0f64..3000.0,
-            0.0f64..20e-6,
-            0.0f64..1e-6,
-            0.0f64..0.2e-6,
+            (1.0 as Real)..200.0,
+            (0.0 as Real)..3000.0,
+            (0.0 as Real)..20e-6,
+            (0.0 as Real)..1e-6,
+            (0.0 as Real)..0.2e-6,
         ),
         (
-            1e-6f64..4e-3,
-            0.0f64..40e-6,
-            1e-6f64..2e-3,
-            0.0f64..2e-4,
+            (1e-6 as Real)..4e-3,
+            (0.0 as Real)..40e-6,
+            (1e-6 as Real)..2e-3,
+            (0.0 as Real)..2e-4,
             1u8..4,
-            0.0f64..1.0,
+            (0.0 as Real)..1.0,
         ),
         (
-            0.0f64..0.05,
+            (0.0 as Real)..0.05,
             0usize..4,
             0usize..3,
             0u64..1000,

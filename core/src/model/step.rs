@@ -269,30 +269,25 @@ impl Model {
     /// Deterministic, so a host `f32` run and the target stay bit-identical.
     #[inline(always)]
     fn hertz(&self, delta: Real, rsqrt: &core::cell::Cell<Real>) -> Real {
-        #[cfg(feature = "f32")]
-        {
-            if delta <= 0.0 {
-                return 0.0;
-            }
-            if self.contact.kind == crate::bearing::ContactKind::Point {
-                let r0 = rsqrt.get();
-                let e = delta * r0 * r0;
-                let r = if r0 > 0.0 && e > 0.9 && e < 1.1 {
-                    let r1 = r0 * (1.5 - 0.5 * e);
-                    r1 * (1.5 - 0.5 * delta * r1 * r1)
-                } else {
-                    1.0 / crate::real::sqrt(delta)
-                };
-                rsqrt.set(r);
-                return self.contact.stiffness * delta * delta * r;
-            }
-            self.contact.load(delta)
+        if !crate::real::SINGLE_PRECISION {
+            return self.contact.load(delta);
         }
-        #[cfg(not(feature = "f32"))]
-        {
-            let _ = rsqrt;
-            self.contact.load(delta)
+        if delta <= 0.0 {
+            return 0.0;
         }
+        if self.contact.kind == crate::bearing::ContactKind::Point {
+            let r0 = rsqrt.get();
+            let e = delta * r0 * r0;
+            let r = if r0 > 0.0 && e > 0.9 && e < 1.1 {
+                let r1 = r0 * (1.5 - 0.5 * e);
+                r1 * (1.5 - 0.5 * delta * r1 * r1)
+            } else {
+                1.0 / crate::real::sqrt(delta)
+            };
+            rsqrt.set(r);
+            return self.contact.stiffness * delta * delta * r;
+        }
+        self.contact.load(delta)
     }
 
     /// Advances the state by one internal step; returns a sample every

@@ -1,18 +1,21 @@
 //! Helpers shared by the core's integration tests.
+// Written against `Real` (f64 or f32 by package): casts that are no-ops in one precision are
+// needed in the other.
+#![allow(clippy::unnecessary_cast)]
 #![allow(dead_code)]
 
 use wearsim_core::integrate::IntegratorKind;
 use wearsim_core::presets;
 use wearsim_core::speed::SpeedProfile;
-use wearsim_core::{Model, ModelConfig, Sample, State, Structure};
+use wearsim_core::{Model, ModelConfig, Real, Sample, State, Structure};
 
 /// A linear single-degree-of-freedom oscillator: no element contact (no load, large
 /// clearance), no surface, no defect; imbalance optional.
 pub fn linear_sdof(
-    m: f64,
-    k: f64,
-    c: f64,
-    fs: f64,
+    m: Real,
+    k: Real,
+    c: Real,
+    fs: Real,
     oversample: u32,
     integrator: IntegratorKind,
 ) -> ModelConfig {
@@ -46,8 +49,8 @@ pub fn run(model: &Model, seed: u64, n: usize) -> Vec<Sample> {
 
 /// Amplitude and phase (of `A sin(ωt + φ)`) of `x` at `f` (Hz) by least squares on sine and
 /// cosine over the samples at times `t`.
-pub fn sine_fit(x: &[f64], t: &[f64], f: f64) -> (f64, f64) {
-    let w = std::f64::consts::TAU * f;
+pub fn sine_fit(x: &[Real], t: &[Real], f: Real) -> (Real, Real) {
+    let w = consts::TAU * f;
     let (mut ss, mut sc, mut cc, mut xs, mut xc) = (0.0, 0.0, 0.0, 0.0, 0.0);
     for (xi, ti) in x.iter().zip(t) {
         let (s, c) = (w * ti).sin_cos();
@@ -64,6 +67,31 @@ pub fn sine_fit(x: &[f64], t: &[f64], f: f64) -> (f64, f64) {
 }
 
 /// Constant-speed profile helper.
-pub fn constant(hz: f64) -> SpeedProfile {
+pub fn constant(hz: Real) -> SpeedProfile {
     SpeedProfile::Constant(hz)
+}
+
+/// Whether the tests run against the single-precision build (`wearsim-core-f32`).
+pub const SINGLE: bool = wearsim_core::real::SINGLE_PRECISION;
+
+/// A tolerance set for `f64` arithmetic, widened by 10⁶ in single precision (the tests'
+/// double-precision tolerances sit a few thousand ε₆₄ above the rounding floor; ×10⁶ puts the
+/// single-precision one about ten ε₃₂ above it).
+pub fn tol(double: Real) -> Real {
+    if SINGLE {
+        double * 1e6
+    } else {
+        double
+    }
+}
+
+/// The constants the tests use, in the precision under test.
+pub mod consts {
+    use wearsim_core::Real;
+    /// π.
+    pub const PI: Real = std::f64::consts::PI as Real;
+    /// 2π.
+    pub const TAU: Real = std::f64::consts::TAU as Real;
+    /// π/2.
+    pub const FRAC_PI_2: Real = std::f64::consts::FRAC_PI_2 as Real;
 }

@@ -1,9 +1,9 @@
 //! Approximation error of the `fast-math` feature (micromath), measured against libm's
-//! single-precision functions. Run with `cargo test -p wearsim-core --features fast-math
+//! single-precision functions. Run with `cargo test -p wearsim-core-f32 --features fast-math
 //! --test fast_math`; the figures printed are the ones the README reports.
 #![cfg(feature = "fast-math")]
 
-use wearsim_core::real;
+use wearsim_core_f32::real;
 
 fn max_err(
     f: impl Fn(f32) -> f32,
