@@ -1198,6 +1198,11 @@ pub(crate) struct StateParts<const NB: usize> {
     pub sensor: SensorState,
     pub revs: Real,
     pub run_in: Real,
+    /// The cached roughness amplitude: refreshed only at block starts and every 256
+    /// running-in steps, so it is running state, not derivable from the model.
+    pub rough_sigma: Real,
+    /// The `f32` builds' inverse-square-root cache of the Hertz loads.
+    pub rsqrt: [Real; NB],
 }
 
 impl<const NB: usize> State<NB> {
@@ -1228,6 +1233,8 @@ impl<const NB: usize> State<NB> {
             sensor: self.sensor.clone(),
             revs: self.revs,
             run_in: self.run_in,
+            rough_sigma: self.rough_sigma,
+            rsqrt: core::array::from_fn(|i| self.rsqrt.get(i).map(|c| c.get()).unwrap_or(0.0)),
         }
     }
 
@@ -1257,6 +1264,10 @@ impl<const NB: usize> State<NB> {
         self.sensor = p.sensor;
         self.revs = p.revs;
         self.run_in = p.run_in;
+        self.rough_sigma = p.rough_sigma;
+        for (c, v) in self.rsqrt.iter().zip(p.rsqrt) {
+            c.set(v);
+        }
     }
 
     /// After a restore: the cached roughness amplitude with the restored running-in factor.

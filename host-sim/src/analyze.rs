@@ -564,6 +564,11 @@ pub fn print_analysis(a: &Analysis) {
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    // Exclusive, writable plot directory before any work (docs/reliability.md).
+    let _lock = match &args.plot {
+        Some(dir) => Some(crate::io::lock::DirLock::try_acquire(dir).map_err(CliError::input)?),
+        None => None,
+    };
     let (a, spectra) = analyze(args)?;
     let plots = match &args.plot {
         Some(dir) => crate::plot::write_all(dir, &a, &spectra)?,

@@ -526,6 +526,8 @@ pub fn run(a: CaptureArgs) -> Result<(), CliError> {
             a.tolerance
         )));
     }
+    // Exclusive, writable output directory before any work (docs/reliability.md).
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let bytes = read_input(&a.input)?;
     let Decoded { mut report, accel } = decode(&a.input.display().to_string(), &bytes);
     let mut code = 2;
