@@ -292,6 +292,7 @@ pub fn analyze_signal(
     method: &Method,
 ) -> Result<SignalAnalysis, analysis::AnalysisError> {
     let stats = analysis::stats(x)?;
+    analysis::error::check_magnitude(x)?;
     let ff = kin.fault_frequencies();
     let white;
     let y: &[f64] = if method.prewhiten {
@@ -427,33 +428,38 @@ pub fn analyze_record(
         Ok(z) => (Some(z), None),
         Err(e) => (None, Some(e)),
     };
-    Ok((
-        Analysis {
-            file: rec.source.clone(),
-            channel: rec.channel.clone(),
-            unit: rec.unit.clone(),
-            fs: rec.fs,
-            samples: rec.samples.len(),
-            duration_s: rec.duration_s(),
-            rpm,
-            rpm_source: if rpm_from_argument {
-                "argument"
-            } else {
-                "file"
-            }
-            .into(),
-            bearing,
-            bearing_source: bearing_source.into(),
-            kinematics: kin,
-            method: *method,
-            stats: a.stats,
-            kurtogram: a.kurtogram,
-            diagnosis: a.diagnosis,
-            zones,
-            zones_note,
-        },
-        a.spectra,
-    ))
+    let analysis = Analysis {
+        file: rec.source.clone(),
+        channel: rec.channel.clone(),
+        unit: rec.unit.clone(),
+        fs: rec.fs,
+        samples: rec.samples.len(),
+        duration_s: rec.duration_s(),
+        rpm,
+        rpm_source: if rpm_from_argument {
+            "argument"
+        } else {
+            "file"
+        }
+        .into(),
+        bearing,
+        bearing_source: bearing_source.into(),
+        kinematics: kin,
+        method: *method,
+        stats: a.stats,
+        kurtogram: a.kurtogram,
+        diagnosis: a.diagnosis,
+        zones,
+        zones_note,
+    };
+    // The last guard: no NaN/inf (JSON `null`) is ever presented as a result.
+    if let Some((path, v)) = analysis::finite::first_non_finite(&analysis) {
+        return Err(CliError::run(format!(
+            "{file}: channel {}: the analysis produced a non-finite figure ({path} = {v}); nothing is reported",
+            rec.channel
+        )));
+    }
+    Ok((analysis, a.spectra))
 }
 
 /// Human-readable name of a family.
