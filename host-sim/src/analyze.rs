@@ -420,6 +420,16 @@ pub fn analyze_record(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
+    if rec.samples.len() > crate::io::record::MAX_RECORD_SAMPLES {
+        return Err(CliError::input(crate::io::IoError::TooLarge {
+            path: rec.source.clone(),
+            what: format!("record of {} samples", rec.samples.len()),
+            limit: format!(
+                "{} samples (2^23) per analysed record (analysis memory is about 14x the record)",
+                crate::io::record::MAX_RECORD_SAMPLES
+            ),
+        }));
+    }
     let kin = Kinematics::of_preset(&bearing, rpm)
         .map_err(|e| CliError::input(format!("{file}: {e}")))?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)

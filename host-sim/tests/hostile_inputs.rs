@@ -155,6 +155,40 @@ fn mat_many_compressed_elements_share_one_budget() {
     refused(&o, &["too large", "decompressed per file"]);
 }
 
+/// An NPY record of 2²³ + 1 samples: refused by `analyze` naming the record limit, before
+/// the analysis (≈14× the record in memory) starts.
+#[test]
+fn analysis_record_size_is_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = (1usize << 23) + 1;
+    let mut h = format!("{{'descr': '<f4', 'fortran_order': False, 'shape': ({n},), }}");
+    while (10 + h.len() + 1) % 64 != 0 {
+        h.push(' ');
+    }
+    h.push('\n');
+    let p = dir.path().join("long.npy");
+    let mut f = std::io::BufWriter::new(std::fs::File::create(&p).unwrap());
+    f.write_all(b"\x93NUMPY\x01\x00").unwrap();
+    f.write_all(&(h.len() as u16).to_le_bytes()).unwrap();
+    f.write_all(h.as_bytes()).unwrap();
+    for i in 0..n {
+        f.write_all(&((i as f32) * 0.37).sin().to_le_bytes())
+            .unwrap();
+    }
+    drop(f);
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--fs",
+        "20000",
+        "--rpm",
+        "1500",
+        "--bearing",
+        "thesis-61810",
+    ]);
+    refused(&o, &["too large", "8388608 samples"]);
+}
+
 // --- non-finite figures --------------------------------------------------------------------
 
 /// A record near 1e200 (finite) gives no NaN/inf/null: it is refused naming the range.

@@ -125,10 +125,10 @@ const MAX_INFLATE_RATIO: usize = 1032;
 /// inflating at most this much, so a zlib bomb costs bounded memory and time.
 pub const MAX_DECOMPRESSED_PER_FILE: usize = 1 << 28;
 /// Most numeric elements converted to `f64` per file, all selected variables together:
-/// 2²⁵ (33.5 M samples, 256 MiB of f64; the longest CWRU record has 0.49 M). Checked on
-/// the declared dimensions before the conversion allocates, so widening a compressed int8
-/// array (×8) cannot exceed it. It is also the largest record the MAT reader returns.
-pub const MAX_SAMPLES_PER_FILE: usize = 1 << 25;
+/// [`MAX_RECORD_SAMPLES`](crate::io::record::MAX_RECORD_SAMPLES) (2²³, 64 MiB of f64).
+/// Checked on the declared dimensions before the conversion allocates, so widening a
+/// compressed int8 array (×8) cannot exceed it.
+pub const MAX_SAMPLES_PER_FILE: usize = crate::io::record::MAX_RECORD_SAMPLES;
 
 /// What is left of a file's resource bounds while it is parsed (see
 /// [`MAX_DECOMPRESSED_PER_FILE`], [`MAX_SAMPLES_PER_FILE`]).
@@ -527,7 +527,7 @@ pub(crate) fn parse_matrix(
                 numel.saturating_mul(8)
             ),
             limit: format!(
-                "{MAX_SAMPLES_PER_FILE} samples (2^25, 256 MiB of f64) converted per file"
+                "{MAX_SAMPLES_PER_FILE} samples (2^23, 64 MiB of f64) converted per file"
             ),
         });
     }
