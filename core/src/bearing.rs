@@ -111,6 +111,9 @@ impl BearingGeometry {
         check_range("bearing.inner_conformity", g.inner_conformity, 0.5005, 0.6)?;
         if g.contact == ContactKind::Line {
             check_range("bearing.roller_length", g.roller_length, 1e-4, 0.5)?;
+        } else {
+            // Unused by point contacts, but echoed into sidecars: finite and in range.
+            check_range("bearing.roller_length", g.roller_length, 0.0, 0.5)?;
         }
         check_range("bearing.youngs_modulus", g.youngs_modulus, 1e9, 1e12)?;
         check_range("bearing.poisson", g.poisson, 0.0, 0.49)?;

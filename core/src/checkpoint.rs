@@ -13,11 +13,14 @@ use crate::rng::Xoshiro128pp;
 use crate::topography::Topography;
 
 const MAGIC: u32 = 0x5753_4350; // "WSCP"
-/// Version 2 appends the effects' memories (transfer path, sensor, running-in); version 1
-/// checkpoints (no effects) are still read. The ninth scalar, reserved (0) before ball
+/// Version 2 appends the effects' memories (transfer path, sensor, running-in); version 3
+/// appends the cached roughness amplitude and the `f32` inverse-square-root cache, which
+/// are running state (a dense life refreshes the roughness only at block starts and every
+/// 256 running-in steps, so re-deriving it on resume changed the samples). Versions 1 and 2
+/// are still read (their roughness amplitude re-derived as before). The ninth scalar, reserved (0) before ball
 /// defects existed, carries the spin angle of a ball defect; older checkpoints read it as 0,
 /// which is what their (race-defect) states had.
-const VERSION: u32 = 2;
+const VERSION: u32 = 3;
 
 /// Bytes needed to encode a `State<NB>`.
 pub const fn encoded_len(nb: usize) -> usize {
@@ -31,6 +34,7 @@ pub const fn encoded_len(nb: usize) -> usize {
         + 1 + 8 * 5 + 1 // topography option, five reals, count
         + 3 * (8 * 2 * MAX_TAPS + 4) // delay lines
         + 8 * 2 * MODES + 16 + 8 * 2 + 8 * 2 // path, sensor rng, lp, phase, revs, run_in
+        + 8 + 8 * nb // rough_sigma, rsqrt cache
 }
 
 struct Writer<'a> {
@@ -167,8 +171,11 @@ impl<const NB: usize> State<NB> {
         for word in words {
             w.u32(word)?;
         }
-        for v in [lp, ph, p.revs, p.run_in] {
+        for v in [lp, ph, p.revs, p.run_in, p.rough_sigma] {
             w.real(v)?;
+        }
+        for v in p.rsqrt.iter() {
+            w.real(v.get())?;
         }
         Ok(w.at)
     }
@@ -179,7 +186,7 @@ impl<const NB: usize> State<NB> {
         let mut r = Reader { inp: bytes, at: 0 };
         let magic = r.u32()?;
         let version = r.u32()?;
-        if magic != MAGIC || !(version == 1 || version == VERSION) || r.u32()? != NB as u32 {
+        if magic != MAGIC || !(1..=VERSION).contains(&version) || r.u32()? != NB as u32 {
             return Err(ConfigError::Inconsistent {
                 field: "checkpoint",
                 reason: "not a wearsim state checkpoint of this version and capacity",
@@ -230,6 +237,7 @@ impl<const NB: usize> State<NB> {
         let fresh = st.parts();
         let (mut path, mut sensor, mut revs, mut run_in) =
             (fresh.path, fresh.sensor, fresh.revs, fresh.run_in);
+        let (mut rough_sigma, mut rsqrt) = (fresh.rough_sigma, [0.0 as Real; NB]);
         if version >= 2 {
             let mut z = [0.0 as Real; 2 * MODES];
             for v in z.iter_mut() {
@@ -241,6 +249,17 @@ impl<const NB: usize> State<NB> {
             sensor = SensorState::from_raw(words, lp, ph);
             revs = r.real()?;
             run_in = r.real()?;
+        }
+        if version >= 3 {
+            rough_sigma = r.real()?;
+            for v in rsqrt.iter_mut() {
+                *v = r.real()?;
+            }
+        }
+        // The defect shape is derived from the topography; the restore below then puts
+        // back every running value (the roughness amplitude included).
+        if let Some(t) = topography {
+            st.set_topography(model, t)?;
         }
         let [y, v, g_prev, time, shaft_hz, shaft_angle, cage_angle, wave_angle, spin_angle, _] =
             scalars;
@@ -263,17 +282,18 @@ impl<const NB: usize> State<NB> {
             rough,
             slip,
             armed,
-            topography: None,
+            topography: st.topography(),
             lines,
             phase: phase % model.oversample().max(1),
             path,
             sensor,
             revs,
             run_in,
+            rough_sigma,
+            rsqrt: rsqrt.map(core::cell::Cell::new),
         });
-        st.refresh_rough(model);
-        if let Some(t) = topography {
-            st.set_topography(model, t)?;
+        if version < 3 {
+            st.refresh_rough(model);
         }
         Ok(st)
     }

@@ -298,6 +298,7 @@ pub fn analyze_signal(
     method: &Method,
 ) -> Result<SignalAnalysis, analysis::AnalysisError> {
     let stats = analysis::stats(x)?;
+    analysis::error::check_magnitude(x)?;
     let ff = kin.fault_frequencies();
     let white;
     let y: &[f64] = if method.prewhiten {
@@ -435,6 +436,16 @@ pub fn analyze_record(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
+    if rec.samples.len() > crate::io::record::MAX_RECORD_SAMPLES {
+        return Err(CliError::input(crate::io::IoError::TooLarge {
+            path: rec.source.clone(),
+            what: format!("record of {} samples", rec.samples.len()),
+            limit: format!(
+                "{} samples (2^23) per analysed record (analysis memory is about 14x the record)",
+                crate::io::record::MAX_RECORD_SAMPLES
+            ),
+        }));
+    }
     let kin = match &file_model {
         Some(m) => Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}")),
         None => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
@@ -446,33 +457,38 @@ pub fn analyze_record(
         Ok(z) => (Some(z), None),
         Err(e) => (None, Some(e)),
     };
-    Ok((
-        Analysis {
-            file: rec.source.clone(),
-            channel: rec.channel.clone(),
-            unit: rec.unit.clone(),
-            fs: rec.fs,
-            samples: rec.samples.len(),
-            duration_s: rec.duration_s(),
-            rpm,
-            rpm_source: if rpm_from_argument {
-                "argument"
-            } else {
-                "file"
-            }
-            .into(),
-            bearing,
-            bearing_source: bearing_source.into(),
-            kinematics: kin,
-            method: *method,
-            stats: a.stats,
-            kurtogram: a.kurtogram,
-            diagnosis: a.diagnosis,
-            zones,
-            zones_note,
-        },
-        a.spectra,
-    ))
+    let analysis = Analysis {
+        file: rec.source.clone(),
+        channel: rec.channel.clone(),
+        unit: rec.unit.clone(),
+        fs: rec.fs,
+        samples: rec.samples.len(),
+        duration_s: rec.duration_s(),
+        rpm,
+        rpm_source: if rpm_from_argument {
+            "argument"
+        } else {
+            "file"
+        }
+        .into(),
+        bearing,
+        bearing_source: bearing_source.into(),
+        kinematics: kin,
+        method: *method,
+        stats: a.stats,
+        kurtogram: a.kurtogram,
+        diagnosis: a.diagnosis,
+        zones,
+        zones_note,
+    };
+    // The last guard: no NaN/inf (JSON `null`) is ever presented as a result.
+    if let Some((path, v)) = analysis::finite::first_non_finite(&analysis) {
+        return Err(CliError::run(format!(
+            "{file}: channel {}: the analysis produced a non-finite figure ({path} = {v}); nothing is reported",
+            rec.channel
+        )));
+    }
+    Ok((analysis, a.spectra))
 }
 
 /// Human-readable name of a family.
@@ -583,6 +599,11 @@ pub fn print_analysis(a: &Analysis) {
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    // Exclusive, writable plot directory before any work (docs/reliability.md).
+    let _lock = match &args.plot {
+        Some(dir) => Some(crate::io::lock::DirLock::try_acquire(dir).map_err(CliError::input)?),
+        None => None,
+    };
     let (a, spectra) = analyze(args)?;
     let plots = match &args.plot {
         Some(dir) => crate::plot::write_all(dir, &a, &spectra)?,

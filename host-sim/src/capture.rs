@@ -26,6 +26,11 @@ use crate::cli::CliError;
 /// Largest stream accepted (bytes): 20 kHz of f32 for about 25 minutes.
 pub const MAX_STREAM_BYTES: u64 = 128 * 1024 * 1024;
 
+/// Most corrupt spans and problem lines listed in a report; the rest are counted
+/// ([`CaptureReport::corrupt_spans`], [`CaptureReport::unlisted_problems`]), so a flood of
+/// sync words or broken frames costs bounded memory.
+pub const MAX_LISTED: usize = 100;
+
 /// Tolerance of an f32 target run against the f64 host run: largest sample difference over
 /// the first [`COMPARE_PREFIX`] samples, relative to the host RMS over them (see
 /// `docs/firmware.md`, "Host versus target": f32 rounding gives ~5e-4 there; later the two
@@ -114,8 +119,15 @@ pub struct CaptureReport {
     pub missing_frames: u64,
     /// Samples missing between data frames (gaps in `first_sample`).
     pub missing_samples: u64,
-    /// Rejected byte spans (corrupt frames, garbage).
+    /// Data frames repeated (a sequence number already received); their samples are not
+    /// used again.
+    pub duplicate_frames: u64,
+    /// Rejected byte spans (corrupt frames, garbage): the first [`MAX_LISTED`].
     pub corrupt: Vec<BadSpan>,
+    /// Rejected byte spans in all.
+    pub corrupt_spans: u64,
+    /// Rejected bytes in all.
+    pub corrupt_bytes: u64,
     /// Whether the stream ends inside a frame.
     pub truncated: bool,
     /// Samples received.
@@ -141,10 +153,24 @@ pub struct CaptureReport {
     pub instructions_per_sample: Option<f64>,
     /// Comparison with the host run, if asked for.
     pub comparison: Option<Comparison>,
-    /// Everything that makes the stream incomplete, one line each.
+    /// Everything that makes the stream incomplete, one line each (the first
+    /// [`MAX_LISTED`]).
     pub problems: Vec<String>,
+    /// Problems beyond the listed ones.
+    pub unlisted_problems: u64,
     /// True when the stream is complete and every check passed.
     pub complete: bool,
+}
+
+impl CaptureReport {
+    /// Records a problem: listed up to [`MAX_LISTED`], counted beyond.
+    fn problem(&mut self, p: String) {
+        if self.problems.len() < MAX_LISTED {
+            self.problems.push(p);
+        } else {
+            self.unlisted_problems += 1;
+        }
+    }
 }
 
 /// The samples and report of a decoded stream.
@@ -165,7 +191,10 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
         data_frames: 0,
         missing_frames: 0,
         missing_samples: 0,
+        duplicate_frames: 0,
         corrupt: vec![],
+        corrupt_spans: 0,
+        corrupt_bytes: 0,
         truncated: false,
         samples: 0,
         rate_hz: None,
@@ -179,6 +208,7 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
         instructions_per_sample: None,
         comparison: None,
         problems: vec![],
+        unlisted_problems: 0,
         complete: false,
     };
     let mut accel = Vec::new();
@@ -193,14 +223,20 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                 offset,
                 len,
                 reason,
-            } => r.corrupt.push(BadSpan {
-                offset,
-                len,
-                reason: reason.as_str().to_string(),
-            }),
+            } => {
+                r.corrupt_spans += 1;
+                r.corrupt_bytes += len as u64;
+                if r.corrupt.len() < MAX_LISTED {
+                    r.corrupt.push(BadSpan {
+                        offset,
+                        len,
+                        reason: reason.as_str().to_string(),
+                    });
+                }
+            }
             Event::Truncated { offset, len } => {
                 r.truncated = true;
-                r.problems.push(format!(
+                r.problem(format!(
                     "stream ends inside a frame ({len} bytes at offset {offset})"
                 ));
             }
@@ -209,23 +245,33 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
             } => {
                 r.valid_frames += 1;
                 if end.is_some() {
-                    r.problems
-                        .push(format!("frame seq {} after the end frame", header.seq));
+                    r.problem(format!("frame seq {} after the end frame", header.seq));
                 }
                 match header.kind {
                     Kind::Start => {
                         if start.is_some() {
-                            r.problems.push("second start frame".into());
+                            r.problem("second start frame".into());
                         }
                         start = frame::StartInfo::from_bytes(payload);
                         next_seq = Some(1);
                     }
                     Kind::Data | Kind::End => {
                         if let Some(want) = next_seq {
+                            // A sequence number already received (within half the
+                            // sequence space behind): a repeated frame, not a gap.
+                            let behind = want.wrapping_sub(header.seq);
+                            if (1..=u32::MAX / 2).contains(&behind) {
+                                r.duplicate_frames += 1;
+                                r.problem(format!(
+                                    "frame seq {} repeated (expected {want}); its samples are not used again",
+                                    header.seq
+                                ));
+                                continue;
+                            }
                             if header.seq != want {
                                 let lost = header.seq.wrapping_sub(want) as u64;
                                 r.missing_frames += lost.min(u32::MAX as u64);
-                                r.problems.push(format!(
+                                r.problem(format!(
                                     "frame sequence jumps from {} to {} ({} frame(s) missing)",
                                     want.wrapping_sub(1),
                                     header.seq,
@@ -233,8 +279,7 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                                 ));
                             }
                         } else {
-                            r.problems
-                                .push(format!("frame seq {} before any start frame", header.seq));
+                            r.problem(format!("frame seq {} before any start frame", header.seq));
                         }
                         next_seq = Some(header.seq.wrapping_add(1));
                         r.overruns = r.overruns.max(header.overruns);
@@ -244,21 +289,27 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                         }
                         r.data_frames += 1;
                         if *format.get_or_insert(header.format) != header.format {
-                            r.problems.push(format!(
+                            r.problem(format!(
                                 "frame seq {} changes the sample format",
                                 header.seq
                             ));
                         }
                         let first = header.first_sample as u64;
-                        if first != next_sample {
+                        if first < next_sample {
+                            r.problem(format!(
+                                "frame seq {} restarts at sample {first}, {next_sample} already received",
+                                header.seq
+                            ));
+                        } else if first != next_sample {
                             let gap = first.saturating_sub(next_sample);
                             r.missing_samples += gap;
-                            r.problems.push(format!(
+                            r.problem(format!(
                                 "samples {next_sample}..{first} missing before frame seq {}",
                                 header.seq
                             ));
                         }
                         let scale = header.scale as f64;
+                        let bad_from = accel.len();
                         match header.format {
                             Format::F32 => accel.extend(payload.chunks_exact(4).map(|c| {
                                 f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64 * scale
@@ -269,6 +320,14 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                                     .map(|c| i16::from_le_bytes([c[0], c[1]]) as f64 * scale),
                             ),
                             Format::None => {}
+                        }
+                        if let Some(i) = accel[bad_from..].iter().position(|v| !v.is_finite()) {
+                            r.problem(format!(
+                                "frame seq {} carries a non-finite sample ({}) at sample index {}: the stream is corrupt",
+                                header.seq,
+                                accel[bad_from + i],
+                                first + i as u64
+                            ));
                         }
                         let n = payload.len() / header.format.sample_size().max(1);
                         next_sample = first + n as u64;
@@ -296,31 +355,36 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                 }
                 .to_string(),
             );
+            if s.total_samples != 0 && s.total_samples as usize != r.samples {
+                r.problem(format!(
+                    "start frame announces {} samples, {} received",
+                    s.total_samples, r.samples
+                ));
+            }
             if !(1.0..=1e7).contains(&(s.rate_hz as f64)) {
-                r.problems
-                    .push(format!("start frame has an invalid rate {} Hz", s.rate_hz));
+                r.problem(format!("start frame has an invalid rate {} Hz", s.rate_hz));
             }
         }
-        None => r.problems.push("no valid start frame".into()),
+        None => r.problem("no valid start frame".into()),
     }
     match end {
         Some((e, _)) => {
             r.end_frame = true;
             r.tx_drops = Some(e.reserved);
             if e.total_samples as usize != r.samples {
-                r.problems.push(format!(
+                r.problem(format!(
                     "end frame counts {} samples, {} received",
                     e.total_samples, r.samples
                 ));
             }
             if e.data_frames as usize != r.data_frames {
-                r.problems.push(format!(
+                r.problem(format!(
                     "end frame counts {} data frames, {} received",
                     e.data_frames, r.data_frames
                 ));
             }
             if e.reserved != 0 {
-                r.problems.push(format!(
+                r.problem(format!(
                     "firmware dropped {} sample(s) before transmission",
                     e.reserved
                 ));
@@ -335,17 +399,22 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
             .problems
             .push("no end frame: the stream is incomplete".into()),
     }
-    if !r.corrupt.is_empty() {
-        let bytes: usize = r.corrupt.iter().map(|c| c.len).sum();
-        r.problems.push(format!(
-            "{} corrupt span(s), {bytes} byte(s) rejected",
-            r.corrupt.len()
+    if r.corrupt_spans > 0 {
+        r.problem(format!(
+            "{} corrupt span(s), {} byte(s) rejected",
+            r.corrupt_spans, r.corrupt_bytes
         ));
     }
     if r.samples == 0 {
-        r.problems.push("no samples".into());
+        r.problem("no samples".into());
     }
     r.complete = r.problems.is_empty();
+    if r.unlisted_problems > 0 {
+        r.problems.push(format!(
+            "... and {} more problem(s) not listed",
+            r.unlisted_problems
+        ));
+    }
     Decoded { report: r, accel }
 }
 
@@ -526,6 +595,8 @@ pub fn run(a: CaptureArgs) -> Result<(), CliError> {
             a.tolerance
         )));
     }
+    // Exclusive, writable output directory before any work (docs/reliability.md).
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let bytes = read_input(&a.input)?;
     let Decoded { mut report, accel } = decode(&a.input.display().to_string(), &bytes);
     let mut code = 2;

@@ -54,6 +54,9 @@ pub enum ConfigFileError {
     /// An unknown effect or parameter, or a value outside its bounds.
     #[error("{0}")]
     Effect(String),
+    /// A run that would exceed a documented resource limit (the message names it).
+    #[error("{0}")]
+    Limit(String),
 }
 
 impl From<wearsim_core::ConfigError> for ConfigFileError {
@@ -271,6 +274,10 @@ pub const DEFAULT_DURATION: f64 = 1.0;
 pub const DEFAULT_SETTLE: f64 = 0.05;
 /// Longest duration `simulate` keeps in memory (s); longer runs stream (`life --dense`).
 pub const MAX_DURATION: f64 = 600.0;
+/// Most samples (`(settle + duration) × fs`) a `simulate` run keeps in memory: 2²⁵
+/// (33.5 M, 268 MB per f64 column; e.g. 600 s at 55.9 kHz). Longer runs are refused with
+/// this limit named (`life --dense` streams without a limit).
+pub const MAX_SIMULATE_SAMPLES: f64 = (1u64 << 25) as f64;
 /// Default preset.
 pub const DEFAULT_PRESET: &str = "thesis-61810";
 
@@ -525,7 +532,45 @@ impl ScenarioFile {
             settle: self.settle.unwrap_or(DEFAULT_SETTLE),
         };
         check_run(&run)?;
+        let samples = (run.settle + run.duration) * cfg.output_rate;
+        if samples > MAX_SIMULATE_SAMPLES {
+            return Err(ConfigFileError::Limit(format!(
+                "(settle + duration) × fs = ({} + {}) s × {} Hz = {samples:.0} samples exceeds the in-memory limit of {MAX_SIMULATE_SAMPLES} samples (2^25); shorten duration or lower fs (`life --dense` streams)",
+                run.settle, run.duration, cfg.output_rate
+            )));
+        }
+        // `[material]` and `[life]` are validated even by commands that do not use them.
+        if self.material.is_some() || self.life.is_some() {
+            wearsim_core::wear::Life::new_checked(
+                self.life_config(None, wearsim_core::wear::LifeConfig::DEFAULT.cycle_cap),
+                &cfg.bearing,
+                1.0,
+            )?;
+        }
         Ok((cfg, run))
+    }
+
+    /// The wear configuration of this file: the defaults with `[material]` and `[life]`
+    /// applied, `lambda` (an argument) overriding the file's, and the cycle cap.
+    pub fn life_config(
+        &self,
+        lambda: Option<f64>,
+        cycle_cap: f64,
+    ) -> wearsim_core::wear::LifeConfig {
+        let d = wearsim_core::wear::LifeConfig::DEFAULT;
+        let ls = self.life.clone().unwrap_or_default();
+        wearsim_core::wear::LifeConfig {
+            material: self
+                .material
+                .as_ref()
+                .map(|m| m.apply(d.material))
+                .unwrap_or(d.material),
+            lambda: lambda.or(ls.lambda).unwrap_or(d.lambda),
+            roughness: ls.roughness.unwrap_or(d.roughness),
+            running_in: ls.running_in.unwrap_or(d.running_in),
+            slip: ls.slip.unwrap_or(d.slip),
+            cycle_cap,
+        }
     }
 
     fn defect_config(

@@ -112,9 +112,9 @@ state_fields! {
     /// Slip offset of each element (rad).
     [saved] slip: [Real; NB] = [0.0; NB],
     /// Cached inverse square roots of the element deflections (f32 Hertz load).
-    [derived] rsqrt: [core::cell::Cell<Real>; NB] = core::array::from_fn(|_| core::cell::Cell::new(0.0)),
+    [saved] rsqrt: [core::cell::Cell<Real>; NB] = core::array::from_fn(|_| core::cell::Cell::new(0.0)),
     /// Amplitude of the roughness draw (m), cached for constant speed.
-    [derived] rough_sigma: Real = model.rough_sigma(f0, None),
+    [saved] rough_sigma: Real = model.rough_sigma(f0, None),
     /// Slip bookkeeping: elements armed for a redraw (one bit each).
     [saved] armed: u32 = 0,
     /// Current defect topography.

@@ -30,6 +30,16 @@ pub enum AnalysisError {
     },
     /// The signal is constant, so the requested normalised quantity
     /// (kurtosis, skewness, spectral kurtosis...) is undefined.
+    /// A sample beyond ±[`MAX_MAGNITUDE`]: its square in a spectrum would overflow.
+    #[error("signal value {value:e} at index {index} is beyond the analysable range ±{max:e} (squares in the spectra would overflow)")]
+    TooLarge {
+        /// Zero-based index of the first such sample.
+        index: usize,
+        /// The value.
+        value: f64,
+        /// The limit ([`MAX_MAGNITUDE`]).
+        max: f64,
+    },
     #[error("signal is constant (value {value}), {what} is undefined")]
     Constant {
         /// The constant value.
@@ -86,6 +96,11 @@ pub(crate) fn check_fs(fs: f64) -> Result<(), AnalysisError> {
 
 /// Check that `x` is non-empty, has at least `need` samples (`what` says
 /// why) and contains only finite values.
+/// Largest sample magnitude the analysis accepts (any unit): 1e100, so that a spectrum of
+/// up to 2⁶⁴ samples (N² · x² ≤ 1e140 · 1e200 … far below f64's 1.8e308) stays finite. A
+/// vibration record anywhere near it is corrupt.
+pub const MAX_MAGNITUDE: f64 = 1e100;
+
 pub(crate) fn check_signal(x: &[f64], need: usize, what: &str) -> Result<(), AnalysisError> {
     if x.is_empty() {
         return Err(AnalysisError::Empty);
@@ -101,6 +116,19 @@ pub(crate) fn check_signal(x: &[f64], need: usize, what: &str) -> Result<(), Ana
         Some(index) => Err(AnalysisError::NonFinite {
             index,
             value: x[index],
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Refuses a signal with a sample beyond ±[`MAX_MAGNITUDE`] (the spectra square it; the
+/// time-domain statistics alone scale it and need no such bound).
+pub fn check_magnitude(x: &[f64]) -> Result<(), AnalysisError> {
+    match x.iter().position(|v| v.abs() > MAX_MAGNITUDE) {
+        Some(index) => Err(AnalysisError::TooLarge {
+            index,
+            value: x[index],
+            max: MAX_MAGNITUDE,
         }),
         None => Ok(()),
     }

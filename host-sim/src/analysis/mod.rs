@@ -20,6 +20,7 @@ pub mod envelope;
 pub mod error;
 pub mod faults;
 mod fft;
+pub mod finite;
 pub mod kurtogram;
 pub mod peaks;
 pub mod spectrum;

@@ -111,6 +111,8 @@ fn main() -> ExitCode {
 
 fn simulate_cmd(a: cli::SimulateArgs) -> Result<(), cli::CliError> {
     let scenario = a.scenario()?;
+    // Exclusive, writable output directory before any work (docs/reliability.md).
+    let _lock = io::lock::DirLock::try_acquire(&a.out).map_err(cli::CliError::input)?;
     let fs = scenario.fs();
     let show = !a.json && std::io::stderr().is_terminal();
     let bar = cli::Progress::new(show, "simulating");

@@ -397,6 +397,7 @@ pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
 
 /// `wearsim gap`.
 pub fn run(a: &GapArgs) -> Result<(), CliError> {
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     if a.real.iter().any(|p| super::life_report::is_life_table(p)) {
         return super::life_report::run(a);
     }

@@ -116,6 +116,27 @@ pub enum IoError {
         detail: String,
     },
 
+    /// The output directory is in use by another run (see [`crate::io::lock`]).
+    #[error("{}: output directory in use by another wearsim run ({owner}); wait for it to finish or choose another --out", path.display())]
+    Locked {
+        /// The directory.
+        path: PathBuf,
+        /// The lock file's content (the owner's pid), as far as readable.
+        owner: String,
+    },
+
+    /// The file exceeds a documented resource bound (see `docs/reliability.md`): a sample
+    /// count, a decompressed size or a buffer that would grow without bound.
+    #[error("{}: too large: {what} exceeds the limit of {limit}", path.display())]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// What is too large, with its size.
+        what: String,
+        /// The limit, with its unit.
+        limit: String,
+    },
+
     /// The measured-data folder is missing while `CI=true` demands it (see [`crate::io::data_dir`]).
     #[error("{}: data folder not found (CI=true requires it; set WEARSIM_DATA)", path.display())]
     DataDirMissing {
@@ -138,6 +159,8 @@ impl IoError {
             | IoError::Unsupported { path, .. }
             | IoError::Malformed { path, .. }
             | IoError::MissingSampleRate { path, .. }
+            | IoError::Locked { path, .. }
+            | IoError::TooLarge { path, .. }
             | IoError::DataDirMissing { path } => path,
         }
     }

@@ -13,6 +13,7 @@
 pub mod csv;
 pub mod error;
 pub mod ims;
+pub mod lock;
 pub mod mat;
 pub mod npy;
 pub mod record;

@@ -81,10 +81,21 @@ pub fn sidecar_candidates(data: &Path) -> Vec<PathBuf> {
     v
 }
 
-/// Find and read the sidecar of `data`, if one exists.
+/// Find and read the sidecar of `data`, if one exists. An empty file (or one holding only
+/// white space) is not a sidecar: it is what `wearsim analyze rec.csv --json > rec.json`
+/// creates before the command runs; it is skipped with a warning on stderr.
 pub fn sidecar_for(data: &Path) -> Result<Option<Sidecar>, IoError> {
     for c in sidecar_candidates(data) {
         if c.is_file() {
+            let blank = std::fs::metadata(&c).is_ok_and(|m| m.len() <= 4096)
+                && std::fs::read(&c).is_ok_and(|b| b.iter().all(u8::is_ascii_whitespace));
+            if blank {
+                eprintln!(
+                    "wearsim: warning: {}: empty, not read as a sidecar",
+                    c.display()
+                );
+                continue;
+            }
             return read_sidecar(&c).map(Some);
         }
     }

@@ -112,7 +112,8 @@ pub fn write_outputs(
     validate(&set, stem, columns, fs)?;
     let n = columns[0].1.len();
 
-    std::fs::create_dir_all(dir).map_err(|e| IoError::io(dir, "create directory", e))?;
+    // Exclusive use of `dir` while the set is replaced (a no-op if the caller holds it).
+    let _lock = super::lock::DirLock::try_acquire(dir)?;
 
     let sidecar = build_sidecar(stem, columns, fs, n, meta);
 

@@ -105,6 +105,8 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         return Err(CliError::input("--stop-after applies to --dense runs only"));
     }
     let run = a.run()?;
+    // Exclusive, writable output directory before any work (docs/reliability.md).
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let bar = Progress::new(
         !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr()),
         "life",
@@ -253,6 +255,7 @@ pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
             .map_err(CliError::input)?
             .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA"))?,
     };
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let c = super::ims::compare(&data, a.seed).map_err(CliError::input)?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;

@@ -8,7 +8,9 @@
 //!   only once the life reached failure;
 //! * `life-dense.ckpt`: checkpoint (JSON header + the core's encoded dynamic state),
 //!   written every [`CHECKPOINT_SAMPLES`] samples and at every block end; removed when
-//!   the run completes.
+//!   the run completes. It carries the first samples of the interrupted block's window (so
+//!   the block's snapshot is not lost) and ends in an FNV-1a 64 checksum of everything
+//!   before it: a corrupt checkpoint is refused, never continued.
 //!
 //! The wear is advanced block by block from the same measurement windows as snapshot mode
 //! ([`LifeRun::window`] with the same state and index), so both modes give the same wear
@@ -16,6 +18,11 @@
 //! A rerun with the same arguments continues from the checkpoint: the data file is cut
 //! back to the checkpoint's sample count, the state restored, and the block redone from
 //! its recorded start (deterministic), skipping the samples already written.
+//!
+//! Every invocation first removes the old completion marker (`life-summary.json`) and
+//! marks the manifest incomplete, before the data file is touched, so a set is never
+//! presented as complete while its data are being rewritten. Exclusive use of the
+//! directory is the caller's job (`crate::io::lock::DirLock`).
 
 use super::state_json::LifeStateJson;
 use super::{LifeError, LifeRun, Snapshot, CAPACITY};
@@ -31,7 +38,27 @@ use wearsim_core::{Sample, State};
 pub const CHECKPOINT_SAMPLES: u64 = 1 << 20;
 /// Samples per write.
 const CHUNK: usize = 1 << 16;
-const MAGIC: &[u8; 8] = b"WSLDCK1\n";
+/// Environment variable that overrides [`CHECKPOINT_SAMPLES`] (1 ..= 2³⁰; also caps the
+/// samples per write): the fault-injection tests use it to put checkpoints in the middle
+/// of blocks.
+pub const CHECKPOINT_ENV: &str = "WEARSIM_CHECKPOINT_SAMPLES";
+
+fn checkpoint_every() -> u64 {
+    std::env::var(CHECKPOINT_ENV)
+        .ok()
+        .and_then(|v| v.parse::<u64>().ok())
+        .filter(|n| (1..=1 << 30).contains(n))
+        .unwrap_or(CHECKPOINT_SAMPLES)
+}
+/// Version 2: the window of the interrupted block and a trailing checksum.
+const MAGIC: &[u8; 8] = b"WSLDCK2\n";
+
+/// FNV-1a 64-bit hash (checkpoint checksum, configuration hash).
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
 
 /// Dense-mode options.
 #[derive(Debug, Clone)]
@@ -39,7 +66,7 @@ pub struct DenseOptions {
     /// Output directory.
     pub dir: PathBuf,
     /// Stop after this many simulated seconds in this invocation, leaving a checkpoint
-    /// (for runs split over several sessions; also used by the tests).
+    /// (for runs split over several sessions; also used by the tests); 1/fs ..= 1e9 s.
     pub stop_after: Option<f64>,
 }
 
@@ -71,6 +98,9 @@ struct Checkpoint {
     carry: f64,
     snapshots: Vec<Snapshot>,
     blocks: Vec<BlockRecord>,
+    /// The first samples (up to the window length) of the current block, from which its
+    /// snapshot is computed (m/s², exact f64).
+    window: Vec<f64>,
 }
 
 /// The manifest.
@@ -92,6 +122,10 @@ pub struct Manifest {
     pub blocks: Vec<BlockRecord>,
     /// Seed.
     pub seed: u64,
+    /// FNV-1a 64 of the run's configuration fingerprint (hex): the manifest, the data
+    /// file and the checkpoint belong to one run.
+    #[serde(default)]
+    pub config_hash: String,
 }
 
 /// Result of a dense invocation.
@@ -129,6 +163,9 @@ pub enum DenseError {
         /// Cause.
         source: std::io::Error,
     },
+    /// The output directory is in use by another run, or cannot be written.
+    #[error(transparent)]
+    Output(#[from] crate::io::IoError),
     /// A checkpoint that is corrupt or belongs to another run.
     #[error("{path}: {reason}")]
     Checkpoint {
@@ -177,10 +214,18 @@ impl LifeRun {
         mut progress: impl FnMut(f64, f64),
     ) -> Result<DenseReport, DenseError> {
         let t0 = std::time::Instant::now();
+        if let Some(s) = opts.stop_after {
+            // At least one sample, at most 30 years of signal.
+            let fs = self.spec.model.output_rate;
+            wearsim_core::error::check_range("stop_after", s, 1.0 / fs, 1e9)
+                .map_err(LifeError::from)?;
+        }
         let (data_path, manifest_path, ckpt_path) = paths(&opts.dir);
-        std::fs::create_dir_all(&opts.dir).map_err(io_err(&opts.dir))?;
+        let _lock = crate::io::lock::DirLock::try_acquire(&opts.dir)?;
         let fs = self.spec.model.output_rate;
         let fingerprint = self.fingerprint();
+        // The old completion marker goes first: from here on the set is incomplete.
+        super::output::invalidate(&opts.dir).map_err(io_err(&opts.dir))?;
 
         // Start or resume.
         let resumed = ckpt_path.exists();
@@ -192,6 +237,7 @@ impl LifeRun {
             mut carry,
             mut snapshots,
             mut blocks,
+            mut window,
             dyn_bytes,
         ) = if resumed {
             let (c, bytes) = read_checkpoint(&ckpt_path)?;
@@ -217,6 +263,7 @@ impl LifeRun {
                 c.carry,
                 c.snapshots,
                 c.blocks,
+                c.window,
                 Some(bytes),
             )
         } else {
@@ -228,10 +275,16 @@ impl LifeRun {
                 0.0,
                 vec![],
                 vec![],
+                vec![],
                 None,
             )
         };
 
+        // The manifest says "incomplete" before the data file is cut back or extended.
+        write_manifest(
+            &manifest_path,
+            &self.manifest(fs, samples_total, st.cycles, false, &blocks),
+        )?;
         // The data file holds exactly `samples_total` samples from here on.
         let mut file = OpenOptions::new()
             .create(true)
@@ -262,16 +315,14 @@ impl LifeRun {
                 s
             }
         };
-        write_manifest(
-            &manifest_path,
-            &self.manifest(fs, samples_total, st.cycles, false, &blocks),
-        )?;
 
         let mut generated: u64 = 0;
         let budget = opts.stop_after.map(|s| (s * fs).round() as u64);
         let mut buf = vec![Sample::default(); CHUNK];
         let mut f32buf: Vec<u8> = Vec::with_capacity(CHUNK * 4);
         let mut since_ckpt: u64 = 0;
+        let ckpt_every = checkpoint_every();
+        let chunk = CHUNK.min(ckpt_every as usize);
         loop {
             let start = st.clone();
             let (_, loads) = self.window(&st, k)?;
@@ -284,10 +335,13 @@ impl LifeRun {
             let n_block = exact.floor() as u64;
             let next_carry = exact - n_block as f64;
             let model = self.model_for(&start)?;
-            if let Some(t) = start.topography {
-                dynamic.set_topography(&model, t).map_err(LifeError::from)?;
-            }
             if samples_in_block == 0 {
+                // A block starts: its topography (a resumed block has it already, with
+                // the running values of the checkpoint).
+                if let Some(t) = start.topography {
+                    dynamic.set_topography(&model, t).map_err(LifeError::from)?;
+                }
+                window.clear();
                 blocks.push(BlockRecord {
                     block: k,
                     first_sample: samples_total,
@@ -298,13 +352,14 @@ impl LifeRun {
                 });
             }
             let window_n = (self.spec.window * fs) as u64;
-            let mut window: Vec<f64> = Vec::with_capacity(if samples_in_block == 0 {
-                window_n as usize
-            } else {
-                0
-            });
             while samples_in_block < n_block {
-                let n = ((n_block - samples_in_block) as usize).min(CHUNK);
+                // A write ends at the block end, the next checkpoint or the budget of
+                // this invocation, whichever comes first.
+                let to_stop = budget.map_or(u64::MAX, |b| b.saturating_sub(generated).max(1));
+                let n = (n_block - samples_in_block)
+                    .min(ckpt_every - since_ckpt)
+                    .min(to_stop)
+                    .min(chunk as u64) as usize;
                 model.fill(&mut dynamic, &mut buf[..n]);
                 f32buf.clear();
                 for s in &buf[..n] {
@@ -315,7 +370,7 @@ impl LifeRun {
                         .into());
                     }
                     f32buf.extend_from_slice(&(s.accel as f32).to_le_bytes());
-                    if (window.len() as u64) < window_n && window.capacity() > 0 {
+                    if (window.len() as u64) < window_n {
                         window.push(s.accel);
                     }
                 }
@@ -325,7 +380,7 @@ impl LifeRun {
                 generated += n as u64;
                 since_ckpt += n as u64;
                 let stop = budget.is_some_and(|b| generated >= b);
-                if since_ckpt >= CHECKPOINT_SAMPLES || stop {
+                if since_ckpt >= ckpt_every || stop {
                     since_ckpt = 0;
                     out.flush().map_err(io_err(&data_path))?;
                     out.get_ref().sync_data().map_err(io_err(&data_path))?;
@@ -338,6 +393,7 @@ impl LifeRun {
                         carry,
                         snapshots: snapshots.clone(),
                         blocks: blocks.clone(),
+                        window: window.clone(),
                     };
                     write_checkpoint(&ckpt_path, &c, &dynamic)?;
                     write_manifest(
@@ -364,6 +420,7 @@ impl LifeRun {
             progress(st.cycles, self.spec.life.cycle_cap);
             carry = next_carry;
             samples_in_block = 0;
+            window.clear();
             k += 1;
         }
         out.flush().map_err(io_err(&data_path))?;
@@ -402,6 +459,7 @@ impl LifeRun {
             complete,
             blocks: blocks.to_vec(),
             seed: self.spec.seed,
+            config_hash: format!("{:016x}", fnv1a64(self.fingerprint().as_bytes())),
         }
     }
 }
@@ -436,6 +494,8 @@ fn write_checkpoint(
     bytes.extend_from_slice(&header);
     bytes.extend_from_slice(&(n as u64).to_le_bytes());
     bytes.extend_from_slice(state.get(..n).unwrap_or(&[]));
+    let sum = fnv1a64(&bytes);
+    bytes.extend_from_slice(&sum.to_le_bytes());
     super::output::write_atomic(path, &bytes).map_err(io_err(path))
 }
 
@@ -449,20 +509,33 @@ fn read_checkpoint(path: &Path) -> Result<(Checkpoint, Vec<u8>), DenseError> {
         .and_then(|mut f| f.read_to_end(&mut bytes))
         .map_err(io_err(path))?;
     if bytes.get(..8) != Some(MAGIC.as_slice()) {
-        return Err(bad("not a wearsim dense checkpoint"));
+        return Err(bad(
+            "not a wearsim dense checkpoint of this version; remove it to start over",
+        ));
     }
+    let body_len = bytes
+        .len()
+        .checked_sub(8)
+        .ok_or_else(|| bad("truncated checkpoint"))?;
+    let (body, sum) = bytes.split_at(body_len);
+    if fnv1a64(body).to_le_bytes() != sum {
+        return Err(bad(
+            "checksum mismatch: the checkpoint is corrupt; remove it (and the data) to start over",
+        ));
+    }
+    let bytes = body;
     let len = |at: usize| -> Option<usize> {
         Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?) as usize)
     };
     let hl = len(8).ok_or_else(|| bad("truncated header"))?;
     let header = bytes
-        .get(16..16 + hl)
+        .get(16..16usize.saturating_add(hl))
         .ok_or_else(|| bad("truncated header"))?;
     let c: Checkpoint =
         serde_json::from_slice(header).map_err(|e| bad(&format!("corrupt header: {e}")))?;
     let sl = len(16 + hl).ok_or_else(|| bad("truncated state"))?;
     let state = bytes
-        .get(24 + hl..24 + hl + sl)
+        .get(24 + hl..(24 + hl).saturating_add(sl))
         .ok_or_else(|| bad("truncated state"))?;
     Ok((c, state.to_vec()))
 }

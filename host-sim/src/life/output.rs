@@ -22,6 +22,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     Ok(())
 }
 
+/// Name of the completion marker of a life set (written last by [`write_life`]).
+pub const SUMMARY: &str = "life-summary.json";
+
+/// Removes the completion marker of a life set in `dir` (if any) and syncs the directory,
+/// before anything of a new run is written: a set is never presented as complete while
+/// its files are being replaced.
+pub fn invalidate(dir: &Path) -> std::io::Result<()> {
+    match std::fs::remove_file(dir.join(SUMMARY)) {
+        Ok(()) => {
+            if let Ok(d) = std::fs::File::open(dir) {
+                let _ = d.sync_all();
+            }
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(e),
+    }
+}
+
 /// One stage's span in revolutions.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Span {
@@ -64,7 +83,8 @@ pub fn write_life(
     st: &LifeState,
     extra: serde_json::Value,
 ) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
+    let _lock = crate::io::lock::DirLock::try_acquire(dir).map_err(std::io::Error::other)?;
+    invalidate(dir)?;
     let life_end = st.cycles.max(1.0);
     let mut csv = String::from("cycles,life_fraction,stage,rms,kurtosis,crest_factor,zone_rotating,zone_fault,zone_natural,zone_high,fault_peak,resonance_peak,asperity_m,length_m,count,crack_m,debris,zone_load_n,edge_load_n\n");
     for s in snapshots {
@@ -136,7 +156,7 @@ pub fn write_life(
         "seed": run.spec.seed,
         "run": extra,
     });
-    let p = dir.join("life-summary.json");
+    let p = dir.join(SUMMARY);
     write_atomic(&p, &serde_json::to_vec_pretty(&summary)?)?;
     written.push(p);
     Ok(written)

@@ -1,0 +1,54 @@
+//! MATLAB level-5 MAT-file reader and the CWRU bearing-data loader.
+//!
+//! # Why not the `matfile` crate
+//!
+//! `matfile` 0.5 was evaluated (source read, version 0.5.0) and not used, because on malformed
+//! input it can panic or allocate without bound, which the readers of this crate must never do:
+//!
+//! * numeric matrices: `dimensions.iter().product::<i32>()` overflows (a panic with overflow
+//!   checks on, e.g. in test builds) for large or hostile dimensions, and the product is then cast
+//!   `as usize`, so negative dimensions turn into huge counts;
+//! * `flags.class.numeric_data_type().unwrap()` on the class byte read from the file;
+//! * `miCOMPRESSED` elements are inflated with `read_to_end` without any limit (a zlib bomb
+//!   allocates until the process dies), and decoder errors are printed with `eprintln!`;
+//! * every error is a `nom` `ErrorKind::Tag` without offset or reason, so a user cannot tell
+//!   "truncated" from "unsupported"; it also pulls in `nom`, `libflate` and
+//!   `enum-primitive-derive` for what is a few hundred lines of format.
+//!
+//! This module therefore implements the subset of the format the measured data needs
+//! (MathWorks, "MAT-File Format", Level 5): the 128-byte header (either byte order, `IM` or
+//! `MI`), `miMATRIX` elements of the numeric classes (double, single, int8..uint64; real part
+//! only; complex arrays are reported as unsupported), small-data-element tags, `miCOMPRESSED`
+//! (zlib, via `flate2`, inflated size capped at 1032 x the compressed size, the deflate maximum),
+//! and skips char/cell/struct/sparse/object arrays while still listing them. Every read is
+//! bounds-checked against the buffer, sizes are checked against the file size before anything is
+//! allocated, and no code path panics on any input (property-tested in `tests/io_fuzz.rs`).
+//!
+//! # CWRU files
+//!
+//! [`read_cwru`] loads one channel of a Case Western Reserve University bearing-data file
+//! (see `/work/shared/data/cwru/README.md`): variables `Xnnn_DE_time`, `Xnnn_FE_time`,
+//! `Xnnn_BA_time` (N x 1 double, acceleration, assumed g) and `XnnnRPM` (1 x 1, rpm). Variables
+//! are selected by suffix, preferring the one whose number matches the record number of the file
+//! name (some CWRU files hold other records' variables too). The sample rate is not stored in the
+//! files; it comes from the name (`12k_` = 12 kHz, `48k_` = 48 kHz, `normal_*` = 48 kHz) or from
+//! the caller.
+//!
+//! # Layout and bounds
+//!
+//! [`v5`] parses the format (with the per-file bounds of [`Budget`]), [`cwru`] loads CWRU
+//! records, [`fixture`] writes the small MAT files the tests use.
+
+pub mod cwru;
+pub mod fixture;
+pub mod v5;
+
+pub use cwru::*;
+pub use fixture::{mat5_bytes, mat5_compress};
+pub use v5::{
+    list_mat_variables, parse_mat, read_mat, Budget, MatClass, MatVariable,
+    MAX_DECOMPRESSED_PER_FILE, MAX_SAMPLES_PER_FILE,
+};
+
+#[cfg(test)]
+mod tests;
