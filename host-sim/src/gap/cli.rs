@@ -5,6 +5,7 @@ use super::attribute::{attribute, Attribution, Options};
 use super::matched::{Evaluator, Matched};
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
+use crate::analysis::stats::rms;
 use crate::cli::CliError;
 use clap::Args;
 use serde::Serialize;
@@ -305,10 +306,6 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
         }
     }
     Ok((roles, train, hold))
-}
-
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
 }
 
 /// Runs the attribution on prepared records; returns it with the fit spaces and the

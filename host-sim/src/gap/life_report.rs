@@ -10,6 +10,7 @@ use super::report::{
     draw_gap_bars, draw_lines, findings_section, finish, fmt_params, greedy_section,
     leave_one_out_section, Series, BASE_C, FINAL_C, REAL_C,
 };
+use crate::analysis::stats::upper_median;
 use crate::cli::CliError;
 use crate::plot::{register_fonts, render};
 use plotters::style::RGBColor;
@@ -410,13 +411,12 @@ pub fn markdown(o: &LifeGapOutput) -> String {
 /// Per-snapshot statistic `i` (0 RMS dB re the steady median, 1 kurtosis) of a series.
 fn along(pts: &[LifePoint], i: usize) -> Vec<(f64, f64)> {
     let steady = &lifetime::STAGES[lifetime::STEADY];
-    let mut r: Vec<f64> = pts
+    let r: Vec<f64> = pts
         .iter()
         .filter(|p| p.t >= steady.lo && p.t < steady.hi)
         .map(|p| p.rms)
         .collect();
-    r.sort_by(|a, b| a.total_cmp(b));
-    let med = r.get(r.len() / 2).copied().unwrap_or(1.0).max(1e-300);
+    let med = upper_median(r).unwrap_or(1.0).max(1e-300);
     pts.iter()
         .map(|p| {
             let y = if i == 0 {

@@ -42,6 +42,7 @@ use super::fit::Budget;
 use super::matched::{merge, Evaluator, Gaps, Target};
 use super::space::{FitParam, FitSpace};
 use crate::analysis;
+use crate::analysis::stats::{mean_std, upper_median};
 use crate::io::ims::read_ims_features;
 use crate::life::{LifeRun, LifeSpec};
 use serde::Serialize;
@@ -133,19 +134,6 @@ impl LifePoint {
     }
 }
 
-fn mean_std(v: &[f64]) -> (f64, f64) {
-    let n = v.len().max(1) as f64;
-    let m = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0).max(1.0);
-    (m, var.sqrt())
-}
-
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    v.retain(|x| x.is_finite());
-    v.sort_by(|a, b| a.total_cmp(b));
-    v.get(v.len() / 2).copied()
-}
-
 fn in_stage(p: &LifePoint, s: &LifeStage) -> bool {
     p.t >= s.lo && (p.t < s.hi || (s.hi >= 1.0 && p.t <= 1.0))
 }
@@ -169,7 +157,7 @@ fn stage_points<'a>(pts: &'a [LifePoint], s: &LifeStage) -> Vec<&'a LifePoint> {
 fn stage_values(pts: &[LifePoint], stages: &[LifeStage]) -> Option<Vec<(f64, Vec<f64>)>> {
     let steady = STAGES.get(STEADY)?;
     let sp = stage_points(pts, steady);
-    let rms_ref = median(sp.iter().map(|p| p.rms).collect())?;
+    let rms_ref = upper_median(sp.iter().map(|p| p.rms).collect())?;
     if rms_ref.is_nan() || rms_ref <= 0.0 {
         return None;
     }
@@ -347,7 +335,7 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
     let mut live = vec![false; n];
     for b in &bearings {
         let m = col(*b, "mean_abs")?;
-        let med = median(m.to_vec()).unwrap_or(0.0);
+        let med = upper_median(m.to_vec()).unwrap_or(0.0);
         for (l, v) in live.iter_mut().zip(m) {
             *l |= *v > 0.1 * med;
         }
@@ -1026,7 +1014,7 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     let ev = Evaluator::new(o.jobs);
     let base = sim.points(&Effects::NONE, ev.counter())?;
     let steady = stage_points(&base, &STAGES[STEADY]);
-    let steady_rms = median(steady.iter().map(|p| p.rms).collect()).unwrap_or(1.0);
+    let steady_rms = upper_median(steady.iter().map(|p| p.rms).collect()).unwrap_or(1.0);
     let spaces: Vec<FitSpace> = life_spaces(steady_rms)
         .into_iter()
         .filter(|s| o.effects.is_empty() || o.effects.iter().any(|e| e == s.effect))

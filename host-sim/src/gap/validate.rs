@@ -10,6 +10,7 @@ use super::attribute::{attribute, Options};
 use super::matched::{merge, Evaluator, Matched};
 use super::space::{self, FitSpace};
 use super::{CellSpec, Reference};
+use crate::analysis::stats::{self, rms};
 use crate::analysis::{FaultFamily, FaultFrequencies};
 use serde::Serialize;
 use std::time::Instant;
@@ -252,18 +253,9 @@ fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
         .collect()
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+/// Median of the finite values (NaN when there is none: reported as such).
+fn median(v: Vec<f64>) -> f64 {
+    stats::median(v).unwrap_or(f64::NAN)
 }
 
 struct TwinSetup {
@@ -299,10 +291,6 @@ impl TwinSetup {
         };
         Ok((m(a, 101, "train")?, m(b, 202, "holdout")?))
     }
-}
-
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
 }
 
 /// Runs the twin experiments.

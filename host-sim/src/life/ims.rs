@@ -13,6 +13,7 @@
 //! Everything else is the physics of the wear model; the timeline is not fitted.
 
 use super::{LifeRun, LifeSpec};
+use crate::analysis::stats::{robust_sigma, upper_median};
 use crate::io::ims::read_ims_features;
 use serde::Serialize;
 use std::path::Path;
@@ -72,9 +73,7 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
         .ok_or_else(|| format!("{}: no B1_rms column", path.display()))?;
     let mean = f.column("B1_mean_abs").unwrap_or(rms);
     // Dead final snapshots (machine stopped; README quirk): mean |x| below 10 % of median.
-    let mut sorted = mean.to_vec();
-    sorted.sort_by(|a, b| a.total_cmp(b));
-    let med = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
+    let med = upper_median(mean.to_vec()).unwrap_or(0.0);
     let keep: Vec<usize> = (0..rms.len()).filter(|i| mean[*i] > 0.1 * med).collect();
     let (Some(&first), Some(&last)) = (keep.first(), keep.last()) else {
         return Err(format!("{}: no valid snapshots", path.display()));
@@ -89,18 +88,13 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
 }
 
 fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
-    let mut early: Vec<f64> = t
+    let early: Vec<f64> = t
         .iter()
         .zip(&r)
         .filter(|(t, _)| **t <= 0.5)
         .map(|(_, r)| *r)
         .collect();
-    early.sort_by(|a, b| a.total_cmp(b));
-    let m = early
-        .get(early.len() / 2)
-        .copied()
-        .unwrap_or(1.0)
-        .max(1e-300);
+    let m = upper_median(early).unwrap_or(1.0).max(1e-300);
     Curve {
         t,
         rms: r.iter().map(|x| x / m).collect(),
@@ -109,7 +103,7 @@ fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
 
 /// Onset of instability of a normalised curve (see the module docs).
 pub fn onset(c: &Curve) -> Option<f64> {
-    let mut early: Vec<f64> =
+    let early: Vec<f64> =
         c.t.iter()
             .zip(&c.rms)
             .filter(|(t, _)| **t <= 0.5)
@@ -118,11 +112,7 @@ pub fn onset(c: &Curve) -> Option<f64> {
     if early.len() < 5 {
         return None;
     }
-    early.sort_by(|a, b| a.total_cmp(b));
-    let m = early[early.len() / 2];
-    let mut dev: Vec<f64> = early.iter().map(|x| (x - m).abs()).collect();
-    dev.sort_by(|a, b| a.total_cmp(b));
-    let sigma = 1.4826 * dev[dev.len() / 2];
+    let (m, sigma) = robust_sigma(early)?;
     let upper = m + (5.0 * sigma).max(0.1 * m);
     let mut run = 0;
     for (i, r) in c.rms.iter().enumerate() {

@@ -6,6 +6,7 @@
 use super::ims::ImsComparison;
 use super::output::Span;
 use super::{EventWindow, Snapshot};
+use crate::analysis::stats::upper_median;
 use crate::analysis::{self, Window};
 use crate::cli::CliError;
 use crate::plot::{db, e, points, range, register_fonts, render, FONT, R};
@@ -91,13 +92,12 @@ fn draw_life<DB: DrawingBackend>(
 ) -> R {
     e(root.fill(&WHITE))?;
     let base = {
-        let mut v: Vec<f64> = snaps
+        let v: Vec<f64> = snaps
             .iter()
             .filter(|s| s.stage == "steady-state")
             .map(|s| s.features.rms)
             .collect();
-        v.sort_by(|a, b| a.total_cmp(b));
-        v.get(v.len() / 2).copied().unwrap_or(1.0).max(1e-300)
+        upper_median(v).unwrap_or(1.0).max(1e-300)
     };
     let pts: Vec<(f64, f64)> = snaps
         .iter()
