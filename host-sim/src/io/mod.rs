@@ -15,6 +15,7 @@ pub mod error;
 pub mod ims;
 pub mod mat;
 pub mod npy;
+pub mod perms;
 pub mod record;
 pub mod sidecar;
 pub mod wav;
