@@ -9,9 +9,10 @@ bad arguments. Python 3 standard library only, so it runs in CI without setup.
 
 The graph:
 * A module is a source file: `src/a/b.rs` and `src/a/b/mod.rs` are `crate::a::b`,
-  `src/lib.rs` is `crate`. `src/bin/` (separate binary crates) is skipped. Inline
-  `mod name { ... }` blocks (e.g. `mod tests`) belong to their file's module, but
-  `super::` inside them is resolved relative to the inline module, as rustc does.
+  `src/lib.rs` is `crate`. `src/bin/` (separate binary crates) is skipped. An inline
+  `mod name { ... }` block (e.g. `#[cfg(test)] mod tests`) is a module of its own,
+  `crate::a::b::name`, as for rustc: a test module that uses its parent's siblings
+  does not make the parent depend on them.
 * Edges come from every path in code after comments, strings and char literals are
   removed: `use` trees (`use crate::a::{b, c::D};`), `crate::a::b` paths written
   inline, `super::` / `self::` paths, and relative `use child::X` paths naming a child
@@ -143,9 +144,13 @@ class Crate:
                 if f.endswith(".rs"):
                     p = os.path.join(root, f)
                     self.files[module_of(p, src)] = p
-        self.modules = set(self.files)
         self.code = {m: strip_code(open(p, encoding="utf-8").read()) for m, p in self.files.items()}
-        self.uses = {m: list(self.find_uses(m)) for m in self.modules}
+        self.modules = set(self.files)
+        for m in list(self.files):
+            for (_s, _e, path) in self.inline_blocks(m):
+                self.modules.add(m + path)
+                self.files.setdefault(m + path, self.files[m])
+        self.uses = {m: list(self.find_uses(m)) for m in self.files if m in self.code}
         # Re-exports: module -> {name: (target path segments, is_glob)}
         self.reexports = defaultdict(dict)
         self.globs = defaultdict(list)
@@ -161,8 +166,9 @@ class Crate:
                 else:
                     self.reexports[m][segs[-1]] = absolute
 
-    def inline_stack(self, m):
-        """List of (start, end, name) for inline `mod name {` blocks in module m's code."""
+    def inline_blocks(self, m):
+        """List of (start, end, path) of the inline `mod name {` blocks in file module m's
+        code; path is the inline module's path below m (nested blocks give longer paths)."""
         code = self.code[m]
         blocks = []
         for mt in re.finditer(r"\bmod\s+(" + IDENT + r")\s*\{", code):
@@ -174,15 +180,19 @@ class Crate:
                     depth -= 1
                 j += 1
             blocks.append((mt.start(), j, mt.group(1)))
-        return blocks
+        return [
+            (s, e, tuple(n for (s2, e2, n) in blocks if s2 <= s and e <= e2))
+            for (s, e, _n) in blocks
+        ]
 
     def find_uses(self, m):
         """Yield (pos, inline_mod_path, is_pub, segments) for every path in m's code."""
         code = self.code[m]
-        blocks = self.inline_stack(m)
+        blocks = self.inline_blocks(m)
 
         def inline_at(pos):
-            return tuple(name for (s, e, name) in blocks if s < pos < e)
+            inside = [path for (s, e, path) in blocks if s < pos < e]
+            return max(inside, key=len) if inside else ()
 
         spans = []
         for mt in re.finditer(r"\b(pub(?:\s*\([^)]*\))?\s+)?use\s+([^;]*);", code):
@@ -243,12 +253,13 @@ class Crate:
 
     def graph(self):
         edges = defaultdict(dict)  # src -> dst -> first line
-        for m in self.modules:
-            code = self.code[m]
-            for (pos, inline, is_pub, segs) in self.uses[m]:
-                absolute = self.absolute(m, inline, segs)
+        for f in self.uses:
+            code = self.code[f]
+            for (pos, inline, is_pub, segs) in self.uses[f]:
+                absolute = self.absolute(f, inline, segs)
                 if absolute is None:
                     continue
+                m = f + inline
                 dst = self.resolve(absolute)
                 if dst == m:
                     continue
