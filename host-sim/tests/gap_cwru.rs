@@ -9,7 +9,7 @@
 
 use std::path::{Path, PathBuf};
 use wearsim_host::gap::attribute::{leave_one_out, Options};
-use wearsim_host::gap::cli::{diagnose, prepare, GapArgs};
+use wearsim_host::gap::stationary::{diagnose, prepare, GapArgs};
 
 fn args(dir: &Path, family: &str) -> GapArgs {
     let files: Vec<PathBuf> = (0..4)
@@ -47,6 +47,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         out: PathBuf::from("unused"),
         leave_one_out: false,
         json: false,
+        life: false,
     }
 }
 

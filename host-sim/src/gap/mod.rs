@@ -6,16 +6,14 @@
 
 pub mod attribute;
 pub mod cells;
-pub mod cli;
 pub mod fit;
-pub mod life_report;
 pub mod lifetime;
 pub mod matched;
 pub mod records;
 pub mod report;
 pub mod space;
+pub mod stationary;
 pub mod validate;
-pub mod validate_cli;
 
 pub use cells::{cells, CellSpec, CellValue};
 

@@ -4,8 +4,8 @@
 //! with `gap.json` holds a complete report.
 
 use super::attribute::{Attribution, Dropped, LeaveOneOut, Step};
-use super::cli::GapOutput;
 use super::matched::Matched;
+use super::stationary::GapOutput;
 use crate::analysis::{self, Spectrum, WelchParams};
 use crate::cli::CliError;
 use crate::life::output::write_atomic;

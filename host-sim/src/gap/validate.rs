@@ -6,6 +6,8 @@
 //! gives the top-1 identification rate, the confusion matrix, and the held-out shrink
 //! relative to the noise-only gap (the baseline against a twin with no effect at all).
 
+pub use super::attribute::{same_class, INDISTINGUISHABLE};
+
 use super::attribute::{attribute, Options};
 use super::matched::{merge, Evaluator, Matched};
 use super::space::{self, FitSpace};
@@ -139,22 +141,6 @@ pub struct TwinReport {
     pub simulations: usize,
     /// Wall-clock time (s).
     pub seconds: f64,
-}
-
-/// Pairs of effects that act through the same term for a stationary record, so no cell
-/// can separate them (reported, and counted as one class for [`EffectRate::top1_class`]).
-pub const INDISTINGUISHABLE: [(&str, &str, &str); 1] = [(
-    "running-in",
-    "roughness",
-    "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
-)];
-
-/// Whether effects `a` and `b` are the same or an [`INDISTINGUISHABLE`] pair.
-pub fn same_class(a: &str, b: &str) -> bool {
-    a == b
-        || INDISTINGUISHABLE
-            .iter()
-            .any(|(x, y, _)| (*x == a && *y == b) || (*x == b && *y == a))
 }
 
 /// The twin scenario: the CWRU drive-end bearing (cwru-6205-de) with a 0.007 in inner-race

@@ -13,6 +13,7 @@
 pub mod csv;
 pub mod error;
 pub mod ims;
+pub mod ims_life;
 pub mod mat;
 pub mod npy;
 pub mod perms;

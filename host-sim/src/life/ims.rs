@@ -15,6 +15,7 @@
 use super::{LifeRun, LifeSpec};
 use crate::analysis::stats::{robust_sigma, upper_median};
 use crate::io::ims::read_ims_features;
+use crate::io::ims_life::live_snapshots;
 use serde::Serialize;
 use std::path::Path;
 use wearsim_core::wear::{LifeConfig, Material};
@@ -71,10 +72,11 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
     let rms = f
         .column("B1_rms")
         .ok_or_else(|| format!("{}: no B1_rms column", path.display()))?;
-    let mean = f.column("B1_mean_abs").unwrap_or(rms);
-    // Dead final snapshots (machine stopped; README quirk): mean |x| below 10 % of median.
-    let med = upper_median(mean.to_vec()).unwrap_or(0.0);
-    let keep: Vec<usize> = (0..rms.len()).filter(|i| mean[*i] > 0.1 * med).collect();
+    // Dead final snapshots (machine stopped; README quirk): the one rule of the IMS reader.
+    let live = live_snapshots(&f);
+    let keep: Vec<usize> = (0..rms.len())
+        .filter(|i| live.get(*i).copied().unwrap_or(false))
+        .collect();
     let (Some(&first), Some(&last)) = (keep.first(), keep.last()) else {
         return Err(format!("{}: no valid snapshots", path.display()));
     };

@@ -1,7 +1,8 @@
-//! `wearsim gap`: arguments, training/held-out selection, the attribution run, and the
-//! report (Markdown, JSON, plots) answering where / which / how far.
+//! The stationary gap diagnosis (`wearsim gap` on records of seconds): arguments,
+//! training/held-out selection, the attribution run, and the "where" cells of the report
+//! ([`super::report`] writes it; [`crate::cmd::gap`] runs it).
 
-use super::attribute::{attribute, Attribution, Options};
+use super::attribute::{attribute, Attribution, Options, Totals};
 use super::matched::{Evaluator, Matched};
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
@@ -16,8 +17,8 @@ use wearsim_core::effects::Effects;
 #[derive(Debug, Clone, Args)]
 pub struct GapArgs {
     /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
-    /// An IMS feature table (`timefeatures.csv`) is a lifetime record: it is diagnosed
-    /// alone along life, and --train/--holdout name its bearings (B1, B2, ...).
+    /// With --life: one IMS feature table (`timefeatures.csv`), diagnosed along life;
+    /// --train/--holdout then name its bearings (B1, B2, ...).
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
     /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
@@ -70,6 +71,10 @@ pub struct GapArgs {
     /// Machine-readable report on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Lifetime mode: diagnose the gap along a whole life of one run-to-failure record
+    /// (an IMS feature table such as `test2_timefeatures.csv`).
+    #[arg(long)]
+    pub life: bool,
 }
 
 /// A cell of "where", aggregated over the held-out records.
@@ -125,31 +130,6 @@ pub struct GapOutput {
     pub seconds: f64,
     /// Files written.
     pub files: Vec<PathBuf>,
-}
-
-/// Total gaps.
-#[derive(Debug, Clone, Serialize)]
-pub struct Totals {
-    /// Baseline, training records.
-    pub train_before: f64,
-    /// Baseline, held-out records.
-    pub before: f64,
-    /// Held-out after the greedy additions.
-    pub after: f64,
-    /// `1 − after/before`.
-    pub shrink: f64,
-}
-
-impl Totals {
-    /// The totals of an attribution.
-    pub fn of(at: &Attribution) -> Self {
-        Totals {
-            train_before: at.baseline_train,
-            before: at.baseline_holdout,
-            after: at.final_holdout,
-            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
-        }
-    }
 }
 
 /// A record in the report.
@@ -390,67 +370,4 @@ pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
         .collect();
     out.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
     out
-}
-
-/// `wearsim gap`.
-pub fn run(a: &GapArgs) -> Result<(), CliError> {
-    if a.real.iter().any(|p| super::life_report::is_life_table(p)) {
-        return super::life_report::run(a);
-    }
-    let (roles, train, hold) = prepare(a)?;
-    let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
-    let loo = if a.leave_one_out {
-        let added = at.kept.clone();
-        Some(
-            super::attribute::leave_one_out(
-                &spaces,
-                &at.final_effects,
-                &added,
-                &train,
-                &hold,
-                &ev,
-                &Options::default(),
-            )
-            .map_err(CliError::run)?,
-        )
-    } else {
-        None
-    };
-    let mut findings: Vec<String> = roles
-        .iter()
-        .flat_map(|r| {
-            r.meta
-                .warnings
-                .iter()
-                .map(move |w| format!("{}: {w}", r.part))
-        })
-        .collect();
-    findings.dedup();
-    findings.extend(at.findings.iter().cloned());
-    let mut out = GapOutput {
-        records: roles,
-        where_: where_cells(&hold, &at),
-        ranking: at.ranking.clone(),
-        greedy: at.greedy.clone(),
-        dropped: at.dropped.clone(),
-        kept: at.kept.clone(),
-        totals: Totals::of(&at),
-        identified: at.identified.clone(),
-        tied_with: at.tied_with.clone(),
-        findings,
-        leave_one_out: loo,
-        simulations: ev.sims(),
-        seconds: at.seconds,
-        files: vec![],
-    };
-    out.files = super::report::write(&a.out, &out, &hold, &at)?;
-    if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::run)?
-        );
-    } else {
-        print!("{}", super::report::markdown(&out));
-    }
-    Ok(())
 }
