@@ -12,6 +12,7 @@
 //! the same bearing (in-sample), so that the simulated life lasts as long in revolutions.
 //! Everything else is the physics of the wear model; the timeline is not fitted.
 
+use super::calibrate::{calibrate, Secant};
 use super::{LifeRun, LifeSpec};
 use crate::analysis::stats::{robust_sigma, upper_median};
 use crate::io::ims::read_ims_features;
@@ -181,21 +182,16 @@ pub fn compare(data: &Path, seed: u64) -> Result<ImsComparison, String> {
     // the part of life it scales (fatigue up to crack opening); the rest is fixed physics.
     let (r1, _) = simulate(1.0, seed, 1.0 / 300.0, 5e8)?;
     let uncalibrated = r1.state.cycles;
-    let mut a = 1.0;
-    let mut life = uncalibrated;
-    let mut result = None;
-    for _ in 0..6 {
-        let fixed = fixed_part(&r1.state);
-        a *= ((target - fixed) / (life - fixed)).max(1e-9);
-        let (r, run) = simulate(a, seed, 1.0 / 300.0, target)?;
-        life = r.state.cycles;
-        let done = (life / target - 1.0).abs() < 0.01;
-        result = Some((r, run));
-        if done {
-            break;
-        }
-    }
-    let (r, _) = result.ok_or("calibration did not run")?;
+    let step = Secant {
+        fixed: fixed_part(&r1.state),
+        min_steps: 1,
+        max_steps: 6,
+    };
+    let c = calibrate(target, (uncalibrated, r1), &step, |a| {
+        let (r, _) = simulate(a, seed, 1.0 / 300.0, target)?;
+        Ok::<_, String>((r.state.cycles, r))
+    })?;
+    let (a, r) = (c.factor, c.last);
     let t: Vec<f64> = r
         .snapshots
         .iter()

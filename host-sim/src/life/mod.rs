@@ -9,6 +9,7 @@ use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
 
+pub mod calibrate;
 pub mod cli;
 pub mod dense;
 pub mod ims;

@@ -6,6 +6,7 @@
 use super::{LifePoint, EARLY_T_MAX};
 use crate::analysis;
 use crate::gap::matched::merge;
+use crate::life::calibrate::{calibrate as calibrate_life, Secant};
 use crate::life::{LifeRun, LifeSpec};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -164,29 +165,29 @@ impl LifeSim {
 }
 
 /// Calibrates the life factor so that the simulated baseline life lasts `target`
-/// revolutions within 1 %: proportional steps (the factor scales the fatigue part, most of
-/// the life; the rest makes the steps converge geometrically), as `wearsim ims-compare`
-/// calibrates its life. Returns the factor, the life's revolutions and the lives run.
+/// revolutions within 1 % ([`crate::life::calibrate`]): secant steps with no fixed part,
+/// i.e. proportional steps on the whole life (the factor scales the fatigue part, most of
+/// the life; the rest makes the steps converge geometrically), up to 8. `wearsim
+/// ims-compare` uses the same function with the crack-to-failure part held fixed. Returns
+/// the factor, the life's revolutions and the lives run.
 pub fn calibrate(preset: &str, seed: u64, target: f64) -> Result<(f64, f64, usize), String> {
-    let mut a = 1.0;
-    let mut runs = 0;
-    // The schedule needs an expected life; the first run uses the target.
-    let mut life = {
-        let s = LifeSim::new(preset, a, seed, target)?;
-        runs += 1;
-        s.run(&Effects::NONE)?.1
+    // The schedule needs an expected life; every run uses the target.
+    let run = |a: f64| -> Result<(f64, ()), String> {
+        Ok((
+            LifeSim::new(preset, a, seed, target)?
+                .run(&Effects::NONE)?
+                .1,
+            (),
+        ))
     };
-    for _ in 0..8 {
-        if (life / target - 1.0).abs() < 0.01 {
-            break;
-        }
-        // The factor scales fatigue up to crack opening; the rest is about a tenth of a
-        // calibrated life. Scale the whole life, then refine.
-        a *= (target / life).clamp(1e-6, 1e6);
-        let s = LifeSim::new(preset, a, seed, target)?;
-        runs += 1;
-        life = s.run(&Effects::NONE)?.1;
-    }
+    let first = run(1.0)?;
+    let step = Secant {
+        fixed: 0.0,
+        min_steps: 0,
+        max_steps: 8,
+    };
+    let c = calibrate_life(target, first, &step, run)?;
+    let (a, life, runs) = (c.factor, c.life, c.steps + 1);
     if (life / target - 1.0).abs() > 0.05 {
         return Err(format!(
             "the life factor did not converge: {life:.3e} revolutions against the measured {target:.3e}"
