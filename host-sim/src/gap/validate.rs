@@ -176,13 +176,7 @@ pub fn spec_of(cfg: &ModelConfig) -> Result<CellSpec, String> {
     };
     Ok(CellSpec {
         fs: cfg.output_rate,
-        ff: FaultFrequencies {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-        },
+        ff: FaultFrequencies::from(f),
         resonance_hz: model.natural_frequency_hz(),
         family,
     })
