@@ -24,7 +24,6 @@ use crate::analysis::{
     FaultDiagnosis, FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window,
     ZoneBands, ZoneLevels,
 };
-use crate::cli::CliError;
 use crate::io::{self, ReadOptions, Record};
 use clap::Args;
 use realfft::num_complex::Complex;
@@ -377,13 +376,13 @@ fn zones(x: &[f64], fs: f64, kin: &Kinematics) -> Result<Zones, String> {
 }
 
 /// Read `args.file` and analyse it; errors name the file (exit 2 for bad input).
-pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), CliError> {
+pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> {
     let opts = ReadOptions {
         channel: args.channel.clone(),
         fs: args.fs,
         rpm: args.rpm,
     };
-    let rec = io::read_any(&args.file, &opts).map_err(CliError::input)?;
+    let rec = io::read_any(&args.file, &opts).map_err(AnalyzeError::input)?;
     analyze_record(
         &rec,
         args.bearing.as_deref(),
@@ -399,13 +398,13 @@ pub fn analyze_record(
     bearing: Option<&str>,
     rpm_from_argument: bool,
     method: &Method,
-) -> Result<(Analysis, Spectra), CliError> {
+) -> Result<(Analysis, Spectra), AnalyzeError> {
     let file = rec.source.display().to_string();
     let (bearing, bearing_source) = match (bearing, rec.bearing.as_deref()) {
         (Some(b), _) => (b.to_string(), "argument"),
         (None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => (b.to_string(), "file"),
         (None, other) => {
-            return Err(CliError::input(format!(
+            return Err(AnalyzeError::input(format!(
                 "{file}: no bearing geometry{}: pass --bearing PRESET (one of {})",
                 other.map_or(String::new(), |b| format!(
                     " (the file names {b:?}, which is not a preset)"
@@ -415,14 +414,14 @@ pub fn analyze_record(
         }
     };
     let Some(rpm) = rec.rpm else {
-        return Err(CliError::input(format!(
+        return Err(AnalyzeError::input(format!(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
     let kin = Kinematics::of_preset(&bearing, rpm)
-        .map_err(|e| CliError::input(format!("{file}: {e}")))?;
+        .map_err(|e| AnalyzeError::input(format!("{file}: {e}")))?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
-        .map_err(|e| CliError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
+        .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {
         Ok(z) => (Some(z), None),
         Err(e) => (None, Some(e)),
@@ -559,6 +558,21 @@ pub fn print_analysis(a: &Analysis) {
         }
         (None, Some(n)) => println!("zone levels: {n}"),
         (None, None) => {}
+    }
+}
+
+/// Why a record cannot be analysed.
+#[derive(Debug, thiserror::Error)]
+pub enum AnalyzeError {
+    /// Bad input: the file, its metadata, an argument (names the field and its range).
+    #[error("{0}")]
+    Input(String),
+}
+
+impl AnalyzeError {
+    /// Bad input.
+    pub fn input(e: impl std::fmt::Display) -> Self {
+        AnalyzeError::Input(e.to_string())
     }
 }
 

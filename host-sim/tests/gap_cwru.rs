@@ -56,9 +56,9 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     };
     let a = args(&data.join("cwru"), family);
-    let (roles, train, hold) = prepare(&a).map_err(|e| e.message)?;
+    let (roles, train, hold) = prepare(&a).map_err(|e| e.to_string())?;
     assert_eq!((train.len(), hold.len()), (1, 3));
-    let (at, spaces, ev) = diagnose(&a, &train, &hold, &roles).map_err(|e| e.message)?;
+    let (at, spaces, ev) = diagnose(&a, &train, &hold, &roles).map_err(|e| e.to_string())?;
     println!(
         "{family}: held-out total gap {:.2} -> {:.2} ({:.0} % smaller), {} simulations, {:.1} s",
         at.baseline_holdout,

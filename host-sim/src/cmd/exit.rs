@@ -36,6 +36,33 @@ impl CliError {
     }
 }
 
+impl From<crate::plot::PlotError> for CliError {
+    fn from(e: crate::plot::PlotError) -> Self {
+        match e {
+            crate::plot::PlotError::Folder { .. } => CliError::input(e),
+            crate::plot::PlotError::Draw { .. } => CliError::run(e),
+        }
+    }
+}
+
+impl From<crate::analyze::AnalyzeError> for CliError {
+    fn from(e: crate::analyze::AnalyzeError) -> Self {
+        match e {
+            crate::analyze::AnalyzeError::Input(m) => CliError::input(m),
+        }
+    }
+}
+
+impl From<crate::gap::GapError> for CliError {
+    fn from(e: crate::gap::GapError) -> Self {
+        match e {
+            crate::gap::GapError::Input(m) => CliError::input(m),
+            crate::gap::GapError::Run(m) => CliError::run(m),
+            crate::gap::GapError::Plot(p) => p.into(),
+        }
+    }
+}
+
 /// Prints the error of a finished command, if any, and returns its exit code.
 pub fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {

@@ -5,6 +5,7 @@
 
 pub mod analyze;
 pub mod bench;
+pub mod cwru_benchmark;
 pub mod exit;
 pub mod gap;
 pub mod gap_validate;
@@ -79,7 +80,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::GapValidate(a) => gap_validate::run(&a),
         Command::Effects { json } => presets::effects(json),
         Command::Analyze(a) => analyze::run(&a),
-        Command::CwruBenchmark(a) => crate::cwru_benchmark::run(&a),
+        Command::CwruBenchmark(a) => cwru_benchmark::run(&a),
     }
 }
 

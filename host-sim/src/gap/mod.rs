@@ -6,6 +6,7 @@
 
 pub mod attribute;
 pub mod cells;
+pub mod error;
 pub mod fit;
 pub mod lifetime;
 pub mod matched;
@@ -16,6 +17,7 @@ pub mod stationary;
 pub mod validate;
 
 pub use cells::{cells, CellSpec, CellValue};
+pub use error::GapError;
 
 use crate::analysis::stats::mean_std;
 use crate::analysis::AnalysisError;

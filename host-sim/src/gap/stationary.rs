@@ -3,11 +3,11 @@
 //! ([`super::report`] writes it; [`crate::cmd::gap`] runs it).
 
 use super::attribute::{attribute, Attribution, Options, Totals};
+use super::error::GapError;
 use super::matched::{Evaluator, Matched};
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
 use crate::analysis::stats::rms;
-use crate::cli::CliError;
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -177,25 +177,25 @@ fn select(spec: &str, recs: &[RealRecord]) -> Result<Vec<usize>, String> {
 }
 
 impl GapArgs {
-    fn check(&self) -> Result<(), CliError> {
+    fn check(&self) -> Result<(), GapError> {
         if !(self.seconds.is_finite() && (MIN_PART_S..=30.0).contains(&self.seconds)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--seconds {} is out of range {MIN_PART_S}..=30",
                 self.seconds
             )));
         }
         if !(self.mains.is_finite() && (40.0..=70.0).contains(&self.mains)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--mains {} Hz is out of range 40..=70",
                 self.mains
             )));
         }
         if self.jobs == Some(0) {
-            return Err(CliError::input("--jobs 0: give at least 1"));
+            return Err(GapError::input("--jobs 0: give at least 1"));
         }
         for e in &self.effects {
             if wearsim_core::effects::info(e).is_none() {
-                return Err(CliError::input(format!(
+                return Err(GapError::input(format!(
                     "--effects: unknown effect `{e}` (see `wearsim effects`)"
                 )));
             }
@@ -208,10 +208,10 @@ impl GapArgs {
 pub type Prepared = (Vec<RecordRole>, Vec<Matched>, Vec<Matched>);
 
 /// Loads the records and builds the training and held-out matched parts.
-pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
+pub fn prepare(a: &GapArgs) -> Result<Prepared, GapError> {
     a.check()?;
     let defect = match &a.defect {
-        Some(d) => Some(records::parse_defect(d).map_err(CliError::input)?),
+        Some(d) => Some(records::parse_defect(d).map_err(GapError::input)?),
         None => None,
     };
     let o = Overrides {
@@ -226,18 +226,18 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
         .iter()
         .map(|p| records::load(p, &o))
         .collect::<Result<_, _>>()
-        .map_err(CliError::input)?;
+        .map_err(GapError::input)?;
     let mut roles = vec![];
     let (mut train, mut hold) = (vec![], vec![]);
     if recs.len() == 1 && a.train.is_none() && a.holdout.is_none() {
         let Some(r) = recs.first() else {
-            return Err(CliError::input("--real: no file"));
+            return Err(GapError::input("--real: no file"));
         };
         let half = r.accel.len() / 2;
         let len = half.min((a.seconds * r.fs).round() as usize);
         for (start, tag, set) in [(0, "train", &mut train), (half, "holdout", &mut hold)] {
             let m = records::part(r, start, len, a.seed + start as u64, tag)
-                .map_err(CliError::input)?;
+                .map_err(GapError::input)?;
             roles.push(RecordRole {
                 role: tag.into(),
                 part: m.label.clone(),
@@ -247,22 +247,22 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
         }
     } else {
         let ti = match &a.train {
-            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--train: {e}")))?,
+            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--train: {e}")))?,
             None => vec![0],
         };
         let hi = match &a.holdout {
-            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--holdout: {e}")))?,
+            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--holdout: {e}")))?,
             None => (0..recs.len()).filter(|i| !ti.contains(i)).collect(),
         };
         if let Some(i) = ti.iter().find(|i| hi.contains(i)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--train and --holdout both hold {}: a held-out record must not be fitted on",
                 recs.get(*i)
                     .map_or_else(String::new, |r| r.file.display().to_string())
             )));
         }
         if ti.is_empty() || hi.is_empty() {
-            return Err(CliError::input(
+            return Err(GapError::input(
                 "--train/--holdout: give at least one training and one held-out record",
             ));
         }
@@ -271,7 +271,7 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
                 let Some(r) = recs.get(*i) else { continue };
                 let len = r.accel.len().min((a.seconds * r.fs).round() as usize);
                 let m = records::part(r, 0, len, a.seed + 1000 * k as u64 + 7 * *i as u64, tag)
-                    .map_err(CliError::input)?;
+                    .map_err(GapError::input)?;
                 roles.push(RecordRole {
                     role: tag.into(),
                     part: m.label.clone(),
@@ -295,10 +295,10 @@ pub fn diagnose(
     train: &[Matched],
     hold: &[Matched],
     recs: &[RecordRole],
-) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), CliError> {
+) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), GapError> {
     let first = train
         .first()
-        .ok_or_else(|| CliError::input("no training record"))?;
+        .ok_or_else(|| GapError::input("no training record"))?;
     let level = recs
         .iter()
         .find(|r| r.role == "train")
@@ -308,7 +308,7 @@ pub fn diagnose(
     let only = (!a.effects.is_empty()).then_some(a.effects.as_slice());
     let spaces = space::applicable(&ctx, has_defect, only);
     if spaces.is_empty() {
-        return Err(CliError::input(
+        return Err(GapError::input(
             "--effects: none of the chosen effects acts on these records (slip, load-zone and edge-shape need a defect)",
         ));
     }
@@ -324,7 +324,7 @@ pub fn diagnose(
         &ev,
         &Options::default(),
     )
-    .map_err(CliError::run)?;
+    .map_err(GapError::run)?;
     Ok((at, spaces, ev))
 }
 

@@ -3,8 +3,8 @@
 //! answering where along life / which effect / how far.
 
 use crate::analysis::stats::upper_median;
-use crate::cli::CliError;
 use crate::gap::attribute::{Dropped, LeaveOneOut, Ranked, Step, Totals};
+use crate::gap::error::GapError;
 use crate::gap::fit::FittedParam;
 use crate::gap::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifePoint, StageGap};
 use crate::gap::report::{
@@ -337,10 +337,10 @@ fn along(pts: &[LifePoint], i: usize) -> Vec<(f64, f64)> {
 }
 
 /// Writes plots, `gap.md` and (last) `gap.json`; returns the files.
-pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>, CliError> {
+pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>, GapError> {
     register_fonts();
     std::fs::create_dir_all(dir)
-        .map_err(|err| CliError::input(format!("--out {}: {err}", dir.display())))?;
+        .map_err(|err| GapError::input(format!("--out {}: {err}", dir.display())))?;
     let mut files = vec![];
     const HOLD_C: RGBColor = RGBColor(160, 160, 160);
     for (i, name, ylabel) in [
