@@ -9,6 +9,7 @@ pub mod cwru_benchmark;
 pub mod exit;
 pub mod gap;
 pub mod gap_validate;
+pub mod life;
 pub mod presets;
 pub mod simulate;
 
@@ -37,9 +38,9 @@ pub enum Command {
     Simulate(crate::cli::SimulateArgs),
     /// Run a whole wear life: stage timeline, per-snapshot features, events (snapshot or dense mode).
     #[command(allow_negative_numbers = true)]
-    Life(crate::life::cli::LifeArgs),
+    Life(life::LifeArgs),
     /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
-    ImsCompare(crate::life::cli::ImsCompareArgs),
+    ImsCompare(life::ImsCompareArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(crate::cli::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
@@ -73,8 +74,8 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Capture(a) => crate::capture::run(a),
-        Command::Life(a) => crate::life::cli::life_cmd(&a),
-        Command::ImsCompare(a) => crate::life::cli::ims_compare_cmd(&a),
+        Command::Life(a) => life::life_cmd(&a),
+        Command::ImsCompare(a) => life::ims_compare_cmd(&a),
         Command::Presets { json } => presets::run(json),
         Command::Gap(a) => gap::run(&a),
         Command::GapValidate(a) => gap_validate::run(&a),

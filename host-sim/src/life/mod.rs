@@ -10,7 +10,6 @@ use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
 
 pub mod calibrate;
-pub mod cli;
 pub mod dense;
 pub mod ims;
 pub mod output;
