@@ -15,6 +15,9 @@ cargo fmt --all -- --check
 step "cargo clippy (deny warnings)"
 cargo clippy --workspace --all-targets -- -D warnings
 
+step "no import cycle between host-sim modules"
+python3 scripts/check-import-cycles.py
+
 step "core: no_std builds for thumbv6m-none-eabi and thumbv7em-none-eabihf, both precisions"
 for target in thumbv6m-none-eabi thumbv7em-none-eabihf; do
   cargo build -p wearsim-core --target "$target"

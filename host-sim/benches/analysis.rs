@@ -29,7 +29,10 @@ fn record(ff: &FaultFrequencies) -> Vec<f64> {
 }
 
 fn bench(c: &mut Criterion) {
-    let ff = FaultFrequencies::from_geometry(29.95, 9, 7.94, 39.04, 0.0);
+    let cfg = wearsim_core::presets::by_name("cwru-6205-de").unwrap();
+    let ff: FaultFrequencies = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing)
+        .at(29.95)
+        .into();
     let x = record(&ff);
     let mut g = c.benchmark_group("analysis_10s_48k");
     g.throughput(Throughput::Elements(N as u64));

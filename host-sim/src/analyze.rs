@@ -24,7 +24,6 @@ use crate::analysis::{
     FaultDiagnosis, FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window,
     ZoneBands, ZoneLevels,
 };
-use crate::cli::CliError;
 use crate::io::{self, ReadOptions, Record};
 use clap::Args;
 use realfft::num_complex::Complex;
@@ -384,13 +383,13 @@ fn zones(x: &[f64], fs: f64, kin: &Kinematics) -> Result<Zones, String> {
 }
 
 /// Read `args.file` and analyse it; errors name the file (exit 2 for bad input).
-pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), CliError> {
+pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> {
     let opts = ReadOptions {
         channel: args.channel.clone(),
         fs: args.fs,
         rpm: args.rpm,
     };
-    let rec = io::read_any(&args.file, &opts).map_err(CliError::input)?;
+    let rec = io::read_any(&args.file, &opts).map_err(AnalyzeError::input)?;
     analyze_record(
         &rec,
         args.bearing.as_deref(),
@@ -406,7 +405,7 @@ pub fn analyze_record(
     bearing: Option<&str>,
     rpm_from_argument: bool,
     method: &Method,
-) -> Result<(Analysis, Spectra), CliError> {
+) -> Result<(Analysis, Spectra), AnalyzeError> {
     let file = rec.source.display().to_string();
     // A wearsim sidecar's structured model carries the geometry actually simulated (a
     // `[bearing]` override included); other files name a preset.
@@ -422,7 +421,7 @@ pub fn analyze_record(
             (b.to_string(), "file", None)
         }
         (None, None, other) => {
-            return Err(CliError::input(format!(
+            return Err(AnalyzeError::input(format!(
                 "{file}: no bearing geometry{}: pass --bearing PRESET (one of {})",
                 other.map_or(String::new(), |b| format!(
                     " (the file names {b:?}, which is not a preset)"
@@ -432,12 +431,12 @@ pub fn analyze_record(
         }
     };
     let Some(rpm) = rec.rpm else {
-        return Err(CliError::input(format!(
+        return Err(AnalyzeError::input(format!(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
     if rec.samples.len() > crate::io::record::MAX_RECORD_SAMPLES {
-        return Err(CliError::input(crate::io::IoError::TooLarge {
+        return Err(AnalyzeError::input(crate::io::IoError::TooLarge {
             path: rec.source.clone(),
             what: format!("record of {} samples", rec.samples.len()),
             limit: format!(
@@ -450,9 +449,9 @@ pub fn analyze_record(
         Some(m) => Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}")),
         None => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
     }
-    .map_err(CliError::input)?;
+    .map_err(AnalyzeError::input)?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
-        .map_err(|e| CliError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
+        .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {
         Ok(z) => (Some(z), None),
         Err(e) => (None, Some(e)),
@@ -483,7 +482,7 @@ pub fn analyze_record(
     };
     // The last guard: no NaN/inf (JSON `null`) is ever presented as a result.
     if let Some((path, v)) = analysis::finite::first_non_finite(&analysis) {
-        return Err(CliError::run(format!(
+        return Err(AnalyzeError::Run(format!(
             "{file}: channel {}: the analysis produced a non-finite figure ({path} = {v}); nothing is reported",
             rec.channel
         )));
@@ -597,34 +596,22 @@ pub fn print_analysis(a: &Analysis) {
     }
 }
 
-/// `wearsim analyze`: read, analyse, print (or `--json`), plot.
-pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
-    // Exclusive, writable plot directory before any work (docs/reliability.md).
-    let _lock = match &args.plot {
-        Some(dir) => Some(crate::io::lock::DirLock::try_acquire(dir).map_err(CliError::input)?),
-        None => None,
-    };
-    let (a, spectra) = analyze(args)?;
-    let plots = match &args.plot {
-        Some(dir) => crate::plot::write_all(dir, &a, &spectra)?,
-        None => vec![],
-    };
-    if args.json {
-        let mut v = serde_json::to_value(&a).map_err(CliError::run)?;
-        if let Some(obj) = v.as_object_mut() {
-            obj.insert("plots".into(), serde_json::json!(plots));
-        }
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(CliError::run)?
-        );
-    } else {
-        print_analysis(&a);
-        for p in &plots {
-            println!("wrote {}", p.display());
-        }
+/// Why a record cannot be analysed.
+#[derive(Debug, thiserror::Error)]
+pub enum AnalyzeError {
+    /// Bad input: the file, its metadata, an argument (names the field and its range).
+    #[error("{0}")]
+    Input(String),
+    /// The analysis itself failed (a non-finite figure from finite input).
+    #[error("{0}")]
+    Run(String),
+}
+
+impl AnalyzeError {
+    /// Bad input.
+    pub fn input(e: impl std::fmt::Display) -> Self {
+        AnalyzeError::Input(e.to_string())
     }
-    Ok(())
 }
 
 /// The file name `path` without directories, for messages.

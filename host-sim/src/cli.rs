@@ -9,31 +9,7 @@ use serde::Serialize;
 use serde_json::{json, Value};
 use std::path::PathBuf;
 
-/// An error with the process exit code it maps to.
-#[derive(Debug)]
-pub struct CliError {
-    /// 1 = the run failed, 2 = bad input.
-    pub code: u8,
-    /// One-line message naming the offending field, file or argument.
-    pub message: String,
-}
-
-impl CliError {
-    /// Bad input (exit code 2).
-    pub fn input(e: impl std::fmt::Display) -> Self {
-        CliError {
-            code: 2,
-            message: e.to_string(),
-        }
-    }
-    /// Run failure (exit code 1).
-    pub fn run(e: impl std::fmt::Display) -> Self {
-        CliError {
-            code: 1,
-            message: e.to_string(),
-        }
-    }
-}
+pub use crate::cmd::exit::CliError;
 
 /// `wearsim simulate` arguments. Command-line values override the configuration file,
 /// which overrides the preset.

@@ -4,6 +4,7 @@ pub mod analysis;
 pub mod analyze;
 pub mod capture;
 pub mod cli;
+pub mod cmd;
 pub mod config;
 pub mod cwru_benchmark;
 pub mod effects;

@@ -223,7 +223,7 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
     let few = life_table(dir.path(), "few_timefeatures.csv", 8);
     let cwru = csv(dir.path(), "noise.csv", 24_000);
     let run = |extra: &[&str], file: &str, needle: &str| {
-        let mut v = vec!["gap", "--real", file, "--out", &o];
+        let mut v = vec!["gap", "--life", "--real", file, "--out", &o];
         v.extend(extra);
         bad(&v, needle, &out);
     };
@@ -243,6 +243,7 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
     // any simulation runs.
     let five = [
         "gap",
+        "--life",
         "--real",
         &life,
         "--out",
@@ -255,6 +256,26 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
     bad(&five, "bearing 5 is not in the table", &out);
     run(&[], &few, "fewer than 3 snapshots in the running-in stage");
     // A lifetime table is diagnosed alone.
-    let two = ["gap", "--real", &life, "--real", &cwru, "--out", &o];
+    let two = [
+        "gap", "--life", "--real", &life, "--real", &cwru, "--out", &o,
+    ];
     bad(&two, "diagnosed alone", &out);
+    // The lifetime mode is chosen explicitly, not by the file's name or content: a
+    // lifetime table without --life is refused with the invocation to use, and --life on
+    // a record of seconds names what it needs.
+    bad(
+        &["gap", "--real", &life, "--out", &o],
+        "wearsim gap --life --real",
+        &out,
+    );
+    bad(
+        &["gap", "--real", &cwru, "--real", &life, "--out", &o],
+        "is a lifetime record",
+        &out,
+    );
+    bad(
+        &["gap", "--life", "--real", &cwru, "--out", &o],
+        "not a lifetime record",
+        &out,
+    );
 }

@@ -9,7 +9,7 @@
 
 use std::path::{Path, PathBuf};
 use wearsim_host::gap::attribute::{leave_one_out, Options};
-use wearsim_host::gap::cli::{diagnose, prepare, GapArgs};
+use wearsim_host::gap::stationary::{diagnose, prepare, GapArgs};
 
 fn args(dir: &Path, family: &str) -> GapArgs {
     let files: Vec<PathBuf> = (0..4)
@@ -47,6 +47,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         out: PathBuf::from("unused"),
         leave_one_out: false,
         json: false,
+        life: false,
     }
 }
 
@@ -55,9 +56,9 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     };
     let a = args(&data.join("cwru"), family);
-    let (roles, train, hold) = prepare(&a).map_err(|e| e.message)?;
+    let (roles, train, hold) = prepare(&a).map_err(|e| e.to_string())?;
     assert_eq!((train.len(), hold.len()), (1, 3));
-    let (at, spaces, ev) = diagnose(&a, &train, &hold, &roles).map_err(|e| e.message)?;
+    let (at, spaces, ev) = diagnose(&a, &train, &hold, &roles).map_err(|e| e.to_string())?;
     println!(
         "{family}: held-out total gap {:.2} -> {:.2} ({:.0} % smaller), {} simulations, {:.1} s",
         at.baseline_holdout,

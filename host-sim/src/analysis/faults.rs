@@ -21,26 +21,18 @@ pub struct FaultFrequencies {
     pub bsf: f64,
 }
 
-impl FaultFrequencies {
-    /// Kinematic frequencies for a stationary outer race (Randall & Antoni
-    /// 2011, eqs. 1–4): `n_balls` rolling elements of diameter `ball_d` on
-    /// pitch diameter `pitch_d` (same length unit), contact angle
-    /// `contact_angle_rad`, shaft at `shaft_hz` Hz.
-    pub fn from_geometry(
-        shaft_hz: f64,
-        n_balls: usize,
-        ball_d: f64,
-        pitch_d: f64,
-        contact_angle_rad: f64,
-    ) -> Self {
-        let r = ball_d / pitch_d * contact_angle_rad.cos();
-        let z = n_balls as f64;
+/// The core's kinematic frequencies (eq. 17–20, `wearsim_core::kinematics`, the one
+/// implementation) in the detector's form: the only conversion between the two.
+impl From<wearsim_core::kinematics::FaultFrequencies> for FaultFrequencies {
+    // `Real` is f32 with the core's `f32` feature: the conversions are then not the identity.
+    #[allow(clippy::useless_conversion)]
+    fn from(f: wearsim_core::kinematics::FaultFrequencies) -> Self {
         FaultFrequencies {
-            shaft_hz,
-            ftf: shaft_hz / 2.0 * (1.0 - r),
-            bpfo: z * shaft_hz / 2.0 * (1.0 - r),
-            bpfi: z * shaft_hz / 2.0 * (1.0 + r),
-            bsf: pitch_d / (2.0 * ball_d) * shaft_hz * (1.0 - r * r),
+            shaft_hz: f64::from(f.shaft),
+            ftf: f64::from(f.ftf),
+            bpfo: f64::from(f.bpfo),
+            bpfi: f64::from(f.bpfi),
+            bsf: f64::from(f.bsf),
         }
     }
 }
@@ -439,8 +431,12 @@ mod tests {
 
     #[test]
     fn geometry_matches_cwru_table() {
-        // SKF 6205-2RS: 9 balls, d = 7.94 mm, D = 39.04 mm.
-        let ff = FaultFrequencies::from_geometry(29.95, 9, 7.94, 39.04, 0.0);
+        // SKF 6205-2RS: 9 balls, d = 7.94 mm, D = 39.04 mm (preset cwru-6205-de), through
+        // the core's eq. 17–20.
+        let cfg = wearsim_core::presets::by_name("cwru-6205-de").expect("preset");
+        let ff: FaultFrequencies = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing)
+            .at(29.95)
+            .into();
         assert!(
             (ff.bpfo / 29.95 - 3.5848).abs() < 0.001,
             "{}",

@@ -58,15 +58,6 @@ pub(crate) fn one_sided_factor(k: usize, n: usize) -> f64 {
     }
 }
 
-/// Arithmetic mean of `x` (0 for an empty slice).
-pub(crate) fn mean(x: &[f64]) -> f64 {
-    if x.is_empty() {
-        0.0
-    } else {
-        x.iter().sum::<f64>() / x.len() as f64
-    }
-}
-
 /// Complex envelope of the band formed by bins `k0..=k1` of the one-sided
 /// spectrum `spec` of a real record of `n` samples (DC excluded by the
 /// caller). The bins are shifted to base band and inverse-transformed with

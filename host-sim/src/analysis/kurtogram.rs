@@ -3,8 +3,9 @@
 
 use super::envelope::band_bins;
 use super::error::{bad, check_fs, check_signal, AnalysisError};
-use super::fft::{band_envelope, mean, rfft, rfft_windowed};
+use super::fft::{band_envelope, rfft, rfft_windowed};
 use super::spectrum::{Spectrum, SpectrumKind};
+use super::stats::mean;
 use super::window::Window;
 use realfft::num_complex::Complex;
 use serde::Serialize;

@@ -2,6 +2,7 @@
 //! search near an expected frequency, and a median noise floor.
 
 use super::spectrum::{Spectrum, SpectrumKind};
+use super::stats::median;
 use serde::Serialize;
 
 /// Half-width, in bins, of the region around a peak excluded from its noise
@@ -118,21 +119,12 @@ pub fn noise_floor(s: &Spectrum, f: f64, half_width_hz: f64) -> f64 {
     let hw = half_width_hz.abs();
     let lo = s.bin_of(f - hw);
     let hi = s.bin_of(f + hw);
-    let mut v: Vec<f64> = (lo..=hi)
+    let v: Vec<f64> = (lo..=hi)
         .filter(|k| k.abs_diff(kc) > FLOOR_EXCLUDE_BINS)
         .map(|k| s.values[k])
         .filter(|v| v.is_finite())
         .collect();
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
-    }
+    median(v).unwrap_or(0.0)
 }
 
 /// Ratio of a value to a floor in dB: `20 log10` for amplitude-like spectra,

@@ -2,7 +2,8 @@
 //! spectrum, on a uniform one-sided frequency grid.
 
 use super::error::{bad, check_fs, check_signal, AnalysisError};
-use super::fft::{mean, one_sided_factor, rfft_windowed};
+use super::fft::{one_sided_factor, rfft_windowed};
+use super::stats::mean;
 use super::window::Window;
 use serde::{Deserialize, Serialize};
 

@@ -81,11 +81,102 @@ pub fn stats(x: &[f64]) -> Result<Stats, AnalysisError> {
     })
 }
 
+/// Arithmetic mean of `x` (0 for an empty slice).
+pub fn mean(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        0.0
+    } else {
+        x.iter().sum::<f64>() / x.len() as f64
+    }
+}
+
+/// Mean and sample standard deviation (`1/(n−1)`, `1/n` for a single value) of `v`.
+/// An empty slice gives `(0, 0)`.
+pub fn mean_std(v: &[f64]) -> (f64, f64) {
+    let n = v.len().max(1) as f64;
+    let m = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0).max(1.0);
+    (m, var.sqrt())
+}
+
+/// Root mean square of `x` about zero, `√(Σx²/n)` (0 for an empty slice). Plain sum of
+/// squares, unlike [`Stats::rms`], which scales by the peak first.
+pub fn rms(x: &[f64]) -> f64 {
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
+}
+
+/// The finite values of `v`, sorted ascending.
+fn sorted_finite(mut v: Vec<f64>) -> Vec<f64> {
+    v.retain(|x| x.is_finite());
+    v.sort_by(f64::total_cmp);
+    v
+}
+
+/// Median of the finite values of `v`: the middle value, or the mean of the two middle
+/// values for an even count. `None` when no value is finite. The statistician's median,
+/// used where a figure is reported (twin-experiment summaries, noise floors).
+pub fn median(v: Vec<f64>) -> Option<f64> {
+    let v = sorted_finite(v);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v.get(m).copied()
+    } else {
+        Some(0.5 * (*v.get(m.checked_sub(1)?)? + *v.get(m)?))
+    }
+}
+
+/// Upper median of the finite values of `v`: the value at index `n/2` of the sorted
+/// values (the median for an odd count, the upper of the two middle values for an even
+/// one). `None` when no value is finite. Always one of the values themselves; the life
+/// reference levels (steady-stage RMS, early-life RMS, dead-snapshot threshold) were
+/// recorded with it, so it is kept distinct from [`median`] to keep those figures.
+pub fn upper_median(v: Vec<f64>) -> Option<f64> {
+    let v = sorted_finite(v);
+    v.get(v.len() / 2).copied()
+}
+
+/// Robust centre and scale of `v`: the [`upper_median`] `m` and the normal-consistent
+/// median absolute deviation `1.4826 · upper_median(|v − m|)` (Rousseeuw & Croux 1993).
+/// `None` when no value is finite.
+pub fn robust_sigma(v: Vec<f64>) -> Option<(f64, f64)> {
+    let m = upper_median(v.clone())?;
+    let dev = upper_median(v.iter().map(|x| (x - m).abs()).collect())?;
+    Some((m, 1.4826 * dev))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::analysis::synth::{gaussian_noise, sine};
     use proptest::prelude::*;
+
+    #[test]
+    fn medians_of_odd_and_even_counts() {
+        assert_eq!(median(vec![3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(vec![4.0, 1.0, 3.0, 2.0]), Some(2.5));
+        assert_eq!(upper_median(vec![4.0, 1.0, 3.0, 2.0]), Some(3.0));
+        assert_eq!(upper_median(vec![3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(vec![f64::NAN, 1.0, f64::INFINITY]), Some(1.0));
+        assert_eq!(median(vec![]), None);
+        assert_eq!(upper_median(vec![f64::NAN]), None);
+    }
+
+    #[test]
+    fn robust_sigma_of_normal_deviations() {
+        // Deviations 0, 1, 1, 2, 2 about the centre 10: MAD 1, sigma 1.4826.
+        let (m, s) = robust_sigma(vec![8.0, 9.0, 10.0, 11.0, 12.0]).unwrap_or((0.0, 0.0));
+        assert_eq!(m, 10.0);
+        assert!((s - 1.4826).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mean_std_and_rms() {
+        let (m, s) = mean_std(&[1.0, 2.0, 3.0, 4.0]);
+        assert!((m - 2.5).abs() < 1e-15);
+        assert!((s - (5.0f64 / 3.0).sqrt()).abs() < 1e-15);
+        assert!((rms(&[3.0, -4.0]) - (12.5f64).sqrt()).abs() < 1e-15);
+        assert_eq!(mean(&[]), 0.0);
+    }
 
     #[test]
     fn gaussian_noise_moments() {

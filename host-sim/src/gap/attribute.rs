@@ -13,6 +13,22 @@ use serde::Serialize;
 use std::time::Instant;
 use wearsim_core::effects::Effects;
 
+/// Pairs of effects that act through the same term for a stationary record, so no cell
+/// can separate them (reported, and counted as one class by the twin experiments and the leave-one-out check).
+pub const INDISTINGUISHABLE: [(&str, &str, &str); 1] = [(
+    "running-in",
+    "roughness",
+    "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
+)];
+
+/// Whether effects `a` and `b` are the same or an [`INDISTINGUISHABLE`] pair.
+pub fn same_class(a: &str, b: &str) -> bool {
+    a == b
+        || INDISTINGUISHABLE
+            .iter()
+            .any(|(x, y, _)| (*x == a && *y == b) || (*x == b && *y == a))
+}
+
 /// Attribution settings.
 #[derive(Debug, Clone, Copy)]
 pub struct Options {
@@ -384,7 +400,7 @@ pub struct LeaveOneOut {
     /// The effect the diagnosis of the reduced model names first.
     pub named_first: Option<String>,
     /// Whether that is the withheld effect (or one the cells cannot tell apart from it,
-    /// [`super::validate::INDISTINGUISHABLE`]).
+    /// [`INDISTINGUISHABLE`]).
     pub named: bool,
     /// The reduced model's ranking, best first (at most three): effect and held-out shrink.
     pub ranking: Vec<(String, f64)>,
@@ -431,10 +447,7 @@ pub fn leave_one_out<T: Target>(
             effect: name.clone(),
             full: g_full,
             without: g,
-            named: a
-                .identified
-                .as_deref()
-                .is_some_and(|f| super::validate::same_class(f, name)),
+            named: a.identified.as_deref().is_some_and(|f| same_class(f, name)),
             named_first: a.identified,
             ranking: a
                 .ranking
@@ -445,4 +458,29 @@ pub fn leave_one_out<T: Target>(
         });
     }
     Ok(out)
+}
+
+/// Total gaps.
+#[derive(Debug, Clone, Serialize)]
+pub struct Totals {
+    /// Baseline, training records.
+    pub train_before: f64,
+    /// Baseline, held-out records.
+    pub before: f64,
+    /// Held-out after the greedy additions.
+    pub after: f64,
+    /// `1 − after/before`.
+    pub shrink: f64,
+}
+
+impl Totals {
+    /// The totals of an attribution.
+    pub fn of(at: &Attribution) -> Self {
+        Totals {
+            train_before: at.baseline_train,
+            before: at.baseline_holdout,
+            after: at.final_holdout,
+            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
+        }
+    }
 }

@@ -6,19 +6,20 @@
 
 pub mod attribute;
 pub mod cells;
-pub mod cli;
+pub mod error;
 pub mod fit;
-pub mod life_report;
 pub mod lifetime;
 pub mod matched;
 pub mod records;
 pub mod report;
 pub mod space;
+pub mod stationary;
 pub mod validate;
-pub mod validate_cli;
 
 pub use cells::{cells, CellSpec, CellValue};
+pub use error::GapError;
 
+use crate::analysis::stats::mean_std;
 use crate::analysis::AnalysisError;
 use serde::Serialize;
 
@@ -63,13 +64,6 @@ pub struct GapReport {
     pub total: f64,
     /// Segments used on each side.
     pub segments: usize,
-}
-
-fn mean_std(v: &[f64]) -> (f64, f64) {
-    let n = v.len().max(1) as f64;
-    let m = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0).max(1.0);
-    (m, var.sqrt())
 }
 
 /// The per-segment cell whose segment-to-segment wander is itself a cell: the offset of

@@ -6,6 +6,7 @@
 use super::matched::Matched;
 use super::validate::spec_of;
 use super::Reference;
+use crate::analysis::stats::upper_median;
 use crate::analysis::{self, WelchParams};
 use crate::io::{self, mat::CwruFault, ReadOptions, Record};
 use serde::Serialize;
@@ -163,12 +164,11 @@ pub fn estimate_shaft_hz(x: &[f64], fs: f64, nominal_hz: f64) -> Option<f64> {
         .filter_map(|k| psd.values.get(k).map(|v| (k, *v)))
         .max_by(|a, b| a.1.total_cmp(&b.1))?;
     let w = ((5.0 / psd.df) as usize).max(3);
-    let mut nb: Vec<f64> = (k.saturating_sub(w)..=k + w)
+    let nb: Vec<f64> = (k.saturating_sub(w)..=k + w)
         .filter(|j| j.abs_diff(k) > 1)
         .filter_map(|j| psd.values.get(j).copied())
         .collect();
-    nb.sort_by(f64::total_cmp);
-    let med = *nb.get(nb.len() / 2)?;
+    let med = upper_median(nb)?;
     (v > 10.0 * med && med > 0.0).then(|| psd.freq(k))
 }
 

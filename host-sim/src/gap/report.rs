@@ -4,10 +4,10 @@
 //! with `gap.json` holds a complete report.
 
 use super::attribute::{Attribution, Dropped, LeaveOneOut, Step};
-use super::cli::GapOutput;
+use super::error::GapError;
 use super::matched::Matched;
+use super::stationary::GapOutput;
 use crate::analysis::{self, Spectrum, WelchParams};
-use crate::cli::CliError;
 use crate::life::output::write_atomic;
 use crate::plot::{db, e, points, range, register_fonts, render, FONT, R};
 use plotters::coord::Shift;
@@ -329,17 +329,17 @@ pub fn write(
     o: &GapOutput,
     hold: &[Matched],
     at: &Attribution,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, GapError> {
     register_fonts();
     std::fs::create_dir_all(dir)
-        .map_err(|err| CliError::input(format!("--out {}: {err}", dir.display())))?;
+        .map_err(|err| GapError::input(format!("--out {}: {err}", dir.display())))?;
     let mut files = vec![];
     if let Some(m) = hold.first() {
         let fs = m.spec().fs;
         let base = m
             .simulate(&wearsim_core::effects::Effects::NONE)
-            .map_err(CliError::run)?;
-        let fin = m.simulate(&at.final_effects).map_err(CliError::run)?;
+            .map_err(GapError::run)?;
+        let fin = m.simulate(&at.final_effects).map_err(GapError::run)?;
         let spectra: Vec<Option<Spectrum>> =
             [&m.real, &base, &fin].iter().map(|x| psd(x, fs)).collect();
         let pts = |s: &Option<Spectrum>, f1: f64| {
@@ -439,15 +439,15 @@ pub(crate) fn finish<T: serde::Serialize>(
     md: &str,
     mut files: Vec<PathBuf>,
     with_files: impl FnOnce(Vec<PathBuf>) -> T,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, GapError> {
     let path = dir.join("gap.md");
     write_atomic(&path, md.as_bytes())
-        .map_err(|err| CliError::run(format!("{}: {err}", path.display())))?;
+        .map_err(|err| GapError::run(format!("{}: {err}", path.display())))?;
     files.push(path);
     let js = dir.join("gap.json");
     files.push(js.clone());
-    let text = serde_json::to_string_pretty(&with_files(files.clone())).map_err(CliError::run)?;
+    let text = serde_json::to_string_pretty(&with_files(files.clone())).map_err(GapError::run)?;
     write_atomic(&js, text.as_bytes())
-        .map_err(|err| CliError::run(format!("{}: {err}", js.display())))?;
+        .map_err(|err| GapError::run(format!("{}: {err}", js.display())))?;
     Ok(files)
 }

@@ -6,10 +6,13 @@
 //! gives the top-1 identification rate, the confusion matrix, and the held-out shrink
 //! relative to the noise-only gap (the baseline against a twin with no effect at all).
 
+pub use super::attribute::{same_class, INDISTINGUISHABLE};
+
 use super::attribute::{attribute, Options};
 use super::matched::{merge, Evaluator, Matched};
 use super::space::{self, FitSpace};
 use super::{CellSpec, Reference};
+use crate::analysis::stats::{self, rms};
 use crate::analysis::{FaultFamily, FaultFrequencies};
 use serde::Serialize;
 use std::time::Instant;
@@ -140,22 +143,6 @@ pub struct TwinReport {
     pub seconds: f64,
 }
 
-/// Pairs of effects that act through the same term for a stationary record, so no cell
-/// can separate them (reported, and counted as one class for [`EffectRate::top1_class`]).
-pub const INDISTINGUISHABLE: [(&str, &str, &str); 1] = [(
-    "running-in",
-    "roughness",
-    "within a record of seconds running-in is a constant factor on the roughness: both scale the same random contact term; only the evolution along life separates them",
-)];
-
-/// Whether effects `a` and `b` are the same or an [`INDISTINGUISHABLE`] pair.
-pub fn same_class(a: &str, b: &str) -> bool {
-    a == b
-        || INDISTINGUISHABLE
-            .iter()
-            .any(|(x, y, _)| (*x == a && *y == b) || (*x == b && *y == a))
-}
-
 /// The twin scenario: the CWRU drive-end bearing (cwru-6205-de) with a 0.007 in inner-race
 /// defect (EDM seeded, 0.011 in deep) at 1797 rpm, 12 kHz — the inner race so that every
 /// candidate effect, the load zone included, has something to act on.
@@ -189,13 +176,7 @@ pub fn spec_of(cfg: &ModelConfig) -> Result<CellSpec, String> {
     };
     Ok(CellSpec {
         fs: cfg.output_rate,
-        ff: FaultFrequencies {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-        },
+        ff: FaultFrequencies::from(f),
         resonance_hz: model.natural_frequency_hz(),
         family,
     })
@@ -252,18 +233,9 @@ fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
         .collect()
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.retain(|x| x.is_finite());
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+/// Median of the finite values (NaN when there is none: reported as such).
+fn median(v: Vec<f64>) -> f64 {
+    stats::median(v).unwrap_or(f64::NAN)
 }
 
 struct TwinSetup {
@@ -299,10 +271,6 @@ impl TwinSetup {
         };
         Ok((m(a, 101, "train")?, m(b, 202, "holdout")?))
     }
-}
-
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
 }
 
 /// Runs the twin experiments.

@@ -13,9 +13,11 @@
 pub mod csv;
 pub mod error;
 pub mod ims;
+pub mod ims_life;
 pub mod lock;
 pub mod mat;
 pub mod npy;
+pub mod perms;
 pub mod record;
 pub mod sidecar;
 pub mod wav;

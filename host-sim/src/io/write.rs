@@ -268,7 +268,7 @@ pub(crate) fn wav_rate(fs: f64) -> u32 {
 }
 
 fn temp_in(dir: &Path, stem: &str, suffix: &str) -> Result<tempfile::NamedTempFile, IoError> {
-    tempfile::Builder::new()
+    super::perms::output_builder()
         .prefix(&format!(".{stem}."))
         .suffix(suffix)
         .tempfile_in(dir)

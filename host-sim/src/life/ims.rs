@@ -12,8 +12,11 @@
 //! the same bearing (in-sample), so that the simulated life lasts as long in revolutions.
 //! Everything else is the physics of the wear model; the timeline is not fitted.
 
+use super::calibrate::{calibrate, Secant};
 use super::{LifeRun, LifeSpec};
+use crate::analysis::stats::{robust_sigma, upper_median};
 use crate::io::ims::read_ims_features;
+use crate::io::ims_life::live_snapshots;
 use serde::Serialize;
 use std::path::Path;
 use wearsim_core::wear::{LifeConfig, Material};
@@ -70,12 +73,11 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
     let rms = f
         .column("B1_rms")
         .ok_or_else(|| format!("{}: no B1_rms column", path.display()))?;
-    let mean = f.column("B1_mean_abs").unwrap_or(rms);
-    // Dead final snapshots (machine stopped; README quirk): mean |x| below 10 % of median.
-    let mut sorted = mean.to_vec();
-    sorted.sort_by(|a, b| a.total_cmp(b));
-    let med = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
-    let keep: Vec<usize> = (0..rms.len()).filter(|i| mean[*i] > 0.1 * med).collect();
+    // Dead final snapshots (machine stopped; README quirk): the one rule of the IMS reader.
+    let live = live_snapshots(&f);
+    let keep: Vec<usize> = (0..rms.len())
+        .filter(|i| live.get(*i).copied().unwrap_or(false))
+        .collect();
     let (Some(&first), Some(&last)) = (keep.first(), keep.last()) else {
         return Err(format!("{}: no valid snapshots", path.display()));
     };
@@ -89,18 +91,13 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
 }
 
 fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
-    let mut early: Vec<f64> = t
+    let early: Vec<f64> = t
         .iter()
         .zip(&r)
         .filter(|(t, _)| **t <= 0.5)
         .map(|(_, r)| *r)
         .collect();
-    early.sort_by(|a, b| a.total_cmp(b));
-    let m = early
-        .get(early.len() / 2)
-        .copied()
-        .unwrap_or(1.0)
-        .max(1e-300);
+    let m = upper_median(early).unwrap_or(1.0).max(1e-300);
     Curve {
         t,
         rms: r.iter().map(|x| x / m).collect(),
@@ -109,7 +106,7 @@ fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
 
 /// Onset of instability of a normalised curve (see the module docs).
 pub fn onset(c: &Curve) -> Option<f64> {
-    let mut early: Vec<f64> =
+    let early: Vec<f64> =
         c.t.iter()
             .zip(&c.rms)
             .filter(|(t, _)| **t <= 0.5)
@@ -118,11 +115,7 @@ pub fn onset(c: &Curve) -> Option<f64> {
     if early.len() < 5 {
         return None;
     }
-    early.sort_by(|a, b| a.total_cmp(b));
-    let m = early[early.len() / 2];
-    let mut dev: Vec<f64> = early.iter().map(|x| (x - m).abs()).collect();
-    dev.sort_by(|a, b| a.total_cmp(b));
-    let sigma = 1.4826 * dev[dev.len() / 2];
+    let (m, sigma) = robust_sigma(early)?;
     let upper = m + (5.0 * sigma).max(0.1 * m);
     let mut run = 0;
     for (i, r) in c.rms.iter().enumerate() {
@@ -189,21 +182,16 @@ pub fn compare(data: &Path, seed: u64) -> Result<ImsComparison, String> {
     // the part of life it scales (fatigue up to crack opening); the rest is fixed physics.
     let (r1, _) = simulate(1.0, seed, 1.0 / 300.0, 5e8)?;
     let uncalibrated = r1.state.cycles;
-    let mut a = 1.0;
-    let mut life = uncalibrated;
-    let mut result = None;
-    for _ in 0..6 {
-        let fixed = fixed_part(&r1.state);
-        a *= ((target - fixed) / (life - fixed)).max(1e-9);
-        let (r, run) = simulate(a, seed, 1.0 / 300.0, target)?;
-        life = r.state.cycles;
-        let done = (life / target - 1.0).abs() < 0.01;
-        result = Some((r, run));
-        if done {
-            break;
-        }
-    }
-    let (r, _) = result.ok_or("calibration did not run")?;
+    let step = Secant {
+        fixed: fixed_part(&r1.state),
+        min_steps: 1,
+        max_steps: 6,
+    };
+    let c = calibrate(target, (uncalibrated, r1), &step, |a| {
+        let (r, _) = simulate(a, seed, 1.0 / 300.0, target)?;
+        Ok::<_, String>((r.state.cycles, r))
+    })?;
+    let (a, r) = (c.factor, c.last);
     let t: Vec<f64> = r
         .snapshots
         .iter()

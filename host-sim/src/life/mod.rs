@@ -9,7 +9,7 @@ use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
 
-pub mod cli;
+pub mod calibrate;
 pub mod dense;
 pub mod ims;
 pub mod output;
@@ -248,14 +248,7 @@ impl LifeRun {
             ..self.spec.model.clone()
         })?;
         let fs = base.config().output_rate;
-        let f = base.orders().at(self.shaft_hz);
-        let ff = FaultFrequencies {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-        };
+        let ff = FaultFrequencies::from(base.orders().at(self.shaft_hz));
         let st = analysis::stats(x).map_err(err)?;
         let nperseg = (x.len() / 4).next_power_of_two().clamp(256, 4096);
         let psd = analysis::welch_psd(

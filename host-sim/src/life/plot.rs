@@ -6,9 +6,11 @@
 use super::ims::ImsComparison;
 use super::output::Span;
 use super::{EventWindow, Snapshot};
+use crate::analysis::stats::upper_median;
 use crate::analysis::{self, Window};
-use crate::cli::CliError;
-use crate::plot::{db, e, points, range, register_fonts, render, FONT, R};
+use crate::plot::{
+    create_folder, db, e, points, range, register_fonts, render, PlotError, FONT, R,
+};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -91,13 +93,12 @@ fn draw_life<DB: DrawingBackend>(
 ) -> R {
     e(root.fill(&WHITE))?;
     let base = {
-        let mut v: Vec<f64> = snaps
+        let v: Vec<f64> = snaps
             .iter()
             .filter(|s| s.stage == "steady-state")
             .map(|s| s.features.rms)
             .collect();
-        v.sort_by(|a, b| a.total_cmp(b));
-        v.get(v.len() / 2).copied().unwrap_or(1.0).max(1e-300)
+        upper_median(v).unwrap_or(1.0).max(1e-300)
     };
     let pts: Vec<(f64, f64)> = snaps
         .iter()
@@ -136,7 +137,7 @@ pub fn life_rms(
     spans: &[Span],
     end: f64,
     title: &str,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, PlotError> {
     register_fonts();
     render(
         dir,
@@ -247,7 +248,7 @@ pub fn events(
     fs: f64,
     bpfo: f64,
     fnat: f64,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, PlotError> {
     register_fonts();
     let mut out = vec![];
     for w in windows {
@@ -338,9 +339,8 @@ fn draw_ims<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &ImsComparison)
 }
 
 /// `ims-overlay.png/svg`.
-pub fn ims_overlay(dir: &Path, c: &ImsComparison) -> Result<Vec<PathBuf>, CliError> {
+pub fn ims_overlay(dir: &Path, c: &ImsComparison) -> Result<Vec<PathBuf>, PlotError> {
     register_fonts();
-    std::fs::create_dir_all(dir)
-        .map_err(|err| CliError::input(format!("{}: {err}", dir.display())))?;
+    create_folder(dir)?;
     render(dir, "ims-overlay", |r| draw_ims(r, c), |r| draw_ims(r, c))
 }

@@ -11,7 +11,6 @@
 
 use crate::analysis::{Kurtogram, Spectrum};
 use crate::analyze::{family_name, Analysis, Kinematics, Spectra};
-use crate::cli::CliError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -476,32 +475,64 @@ fn draw_kurtogram<DB: DrawingBackend>(
     e(root.present())
 }
 
+/// Why figures could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// The output folder cannot be created (bad input: the path the user gave).
+    #[error("{}: cannot create the plot folder: {source}", dir.display())]
+    Folder {
+        /// The folder.
+        dir: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A figure could not be drawn or written (the run failed).
+    #[error("{}: {message}", file.display())]
+    Draw {
+        /// The figure's file.
+        file: PathBuf,
+        /// What plotters reported.
+        message: String,
+    },
+}
+
+/// Creates the output folder `dir` (and its parents) if missing.
+pub fn create_folder(dir: &Path) -> Result<(), PlotError> {
+    std::fs::create_dir_all(dir).map_err(|source| PlotError::Folder {
+        dir: dir.to_path_buf(),
+        source,
+    })
+}
+
 /// Render one figure to `<dir>/<name>.png` and `.svg`.
 pub(crate) fn render(
     dir: &Path,
     name: &str,
     draw_png: impl FnOnce(DrawingArea<BitMapBackend, Shift>) -> R,
     draw_svg: impl FnOnce(DrawingArea<SVGBackend, Shift>) -> R,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, PlotError> {
     let png = dir.join(format!("{name}.png"));
     let svg = dir.join(format!("{name}.svg"));
-    draw_png(BitMapBackend::new(&png, SIZE).into_drawing_area())
-        .map_err(|m| CliError::run(format!("{}: {m}", png.display())))?;
-    draw_svg(SVGBackend::new(&svg, SIZE).into_drawing_area())
-        .map_err(|m| CliError::run(format!("{}: {m}", svg.display())))?;
+    draw_png(BitMapBackend::new(&png, SIZE).into_drawing_area()).map_err(|message| {
+        PlotError::Draw {
+            file: png.clone(),
+            message,
+        }
+    })?;
+    draw_svg(SVGBackend::new(&svg, SIZE).into_drawing_area()).map_err(|message| {
+        PlotError::Draw {
+            file: svg.clone(),
+            message,
+        }
+    })?;
     Ok(vec![png, svg])
 }
 
 /// Write `spectrum`, `envelope` and `kurtogram` as PNG and SVG into `dir` (created if
 /// missing); returns the files written. A directory that cannot be created is bad input
 /// (exit 2), a drawing failure a run failure (exit 1).
-pub fn write_all(dir: &Path, a: &Analysis, s: &Spectra) -> Result<Vec<PathBuf>, CliError> {
-    std::fs::create_dir_all(dir).map_err(|err| {
-        CliError::input(format!(
-            "{}: cannot create the plot folder: {err}",
-            dir.display()
-        ))
-    })?;
+pub fn write_all(dir: &Path, a: &Analysis, s: &Spectra) -> Result<Vec<PathBuf>, PlotError> {
+    create_folder(dir)?;
     register_fonts();
     let mut out = vec![];
     out.extend(render(

@@ -2,15 +2,15 @@
 //! (Markdown, plots of the statistics along life and of the stage gaps, JSON written last)
 //! answering where along life / which effect / how far.
 
-use super::attribute::{Dropped, LeaveOneOut, Ranked, Step};
-use super::cli::{GapArgs, Totals};
-use super::fit::FittedParam;
-use super::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifeOptions, LifePoint, StageGap};
-use super::report::{
+use crate::analysis::stats::upper_median;
+use crate::gap::attribute::{Dropped, LeaveOneOut, Ranked, Step, Totals};
+use crate::gap::error::GapError;
+use crate::gap::fit::FittedParam;
+use crate::gap::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifePoint, StageGap};
+use crate::gap::report::{
     draw_gap_bars, draw_lines, findings_section, finish, fmt_params, greedy_section,
     leave_one_out_section, Series, BASE_C, FINAL_C, REAL_C,
 };
-use crate::cli::CliError;
 use crate::plot::{register_fonts, render};
 use plotters::style::RGBColor;
 use serde::Serialize;
@@ -99,98 +99,6 @@ pub struct LifeGapOutput {
     pub seconds: f64,
     /// Files written.
     pub files: Vec<PathBuf>,
-}
-
-fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
-    let mut out = vec![];
-    for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let digits = item.trim_start_matches(['B', 'b']);
-        match digits.parse::<usize>() {
-            Ok(b) if (1..=8).contains(&b) => out.push(b),
-            _ => {
-                return Err(CliError::input(format!(
-                    "{what}: `{item}` is not a bearing of a lifetime table; give B1..B8 (or 1..8)"
-                )))
-            }
-        }
-    }
-    Ok(out)
-}
-
-impl GapArgs {
-    /// Lifetime options from the arguments; options that only make sense for raw records
-    /// are refused rather than ignored.
-    fn life_options(&self) -> Result<LifeOptions, CliError> {
-        if self.real.len() != 1 {
-            return Err(CliError::input(format!(
-                "--real: a lifetime record (IMS feature table) is diagnosed alone; got {} files",
-                self.real.len()
-            )));
-        }
-        for (flag, given) in [
-            ("--bearing", self.bearing.is_some()),
-            ("--rpm", self.rpm.is_some()),
-            ("--defect", self.defect.is_some()),
-            ("--channel", self.channel.is_some()),
-            ("--fs", self.fs.is_some()),
-        ] {
-            if given {
-                return Err(CliError::input(format!(
-                    "{flag}: a lifetime record is matched to the ims-za2115 preset (Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot) and its life; {flag} does not apply"
-                )));
-            }
-        }
-        if self.jobs == Some(0) {
-            return Err(CliError::input("--jobs 0: give at least 1"));
-        }
-        let train = match &self.train {
-            Some(s) => bearings(s, "--train")?,
-            None => vec![1],
-        };
-        let [train] = train.as_slice() else {
-            return Err(CliError::input(
-                "--train: a lifetime diagnosis trains on one bearing (the one whose life defines the time line)",
-            ));
-        };
-        let holdout = match &self.holdout {
-            Some(s) => bearings(s, "--holdout")?,
-            None => (1..=4).filter(|b| b != train).collect(),
-        };
-        if holdout.contains(train) {
-            return Err(CliError::input(format!(
-                "--train and --holdout both hold bearing {train}: a held-out life must not be fitted on"
-            )));
-        }
-        if holdout.is_empty() {
-            return Err(CliError::input(
-                "--holdout: give at least one held-out bearing",
-            ));
-        }
-        let known = ["running-in", "roughness", "sensor", "edge-shape"];
-        for e in &self.effects {
-            if wearsim_core::effects::info(e).is_none() {
-                return Err(CliError::input(format!(
-                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
-                )));
-            }
-            if !known.contains(&e.as_str()) {
-                return Err(CliError::input(format!(
-                    "--effects: `{e}` acts within a snapshot and changes no statistic along a life; the lifetime candidates are {}",
-                    known.join(", ")
-                )));
-            }
-        }
-        Ok(LifeOptions {
-            train: *train,
-            holdout,
-            seed: self.seed,
-            jobs: self
-                .jobs
-                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
-            effects: self.effects.clone(),
-            leave_one_out: self.leave_one_out,
-        })
-    }
 }
 
 fn findings(g: &LifeGap) -> Vec<String> {
@@ -410,13 +318,12 @@ pub fn markdown(o: &LifeGapOutput) -> String {
 /// Per-snapshot statistic `i` (0 RMS dB re the steady median, 1 kurtosis) of a series.
 fn along(pts: &[LifePoint], i: usize) -> Vec<(f64, f64)> {
     let steady = &lifetime::STAGES[lifetime::STEADY];
-    let mut r: Vec<f64> = pts
+    let r: Vec<f64> = pts
         .iter()
         .filter(|p| p.t >= steady.lo && p.t < steady.hi)
         .map(|p| p.rms)
         .collect();
-    r.sort_by(|a, b| a.total_cmp(b));
-    let med = r.get(r.len() / 2).copied().unwrap_or(1.0).max(1e-300);
+    let med = upper_median(r).unwrap_or(1.0).max(1e-300);
     pts.iter()
         .map(|p| {
             let y = if i == 0 {
@@ -430,10 +337,10 @@ fn along(pts: &[LifePoint], i: usize) -> Vec<(f64, f64)> {
 }
 
 /// Writes plots, `gap.md` and (last) `gap.json`; returns the files.
-pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>, CliError> {
+pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>, GapError> {
     register_fonts();
     std::fs::create_dir_all(dir)
-        .map_err(|err| CliError::input(format!("--out {}: {err}", dir.display())))?;
+        .map_err(|err| GapError::input(format!("--out {}: {err}", dir.display())))?;
     let mut files = vec![];
     const HOLD_C: RGBColor = RGBColor(160, 160, 160);
     for (i, name, ylabel) in [
@@ -480,26 +387,4 @@ pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>,
         files: f,
         ..o.clone()
     })
-}
-
-/// `wearsim gap` on a lifetime record.
-pub fn run(a: &GapArgs) -> Result<(), CliError> {
-    let o = a.life_options()?;
-    let path = a
-        .real
-        .first()
-        .ok_or_else(|| CliError::input("--real: no file"))?;
-    let m = lifetime::measured(path, &o).map_err(CliError::input)?;
-    let g = lifetime::diagnose(&m, &o).map_err(CliError::run)?;
-    let mut out = output(&g);
-    out.files = write(&a.out, &out, &g)?;
-    if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::run)?
-        );
-    } else {
-        print!("{}", markdown(&out));
-    }
-    Ok(())
 }

@@ -1,11 +1,13 @@
-//! `wearsim gap`: arguments, training/held-out selection, the attribution run, and the
-//! report (Markdown, JSON, plots) answering where / which / how far.
+//! The stationary gap diagnosis (`wearsim gap` on records of seconds): arguments,
+//! training/held-out selection, the attribution run, and the "where" cells of the report
+//! ([`super::report`] writes it; [`crate::cmd::gap`] runs it).
 
-use super::attribute::{attribute, Attribution, Options};
+use super::attribute::{attribute, Attribution, Options, Totals};
+use super::error::GapError;
 use super::matched::{Evaluator, Matched};
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
-use crate::cli::CliError;
+use crate::analysis::stats::rms;
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -15,8 +17,8 @@ use wearsim_core::effects::Effects;
 #[derive(Debug, Clone, Args)]
 pub struct GapArgs {
     /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
-    /// An IMS feature table (`timefeatures.csv`) is a lifetime record: it is diagnosed
-    /// alone along life, and --train/--holdout name its bearings (B1, B2, ...).
+    /// With --life: one IMS feature table (`timefeatures.csv`), diagnosed along life;
+    /// --train/--holdout then name its bearings (B1, B2, ...).
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
     /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
@@ -69,6 +71,10 @@ pub struct GapArgs {
     /// Machine-readable report on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Lifetime mode: diagnose the gap along a whole life of one run-to-failure record
+    /// (an IMS feature table such as `test2_timefeatures.csv`).
+    #[arg(long)]
+    pub life: bool,
 }
 
 /// A cell of "where", aggregated over the held-out records.
@@ -126,31 +132,6 @@ pub struct GapOutput {
     pub files: Vec<PathBuf>,
 }
 
-/// Total gaps.
-#[derive(Debug, Clone, Serialize)]
-pub struct Totals {
-    /// Baseline, training records.
-    pub train_before: f64,
-    /// Baseline, held-out records.
-    pub before: f64,
-    /// Held-out after the greedy additions.
-    pub after: f64,
-    /// `1 − after/before`.
-    pub shrink: f64,
-}
-
-impl Totals {
-    /// The totals of an attribution.
-    pub fn of(at: &Attribution) -> Self {
-        Totals {
-            train_before: at.baseline_train,
-            before: at.baseline_holdout,
-            after: at.final_holdout,
-            shrink: 1.0 - at.final_holdout / at.baseline_holdout,
-        }
-    }
-}
-
 /// A record in the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordRole {
@@ -196,25 +177,25 @@ fn select(spec: &str, recs: &[RealRecord]) -> Result<Vec<usize>, String> {
 }
 
 impl GapArgs {
-    fn check(&self) -> Result<(), CliError> {
+    fn check(&self) -> Result<(), GapError> {
         if !(self.seconds.is_finite() && (MIN_PART_S..=30.0).contains(&self.seconds)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--seconds {} is out of range {MIN_PART_S}..=30",
                 self.seconds
             )));
         }
         if !(self.mains.is_finite() && (40.0..=70.0).contains(&self.mains)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--mains {} Hz is out of range 40..=70",
                 self.mains
             )));
         }
         if self.jobs == Some(0) {
-            return Err(CliError::input("--jobs 0: give at least 1"));
+            return Err(GapError::input("--jobs 0: give at least 1"));
         }
         for e in &self.effects {
             if wearsim_core::effects::info(e).is_none() {
-                return Err(CliError::input(format!(
+                return Err(GapError::input(format!(
                     "--effects: unknown effect `{e}` (see `wearsim effects`)"
                 )));
             }
@@ -227,10 +208,10 @@ impl GapArgs {
 pub type Prepared = (Vec<RecordRole>, Vec<Matched>, Vec<Matched>);
 
 /// Loads the records and builds the training and held-out matched parts.
-pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
+pub fn prepare(a: &GapArgs) -> Result<Prepared, GapError> {
     a.check()?;
     let defect = match &a.defect {
-        Some(d) => Some(records::parse_defect(d).map_err(CliError::input)?),
+        Some(d) => Some(records::parse_defect(d).map_err(GapError::input)?),
         None => None,
     };
     let o = Overrides {
@@ -245,18 +226,18 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
         .iter()
         .map(|p| records::load(p, &o))
         .collect::<Result<_, _>>()
-        .map_err(CliError::input)?;
+        .map_err(GapError::input)?;
     let mut roles = vec![];
     let (mut train, mut hold) = (vec![], vec![]);
     if recs.len() == 1 && a.train.is_none() && a.holdout.is_none() {
         let Some(r) = recs.first() else {
-            return Err(CliError::input("--real: no file"));
+            return Err(GapError::input("--real: no file"));
         };
         let half = r.accel.len() / 2;
         let len = half.min((a.seconds * r.fs).round() as usize);
         for (start, tag, set) in [(0, "train", &mut train), (half, "holdout", &mut hold)] {
             let m = records::part(r, start, len, a.seed + start as u64, tag)
-                .map_err(CliError::input)?;
+                .map_err(GapError::input)?;
             roles.push(RecordRole {
                 role: tag.into(),
                 part: m.label.clone(),
@@ -266,22 +247,22 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
         }
     } else {
         let ti = match &a.train {
-            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--train: {e}")))?,
+            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--train: {e}")))?,
             None => vec![0],
         };
         let hi = match &a.holdout {
-            Some(s) => select(s, &recs).map_err(|e| CliError::input(format!("--holdout: {e}")))?,
+            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--holdout: {e}")))?,
             None => (0..recs.len()).filter(|i| !ti.contains(i)).collect(),
         };
         if let Some(i) = ti.iter().find(|i| hi.contains(i)) {
-            return Err(CliError::input(format!(
+            return Err(GapError::input(format!(
                 "--train and --holdout both hold {}: a held-out record must not be fitted on",
                 recs.get(*i)
                     .map_or_else(String::new, |r| r.file.display().to_string())
             )));
         }
         if ti.is_empty() || hi.is_empty() {
-            return Err(CliError::input(
+            return Err(GapError::input(
                 "--train/--holdout: give at least one training and one held-out record",
             ));
         }
@@ -290,7 +271,7 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
                 let Some(r) = recs.get(*i) else { continue };
                 let len = r.accel.len().min((a.seconds * r.fs).round() as usize);
                 let m = records::part(r, 0, len, a.seed + 1000 * k as u64 + 7 * *i as u64, tag)
-                    .map_err(CliError::input)?;
+                    .map_err(GapError::input)?;
                 roles.push(RecordRole {
                     role: tag.into(),
                     part: m.label.clone(),
@@ -307,10 +288,6 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, CliError> {
     Ok((roles, train, hold))
 }
 
-fn rms(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
-}
-
 /// Runs the attribution on prepared records; returns it with the fit spaces and the
 /// evaluator (for further checks on the same records).
 pub fn diagnose(
@@ -318,10 +295,10 @@ pub fn diagnose(
     train: &[Matched],
     hold: &[Matched],
     recs: &[RecordRole],
-) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), CliError> {
+) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), GapError> {
     let first = train
         .first()
-        .ok_or_else(|| CliError::input("no training record"))?;
+        .ok_or_else(|| GapError::input("no training record"))?;
     let level = recs
         .iter()
         .find(|r| r.role == "train")
@@ -331,7 +308,7 @@ pub fn diagnose(
     let only = (!a.effects.is_empty()).then_some(a.effects.as_slice());
     let spaces = space::applicable(&ctx, has_defect, only);
     if spaces.is_empty() {
-        return Err(CliError::input(
+        return Err(GapError::input(
             "--effects: none of the chosen effects acts on these records (slip, load-zone and edge-shape need a defect)",
         ));
     }
@@ -347,7 +324,7 @@ pub fn diagnose(
         &ev,
         &Options::default(),
     )
-    .map_err(CliError::run)?;
+    .map_err(GapError::run)?;
     Ok((at, spaces, ev))
 }
 
@@ -393,68 +370,4 @@ pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
         .collect();
     out.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
     out
-}
-
-/// `wearsim gap`.
-pub fn run(a: &GapArgs) -> Result<(), CliError> {
-    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
-    if a.real.iter().any(|p| super::life_report::is_life_table(p)) {
-        return super::life_report::run(a);
-    }
-    let (roles, train, hold) = prepare(a)?;
-    let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
-    let loo = if a.leave_one_out {
-        let added = at.kept.clone();
-        Some(
-            super::attribute::leave_one_out(
-                &spaces,
-                &at.final_effects,
-                &added,
-                &train,
-                &hold,
-                &ev,
-                &Options::default(),
-            )
-            .map_err(CliError::run)?,
-        )
-    } else {
-        None
-    };
-    let mut findings: Vec<String> = roles
-        .iter()
-        .flat_map(|r| {
-            r.meta
-                .warnings
-                .iter()
-                .map(move |w| format!("{}: {w}", r.part))
-        })
-        .collect();
-    findings.dedup();
-    findings.extend(at.findings.iter().cloned());
-    let mut out = GapOutput {
-        records: roles,
-        where_: where_cells(&hold, &at),
-        ranking: at.ranking.clone(),
-        greedy: at.greedy.clone(),
-        dropped: at.dropped.clone(),
-        kept: at.kept.clone(),
-        totals: Totals::of(&at),
-        identified: at.identified.clone(),
-        tied_with: at.tied_with.clone(),
-        findings,
-        leave_one_out: loo,
-        simulations: ev.sims(),
-        seconds: at.seconds,
-        files: vec![],
-    };
-    out.files = super::report::write(&a.out, &out, &hold, &at)?;
-    if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::run)?
-        );
-    } else {
-        print!("{}", super::report::markdown(&out));
-    }
-    Ok(())
 }

@@ -1,7 +1,7 @@
 //! `wearsim gap-validate`: arguments, the run, and the printed confusion matrix.
 
-use super::validate::{validate, TwinOptions, TwinReport};
 use crate::cli::{CliError, Progress};
+use crate::gap::validate::{validate, TwinOptions, TwinReport};
 use clap::Args;
 
 /// `wearsim gap-validate` arguments.

@@ -1,9 +1,9 @@
 //! `wearsim life`: arguments and the command.
 
-use super::dense::DenseOptions;
-use super::{LifeRun, LifeSpec};
 use crate::cli::{CliError, Progress};
 use crate::config::{self, ScenarioFile};
+use crate::life::dense::DenseOptions;
+use crate::life::{LifeRun, LifeSpec};
 use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
@@ -125,7 +125,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
                 update,
             )
             .map_err(|e| match e {
-                super::dense::DenseError::Life(l) => life_error(l),
+                crate::life::dense::DenseError::Life(l) => life_error(l),
                 other => CliError::input(other),
             })?;
         bar.finish();
@@ -149,7 +149,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         (r.snapshots, r.state, r.wall_s, r.windows, None)
     };
     let extra = json!({ "args": extra, "wall_s": wall, "windows": windows, "dense": dense_info });
-    let timeline = super::output::timeline(&state);
+    let timeline = crate::life::output::timeline(&state);
     let title = format!(
         "normalised RMS over life: {} (seed {})",
         a.config
@@ -161,14 +161,14 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let mut plots =
-        super::plot::life_rms(&a.out, &snapshots, &timeline, state.cycles.max(1.0), &title)?;
+        crate::life::plot::life_rms(&a.out, &snapshots, &timeline, state.cycles.max(1.0), &title)?;
     let base = wearsim_core::Model::new_checked(wearsim_core::ModelConfig {
         defect: None,
         ..run.spec.model.clone()
     })
     .map_err(CliError::input)?;
     let bpfo = base.orders().at(run.shaft_hz).bpfo;
-    plots.extend(super::plot::events(
+    plots.extend(crate::life::plot::events(
         &a.out,
         &event_windows,
         base.config().output_rate,
@@ -176,15 +176,16 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         base.natural_frequency_hz(),
     )?);
     // The summary is written last: its presence means the set is complete.
-    let mut files = super::output::write_life(&a.out, &run, &snapshots, &state, extra.clone())
-        .map_err(|e| CliError::run(format!("{}: {e}", a.out.display())))?;
+    let mut files =
+        crate::life::output::write_life(&a.out, &run, &snapshots, &state, extra.clone())
+            .map_err(|e| CliError::run(format!("{}: {e}", a.out.display())))?;
     files.extend(plots);
     if a.json {
         let v = json!({
             "complete": true,
             "cycles_to_failure": state.cycles,
             "timeline": timeline,
-            "events": state.events.iter().map(super::state_json::EventJson::from).collect::<Vec<_>>(),
+            "events": state.events.iter().map(crate::life::state_json::EventJson::from).collect::<Vec<_>>(),
             "snapshots": snapshots.len(),
             "wall_s": wall,
             "windows": windows,
@@ -221,11 +222,11 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn life_error(e: super::LifeError) -> CliError {
+fn life_error(e: crate::life::LifeError) -> CliError {
     match e {
-        super::LifeError::CapReached { .. }
-        | super::LifeError::Config(_)
-        | super::LifeError::SnapshotInterval { .. } => CliError::input(e),
+        crate::life::LifeError::CapReached { .. }
+        | crate::life::LifeError::Config(_)
+        | crate::life::LifeError::SnapshotInterval { .. } => CliError::input(e),
         other => CliError::run(other),
     }
 }
@@ -256,10 +257,10 @@ pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
             .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA"))?,
     };
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
-    let c = super::ims::compare(&data, a.seed).map_err(CliError::input)?;
+    let c = crate::life::ims::compare(&data, a.seed).map_err(CliError::input)?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
-    let mut files = super::plot::ims_overlay(&a.out, &c)?;
+    let mut files = crate::life::plot::ims_overlay(&a.out, &c)?;
     let fmt = |x: Option<f64>| {
         x.map(|v| format!("{v:.3}"))
             .unwrap_or_else(|| "not found".into())
@@ -291,10 +292,10 @@ Simulated stage onsets (fraction of life): {stages}\n",
         stages = c.stages.iter().map(|(s, t)| format!("{s} {t:.3}")).collect::<Vec<_>>().join(", "),
     );
     let mdp = a.out.join("ims-comparison.md");
-    super::output::write_atomic(&mdp, md.as_bytes())
+    crate::life::output::write_atomic(&mdp, md.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
     let jp = a.out.join("ims-comparison.json");
-    super::output::write_atomic(&jp, &serde_json::to_vec_pretty(&c).unwrap_or_default())
+    crate::life::output::write_atomic(&jp, &serde_json::to_vec_pretty(&c).unwrap_or_default())
         .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
     files.push(mdp);
     files.push(jp);

@@ -1,0 +1,29 @@
+//! `wearsim bench`: the real-time factor of the reference scenario on one core.
+
+use crate::cli::{BenchArgs, CliError};
+
+/// `wearsim bench`.
+pub fn run(a: BenchArgs) -> Result<(), CliError> {
+    let report = crate::cli::bench(&a)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).unwrap_or_default()
+        );
+    } else {
+        println!(
+            "{}: {:.1} s simulated at fs = {} Hz (oversample {}, {} integrator) in {:.3} s wall",
+            report.preset,
+            report.simulated_s,
+            report.fs,
+            report.oversample,
+            report.integrator,
+            report.wall_s
+        );
+        println!(
+            "real-time factor: {:.1} x   ({:.1} ns per internal step, one core)",
+            report.rtf, report.ns_per_step
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,40 @@
+//! `wearsim cwru-benchmark`: diagnose every CWRU 12 kHz drive-end record, print the
+//! confusion matrix (or `--json`), write Markdown.
+
+use crate::analyze::Method;
+use crate::cli::CliError;
+use crate::cwru_benchmark::{print_report, run_benchmark, to_markdown, CwruBenchmarkArgs};
+
+/// `wearsim cwru-benchmark`: locate the data, run, print (or `--json`), write Markdown.
+pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
+    let dir = match &args.data {
+        Some(d) => d.clone(),
+        None => match crate::io::data_dir().map_err(CliError::input)? {
+            Some(d) => d,
+            None => {
+                return Err(CliError::input(format!(
+                    "data folder {} not found: pass --data DIR or set {}",
+                    crate::io::default_data_dir().display(),
+                    crate::io::DATA_ENV
+                )))
+            }
+        },
+    };
+    let report = run_benchmark(&dir, &Method::default()).map_err(CliError::input)?;
+    if let Some(md) = &args.markdown {
+        std::fs::write(md, to_markdown(&report))
+            .map_err(|e| CliError::run(format!("{}: cannot write: {e}", md.display())))?;
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(CliError::run)?
+        );
+    } else {
+        print_report(&report);
+        if let Some(md) = &args.markdown {
+            println!("wrote {}", md.display());
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,206 @@
+//! `wearsim gap`: the stationary diagnosis of records of seconds, or with `--life` the
+//! diagnosis along a whole life of one run-to-failure record; argument checks, the run,
+//! the report files and what is printed.
+
+use crate::cli::CliError;
+use crate::gap::attribute::{self, Options, Totals};
+use crate::gap::lifetime::report::{self as life_report, is_life_table};
+use crate::gap::lifetime::{self, LifeOptions};
+use crate::gap::report;
+use crate::gap::stationary::{diagnose, prepare, where_cells, GapArgs, GapOutput};
+
+/// `wearsim gap`: `--life` selects the lifetime diagnosis. A lifetime table given without
+/// it is refused with the invocation to use, rather than switching mode on a file name.
+pub fn run(a: &GapArgs) -> Result<(), CliError> {
+    // Exclusive, writable output directory before any work (docs/reliability.md).
+    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
+    if a.life {
+        return run_life(a);
+    }
+    if let Some(p) = a.real.iter().find(|p| is_life_table(p)) {
+        return Err(CliError::input(format!(
+            "--real {}: this is a lifetime record (an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns); diagnose it along its life with `wearsim gap --life --real {}`",
+            p.display(),
+            p.display()
+        )));
+    }
+    run_stationary(a)
+}
+
+/// `wearsim gap` on records of seconds.
+fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
+    let (roles, train, hold) = prepare(a)?;
+    let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
+    let loo = if a.leave_one_out {
+        let added = at.kept.clone();
+        Some(
+            attribute::leave_one_out(
+                &spaces,
+                &at.final_effects,
+                &added,
+                &train,
+                &hold,
+                &ev,
+                &Options::default(),
+            )
+            .map_err(CliError::run)?,
+        )
+    } else {
+        None
+    };
+    let mut findings: Vec<String> = roles
+        .iter()
+        .flat_map(|r| {
+            r.meta
+                .warnings
+                .iter()
+                .map(move |w| format!("{}: {w}", r.part))
+        })
+        .collect();
+    findings.dedup();
+    findings.extend(at.findings.iter().cloned());
+    let mut out = GapOutput {
+        records: roles,
+        where_: where_cells(&hold, &at),
+        ranking: at.ranking.clone(),
+        greedy: at.greedy.clone(),
+        dropped: at.dropped.clone(),
+        kept: at.kept.clone(),
+        totals: Totals::of(&at),
+        identified: at.identified.clone(),
+        tied_with: at.tied_with.clone(),
+        findings,
+        leave_one_out: loo,
+        simulations: ev.sims(),
+        seconds: at.seconds,
+        files: vec![],
+    };
+    out.files = report::write(&a.out, &out, &hold, &at)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::run)?
+        );
+    } else {
+        print!("{}", report::markdown(&out));
+    }
+    Ok(())
+}
+
+/// `wearsim gap --life`: the gap along the life of one IMS feature table.
+fn run_life(a: &GapArgs) -> Result<(), CliError> {
+    let o = life_options(a)?;
+    let path = a
+        .real
+        .first()
+        .ok_or_else(|| CliError::input("--real: no file"))?;
+    if path.is_file() && !is_life_table(path) {
+        return Err(CliError::input(format!(
+            "--life --real {}: not a lifetime record; --life needs an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns (e.g. test2_timefeatures.csv)",
+            path.display()
+        )));
+    }
+    let m = lifetime::measured(path, &o).map_err(CliError::input)?;
+    let g = lifetime::diagnose(&m, &o).map_err(CliError::run)?;
+    let mut out = life_report::output(&g);
+    out.files = life_report::write(&a.out, &out, &g)?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).map_err(CliError::run)?
+        );
+    } else {
+        print!("{}", life_report::markdown(&out));
+    }
+    Ok(())
+}
+
+fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
+    let mut out = vec![];
+    for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let digits = item.trim_start_matches(['B', 'b']);
+        match digits.parse::<usize>() {
+            Ok(b) if (1..=8).contains(&b) => out.push(b),
+            _ => {
+                return Err(CliError::input(format!(
+                    "{what}: `{item}` is not a bearing of a lifetime table; give B1..B8 (or 1..8)"
+                )))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Lifetime options from the arguments; options that only make sense for raw records
+/// are refused rather than ignored.
+fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
+    if a.real.len() != 1 {
+        return Err(CliError::input(format!(
+            "--real: a lifetime record (IMS feature table) is diagnosed alone; got {} files",
+            a.real.len()
+        )));
+    }
+    for (flag, given) in [
+        ("--bearing", a.bearing.is_some()),
+        ("--rpm", a.rpm.is_some()),
+        ("--defect", a.defect.is_some()),
+        ("--channel", a.channel.is_some()),
+        ("--fs", a.fs.is_some()),
+    ] {
+        if given {
+            return Err(CliError::input(format!(
+                "{flag}: a lifetime record is matched to the ims-za2115 preset (Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot) and its life; {flag} does not apply"
+            )));
+        }
+    }
+    if a.jobs == Some(0) {
+        return Err(CliError::input("--jobs 0: give at least 1"));
+    }
+    let train = match &a.train {
+        Some(s) => bearings(s, "--train")?,
+        None => vec![1],
+    };
+    let [train] = train.as_slice() else {
+        return Err(CliError::input(
+            "--train: a lifetime diagnosis trains on one bearing (the one whose life defines the time line)",
+        ));
+    };
+    let holdout = match &a.holdout {
+        Some(s) => bearings(s, "--holdout")?,
+        None => (1..=4).filter(|b| b != train).collect(),
+    };
+    if holdout.contains(train) {
+        return Err(CliError::input(format!(
+            "--train and --holdout both hold bearing {train}: a held-out life must not be fitted on"
+        )));
+    }
+    if holdout.is_empty() {
+        return Err(CliError::input(
+            "--holdout: give at least one held-out bearing",
+        ));
+    }
+    let known = ["running-in", "roughness", "sensor", "edge-shape"];
+    for e in &a.effects {
+        if wearsim_core::effects::info(e).is_none() {
+            return Err(CliError::input(format!(
+                "--effects: unknown effect `{e}` (see `wearsim effects`)"
+            )));
+        }
+        if !known.contains(&e.as_str()) {
+            return Err(CliError::input(format!(
+                "--effects: `{e}` acts within a snapshot and changes no statistic along a life; the lifetime candidates are {}",
+                known.join(", ")
+            )));
+        }
+    }
+    Ok(LifeOptions {
+        train: *train,
+        holdout,
+        seed: a.seed,
+        jobs: a
+            .jobs
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        effects: a.effects.clone(),
+        leave_one_out: a.leave_one_out,
+    })
+}

@@ -1,0 +1,99 @@
+//! The command layer of `wearsim`: the command line ([`Cli`]), one module per subcommand
+//! holding its handler (arguments are checked there, or by the library function they are
+//! handed to), and [`exit`], the one place where an error becomes a message and an exit
+//! code. `bin/wearsim.rs` only calls [`main`].
+
+pub mod analyze;
+pub mod bench;
+pub mod cwru_benchmark;
+pub mod exit;
+pub mod gap;
+pub mod gap_validate;
+pub mod life;
+pub mod presets;
+pub mod simulate;
+
+use crate::cli::CliError;
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// The `wearsim` command line.
+#[derive(Parser)]
+#[command(
+    name = "wearsim",
+    version,
+    about = "Rolling-bearing vibration over the wear life (El-Thalji 2016)"
+)]
+pub struct Cli {
+    /// The subcommand (`simulate` when none is given).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Subcommand)]
+pub enum Command {
+    /// Simulate a scenario (the built-in reference without arguments) and write CSV, WAV and a JSON sidecar.
+    #[command(allow_negative_numbers = true)]
+    Simulate(crate::cli::SimulateArgs),
+    /// Run a whole wear life: stage timeline, per-snapshot features, events (snapshot or dense mode).
+    #[command(allow_negative_numbers = true)]
+    Life(life::LifeArgs),
+    /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
+    ImsCompare(life::ImsCompareArgs),
+    /// Measure the real-time factor of the reference scenario on one core.
+    Bench(crate::cli::BenchArgs),
+    /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
+    Capture(crate::capture::CaptureArgs),
+    /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
+    Analyze(crate::analyze::AnalyzeArgs),
+    /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
+    CwruBenchmark(crate::cwru_benchmark::CwruBenchmarkArgs),
+    /// Diagnose the sim-to-real gap of measured records: where it lies, which candidate effect closes it, how far.
+    #[command(allow_negative_numbers = true)]
+    Gap(crate::gap::stationary::GapArgs),
+    /// Twin experiments: withhold candidate effects from simulated "measurements" and check that the gap diagnosis names them.
+    GapValidate(gap_validate::GapValidateArgs),
+    /// List the candidate effects (sim-to-real) with their parameters, units, defaults and bounds.
+    Effects {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List the presets with their derived frequencies.
+    Presets {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Runs one subcommand.
+pub fn dispatch(command: Command) -> Result<(), CliError> {
+    match command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Bench(a) => bench::run(a),
+        Command::Capture(a) => crate::capture::run(a),
+        Command::Life(a) => life::life_cmd(&a),
+        Command::ImsCompare(a) => life::ims_compare_cmd(&a),
+        Command::Presets { json } => presets::run(json),
+        Command::Gap(a) => gap::run(&a),
+        Command::GapValidate(a) => gap_validate::run(&a),
+        Command::Effects { json } => presets::effects(json),
+        Command::Analyze(a) => analyze::run(&a),
+        Command::CwruBenchmark(a) => cwru_benchmark::run(&a),
+    }
+}
+
+/// Parses the command line, runs the subcommand (`simulate` with its defaults when none
+/// is given), prints any error and returns the exit code ([`exit`]).
+pub fn main() -> ExitCode {
+    let args = match Cli::try_parse() {
+        Ok(a) => a,
+        Err(e) => return exit::usage(&e),
+    };
+    let command = args
+        .command
+        .unwrap_or(Command::Simulate(crate::cli::SimulateArgs::default()));
+    exit::finish(dispatch(command))
+}

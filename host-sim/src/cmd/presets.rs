@@ -1,0 +1,95 @@
+//! `wearsim presets` and `wearsim effects`: the built-in presets with their derived
+//! frequencies, and the catalogue of candidate effects.
+
+use crate::cli::CliError;
+use crate::summary::KinematicFrequencies;
+use serde_json::json;
+
+/// `wearsim effects`.
+pub fn effects(json: bool) -> Result<(), CliError> {
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&crate::effects::catalogue_json()).unwrap_or_default()
+        );
+    } else {
+        print!("{}", crate::effects::catalogue_text());
+    }
+    Ok(())
+}
+
+/// `wearsim presets`.
+pub fn run(json: bool) -> Result<(), CliError> {
+    let mut rows = vec![];
+    for name in wearsim_core::presets::NAMES {
+        let Some(cfg) = wearsim_core::presets::by_name(name) else {
+            continue;
+        };
+        let model = wearsim_core::Model::new_checked(cfg.clone())
+            .map_err(|e| CliError::run(format!("preset {name}: {e}")))?;
+        let k = KinematicFrequencies::of(&model);
+        let o = model.orders();
+        rows.push(json!({
+            "name": name,
+            "description": crate::cli::preset_description(name),
+            "elements": cfg.bearing.elements,
+            "element_diameter_m": cfg.bearing.element_diameter,
+            "pitch_diameter_m": cfg.bearing.pitch_diameter,
+            "contact_angle_deg": cfg.bearing.contact_angle.to_degrees(),
+            "shaft_hz": k.shaft,
+            "orders": {"ftf": o.ftf, "bpfo": o.bpfo, "bpfi": o.bpfi, "bsf": o.bsf},
+            "hz": {"ftf": k.ftf, "bpfo": k.bpfo, "bpfi": k.bpfi, "bsf": k.bsf, "waviness": k.waviness},
+            "natural_hz": k.natural,
+            "damping_ratio": model.damping_ratio(),
+            "fs": cfg.output_rate,
+            "oversample": model.oversample(),
+        }));
+    }
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).unwrap_or_default()
+        );
+        return Ok(());
+    }
+    println!(
+        "{:<18} {:>3} {:>8} {:>8} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>7}",
+        "preset",
+        "N",
+        "Bd mm",
+        "P mm",
+        "deg",
+        "1x Hz",
+        "FTF",
+        "BPFO",
+        "BPFI",
+        "BSF",
+        "fn Hz",
+        "zeta"
+    );
+    for r in &rows {
+        println!(
+            "{:<18} {:>3} {:>8.3} {:>8.2} {:>6.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2} {:>9.1} {:>7.3}",
+            r["name"].as_str().unwrap_or(""),
+            r["elements"],
+            r["element_diameter_m"].as_f64().unwrap_or(0.0) * 1e3,
+            r["pitch_diameter_m"].as_f64().unwrap_or(0.0) * 1e3,
+            r["contact_angle_deg"].as_f64().unwrap_or(0.0),
+            r["shaft_hz"].as_f64().unwrap_or(0.0),
+            r["hz"]["ftf"].as_f64().unwrap_or(0.0),
+            r["hz"]["bpfo"].as_f64().unwrap_or(0.0),
+            r["hz"]["bpfi"].as_f64().unwrap_or(0.0),
+            r["hz"]["bsf"].as_f64().unwrap_or(0.0),
+            r["natural_hz"].as_f64().unwrap_or(0.0),
+            r["damping_ratio"].as_f64().unwrap_or(0.0),
+        );
+    }
+    for r in &rows {
+        println!(
+            "  {}: {}",
+            r["name"].as_str().unwrap_or(""),
+            r["description"].as_str().unwrap_or("")
+        );
+    }
+    Ok(())
+}

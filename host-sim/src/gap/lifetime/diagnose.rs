@@ -1,0 +1,419 @@
+//! The lifetime diagnosis: read the measured lives, calibrate and run the simulated life,
+//! attribute the gap to candidate effects on the training life, judge it on the held-out
+//! lives, and the early-life part again on the early stages alone.
+
+use super::sim::{calibrate, LifeSim};
+use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
+use super::{
+    stage_points, LifePoint, LifeReference, MeasuredLife, EARLY_T_MAX, HOLDOUT_T_MAX, STAGES,
+    STEADY,
+};
+use crate::analysis::stats::upper_median;
+use crate::gap::attribute::{attribute, leave_one_out, Attribution, LeaveOneOut, Options};
+use crate::gap::fit::Budget;
+use crate::gap::matched::{Evaluator, Gaps};
+use crate::gap::space::FitSpace;
+use crate::io::ims_life::read_life;
+use serde::Serialize;
+use std::path::Path;
+use std::sync::Arc;
+use wearsim_core::effects::Effects;
+
+/// Gap of one stage: root mean square of its cells' gaps, before and after.
+#[derive(Debug, Clone, Serialize)]
+pub struct StageGap {
+    /// Stage name.
+    pub stage: String,
+    /// Its span of normalised life.
+    pub span: (f64, f64),
+    /// RMS of the cell gaps of the baseline (over the records that have the stage).
+    pub before: f64,
+    /// RMS of the cell gaps with the final model.
+    pub after: f64,
+    /// The cell with the largest baseline gap, its simulated and measured value.
+    pub worst: (String, f64, f64, f64),
+}
+
+/// One cell of one life, before and after ("where").
+#[derive(Debug, Clone, Serialize)]
+pub struct LifeCell {
+    /// Record (file and bearing).
+    pub record: String,
+    /// `train` or `holdout`.
+    pub role: String,
+    /// Cell name `life:<stage>:<stat>`.
+    pub cell: String,
+    /// Stage.
+    pub stage: String,
+    /// Unit (`dB` or `-`).
+    pub unit: String,
+    /// Simulated value, baseline.
+    pub sim: f64,
+    /// Simulated value, final model.
+    pub sim_after: f64,
+    /// Measured value.
+    pub real: f64,
+    /// Measured spread (floored).
+    pub spread: f64,
+    /// Gap of the baseline.
+    pub gap: f64,
+    /// Gap of the final model.
+    pub gap_after: f64,
+}
+
+fn life_cells(
+    role: &str,
+    targets: &[LifeTarget],
+    before: &[LifePoint],
+    after: &[LifePoint],
+) -> Vec<LifeCell> {
+    let mut out = vec![];
+    for t in targets {
+        let r = &t.reference;
+        let (Ok(b), Ok(a)) = (r.values(before), r.values(after)) else {
+            continue;
+        };
+        let (gb, ga) = (r.residuals(&b), r.residuals(&a));
+        for (i, (name, stg, unit)) in r.names.iter().enumerate() {
+            let get = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
+            out.push(LifeCell {
+                record: r.label.clone(),
+                role: role.to_string(),
+                cell: name.clone(),
+                stage: stg.to_string(),
+                unit: unit.to_string(),
+                sim: get(&b),
+                sim_after: get(&a),
+                real: get(&r.mean),
+                spread: get(&r.spread),
+                gap: get(&gb),
+                gap_after: get(&ga),
+            });
+        }
+    }
+    out
+}
+
+/// What one effect alone does to the early-life part of the held-out gap.
+#[derive(Debug, Clone, Serialize)]
+pub struct EarlyShrink {
+    /// Effect.
+    pub effect: String,
+    /// Its parameters fitted on the training life's early stages.
+    pub params: Vec<crate::gap::fit::FittedParam>,
+    /// Held-out early-life gap (total over the early stages' cells) with the effect.
+    pub gap: f64,
+    /// `1 − gap / baseline early gap`.
+    pub shrink: f64,
+}
+
+/// The lifetime diagnosis.
+#[derive(Debug, Clone, Serialize)]
+pub struct LifeGap {
+    /// Training life.
+    pub train: Vec<String>,
+    /// Held-out lives.
+    pub holdout: Vec<String>,
+    /// Calibrated life factor and what it was calibrated on.
+    pub life_factor: f64,
+    /// Revolutions of the measured (training) life.
+    pub measured_revs: f64,
+    /// Stages ranked by their baseline gap on the training life ("where along life").
+    pub stages_train: Vec<StageGap>,
+    /// Stages of the held-out lives.
+    pub stages_holdout: Vec<StageGap>,
+    /// Held-out early-life gap of the baseline (total over the cells of the stages
+    /// before [`EARLY_T_MAX`]).
+    pub early_before: f64,
+    /// Held-out early-life gap of the final model.
+    pub early_after: f64,
+    /// Each effect alone on the early-life part, best first.
+    pub early: Vec<EarlyShrink>,
+    /// The effect that closes the early-life part (largest early shrink ≥ 5 %, on an
+    /// early gap outside the variability), if any.
+    pub early_effect: Option<String>,
+    /// Findings of the early-life attribution.
+    pub early_findings: Vec<String>,
+    /// Noise-only held-out gap of the whole life and of its early part: what a correct
+    /// model would leave by sampling alone ([`LifeReference::noise_only`]).
+    pub noise_only: (f64, f64),
+    /// Every cell of every life, ranked by |baseline gap| ("where").
+    pub cells: Vec<LifeCell>,
+    /// Ranking, greedy addition, totals (held-out over the shared stages).
+    pub attribution: Attribution,
+    /// Leave-one-out checks on the final model.
+    pub leave_one_out: Vec<LeaveOneOut>,
+    /// Baseline and final simulated series (for the plots).
+    pub series: Vec<(String, Vec<LifePoint>)>,
+    /// Measured series (training first).
+    pub measured: Vec<(String, Vec<LifePoint>)>,
+    /// Lives simulated in all.
+    pub simulations: usize,
+    /// Wall-clock time (s).
+    pub seconds: f64,
+}
+
+fn stage_gaps(targets: &[LifeTarget], g: &Gaps, after: &Gaps, sims: &[Vec<f64>]) -> Vec<StageGap> {
+    let mut out: Vec<StageGap> = vec![];
+    let mut off = 0;
+    for (k, t) in targets.iter().enumerate() {
+        let r = &t.reference;
+        for (i, (name, stg, _)) in r.names.iter().enumerate() {
+            let (Some(b), Some(a)) = (g.gaps.get(off + i), after.gaps.get(off + i)) else {
+                continue;
+            };
+            let sim = sims
+                .get(k)
+                .and_then(|s| s.get(i))
+                .copied()
+                .unwrap_or(f64::NAN);
+            let real = r.mean.get(i).copied().unwrap_or(f64::NAN);
+            let span = STAGES
+                .iter()
+                .find(|s| s.name == *stg)
+                .map_or((0.0, 1.0), |s| (s.lo, s.hi));
+            match out.iter_mut().find(|s| s.stage == *stg) {
+                Some(s) => {
+                    s.before += b * b;
+                    s.after += a * a;
+                    if b.abs() > s.worst.3.abs() {
+                        s.worst = (name.clone(), sim, real, *b);
+                    }
+                }
+                None => out.push(StageGap {
+                    stage: stg.to_string(),
+                    span,
+                    before: b * b,
+                    after: a * a,
+                    worst: (name.clone(), sim, real, *b),
+                }),
+            }
+        }
+        off += r.names.len();
+    }
+    // Mean square → root mean square over the stage's cells of every record.
+    for s in &mut out {
+        let n = targets
+            .iter()
+            .map(|t| {
+                t.reference
+                    .names
+                    .iter()
+                    .filter(|(_, g, _)| *g == s.stage)
+                    .count()
+            })
+            .sum::<usize>()
+            .max(1) as f64;
+        s.before = (s.before / n).sqrt();
+        s.after = (s.after / n).sqrt();
+    }
+    out.sort_by(|a, b| b.before.total_cmp(&a.before));
+    out
+}
+
+/// Options of the lifetime diagnosis.
+#[derive(Debug, Clone)]
+pub struct LifeOptions {
+    /// Training bearing (1-based).
+    pub train: usize,
+    /// Held-out bearings.
+    pub holdout: Vec<usize>,
+    /// Seed of the simulated life.
+    pub seed: u64,
+    /// Worker threads.
+    pub jobs: usize,
+    /// Candidate effects to try (empty: all of [`life_spaces`]).
+    pub effects: Vec<String>,
+    /// Withhold each added effect from the final model and diagnose again.
+    pub leave_one_out: bool,
+}
+
+/// The measured side of a lifetime diagnosis, read and checked before any simulation:
+/// every problem here is one of the input (a bearing not in the table, too few snapshots).
+#[derive(Debug, Clone)]
+pub struct MeasuredSet {
+    /// Training life.
+    pub train: MeasuredLife,
+    /// Its cells over the whole life.
+    pub train_ref: LifeReference,
+    /// Held-out lives.
+    pub holdout: Vec<MeasuredLife>,
+    /// Their cells before [`HOLDOUT_T_MAX`].
+    pub holdout_ref: Vec<LifeReference>,
+}
+
+fn label(m: &MeasuredLife) -> String {
+    format!(
+        "{} bearing {}",
+        Path::new(&m.file)
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+        m.bearing
+    )
+}
+
+/// Reads the training and held-out lives of `path` and builds their cells.
+pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
+    let train = read_life(path, o.train)?;
+    let holdout: Vec<MeasuredLife> = o
+        .holdout
+        .iter()
+        .map(|b| read_life(path, *b))
+        .collect::<Result<_, _>>()?;
+    if holdout.is_empty() {
+        return Err("--holdout: give at least one held-out bearing".into());
+    }
+    let train_ref = LifeReference::new(&label(&train), &train.points, 1.0)?;
+    let holdout_ref = holdout
+        .iter()
+        .map(|m| LifeReference::new(&label(m), &m.points, HOLDOUT_T_MAX))
+        .collect::<Result<_, _>>()?;
+    Ok(MeasuredSet {
+        train,
+        train_ref,
+        holdout,
+        holdout_ref,
+    })
+}
+
+/// Diagnoses the gap along life of measured lives `m` (see the module docs).
+pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
+    let t0 = std::time::Instant::now();
+    let (train_life, hold_lives) = (&m.train, &m.holdout);
+    let shaft_hz = wearsim_core::presets::by_name("ims-za2115")
+        .ok_or("preset ims-za2115 missing")?
+        .speed
+        .shaft_hz(0.0);
+    let measured_revs = train_life.hours * 3600.0 * shaft_hz;
+    let (factor, revs, cal_runs) = calibrate("ims-za2115", o.seed, measured_revs)?;
+    let sim = Arc::new(LifeSim::new("ims-za2115", factor, o.seed, revs)?);
+    let train = vec![LifeTarget {
+        reference: m.train_ref.clone(),
+        sim: sim.clone(),
+        only: None,
+    }];
+    let hold: Vec<LifeTarget> = m
+        .holdout_ref
+        .iter()
+        .map(|r| LifeTarget {
+            reference: r.clone(),
+            sim: sim.clone(),
+            only: None,
+        })
+        .collect();
+    let ev = Evaluator::new(o.jobs);
+    let base = sim.points(&Effects::NONE, ev.counter())?;
+    let steady = stage_points(&base, &STAGES[STEADY]);
+    let steady_rms = upper_median(steady.iter().map(|p| p.rms).collect()).unwrap_or(1.0);
+    let spaces: Vec<FitSpace> = life_spaces(steady_rms)
+        .into_iter()
+        .filter(|s| o.effects.is_empty() || o.effects.iter().any(|e| e == s.effect))
+        .collect();
+    if spaces.is_empty() {
+        return Err(format!(
+            "--effects: none of {:?} acts along a life; the lifetime candidates are running-in, roughness, sensor, edge-shape",
+            o.effects
+        ));
+    }
+    let noise_whole = noise_only(&hold, &base);
+    let opt = Options {
+        budget: Budget::LIFE,
+        significant_gap: SIGNIFICANCE * noise_whole,
+        ..Options::default()
+    };
+    let at = attribute(&spaces, &Effects::NONE, &train, &hold, &ev, &opt)?;
+    // The early-life part: the same attribution on the early stages' cells only (their
+    // contrasts to the steady stage), fitted on the training life's early stages and
+    // judged on the held-out lives' — ranked by the shrink in the cells where that part
+    // of the gap lies.
+    let train_e: Vec<LifeTarget> = train.iter().filter_map(|t| t.early(EARLY_T_MAX)).collect();
+    let hold_e: Vec<LifeTarget> = hold.iter().filter_map(|t| t.early(EARLY_T_MAX)).collect();
+    if train_e.is_empty() || hold_e.is_empty() {
+        return Err("the lives have no early stages with enough snapshots".into());
+    }
+    let noise_early = noise_only(&hold_e, &base);
+    let early_opt = Options {
+        max_effects: 1,
+        significant_gap: SIGNIFICANCE * noise_early,
+        ..opt
+    };
+    let early_at = attribute(&spaces, &Effects::NONE, &train_e, &hold_e, &ev, &early_opt)?;
+    let early_before = early_at.baseline_holdout;
+    let early: Vec<EarlyShrink> = early_at
+        .ranking
+        .iter()
+        .map(|r| EarlyShrink {
+            effect: r.effect.clone(),
+            params: r.params.clone(),
+            gap: r.holdout_gap,
+            shrink: r.shrink,
+        })
+        .collect();
+    // An early life within the snapshots' own variability needs no effect: naming one
+    // would be a ranking with false confidence.
+    let early_effect = early_at
+        .identified
+        .clone()
+        .filter(|_| early_before >= early_opt.significant_gap);
+    let early_findings = early_at.findings.clone();
+    let loo = if o.leave_one_out {
+        leave_one_out(
+            &spaces,
+            &at.final_effects,
+            &at.kept,
+            &train,
+            &hold,
+            &ev,
+            &opt,
+        )?
+    } else {
+        vec![]
+    };
+    let train_before = ev.residuals(&train, &Effects::NONE)?;
+    let train_after = ev.residuals(&train, &at.final_effects)?;
+    let fin = sim.points(&at.final_effects, ev.counter())?;
+    let vals = |ts: &[LifeTarget], p: &[LifePoint]| -> Vec<Vec<f64>> {
+        ts.iter()
+            .map(|t| t.reference.values(p).unwrap_or_default())
+            .collect()
+    };
+    let mut cells = life_cells("train", &train, &base, &fin);
+    cells.extend(life_cells("holdout", &hold, &base, &fin));
+    cells.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
+    let hold_e_final = ev.residuals(&hold_e, &at.final_effects)?;
+    let early_after = hold_e_final.total();
+    let mut at = at;
+    at.simulations = ev.sims();
+    Ok(LifeGap {
+        train: vec![label(train_life)],
+        holdout: hold_lives.iter().map(label).collect(),
+        life_factor: factor,
+        measured_revs,
+        stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train, &base)),
+        stages_holdout: stage_gaps(
+            &hold,
+            &at.holdout_before,
+            &at.holdout_after,
+            &vals(&hold, &base),
+        ),
+        early_before,
+        early_after,
+        early,
+        early_effect,
+        early_findings,
+        noise_only: (noise_whole, noise_early),
+        cells,
+        attribution: at,
+        leave_one_out: loo,
+        series: vec![
+            ("baseline".into(), base.to_vec()),
+            ("final model".into(), fin.to_vec()),
+        ],
+        measured: std::iter::once(train_life)
+            .chain(hold_lives)
+            .map(|m| (label(m), m.points.clone()))
+            .collect(),
+        simulations: ev.sims() + cal_runs,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}

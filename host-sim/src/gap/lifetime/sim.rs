@@ -1,0 +1,197 @@
+//! The simulated life of the lifetime gap: the record's bearing run through the wear
+//! machine of [`crate::life::LifeRun`] with candidate effects, a window of the measured
+//! snapshot's length rendered at every block of [`SCHEDULE`], cached per effect set; and
+//! the calibration of its life factor to the measured life.
+
+use super::{LifePoint, EARLY_T_MAX};
+use crate::analysis;
+use crate::gap::matched::merge;
+use crate::life::calibrate::{calibrate as calibrate_life, Secant};
+use crate::life::{LifeRun, LifeSpec};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use wearsim_core::effects::Effects;
+use wearsim_core::wear::{LifeConfig, Material, Stage};
+
+/// Window schedule of a simulated life, as fractions of the expected life: blocks of
+/// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
+/// 20 in the next 2 %, so that the simulated stage means are about as precise as the
+/// measured ones), coarser where the wear machine's own transitions add windows anyway.
+pub const SCHEDULE: [(f64, f64); 3] = [(0.03, 0.001), (0.1, 0.01), (1.0, 0.02)];
+
+/// Most windows of one simulated life (the schedule needs about 90).
+pub const MAX_WINDOWS: u64 = 2_000;
+
+/// Samples per simulated window: the measured snapshot's length (crest factor and
+/// kurtosis depend on it).
+pub const WINDOW_SAMPLES: usize = 20_480;
+
+/// A simulated life of the record's bearing with candidate effects, cached per effect set
+/// (the training and held-out bearings share the simulated life of the same seed).
+#[derive(Debug)]
+pub struct LifeSim {
+    /// Dynamic model of the bearing (no effects).
+    pub model: wearsim_core::ModelConfig,
+    /// Wear configuration (calibrated life factor).
+    pub life: LifeConfig,
+    /// Seed of the life (Weibull draw, window streams).
+    pub seed: u64,
+    /// Revolutions of the calibrated baseline life (the schedule's unit).
+    pub expected_revs: f64,
+    cache: Mutex<Vec<(Effects, Arc<Vec<LifePoint>>)>>,
+}
+
+/// Most effect sets kept in a [`LifeSim`]'s cache (about 3 KB each): the early-life
+/// attribution revisits the whole-life fits' grids.
+const CACHE: usize = 1024;
+
+impl LifeSim {
+    /// A simulated life of preset `preset` with life factor `life_factor`.
+    pub fn new(
+        preset: &str,
+        life_factor: f64,
+        seed: u64,
+        expected_revs: f64,
+    ) -> Result<Self, String> {
+        let model = wearsim_core::presets::by_name(preset)
+            .ok_or_else(|| format!("preset {preset} missing"))?;
+        Ok(LifeSim {
+            model,
+            life: LifeConfig {
+                material: Material {
+                    life_factor,
+                    ..Material::BEARING_STEEL
+                },
+                cycle_cap: 1e13,
+                ..LifeConfig::DEFAULT
+            },
+            seed,
+            expected_revs,
+            cache: Mutex::new(vec![]),
+        })
+    }
+
+    /// Revolutions to the next window after `cycles`: the [`SCHEDULE`] step of the
+    /// expected life; past the early part, of the revolutions run when the life outlasts
+    /// its expectation (an uncalibrated life can run 30× longer; the windows then grow
+    /// geometrically instead of running into the thousands).
+    fn block(&self, cycles: f64) -> f64 {
+        let e = self.expected_revs.max(1.0);
+        let u = cycles / e;
+        let step = SCHEDULE
+            .iter()
+            .find(|(until, _)| u < *until)
+            .map_or(0.02, |(_, s)| *s);
+        let scale = if u < EARLY_T_MAX { e } else { e.max(cycles) };
+        (step * scale).max(1.0)
+    }
+
+    /// Runs the life with effects `fx`: snapshot statistics on the normalised time line
+    /// and the revolutions to failure.
+    pub fn run(&self, fx: &Effects) -> Result<(Vec<LifePoint>, f64), String> {
+        let mut model = self.model.clone();
+        merge(&mut model.effects, fx);
+        let fs = model.output_rate;
+        let run = LifeRun::new(LifeSpec {
+            model,
+            life: self.life,
+            seed: self.seed,
+            snapshot_every: self.block(0.0),
+            window: WINDOW_SAMPLES as f64 / fs,
+            settle: 0.05,
+        })
+        .map_err(|e| e.to_string())?;
+        let mut st = run.life.initial_state(self.seed);
+        let mut raw: Vec<(f64, analysis::Stats)> = vec![];
+        let mut k = 0u64;
+        loop {
+            let (x, loads) = run.window(&st, k).map_err(|e| e.to_string())?;
+            k += 1;
+            let s = analysis::stats(&x).map_err(|e| e.to_string())?;
+            raw.push((st.cycles, s));
+            if st.stage == Stage::Failure {
+                break;
+            }
+            let mut remaining = self.block(st.cycles);
+            while remaining > 0.0 {
+                let adv = run.life.advance(&mut st, remaining, &loads);
+                remaining -= adv.revs;
+                if adv.transition.is_some() || adv.revs <= 0.0 {
+                    break;
+                }
+            }
+            run.check_cap(&st).map_err(|e| e.to_string())?;
+            if k > MAX_WINDOWS {
+                return Err(format!(
+                    "the simulated life did not fail within {MAX_WINDOWS} windows ({:.3e} revolutions, stage {})",
+                    st.cycles,
+                    st.stage.name()
+                ));
+            }
+        }
+        let end = st.cycles.max(1.0);
+        let pts = raw
+            .into_iter()
+            .map(|(c, s)| LifePoint {
+                t: c / end,
+                rms: s.rms,
+                kurtosis: s.kurtosis,
+                crest: s.crest_factor,
+                skewness: s.skewness,
+            })
+            .collect();
+        Ok((pts, end))
+    }
+
+    /// The life with effects `fx`, from the cache when it was run before; `sims` counts
+    /// the lives actually run.
+    pub fn points(&self, fx: &Effects, sims: &AtomicUsize) -> Result<Arc<Vec<LifePoint>>, String> {
+        if let Ok(c) = self.cache.lock() {
+            if let Some((_, p)) = c.iter().find(|(e, _)| e == fx) {
+                return Ok(p.clone());
+            }
+        }
+        sims.fetch_add(1, Ordering::Relaxed);
+        let (p, _) = self.run(fx)?;
+        let p = Arc::new(p);
+        if let Ok(mut c) = self.cache.lock() {
+            if c.len() >= CACHE {
+                c.remove(0);
+            }
+            c.push((*fx, p.clone()));
+        }
+        Ok(p)
+    }
+}
+
+/// Calibrates the life factor so that the simulated baseline life lasts `target`
+/// revolutions within 1 % ([`crate::life::calibrate`]): secant steps with no fixed part,
+/// i.e. proportional steps on the whole life (the factor scales the fatigue part, most of
+/// the life; the rest makes the steps converge geometrically), up to 8. `wearsim
+/// ims-compare` uses the same function with the crack-to-failure part held fixed. Returns
+/// the factor, the life's revolutions and the lives run.
+pub fn calibrate(preset: &str, seed: u64, target: f64) -> Result<(f64, f64, usize), String> {
+    // The schedule needs an expected life; every run uses the target.
+    let run = |a: f64| -> Result<(f64, ()), String> {
+        Ok((
+            LifeSim::new(preset, a, seed, target)?
+                .run(&Effects::NONE)?
+                .1,
+            (),
+        ))
+    };
+    let first = run(1.0)?;
+    let step = Secant {
+        fixed: 0.0,
+        min_steps: 0,
+        max_steps: 8,
+    };
+    let c = calibrate_life(target, first, &step, run)?;
+    let (a, life, runs) = (c.factor, c.life, c.steps + 1);
+    if (life / target - 1.0).abs() > 0.05 {
+        return Err(format!(
+            "the life factor did not converge: {life:.3e} revolutions against the measured {target:.3e}"
+        ));
+    }
+    Ok((a, life, runs))
+}
