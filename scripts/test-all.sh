@@ -32,13 +32,18 @@ cargo build --workspace --all-features
 step "docs build without warnings"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features
 
-step "core: fast-math approximation error"
+step "core: fast-math approximation error; serde round trips in both precisions"
 cargo test -p wearsim-core-f32 --features fast-math --test fast_math
+cargo test -p wearsim-core --features serde --test serde_config
+cargo test -p wearsim-core-f32 --features serde --test serde_config
 
 if [ -f firmware-stub/Cargo.toml ]; then
   step "firmware-stub: fmt and clippy"
   (cd firmware-stub && cargo fmt --all -- --check && cargo clippy --all-targets -- -D warnings)
 fi
+
+step "fuzz every reader and the frame decoder (libFuzzer, ${WEARSIM_FUZZ_SECONDS:-15} s each)"
+bash scripts/fuzz.sh "${WEARSIM_FUZZ_SECONDS:-15}"
 
 step "all tests"
 cargo test --workspace

@@ -1,6 +1,6 @@
 //! Signal analysis for rolling-element bearing vibration.
 //!
-//! - [`stats`]: time-domain statistics (RMS, crest factor, kurtosis...).
+//! - [`stats`](mod@stats): time-domain statistics (RMS, crest factor, kurtosis...).
 //! - [`spectrum`]: Welch PSD (Welch 1967) and amplitude spectrum; [`window`].
 //! - [`envelope`]: band-pass analytic envelope and envelope spectrum
 //!   (Randall & Antoni 2011).

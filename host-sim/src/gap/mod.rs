@@ -71,7 +71,7 @@ pub struct GapReport {
 const WANDER_OF: &str = "env:slip";
 
 /// Name of the between-segment cell: the standard deviation over the segments of
-/// [`WANDER_OF`], in dB re 1 % (floored at 0.01 %). A speed that fluctuates slower than a
+/// `WANDER_OF`, in dB re 1 % (floored at 0.01 %). A speed that fluctuates slower than a
 /// segment moves the fault line from segment to segment without changing the segments'
 /// mean, so no mean-based cell sees it; random slip of the element passes (independent
 /// from pass to pass) averages out within a segment's 20-odd passes and barely moves it.

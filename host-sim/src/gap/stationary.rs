@@ -27,7 +27,7 @@ pub struct GapArgs {
     /// Shaft speed (rpm) of every record (default: from the file, else the spectrum).
     #[arg(long)]
     pub rpm: Option<f64>,
-    /// Defect of every record: LOCATION:SIZE[:DEPTH] with LOCATION none, inner, outer,
+    /// Defect of every record: `LOCATION:SIZE[:DEPTH]` with LOCATION none, inner, outer,
     /// outer@3, outer@6, outer@12, ball and sizes with `in` or `mm` (default: the file's
     /// label; depth 0.011 in).
     #[arg(long)]
