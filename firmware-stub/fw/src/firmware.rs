@@ -304,12 +304,18 @@ fn main() -> ! {
     for (d, s) in preset.iter_mut().zip(PRESET.as_bytes()) {
         *d = *s;
     }
+    // A life ends when its bearing fails, at a count nobody knows at the start: it announces
+    // 0 (unbounded) and its end frame carries the count (`capture` checks that one).
+    #[cfg(feature = "life")]
+    let announced = 0;
+    #[cfg(not(feature = "life"))]
+    let announced = total;
     let start = frame::StartInfo {
         preset,
         seed: SEED,
         rate_hz: rate as f32,
         oversample: model.oversample(),
-        total_samples: total,
+        total_samples: announced,
         flavour: FLAVOUR,
     };
     send_control(framer, frame::Kind::Start, 0, &start.to_bytes());
