@@ -200,36 +200,22 @@ fn life_matches_the_recorded_hashes() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         wearsim(&["life", "--seed", seed, "--json"], dir.path());
-        let f = dir.path().join("life-features.csv");
-        let header = std::fs::read_to_string(&f).unwrap();
-        let cols: Vec<&str> = header
-            .lines()
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::trim)
-            .collect();
-        check(
-            &format!("life {seed} features"),
-            hash_csv(&f, &cols),
-            want_features,
-            &mut failures,
-        );
-        let e = dir.path().join("life-events.csv");
-        let header = std::fs::read_to_string(&e).unwrap();
-        let cols: Vec<&str> = header
-            .lines()
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::trim)
-            .collect();
-        check(
-            &format!("life {seed} events"),
-            hash_csv(&e, &cols),
-            want_events,
-            &mut failures,
-        );
+        for (file, what, want) in [
+            ("life-features.csv", "features", want_features),
+            ("life-events.csv", "events", want_events),
+        ] {
+            let path = dir.path().join(file);
+            let text = std::fs::read_to_string(&path).unwrap();
+            let cols: Vec<&str> = text
+                .lines()
+                .next()
+                .unwrap()
+                .split(',')
+                .map(str::trim)
+                .collect();
+            let name = format!("life {seed} {what}");
+            check(&name, hash_csv(&path, &cols), want, &mut failures);
+        }
     }
     assert!(
         failures.is_empty(),
