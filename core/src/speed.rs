@@ -137,6 +137,23 @@ impl SpeedProfile {
         }
     }
 
+    /// Largest rate of change of the shaft frequency `|df/dt|` (Hz/s): zero for a constant
+    /// speed, the ramp's slope, or the steepest segment of a table (piecewise linear).
+    pub fn max_slope_hz_per_s(&self) -> Real {
+        match self {
+            SpeedProfile::Constant(_) => 0.0,
+            SpeedProfile::Ramp {
+                from_hz,
+                to_hz,
+                duration,
+            } => (to_hz - from_hz).abs() / duration,
+            SpeedProfile::Table(pts) => pts.windows(2).fold(0.0, |m: Real, w| match w {
+                [a, b] => m.max((b.shaft_hz - a.shaft_hz).abs() / (b.t - a.t)),
+                _ => m,
+            }),
+        }
+    }
+
     /// Whether the speed never changes (lets the model skip per-step evaluation).
     pub fn is_constant(&self) -> bool {
         matches!(self, SpeedProfile::Constant(_))

@@ -90,6 +90,19 @@ impl Params {
         f
     }
 
+    /// Largest rate of change of the factor `|d factor/dt|` (1/s): the sum of each
+    /// component's amplitude times its angular frequency.
+    pub fn max_rate(&self) -> Real {
+        let mut r = self.amplitude * TAU * self.freq_hz;
+        if self.jitter > 0.0 {
+            let a = self.jitter * 0.5;
+            for k in 0..JITTER_LINES {
+                r += a * TAU * self.jitter_hz * (k as Real + 1.0) / JITTER_LINES as Real;
+            }
+        }
+        r
+    }
+
     /// Largest factor the modulation can reach.
     pub fn max_factor(&self) -> Real {
         1.0 + self.amplitude + self.jitter * 0.5 * JITTER_LINES as Real

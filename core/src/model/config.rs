@@ -109,7 +109,8 @@ impl Model {
             .map(|w| w.order(bearing.outer_race_radius()))
             .unwrap_or(0);
         let max_cage_hz = (cfg.speed.max_hz() * speed_max_factor * orders.ftf) as f64;
-        let ratio = oversampling(&cfg, &eq, kl, wave_order as f64 * max_cage_hz)?;
+        let peak = PeakLoad::of(&cfg, &fx, &bearing, &contact, gamma, speed_max_factor);
+        let ratio = oversampling(&cfg, &eq, kl, &peak, wave_order as f64 * max_cage_hz)?;
         let m = s.mass as f64;
         let fs = cfg.output_rate as f64;
         let h = 1.0 / (fs * ratio as f64);
@@ -272,23 +273,90 @@ fn loaded_equilibrium(
     (eq, gamma)
 }
 
+/// The largest radial force the configuration can put on the bearing and the contact
+/// stiffness it brings: the step must stay stable there, not only at the static load.
+struct PeakLoad {
+    /// Linearised contact stiffness at the peak force (N/m), as [`Equilibrium`] defines it.
+    contact_stiffness: Real,
+    /// Configuration field of the largest dynamic contribution, named if the step fails.
+    field: &'static str,
+}
+
+impl PeakLoad {
+    /// Bounds the radial force by `|W| + m_u r √(ω⁴ + α²) + |F₂| + |F₃|` with the highest
+    /// shaft speed `ω` and angular acceleration `α` the speed profile and the
+    /// speed-fluctuation effect can reach (imbalance: thesis eq. 3 with its tangential
+    /// term), and solves the load distribution (Harris & Kotzalas ch. 7) under it.
+    fn of(
+        cfg: &ModelConfig,
+        fx: &Effects,
+        bearing: &BearingGeometry,
+        contact: &ElementContact,
+        gamma: Real,
+        speed_max_factor: Real,
+    ) -> Self {
+        let base_hz = cfg.speed.max_hz();
+        let omega = TAU * base_hz * speed_max_factor;
+        let fluct_rate = fx.speed_fluctuation.map_or(0.0, |p| p.max_rate());
+        let alpha =
+            TAU * (cfg.speed.max_slope_hz_per_s() * speed_max_factor + base_hz * fluct_rate);
+        let (mut field, mut largest) = ("fs", 0.0);
+        let mut force = cfg.radial_load.abs();
+        if let Some(i) = cfg.imbalance {
+            let mr = (i.mass * i.radius).abs();
+            let (centrifugal, tangential) = (mr * omega * omega, mr * alpha);
+            force +=
+                libm::sqrt((centrifugal * centrifugal + tangential * tangential) as f64) as Real;
+            (field, largest) = if tangential > centrifugal && fx.speed_fluctuation.is_some() {
+                ("speed-fluctuation.freq_hz", tangential)
+            } else {
+                ("imbalance.mass", centrifugal.max(tangential))
+            };
+        }
+        if let Some(h) = fx.shaft_harmonics {
+            let f = h.f2.abs() + h.f3.abs();
+            force += f;
+            if f > largest {
+                field = "shaft-harmonics.f2";
+            }
+        }
+        let k = cfg.structure.stiffness;
+        let eq = equilibrium(contact, bearing.elements, force, k, gamma);
+        PeakLoad {
+            contact_stiffness: eq.contact_stiffness,
+            field,
+        }
+    }
+}
+
 /// Step validation: the internal steps per output sample, the given ratio or the
 /// smallest that resolves the stiffest frequency of the model (`ω_max·h` within the
 /// integrator's limit) and keeps the waviness frequency `wave_hz` below 0.45 of the
-/// internal rate.
+/// internal rate. The stiffest contact tangent is the larger of twice the static one
+/// (the margin every configuration gets) and the tangent at the peak force `peak`.
 fn oversampling(
     cfg: &ModelConfig,
     eq: &Equilibrium,
     kl: Real,
+    peak: &PeakLoad,
     wave_hz: f64,
 ) -> Result<u32, ConfigError> {
     let s = &cfg.structure;
     let m = s.mass as f64;
-    let full_k = (kl + eq.contact_stiffness) as f64; // tangent of the contacts up to 2·k_c0
+    let static_margin = 2.0 * eq.contact_stiffness as f64;
+    let peak_sets_step = peak.contact_stiffness as f64 > static_margin;
+    let (contact_k, full_k) = if peak_sets_step {
+        let k_peak = peak.contact_stiffness as f64;
+        (k_peak, s.stiffness as f64 + k_peak)
+    } else {
+        (static_margin, (kl + eq.contact_stiffness) as f64)
+    };
     let omega = match cfg.integrator {
         IntegratorKind::Rk4 => max_eigen_modulus(full_k / m, s.damping as f64 / m),
-        _ => libm::sqrt(2.0 * eq.contact_stiffness as f64 / m),
+        _ => libm::sqrt(contact_k / m),
     };
+    // Named in an error: the peak force when it, not the static load, sets the step.
+    let fs_field = if peak_sets_step { peak.field } else { "fs" };
     let limit = cfg.integrator.omega_h_limit() as f64;
     let fs = cfg.output_rate as f64;
     let accepts = |r: u32| -> bool {
@@ -315,7 +383,7 @@ fn oversampling(
         None => match (2..=MAX_OVERSAMPLE).find(|r| accepts(*r)) {
             Some(r) => Ok(r),
             None => Err(ConfigError::StepTooLarge {
-                field: "fs",
+                field: fs_field,
                 omega_h: omega / (fs * MAX_OVERSAMPLE as f64),
                 limit,
                 min_internal_rate_hz: (omega / limit).max(wave_hz / 0.45),
