@@ -265,6 +265,39 @@ fn settings_that_cannot_run_are_refused() {
     }
 }
 
+/// Issue 11 (7): the largest in-range imbalance with the fastest speed fluctuation either
+/// runs with finite samples (a finer internal step, thesis-61810) or is refused up front
+/// naming the field that sets the step (cwru-6205-de): never exit 1 after a non-finite sample.
+#[test]
+fn largest_imbalance_with_fastest_fluctuation_runs_or_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let fluct = "speed-fluctuation:amplitude=0.1,freq_hz=1000,jitter=0.1,jitter_hz=1000";
+    for (preset, runs) in [("thesis-61810", true), ("cwru-6205-de", false)] {
+        let p = dir.path().join(format!("{preset}.toml"));
+        let toml = format!("preset = \"{preset}\"\n[imbalance]\nmass = 10\nradius = 2\n");
+        std::fs::write(&p, toml).unwrap();
+        let out = dir.path().join(preset);
+        let args = ["simulate", "--config", s(&p), "--duration", "0.05"];
+        let o = wearsim(&[&args[..], &["--effect", fluct, "--out", s(&out)]].concat());
+        if runs {
+            let msg = String::from_utf8_lossy(&o.stderr);
+            assert!(o.status.success(), "{preset}: {msg}");
+            let csv = std::fs::read_to_string(out.join("simulate.csv")).unwrap();
+            let lines = csv.lines().skip(1).filter(|l| !l.is_empty());
+            let n = lines
+                .inspect(|l| assert!(!l.contains("NaN") && !l.contains("inf"), "{l}"))
+                .count();
+            assert!(n >= 900, "{preset}: {n} rows");
+        } else {
+            refused(&o, &["speed-fluctuation.freq_hz", "internal rate"]);
+            assert!(
+                !out.join("simulate.csv").exists(),
+                "{preset}: output written"
+            );
+        }
+    }
+}
+
 // --- capture -------------------------------------------------------------------------------
 
 struct Stream {
