@@ -13,15 +13,11 @@
 //! The frame layout is documented in `docs/firmware.md` and in the `wearsim-frame` crate.
 
 use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use clap::Args;
 use serde::Serialize;
-use serde_json::json;
 use wearsim_core::{presets, Model, State};
 use wearsim_frame::{self as frame, Event, Format, Kind};
-
-use crate::cli::CliError;
 
 /// Largest stream accepted (bytes): 20 kHz of f32 for about 25 minutes.
 pub const MAX_STREAM_BYTES: u64 = 128 * 1024 * 1024;
@@ -41,29 +37,31 @@ pub const COMPARE_PREFIX: usize = 200;
 /// Tolerance on the RMS of the whole record, relative to the host's (measured 0.2 %).
 pub const RMS_REL_TOLERANCE: f64 = 0.02;
 
-/// `wearsim capture` arguments.
-#[derive(Debug, Clone, Args)]
-pub struct CaptureArgs {
-    /// Captured stream: a file written by QEMU `-serial file:PATH`, or a serial device
-    /// (read until the end frame arrives).
-    #[arg(long)]
-    pub input: PathBuf,
-    /// Output directory for capture.csv / capture.wav / capture.json.
-    #[arg(long, default_value = "wearsim-out")]
-    pub out: PathBuf,
-    /// Print the report as JSON on stdout.
-    #[arg(long)]
-    pub json: bool,
-    /// Compare with a host (f64) run of `--preset` with this seed.
-    #[arg(long, requires = "preset")]
-    pub expect_seed: Option<u64>,
-    /// Preset of the host run to compare with (see `wearsim presets`).
-    #[arg(long, requires = "expect_seed")]
-    pub preset: Option<String>,
-    /// Largest difference over the first 200 samples, relative to the host RMS over them.
-    #[arg(long, default_value_t = F64_REL_TOLERANCE)]
-    pub tolerance: f64,
+/// Why a capture failed; [`crate::cmd::exit`] maps each kind to its exit code.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CaptureError {
+    /// A bad argument or an unreadable input (exit 2).
+    Input(String),
+    /// The stream is not complete or not valid; nothing was written (exit 2).
+    Stream(String),
+    /// The stream is valid but its samples differ from the host run (exit 1).
+    Mismatch(String),
+    /// Writing the outputs failed after the work (exit 1).
+    Write(String),
 }
+
+impl std::fmt::Display for CaptureError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CaptureError::Input(m)
+            | CaptureError::Stream(m)
+            | CaptureError::Mismatch(m)
+            | CaptureError::Write(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for CaptureError {}
 
 /// A span of bytes that is not a valid frame.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -424,12 +422,13 @@ pub fn compare(
     preset: &str,
     seed: u64,
     tolerance: f64,
-) -> Result<Comparison, CliError> {
+) -> Result<Comparison, CaptureError> {
     let cfg = presets::by_name(preset)
-        .ok_or_else(|| CliError::input(format!("unknown preset {preset:?}")))?;
-    let model = Model::new_checked(cfg).map_err(|e| CliError::input(format!("{preset}: {e}")))?;
-    let mut st =
-        State::<32>::new(&model, seed).map_err(|e| CliError::input(format!("{preset}: {e}")))?;
+        .ok_or_else(|| CaptureError::Input(format!("unknown preset {preset:?}")))?;
+    let model =
+        Model::new_checked(cfg).map_err(|e| CaptureError::Input(format!("{preset}: {e}")))?;
+    let mut st = State::<32>::new(&model, seed)
+        .map_err(|e| CaptureError::Input(format!("{preset}: {e}")))?;
     let mut host = Vec::with_capacity(accel.len());
     while host.len() < accel.len() {
         if let Some(s) = model.step(&mut st) {
@@ -470,22 +469,24 @@ pub fn compare(
     })
 }
 
-fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
-    let meta =
-        std::fs::metadata(path).map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+/// Reads a captured stream: a whole file (at most [`MAX_STREAM_BYTES`]), or a device or
+/// pipe until an end frame arrives.
+pub fn read_input(path: &Path) -> Result<Vec<u8>, CaptureError> {
+    let meta = std::fs::metadata(path)
+        .map_err(|e| CaptureError::Input(format!("{}: {e}", path.display())))?;
     let mut f = std::fs::File::open(path)
-        .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+        .map_err(|e| CaptureError::Input(format!("{}: {e}", path.display())))?;
     let mut buf = Vec::new();
     if meta.is_file() {
         if meta.len() > MAX_STREAM_BYTES {
-            return Err(CliError::input(format!(
+            return Err(CaptureError::Input(format!(
                 "{}: {} bytes is over the {MAX_STREAM_BYTES}-byte limit",
                 path.display(),
                 meta.len()
             )));
         }
         f.read_to_end(&mut buf)
-            .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+            .map_err(|e| CaptureError::Input(format!("{}: {e}", path.display())))?;
         return Ok(buf);
     }
     // A device or pipe: read until an end frame has arrived, EOF, or the size limit.
@@ -493,13 +494,13 @@ fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
     loop {
         let n = f
             .read(&mut chunk)
-            .map_err(|e| CliError::input(format!("{}: {e}", path.display())))?;
+            .map_err(|e| CaptureError::Input(format!("{}: {e}", path.display())))?;
         if n == 0 {
             break;
         }
         buf.extend_from_slice(&chunk[..n]);
         if buf.len() as u64 > MAX_STREAM_BYTES {
-            return Err(CliError::input(format!(
+            return Err(CaptureError::Input(format!(
                 "{}: more than {MAX_STREAM_BYTES} bytes without an end frame",
                 path.display()
             )));
@@ -522,138 +523,4 @@ fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
         }
     }
     Ok(buf)
-}
-
-fn print_report(r: &CaptureReport, files: Option<&crate::io::write::OutputSet>, json: bool) {
-    if json {
-        let mut v = serde_json::to_value(r).unwrap_or_default();
-        if let (Some(f), Some(o)) = (files, v.as_object_mut()) {
-            o.insert(
-                "files".into(),
-                json!({"csv": f.csv, "wav": f.wav, "json": f.json}),
-            );
-        }
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
-        return;
-    }
-    println!(
-        "capture {}: {} bytes, {} valid frames ({} data), {} samples at {} Hz, preset {} seed {}, {}",
-        r.input,
-        r.bytes,
-        r.valid_frames,
-        r.data_frames,
-        r.samples,
-        r.rate_hz.map(|x| x.to_string()).unwrap_or("?".into()),
-        r.preset.as_deref().unwrap_or("?"),
-        r.seed.map(|x| x.to_string()).unwrap_or("?".into()),
-        r.flavour.as_deref().unwrap_or("?"),
-    );
-    println!(
-        "missing frames {}, missing samples {}, corrupt spans {}, truncated {}, overruns {}",
-        r.missing_frames,
-        r.missing_samples,
-        r.corrupt.len(),
-        r.truncated,
-        r.overruns
-    );
-    if let Some(ips) = r.instructions_per_sample {
-        println!("firmware: {ips:.0} instructions per sample (valid under QEMU -icount shift=0)");
-    }
-    if let Some(c) = &r.comparison {
-        println!(
-            "host {} seed {}: first {} samples max |error| {:.3e} m/s^2 = {:.3e} of RMS {:.3e} (tolerance {:.1e}); record RMS {:+.2e} (tolerance {:.0e}): {}",
-            c.preset,
-            c.seed,
-            c.samples,
-            c.max_abs_error,
-            c.rel_error,
-            c.host_rms,
-            c.tolerance,
-            c.rms_rel_diff,
-            c.rms_tolerance,
-            if c.pass { "pass" } else { "FAIL" }
-        );
-    }
-    for p in &r.problems {
-        println!("problem: {p}");
-    }
-    if let Some(f) = files {
-        println!(
-            "wrote {}, {}, {}",
-            f.csv.display(),
-            f.wav.display(),
-            f.json.display()
-        );
-    }
-}
-
-/// Runs `wearsim capture`.
-pub fn run(a: CaptureArgs) -> Result<(), CliError> {
-    if !(a.tolerance.is_finite() && a.tolerance >= 0.0) {
-        return Err(CliError::input(format!(
-            "--tolerance {} must be a finite number ≥ 0",
-            a.tolerance
-        )));
-    }
-    // Exclusive, writable output directory before any work (docs/reliability.md).
-    let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
-    let bytes = read_input(&a.input)?;
-    let Decoded { mut report, accel } = decode(&a.input.display().to_string(), &bytes);
-    let mut code = 2;
-    if let (Some(seed), Some(preset)) = (a.expect_seed, a.preset.as_deref()) {
-        if report.complete {
-            let c = compare(&accel, preset, seed, a.tolerance)?;
-            if report.preset.as_deref() != Some(preset) || report.seed != Some(seed) {
-                report.problems.push(format!(
-                    "stream is preset {:?} seed {:?}, expected {preset:?} seed {seed}",
-                    report.preset, report.seed
-                ));
-                code = 1;
-            }
-            if !c.pass {
-                report.problems.push(format!(
-                    "samples differ from the host run: {:.3e} of its RMS over the first {} (tolerance {:.1e}), record RMS {:+.2e} (tolerance {:.0e})",
-                    c.rel_error, c.samples, c.tolerance, c.rms_rel_diff, c.rms_tolerance
-                ));
-                code = 1;
-            }
-            report.comparison = Some(c);
-            report.complete = report.problems.is_empty();
-        }
-    }
-    if !report.complete {
-        print_report(&report, None, a.json);
-        let first = report.problems.first().cloned().unwrap_or_default();
-        return Err(CliError {
-            code,
-            message: format!(
-                "{}: stream not complete, nothing written ({} problem(s); first: {first})",
-                a.input.display(),
-                report.problems.len()
-            ),
-        });
-    }
-    let fs = report.rate_hz.unwrap_or(0.0);
-    let g: Vec<f64> = accel
-        .iter()
-        .map(|x| x / wearsim_core::real::STANDARD_GRAVITY)
-        .collect();
-    let columns: Vec<(&str, &[f64])> = vec![("accel_m_s2", &accel), ("accel_g", &g)];
-    let meta = json!({
-        "generator": "wearsim capture",
-        "version": env!("CARGO_PKG_VERSION"),
-        "source": a.input.display().to_string(),
-        "preset": report.preset,
-        "seed": report.seed,
-        "firmware_flavour": report.flavour,
-        "sample_format": report.format,
-        "frames": report.data_frames,
-        "overruns": report.overruns,
-        "instructions_per_sample": report.instructions_per_sample,
-        "comparison": report.comparison,
-    });
-    let files = crate::io::write::write_outputs(&a.out, "capture", &columns, fs, &meta)
-        .map_err(CliError::input)?;
-    print_report(&report, Some(&files), a.json);
-    Ok(())
 }

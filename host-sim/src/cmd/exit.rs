@@ -64,6 +64,16 @@ impl From<crate::gap::GapError> for CliError {
     }
 }
 
+impl From<crate::capture::CaptureError> for CliError {
+    fn from(e: crate::capture::CaptureError) -> Self {
+        use crate::capture::CaptureError as E;
+        match e {
+            E::Input(_) | E::Stream(_) => CliError::input(e),
+            E::Mismatch(_) | E::Write(_) => CliError::run(e),
+        }
+    }
+}
+
 /// Prints the error of a finished command, if any, and returns its exit code.
 pub fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {

@@ -5,6 +5,7 @@
 
 pub mod analyze;
 pub mod bench;
+pub mod capture;
 pub mod cwru_benchmark;
 pub mod exit;
 pub mod gap;
@@ -44,7 +45,7 @@ pub enum Command {
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(crate::cli::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
-    Capture(crate::capture::CaptureArgs),
+    Capture(capture::CaptureArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
     Analyze(crate::analyze::AnalyzeArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
@@ -73,7 +74,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
     match command {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),
-        Command::Capture(a) => crate::capture::run(a),
+        Command::Capture(a) => capture::run(a).map_err(CliError::from),
         Command::Life(a) => life::life_cmd(&a),
         Command::ImsCompare(a) => life::ims_compare_cmd(&a),
         Command::Presets { json } => presets::run(json),
