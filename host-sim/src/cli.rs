@@ -271,8 +271,17 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
         "rpm": sc.shaft_hz() * 60.0,
         "oversample": sc.model.oversample(),
         "internal_step_s": sc.model.step_size(),
-        "integrator": format!("{:?}", cfg.integrator),
-        "topography": cfg.defect.map(|d| format!("{:?}", d.topography)),
+        "integrator": crate::config::INTEGRATORS
+            .iter()
+            .find(|(_, k)| *k == cfg.integrator)
+            .map(|(name, _)| *name),
+        // Table 1's name, or the custom topography's dimensions.
+        "topography": cfg.defect.map(|d| {
+            wearsim_core::topography::TABLE_1
+                .iter()
+                .find(|(_, t)| *t == d.topography)
+                .map_or_else(|| json!(d.topography), |(name, _)| json!(name))
+        }),
         "effects": sc_effects(sc, a),
         "summary": summary,
         "usable_band_hz": [0.0, 0.4 * cfg.output_rate],
@@ -290,7 +299,7 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
 fn sc_effects(sc: &Scenario, a: &SimulateArgs) -> Value {
     json!({
         "arguments": a.effect,
-        "resolved": format!("{:?}", sc.model.config().effects),
+        "resolved": sc.model.config().effects,
     })
 }
 

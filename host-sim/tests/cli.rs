@@ -327,3 +327,37 @@ angle_deg = 90.0
         "{labels:?}"
     );
 }
+
+/// The sidecar names the integrator and the topography as the configuration file does
+/// (`exact-foh`, `real-dent`), a custom topography by its dimensions, and the resolved
+/// effects as structured JSON: nothing is a Rust `Debug` string a reader would have to parse.
+#[test]
+fn sidecar_fields_are_names_and_structures_not_debug_strings() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    let cfg = write_config(
+        dir.path(),
+        "preset = \"thesis-61810\"\nintegrator = \"rk4\"\n",
+    );
+    let o = wearsim(&[
+        "simulate",
+        "--config",
+        &cfg,
+        "--duration",
+        "0.01",
+        "--topography",
+        "real-dent",
+        "--effect",
+        "slip:fraction=0.02",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(out.join("simulate.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["integrator"], "rk4");
+    assert_eq!(v["topography"], "real-dent");
+    assert_eq!(v["effects"]["resolved"]["slip"]["fraction"], 0.02);
+    assert!(v["effects"]["resolved"]["load_zone"].is_null());
+    assert!(!text.contains("Some("), "a Debug string in the sidecar");
+}

@@ -29,8 +29,9 @@ pub fn run(a: SimulateArgs) -> Result<(), CliError> {
         columns.push(("disp_m", d));
     }
     let meta = crate::cli::run_metadata(&scenario, &a, &summary);
-    let files = io::write::write_outputs(&a.out, "simulate", &columns, fs, &meta)
-        .map_err(CliError::input)?;
+    // The directory was checked writable before the work: a failure now is the run's.
+    let files =
+        io::write::write_outputs(&a.out, "simulate", &columns, fs, &meta).map_err(CliError::run)?;
     let rtf = scenario.run.duration / out.wall_s.max(1e-12);
     if a.json {
         let v = json!({
