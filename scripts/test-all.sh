@@ -27,7 +27,7 @@ cargo build -p wearsim-core-f32 --target thumbv7em-none-eabihf --features fast-m
 cargo clippy -p wearsim-core-f32 --target thumbv7em-none-eabihf -- -D warnings
 
 step "every feature at once (features are additive)"
-cargo build --workspace --all-features
+cargo check --workspace --all-features
 
 step "docs build without warnings"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features
