@@ -3,7 +3,6 @@
 pub mod analysis;
 pub mod analyze;
 pub mod capture;
-pub mod cli;
 pub mod cmd;
 pub mod config;
 pub mod cwru_benchmark;

@@ -1,7 +1,7 @@
 //! `wearsim analyze`: read, analyse, print (or `--json`), plot.
 
 use crate::analyze::{analyze, print_analysis, AnalyzeArgs};
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {

@@ -1,10 +1,10 @@
 //! `wearsim bench`: the real-time factor of the reference scenario on one core.
 
-use crate::cli::{BenchArgs, CliError};
+use crate::cmd::args::{BenchArgs, CliError};
 
 /// `wearsim bench`.
 pub fn run(a: BenchArgs) -> Result<(), CliError> {
-    let report = crate::cli::bench(&a)?;
+    let report = crate::cmd::args::bench(&a)?;
     if a.json {
         println!(
             "{}",

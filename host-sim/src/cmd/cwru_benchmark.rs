@@ -2,7 +2,7 @@
 //! confusion matrix (or `--json`), write Markdown.
 
 use crate::analyze::Method;
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 use crate::cwru_benchmark::{print_report, run_benchmark, to_markdown, CwruBenchmarkArgs};
 
 /// `wearsim cwru-benchmark`: locate the data, run, print (or `--json`), write Markdown.

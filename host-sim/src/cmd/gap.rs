@@ -2,7 +2,7 @@
 //! diagnosis along a whole life of one run-to-failure record; argument checks, the run,
 //! the report files and what is printed.
 
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 use crate::gap::attribute::{self, Options, Totals};
 use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};

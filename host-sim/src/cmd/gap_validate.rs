@@ -1,6 +1,6 @@
 //! `wearsim gap-validate`: arguments, the run, and the printed confusion matrix.
 
-use crate::cli::{CliError, Progress};
+use crate::cmd::args::{CliError, Progress};
 use crate::gap::validate::{validate, TwinOptions, TwinReport};
 use clap::Args;
 

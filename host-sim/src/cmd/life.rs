@@ -1,6 +1,6 @@
 //! `wearsim life`: arguments and the command.
 
-use crate::cli::{CliError, Progress};
+use crate::cmd::args::{CliError, Progress};
 use crate::config::{self, ScenarioFile};
 use crate::life::dense::DenseOptions;
 use crate::life::{LifeRun, LifeSpec};
@@ -67,7 +67,7 @@ impl LifeArgs {
         if file.preset.is_none() && self.config.is_none() {
             file.preset = Some(self.preset.clone());
         }
-        crate::cli::add_effect_args(&mut file, &self.effect)?;
+        crate::cmd::args::add_effect_args(&mut file, &self.effect)?;
         let (mut model, _) = file.resolve().map_err(CliError::input)?;
         wearsim_core::error::check_range("load_scale", self.load_scale, 0.05, 20.0)
             .map_err(CliError::input)?;

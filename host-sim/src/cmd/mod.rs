@@ -4,6 +4,7 @@
 //! code. `bin/wearsim.rs` only calls [`main`].
 
 pub mod analyze;
+pub mod args;
 pub mod bench;
 pub mod capture;
 pub mod cwru_benchmark;
@@ -14,7 +15,7 @@ pub mod life;
 pub mod presets;
 pub mod simulate;
 
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -36,14 +37,14 @@ pub struct Cli {
 pub enum Command {
     /// Simulate a scenario (the built-in reference without arguments) and write CSV, WAV and a JSON sidecar.
     #[command(allow_negative_numbers = true)]
-    Simulate(crate::cli::SimulateArgs),
+    Simulate(crate::cmd::args::SimulateArgs),
     /// Run a whole wear life: stage timeline, per-snapshot features, events (snapshot or dense mode).
     #[command(allow_negative_numbers = true)]
     Life(life::LifeArgs),
     /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
     ImsCompare(life::ImsCompareArgs),
     /// Measure the real-time factor of the reference scenario on one core.
-    Bench(crate::cli::BenchArgs),
+    Bench(crate::cmd::args::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
     Capture(capture::CaptureArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
@@ -95,6 +96,6 @@ pub fn main() -> ExitCode {
     };
     let command = args
         .command
-        .unwrap_or(Command::Simulate(crate::cli::SimulateArgs::default()));
+        .unwrap_or(Command::Simulate(crate::cmd::args::SimulateArgs::default()));
     exit::finish(dispatch(command))
 }

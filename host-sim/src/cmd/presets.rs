@@ -1,7 +1,7 @@
 //! `wearsim presets` and `wearsim effects`: the built-in presets with their derived
 //! frequencies, and the catalogue of candidate effects.
 
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 use crate::summary::KinematicFrequencies;
 use serde_json::json;
 
@@ -31,7 +31,7 @@ pub fn run(json: bool) -> Result<(), CliError> {
         let o = model.orders();
         rows.push(json!({
             "name": name,
-            "description": crate::cli::preset_description(name),
+            "description": crate::cmd::args::preset_description(name),
             "elements": cfg.bearing.elements,
             "element_diameter_m": cfg.bearing.element_diameter,
             "pitch_diameter_m": cfg.bearing.pitch_diameter,

@@ -1,7 +1,7 @@
 //! `wearsim simulate`: run a scenario, write CSV, WAV and the JSON sidecar, print the
 //! summary (or `--json`).
 
-use crate::cli::{CliError, SimulateArgs};
+use crate::cmd::args::{CliError, SimulateArgs};
 use crate::{io, simulate, summary};
 use serde_json::json;
 use std::io::IsTerminal;
@@ -13,7 +13,7 @@ pub fn run(a: SimulateArgs) -> Result<(), CliError> {
     let _lock = io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let fs = scenario.fs();
     let show = !a.json && std::io::stderr().is_terminal();
-    let bar = crate::cli::Progress::new(show, "simulating");
+    let bar = crate::cmd::args::Progress::new(show, "simulating");
     let out =
         simulate::run(&scenario, |done, total| bar.update(done, total)).map_err(CliError::run)?;
     bar.finish();
@@ -28,7 +28,7 @@ pub fn run(a: SimulateArgs) -> Result<(), CliError> {
         columns.push(("vel_m_s", v));
         columns.push(("disp_m", d));
     }
-    let meta = crate::cli::run_metadata(&scenario, &a, &summary);
+    let meta = crate::cmd::args::run_metadata(&scenario, &a, &summary);
     // The directory was checked writable before the work: a failure now is the run's.
     let files =
         io::write::write_outputs(&a.out, "simulate", &columns, fs, &meta).map_err(CliError::run)?;
@@ -45,7 +45,7 @@ pub fn run(a: SimulateArgs) -> Result<(), CliError> {
         });
         println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
     } else {
-        crate::cli::print_summary(&scenario, &summary, rtf, &files);
+        crate::cmd::args::print_summary(&scenario, &summary, rtf, &files);
     }
     Ok(())
 }

@@ -1,5 +1,7 @@
-//! Arguments, errors, progress display and printing of the `wearsim` command, kept in the
-//! library so that they are tested and reused by every subcommand.
+//! Arguments shared by the `wearsim` subcommands (`simulate`'s scenario arguments, `bench`),
+//! the progress display, and the simulate sidecar and summary printing. Part of the command
+//! layer: library modules never import it, and its errors are [`CliError`]s that
+//! [`crate::cmd::exit`] maps to exit codes.
 
 use crate::config::{self, ScenarioFile};
 use crate::simulate::{self, Scenario};
