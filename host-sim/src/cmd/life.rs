@@ -52,6 +52,17 @@ pub struct LifeArgs {
     /// Switch a candidate effect on: NAME[:PARAM=VALUE,...] (repeatable; see `wearsim effects`).
     #[arg(long = "effect", value_name = "NAME[:PARAM=VALUE,...]")]
     pub effect: Vec<String>,
+    /// Life statistics: run this many seeds (from --seed on), 3..=100000, and report the
+    /// distribution of lives and onsets, a Weibull fit and ISO 281's L10.
+    #[arg(long, conflicts_with = "dense")]
+    pub lives: Option<usize>,
+    /// With --lives: load scales to run (comma-separated, each 0.05..=20); two or more give
+    /// the life–load exponent. Default: --load-scale.
+    #[arg(long, value_delimiter = ',', requires = "lives")]
+    pub loads: Vec<f64>,
+    /// With --lives: worker threads (default: the machine's available parallelism).
+    #[arg(long, requires = "lives")]
+    pub threads: Option<usize>,
 }
 
 impl LifeArgs {
@@ -103,6 +114,9 @@ impl LifeArgs {
 pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
     if a.stop_after.is_some() && !a.dense {
         return Err(CliError::input("--stop-after applies to --dense runs only"));
+    }
+    if let Some(n) = a.lives {
+        return crate::cmd::life_stats::lives_cmd(a, n);
     }
     let run = a.run()?;
     // Exclusive, writable output directory before any work (docs/reliability.md).
@@ -222,7 +236,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn life_error(e: crate::life::LifeError) -> CliError {
+pub(crate) fn life_error(e: crate::life::LifeError) -> CliError {
     match e {
         crate::life::LifeError::CapReached { .. }
         | crate::life::LifeError::Config(_)

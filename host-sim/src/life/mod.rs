@@ -13,9 +13,11 @@ pub mod calibrate;
 pub mod dense;
 pub mod driver;
 pub mod ims;
+pub mod lives;
 pub mod output;
 pub mod plot;
 pub mod state_json;
+pub mod weibull;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Capacity of the dynamic state.
