@@ -10,7 +10,6 @@ pub mod exit;
 pub mod gap;
 pub mod gap_validate;
 pub mod life;
-pub mod life_stats;
 pub mod presets;
 pub mod simulate;
 
