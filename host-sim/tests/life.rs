@@ -325,3 +325,77 @@ fn life_command_outputs_and_errors() {
         assert!(!o2.join("life-summary.json").exists());
     }
 }
+
+/// `life --lives N` at two loads: every life fails, the Weibull fit and the life–load
+/// exponent come with intervals that contain their estimates, and the exponent has the
+/// sign and size of a fatigue law (ISO 281: −3 for ball bearings; the lives carry
+/// deterministic stages after initiation, so it is allowed to be flatter, not positive
+/// or steeper than −6).
+#[test]
+fn lives_give_weibull_and_load_exponent() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("lives");
+    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args([
+            "life",
+            "--lives",
+            "8",
+            "--loads",
+            "1,1.6",
+            "--snapshot-every",
+            "200000",
+            "--window",
+            "0.05",
+            "--threads",
+            "2",
+            "--json",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let groups = v["groups"].as_array().unwrap();
+    assert_eq!(groups.len(), 2);
+    for g in groups {
+        let w = &g["weibull"]["shape"];
+        let (b, lo, hi) = (
+            w["value"].as_f64().unwrap(),
+            w["lo"].as_f64().unwrap(),
+            w["hi"].as_f64().unwrap(),
+        );
+        assert!(b > 0.3 && b < 20.0 && lo <= b && b <= hi, "{w}");
+        assert!(g["iso_l10_revs"].as_f64().unwrap() > 0.0);
+    }
+    let e = &v["load_exponent"];
+    let x = e["value"].as_f64().unwrap();
+    assert!((-6.0..=-1.0).contains(&x), "life–load exponent {e}");
+    assert!(e["lo"].as_f64().unwrap() <= x && x <= e["hi"].as_f64().unwrap());
+    let csv = std::fs::read_to_string(out.join("lives.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 16);
+}
+
+/// Bad `--lives`/`--loads` values: exit 2, the field named, nothing written.
+#[test]
+fn lives_reject_bad_values() {
+    for (args, field) in [
+        (vec!["--lives", "2"], "lives"),
+        (vec!["--lives", "5", "--loads", "1,0"], "loads"),
+        (vec!["--lives", "5", "--threads", "0"], "threads"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("x");
+        let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+            .arg("life")
+            .args(&args)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(field), "{args:?}: {err}");
+        assert!(!out.join("lives.json").exists());
+    }
+}

@@ -90,7 +90,9 @@ pub fn measured_curve(data: &Path) -> Result<(Curve, f64), String> {
     Ok((normalise(t, r), h1 - h0))
 }
 
-fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
+/// A curve on the time line `t` (fraction of life) with RMS `r` over its median of the
+/// first half of life.
+pub fn normalise(t: Vec<f64>, r: Vec<f64>) -> Curve {
     let early: Vec<f64> = t
         .iter()
         .zip(&r)

@@ -11,10 +11,13 @@ use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stag
 
 pub mod calibrate;
 pub mod dense;
+pub mod driver;
 pub mod ims;
+pub mod lives;
 pub mod output;
 pub mod plot;
 pub mod state_json;
+pub mod weibull;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Capacity of the dynamic state.
@@ -60,6 +63,16 @@ pub enum LifeError {
         stage: &'static str,
         /// Revolutions run.
         cycles: f64,
+    },
+    /// The life needed more windows than its observer allows.
+    #[error("the simulated life did not fail within {windows} windows ({cycles:.3e} revolutions, stage {stage})")]
+    WindowCap {
+        /// Most windows.
+        windows: u64,
+        /// Revolutions run.
+        cycles: f64,
+        /// Stage reached.
+        stage: &'static str,
     },
     /// Signal analysis of a window failed.
     #[error("analysis of the window at {cycles:.0} revolutions failed: {source}")]
@@ -292,67 +305,34 @@ impl LifeRun {
         mut progress: impl FnMut(f64, f64),
     ) -> Result<LifeResult, LifeError> {
         let t0 = std::time::Instant::now();
-        let mut st = self.life.initial_state(self.spec.seed);
         let mut snapshots = vec![];
         let mut event_windows = vec![];
-        let mut k = 0u64;
-        let mut fresh_transition: Option<Stage> = Some(Stage::RunningIn);
-        let fs = self.spec.model.output_rate;
-        loop {
-            let (x, loads) = self.window(&st, k)?;
-            k += 1;
-            snapshots.push(self.snapshot(&st, &x, &loads)?);
-            if let Some(stage) = fresh_transition.take() {
-                event_windows.push(EventWindow {
-                    stage,
-                    cycles: st.cycles,
-                    samples: x,
-                });
-            }
-            progress(st.cycles, self.spec.life.cycle_cap);
-            if st.stage == Stage::Failure {
-                break;
-            }
-            if let (_, Some(stage)) = self.advance_block(&mut st, &loads) {
-                fresh_transition = Some(stage);
-            }
-            if st.cycles >= self.spec.life.cycle_cap && st.stage != Stage::Failure {
-                return Err(LifeError::CapReached {
-                    cap: self.spec.life.cycle_cap,
-                    stage: st.stage.name(),
-                    cycles: st.cycles,
-                });
-            }
-        }
+        let every = self.spec.snapshot_every;
+        let cap = self.spec.life.cycle_cap;
+        let d = self.drive(
+            |_| every,
+            u64::MAX,
+            |w| {
+                snapshots.push(self.snapshot(w.state, &w.samples, w.loads)?);
+                if let Some(stage) = w.entered {
+                    event_windows.push(EventWindow {
+                        stage,
+                        cycles: w.state.cycles,
+                        samples: w.samples,
+                    });
+                }
+                progress(w.state.cycles, cap);
+                Ok(())
+            },
+        )?;
         Ok(LifeResult {
             snapshots,
-            state: st,
+            state: d.state,
             event_windows,
-            fs,
-            windows: k as usize,
+            fs: self.spec.model.output_rate,
+            windows: d.windows as usize,
             wall_s: t0.elapsed().as_secs_f64(),
         })
-    }
-
-    /// Advances the wear by one block: `snapshot_every` revolutions, or less when a stage
-    /// transition (or a growth step of the defect) ends it early. Returns the revolutions
-    /// advanced and the stage entered, if it changed.
-    pub fn advance_block(&self, st: &mut LifeState, loads: &PassLoads) -> (f64, Option<Stage>) {
-        let mut remaining = self.spec.snapshot_every;
-        let mut total = 0.0;
-        while remaining > 0.0 {
-            let before = st.stage;
-            let adv = self.life.advance(st, remaining, loads);
-            remaining -= adv.revs;
-            total += adv.revs;
-            if adv.transition.is_some() {
-                return (total, (st.stage != before).then_some(st.stage));
-            }
-            if adv.revs <= 0.0 {
-                break;
-            }
-        }
-        (total, None)
     }
 
     /// Checks the cycle cap.

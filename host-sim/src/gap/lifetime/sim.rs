@@ -1,5 +1,5 @@
-//! The simulated life of the lifetime gap: the record's bearing run through the wear
-//! machine of [`crate::life::LifeRun`] with candidate effects, a window of the measured
+//! The simulated life of the lifetime gap: the record's bearing run through the one life
+//! driver ([`crate::life::LifeRun::drive`]) with candidate effects, a window of the measured
 //! snapshot's length rendered at every block of [`SCHEDULE`], cached per effect set; and
 //! the calibration of its life factor to the measured life.
 
@@ -7,11 +7,11 @@ use super::{LifePoint, EARLY_T_MAX};
 use crate::analysis;
 use crate::gap::matched::merge;
 use crate::life::calibrate::{calibrate as calibrate_life, Secant};
-use crate::life::{LifeRun, LifeSpec};
+use crate::life::{LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use wearsim_core::effects::Effects;
-use wearsim_core::wear::{LifeConfig, Material, Stage};
+use wearsim_core::wear::{LifeConfig, Material};
 
 /// Window schedule of a simulated life, as fractions of the expected life: blocks of
 /// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
@@ -101,34 +101,21 @@ impl LifeSim {
             settle: 0.05,
         })
         .map_err(|e| e.to_string())?;
-        let mut st = run.life.initial_state(self.seed);
         let mut raw: Vec<(f64, analysis::Stats)> = vec![];
-        let mut k = 0u64;
-        loop {
-            let (x, loads) = run.window(&st, k).map_err(|e| e.to_string())?;
-            k += 1;
-            let s = analysis::stats(&x).map_err(|e| e.to_string())?;
-            raw.push((st.cycles, s));
-            if st.stage == Stage::Failure {
-                break;
-            }
-            let mut remaining = self.block(st.cycles);
-            while remaining > 0.0 {
-                let adv = run.life.advance(&mut st, remaining, &loads);
-                remaining -= adv.revs;
-                if adv.transition.is_some() || adv.revs <= 0.0 {
-                    break;
-                }
-            }
-            run.check_cap(&st).map_err(|e| e.to_string())?;
-            if k > MAX_WINDOWS {
-                return Err(format!(
-                    "the simulated life did not fail within {MAX_WINDOWS} windows ({:.3e} revolutions, stage {})",
-                    st.cycles,
-                    st.stage.name()
-                ));
-            }
-        }
+        let d = run
+            .drive(
+                |st| self.block(st.cycles),
+                MAX_WINDOWS,
+                |w| {
+                    let cycles = w.state.cycles;
+                    let s = analysis::stats(&w.samples)
+                        .map_err(|source| LifeError::Analysis { cycles, source })?;
+                    raw.push((cycles, s));
+                    Ok(())
+                },
+            )
+            .map_err(|e| e.to_string())?;
+        let st = d.state;
         let end = st.cycles.max(1.0);
         let pts = raw
             .into_iter()

@@ -1,0 +1,109 @@
+//! The one life driver: the loop that renders a measurement window for the wear state,
+//! hands it to an observer and advances the wear by the next block with the pass loads
+//! measured in that window, until the bearing fails. Snapshot mode
+//! ([`LifeRun::run_snapshots`]) and the lifetime gap's simulated life
+//! (`gap::lifetime::LifeSim::run`) are this driver with their own block schedule and
+//! observer; dense mode streams samples between windows but advances the wear with the
+//! same step ([`LifeRun::advance_checked`]).
+
+use super::{LifeError, LifeRun};
+use wearsim_core::wear::{LifeState, PassLoads, Stage};
+
+/// One window of a life, as the driver hands it to its observer.
+#[derive(Debug)]
+pub struct DriverWindow<'a> {
+    /// Wear state the window was rendered for.
+    pub state: &'a LifeState,
+    /// Window index (seeds the window's random stream).
+    pub index: u64,
+    /// Acceleration samples (m/s²), after the settling time.
+    pub samples: Vec<f64>,
+    /// Pass loads measured over the window.
+    pub loads: &'a PassLoads,
+    /// The stage this state entered at the end of the previous block (running-in for the
+    /// first window), if it changed there.
+    pub entered: Option<Stage>,
+}
+
+/// The end of a driven life.
+#[derive(Debug, Clone)]
+pub struct Driven {
+    /// Final wear state (stage failure, with the event log).
+    pub state: LifeState,
+    /// Windows rendered.
+    pub windows: u64,
+}
+
+impl LifeRun {
+    /// Drives the whole life: a window for the current state, `observe` on it, then the
+    /// wear advanced by `block(state)` revolutions (or up to the next transition) with the
+    /// window's pass loads; stops after the window of the failure state. Fails when the
+    /// cycle cap is reached or more than `max_windows` windows would be needed.
+    pub fn drive(
+        &self,
+        mut block: impl FnMut(&LifeState) -> f64,
+        max_windows: u64,
+        mut observe: impl FnMut(DriverWindow<'_>) -> Result<(), LifeError>,
+    ) -> Result<Driven, LifeError> {
+        let mut st = self.life.initial_state(self.spec.seed);
+        let mut k = 0u64;
+        let mut entered: Option<Stage> = Some(Stage::RunningIn);
+        loop {
+            let (samples, loads) = self.window(&st, k)?;
+            observe(DriverWindow {
+                state: &st,
+                index: k,
+                samples,
+                loads: &loads,
+                entered: entered.take(),
+            })?;
+            k += 1;
+            if st.stage == Stage::Failure {
+                break;
+            }
+            let revs = block(&st);
+            entered = self.advance_checked(&mut st, &loads, revs)?.1;
+            if k > max_windows {
+                return Err(LifeError::WindowCap {
+                    windows: max_windows,
+                    cycles: st.cycles,
+                    stage: st.stage.name(),
+                });
+            }
+        }
+        Ok(Driven {
+            state: st,
+            windows: k,
+        })
+    }
+
+    /// The driver's step: advances the wear by up to `revs` revolutions (less when a
+    /// stage transition or a growth step of the defect ends the block early) and checks
+    /// the cycle cap. Returns the revolutions advanced and the stage entered, if it
+    /// changed.
+    pub fn advance_checked(
+        &self,
+        st: &mut LifeState,
+        loads: &PassLoads,
+        revs: f64,
+    ) -> Result<(f64, Option<Stage>), LifeError> {
+        let mut remaining = revs;
+        let mut total = 0.0;
+        let mut entered = None;
+        while remaining > 0.0 {
+            let before = st.stage;
+            let adv = self.life.advance(st, remaining, loads);
+            remaining -= adv.revs;
+            total += adv.revs;
+            if adv.transition.is_some() {
+                entered = (st.stage != before).then_some(st.stage);
+                break;
+            }
+            if adv.revs <= 0.0 {
+                break;
+            }
+        }
+        self.check_cap(st)?;
+        Ok((total, entered))
+    }
+}
