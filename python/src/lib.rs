@@ -10,7 +10,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use wearsim_host::config::ScenarioFile;
-use wearsim_host::simulate::{self, Scenario};
+use wearsim_host::simulate::{run as run_scenario, Scenario};
 use wearsim_host::sweep::{self, SweepError, SweepSpec};
 
 create_exception!(
@@ -82,7 +82,7 @@ fn simulate<'py>(
     let (cfg, run) = file.resolve().map_err(cfg_err)?;
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
     let out = py
-        .detach(|| simulate::run(&sc, |_, _| {}))
+        .detach(|| run_scenario(&sc, |_, _| {}))
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let meta = serde_json::json!({
         "fs": out.fs,
