@@ -112,7 +112,7 @@ pub struct Record {
 pub fn record(spec: &SweepSpec, cells: &[Cell], i: u64) -> Record {
     let seed = record_seed(spec.seed, i);
     let cell = cells[(i % cells.len() as u64) as usize].clone();
-    let mut d = Draws(splitmix64(seed ^ 0x5EED_0F_EFFEC7));
+    let mut d = Draws(splitmix64(seed ^ 0x5EED_0FEF_FEC7));
     let mut effects = Vec::with_capacity(spec.effect.len());
     for e in &spec.effect {
         let on = d.unit() < e.probability.unwrap_or(1.0);
