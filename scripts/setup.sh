@@ -34,3 +34,12 @@ if [ ${#need[@]} -gt 0 ]; then
     log "apt-get not available; please install: ${need[*]}"
   fi
 fi
+
+# The Python package (python/, docs/python.md): its build and test dependencies, then the
+# extension itself (maturin, cargo profile `pyext`, sharing ./target). WEARSIM_SKIP_PYTHON=1
+# skips it.
+if [ "${WEARSIM_SKIP_PYTHON:-0}" != 1 ] && command -v python3 >/dev/null; then
+  log "pip install the wearsim Python package and its test dependencies"
+  python3 -m pip install -q --disable-pip-version-check "maturin>=1.5,<2" numpy pyarrow pandas pytest "dask[distributed]"
+  python3 -m pip install -q --disable-pip-version-check --no-build-isolation "$(dirname "$0")/../python"
+fi

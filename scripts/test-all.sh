@@ -45,5 +45,9 @@ fi
 step "fuzz every reader and the frame decoder (libFuzzer, ${WEARSIM_FUZZ_SECONDS:-15} s each)"
 bash scripts/fuzz.sh "${WEARSIM_FUZZ_SECONDS:-15}"
 
+step "Python package: pytest (Dask 2-worker sweep, SIGKILL resume) and the worked example's tiny version"
+python3 -m pytest -q python/tests
+python3 python/examples/cwru_transfer.py --tiny --out "$(mktemp -d)/set"
+
 step "all tests"
 cargo test --workspace

@@ -13,3 +13,4 @@ pub mod life;
 pub mod plot;
 pub mod simulate;
 pub mod summary;
+pub mod sweep;

@@ -114,6 +114,9 @@ pub struct BenchArgs {
     /// Output sample rate (Hz).
     #[arg(long, default_value_t = 20_000.0)]
     pub fs: f64,
+    /// Throughput of K scenarios at once against one (simulated s per core-second).
+    #[arg(long, value_name = "K")]
+    pub lanes: Option<usize>,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,

@@ -4,6 +4,9 @@ use crate::cmd::args::{BenchArgs, CliError};
 
 /// `wearsim bench`.
 pub fn run(a: BenchArgs) -> Result<(), CliError> {
+    if let Some(k) = a.lanes {
+        return super::bench_lanes::run(&a, k);
+    }
     let report = crate::cmd::args::bench(&a)?;
     if a.json {
         println!(

@@ -6,6 +6,7 @@
 pub mod analyze;
 pub mod args;
 pub mod bench;
+pub mod bench_lanes;
 pub mod capture;
 pub mod cwru_benchmark;
 pub mod exit;
@@ -14,6 +15,7 @@ pub mod gap_validate;
 pub mod life;
 pub mod presets;
 pub mod simulate;
+pub mod sweep;
 
 use crate::cmd::args::CliError;
 use clap::{Parser, Subcommand};
@@ -56,6 +58,8 @@ pub enum Command {
     Gap(crate::gap::stationary::GapArgs),
     /// Twin experiments: withhold candidate effects from simulated "measurements" and check that the gap diagnosis names them.
     GapValidate(gap_validate::GapValidateArgs),
+    /// Generate a labelled data set from a sweep spec: float32 .npy shards and a Parquet index.
+    Sweep(sweep::SweepArgs),
     /// List the candidate effects (sim-to-real) with their parameters, units, defaults and bounds.
     Effects {
         /// Machine-readable output.
@@ -84,6 +88,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Effects { json } => presets::effects(json),
         Command::Analyze(a) => analyze::run(&a),
         Command::CwruBenchmark(a) => cwru_benchmark::run(&a),
+        Command::Sweep(a) => sweep::run(&a),
     }
 }
 

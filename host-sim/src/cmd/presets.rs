@@ -20,6 +20,12 @@ pub fn effects(json: bool) -> Result<(), CliError> {
 
 /// `wearsim presets`.
 pub fn run(json: bool) -> Result<(), CliError> {
+    let rows = catalogue()?;
+    print_catalogue(json, rows)
+}
+
+/// Every preset with its geometry and derived frequencies (the `--json` rows).
+pub fn catalogue() -> Result<Vec<serde_json::Value>, CliError> {
     let mut rows = vec![];
     for name in wearsim_core::presets::NAMES {
         let Some(cfg) = wearsim_core::presets::by_name(name) else {
@@ -45,6 +51,10 @@ pub fn run(json: bool) -> Result<(), CliError> {
             "oversample": model.oversample(),
         }));
     }
+    Ok(rows)
+}
+
+fn print_catalogue(json: bool, rows: Vec<serde_json::Value>) -> Result<(), CliError> {
     if json {
         println!(
             "{}",

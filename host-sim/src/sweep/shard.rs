@@ -1,0 +1,155 @@
+//! One shard of a sweep: its records simulated in order and written as a float32 `.npy`
+//! array `[records, samples]` (acceleration, m/s²) under a temporary name, renamed into
+//! place, then marked done by a small JSON marker (also written and renamed), so that a
+//! shard is either absent or complete, never half-written.
+
+use super::record::{cells, record, Cell};
+use super::spec::SweepSpec;
+use super::SweepError;
+use crate::simulate::{self, Scenario};
+use npyz::WriterBuilder;
+use std::path::{Path, PathBuf};
+
+/// File name of shard `s`'s signals.
+pub fn npy_name(s: u64) -> String {
+    format!("shard-{s:05}.npy")
+}
+
+/// File name of shard `s`'s completion marker.
+pub fn done_name(s: u64) -> String {
+    format!("shard-{s:05}.done.json")
+}
+
+/// The records of shard `s`: `[first, end)`.
+pub fn range(spec: &SweepSpec, s: u64) -> (u64, u64) {
+    let first = s * spec.per_shard();
+    (first, (first + spec.per_shard()).min(spec.records))
+}
+
+/// True when shard `s` is complete in `dir` (marker and signals both present, and the
+/// signals as long as the marker says).
+pub fn is_done(dir: &Path, s: u64) -> bool {
+    let marker = dir.join("shards").join(done_name(s));
+    let Ok(text) = std::fs::read_to_string(&marker) else {
+        return false;
+    };
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return false;
+    };
+    let want = v.get("bytes").and_then(|b| b.as_u64());
+    let have = std::fs::metadata(dir.join("shards").join(npy_name(s)))
+        .ok()
+        .map(|m| m.len());
+    want.is_some() && want == have
+}
+
+/// The validated scenario of one record.
+pub fn scenario(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Scenario, SweepError> {
+    let rec = record(spec, cells, i);
+    let file = rec.scenario_file(spec);
+    let (cfg, run) = file
+        .resolve()
+        .map_err(|e| SweepError::Input(format!("record {i} ({:?}): {e}", rec.cell)))?;
+    Scenario::new(cfg, run)
+        .map_err(|e| SweepError::Input(format!("record {i} ({:?}): {e}", rec.cell)))
+}
+
+/// Simulates record `i`, returning its acceleration as float32.
+pub fn simulate_record(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Vec<f32>, SweepError> {
+    let sc = scenario(spec, cells, i)?;
+    let out =
+        simulate::run(&sc, |_, _| {}).map_err(|e| SweepError::Run(format!("record {i}: {e}")))?;
+    Ok(out.accel.iter().map(|&x| x as f32).collect())
+}
+
+fn tmp_path(final_path: &Path) -> PathBuf {
+    let name = final_path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    final_path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
+    let tmp = tmp_path(path);
+    std::fs::write(&tmp, bytes)
+        .and_then(|_| std::fs::rename(&tmp, path))
+        .map_err(|e| SweepError::Run(format!("cannot write {}: {e}", path.display())))
+}
+
+/// Removes temporary files of shard `s` left by an interrupted run (only this shard's:
+/// the process generating a shard owns its temporaries).
+fn remove_stale_temps(dir: &Path, s: u64) {
+    let prefixes = [
+        format!(".{}.tmp-", npy_name(s)),
+        format!(".{}.tmp-", done_name(s)),
+    ];
+    if let Ok(rd) = std::fs::read_dir(dir.join("shards")) {
+        for e in rd.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if prefixes.iter().any(|p| name.starts_with(p.as_str())) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// Generates shard `s` of `spec` into `dir/shards/` unless it is already complete;
+/// returns the number of records generated (0 when skipped).
+pub fn run_shard(spec: &SweepSpec, dir: &Path, s: u64) -> Result<u64, SweepError> {
+    if s >= spec.shards() {
+        return Err(SweepError::Input(format!(
+            "shard {s} does not exist: the sweep has {} shards (0..={})",
+            spec.shards(),
+            spec.shards() - 1
+        )));
+    }
+    if is_done(dir, s) {
+        return Ok(0);
+    }
+    remove_stale_temps(dir, s);
+    let cells = cells(spec);
+    let (first, end) = range(spec, s);
+    let n = spec.samples();
+    let mut data: Vec<f32> = Vec::with_capacity((end - first) as usize * n);
+    for i in first..end {
+        let x = simulate_record(spec, &cells, i)?;
+        if x.len() != n {
+            return Err(SweepError::Run(format!(
+                "record {i}: {} samples, expected {n}",
+                x.len()
+            )));
+        }
+        data.extend_from_slice(&x);
+    }
+    let mut buf = Vec::with_capacity(data.len() * 4 + 128);
+    {
+        let shape = [end - first, n as u64];
+        let io = |e: std::io::Error| SweepError::Run(format!("shard {s}: {e}"));
+        let mut w = npyz::WriteOptions::new()
+            .default_dtype()
+            .shape(&shape)
+            .writer(&mut buf)
+            .begin_nd()
+            .map_err(io)?;
+        w.extend(data.iter().copied()).map_err(io)?;
+        w.finish().map_err(io)?;
+    }
+    let shards = dir.join("shards");
+    write_atomic(&shards.join(npy_name(s)), &buf)?;
+    let marker = serde_json::json!({
+        "shard": s,
+        "first_record": first,
+        "records": end - first,
+        "samples_per_record": n,
+        "bytes": buf.len(),
+    });
+    write_atomic(
+        &shards.join(done_name(s)),
+        serde_json::to_string_pretty(&marker)
+            .unwrap_or_default()
+            .as_bytes(),
+    )?;
+    Ok(end - first)
+}

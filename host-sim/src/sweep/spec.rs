@@ -1,0 +1,251 @@
+//! The sweep specification (`SPEC.toml`): the grid of labelled conditions (bearing preset,
+//! speed, load, fault location, defect stage), the candidate effects with the distributions
+//! their parameters are drawn from, and the record settings. Unknown keys, empty axes and
+//! distributions reaching outside an effect's bounds (the core's effect registry) are
+//! errors naming the key.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Largest number of records one sweep may hold.
+pub const MAX_RECORDS: u64 = 10_000_000;
+/// Largest number of records in one shard.
+pub const MAX_RECORDS_PER_SHARD: u64 = 100_000;
+/// Default number of records per shard.
+pub const DEFAULT_RECORDS_PER_SHARD: u64 = 256;
+
+/// A sweep specification problem (always names the key); exit code 2.
+#[derive(Debug, thiserror::Error)]
+#[error("sweep spec: {0}")]
+pub struct SpecError(pub String);
+
+fn err<T>(m: impl Into<String>) -> Result<T, SpecError> {
+    Err(SpecError(m.into()))
+}
+
+/// The whole specification.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    /// Sweep seed: record `i`'s seed is derived from it and `i` ([`super::record_seed`]).
+    pub seed: u64,
+    /// Number of records, 1..=10 000 000.
+    pub records: u64,
+    /// Records per shard (one `.npy` file each), 1..=100 000; default 256.
+    #[serde(default)]
+    pub records_per_shard: Option<u64>,
+    /// Recorded length of each record (s).
+    pub duration: f64,
+    /// Output sample rate (Hz).
+    pub fs: f64,
+    /// Settling time simulated and discarded before each record (s); default the
+    /// scenario default.
+    #[serde(default)]
+    pub settle: Option<f64>,
+    /// The labelled conditions (full factorial; record `i` takes cell `i mod cells`).
+    pub grid: Grid,
+    /// Candidate effects, each switched on with its probability, parameters drawn.
+    #[serde(default)]
+    pub effect: Vec<EffectDraw>,
+}
+
+/// `[grid]`: every axis is a non-empty list.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Grid {
+    /// Bearing presets (`wearsim presets`).
+    pub preset: Vec<String>,
+    /// Constant shaft speeds (rpm).
+    pub rpm: Vec<f64>,
+    /// Static radial loads (N); absent = each preset's own load.
+    #[serde(default)]
+    pub radial_load: Option<Vec<f64>>,
+    /// Fault locations: `healthy`, `outer`, `inner`, `ball`.
+    pub fault: Vec<String>,
+    /// Defect stages along a life (Table 1 topographies, e.g. `mild-defect`,
+    /// `medium-defect`, `large-defect`); a healthy cell has stage `healthy`.
+    pub stage: Vec<String>,
+}
+
+/// `[[effect]]`: an effect, the probability that a record has it, and its parameters'
+/// distributions (parameters not named take their default).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EffectDraw {
+    /// Effect name (`wearsim effects`).
+    pub name: String,
+    /// Probability that a record has the effect on, 0..=1; default 1.
+    #[serde(default)]
+    pub probability: Option<f64>,
+    /// Parameter distributions.
+    #[serde(default)]
+    pub params: BTreeMap<String, Dist>,
+}
+
+/// A parameter's distribution.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum Dist {
+    /// A fixed value.
+    Fixed(f64),
+    /// `{ uniform = [lo, hi] }` or `{ choice = [a, b, …] }`.
+    Table(DistTable),
+}
+
+/// The table forms of [`Dist`].
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistTable {
+    /// Uniform on `[lo, hi]`.
+    #[serde(default)]
+    pub uniform: Option<[f64; 2]>,
+    /// One of the values, equally likely.
+    #[serde(default)]
+    pub choice: Option<Vec<f64>>,
+}
+
+/// Fault locations the grid accepts.
+pub const FAULTS: [&str; 4] = ["healthy", "outer", "inner", "ball"];
+
+impl SweepSpec {
+    /// Parses and checks a specification; `origin` names it in messages.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, SpecError> {
+        let spec: SweepSpec =
+            toml::from_str(text).map_err(|e| SpecError(format!("{origin}: {e}")))?;
+        spec.check()?;
+        Ok(spec)
+    }
+
+    /// Records per shard (the default applied).
+    pub fn per_shard(&self) -> u64 {
+        self.records_per_shard.unwrap_or(DEFAULT_RECORDS_PER_SHARD)
+    }
+
+    /// Number of shards.
+    pub fn shards(&self) -> u64 {
+        self.records.div_ceil(self.per_shard())
+    }
+
+    /// Samples per record.
+    pub fn samples(&self) -> usize {
+        (self.duration * self.fs).round() as usize
+    }
+
+    /// Checks every key that the scenario resolution does not check itself.
+    pub fn check(&self) -> Result<(), SpecError> {
+        if !(1..=MAX_RECORDS).contains(&self.records) {
+            return err(format!(
+                "`records` = {} is outside 1..={MAX_RECORDS}",
+                self.records
+            ));
+        }
+        if !(1..=MAX_RECORDS_PER_SHARD).contains(&self.per_shard()) {
+            return err(format!(
+                "`records_per_shard` = {} is outside 1..={MAX_RECORDS_PER_SHARD}",
+                self.per_shard()
+            ));
+        }
+        let g = &self.grid;
+        let axes: [(&str, usize); 4] = [
+            ("grid.preset", g.preset.len()),
+            ("grid.rpm", g.rpm.len()),
+            ("grid.fault", g.fault.len()),
+            ("grid.stage", g.stage.len()),
+        ];
+        for (k, n) in axes {
+            if n == 0 {
+                return err(format!("`{k}` is empty: give at least one value"));
+            }
+        }
+        if g.radial_load.as_ref().is_some_and(Vec::is_empty) {
+            return err("`grid.radial_load` is empty: give at least one value or leave it out");
+        }
+        for p in &g.preset {
+            if wearsim_core::presets::by_name(p).is_none() {
+                return err(format!(
+                    "`grid.preset` = \"{p}\" is not a preset; use one of: {}",
+                    wearsim_core::presets::NAMES.join(", ")
+                ));
+            }
+        }
+        for f in &g.fault {
+            if !FAULTS.contains(&f.as_str()) {
+                return err(format!(
+                    "`grid.fault` = \"{f}\" is not allowed; use one of: {}",
+                    FAULTS.join(", ")
+                ));
+            }
+        }
+        for s in &g.stage {
+            if wearsim_core::topography::by_name(s).is_none() {
+                let names: Vec<&str> = wearsim_core::topography::TABLE_1
+                    .iter()
+                    .map(|(n, _)| *n)
+                    .collect();
+                return err(format!(
+                    "`grid.stage` = \"{s}\" is not a defect stage; use one of: {}",
+                    names.join(", ")
+                ));
+            }
+        }
+        for (i, e) in self.effect.iter().enumerate() {
+            check_effect(i, e)?;
+        }
+        Ok(())
+    }
+}
+
+fn check_effect(i: usize, e: &EffectDraw) -> Result<(), SpecError> {
+    let kind =
+        crate::effects::kind(&e.name).map_err(|m| SpecError(format!("`effect[{i}].name`: {m}")))?;
+    let spec = kind.spec();
+    if let Some(p) = e.probability {
+        if !(0.0..=1.0).contains(&p) {
+            return err(format!(
+                "`effect[{i}].probability` = {p} is outside [0, 1] (effect `{}`)",
+                e.name
+            ));
+        }
+    }
+    for (name, d) in &e.params {
+        let key = format!("effect[{i}].params.{name}");
+        let Some(p) = spec.params.iter().find(|p| p.name == name) else {
+            let known: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
+            return err(format!(
+                "`{key}`: effect `{}` has no parameter `{name}`; its parameters: {}",
+                e.name,
+                known.join(", ")
+            ));
+        };
+        let values: Vec<f64> = match d {
+            Dist::Fixed(v) => vec![*v],
+            Dist::Table(DistTable {
+                uniform: Some([lo, hi]),
+                choice: None,
+            }) => {
+                if lo.is_nan() || hi.is_nan() || lo > hi {
+                    return err(format!("`{key}.uniform` = [{lo}, {hi}]: lo must not exceed hi"));
+                }
+                vec![*lo, *hi]
+            }
+            Dist::Table(DistTable {
+                uniform: None,
+                choice: Some(c),
+            }) if !c.is_empty() => c.clone(),
+            Dist::Table(_) => {
+                return err(format!(
+                    "`{key}`: give a number, {{ uniform = [lo, hi] }} or a non-empty {{ choice = [...] }}"
+                ))
+            }
+        };
+        for v in values {
+            if !(v >= p.min && v <= p.max) {
+                return err(format!(
+                    "`{key}`: {v} is outside the bounds of effect `{}` parameter `{name}`: [{}, {}] {}",
+                    e.name, p.min, p.max, p.unit
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,290 @@
+//! `wearsim._wearsim`: the native half of the `wearsim` Python package (the Python half,
+//! `wearsim/__init__.py`, turns JSON strings into dicts and adds the Dask scale-out).
+//! Every call that computes releases the GIL (`py.detach`). Bad input raises
+//! `wearsim.ConfigError` (a `ValueError` subclass) with the message naming the field and
+//! its allowed range; a failed run raises `RuntimeError`.
+
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use wearsim_host::config::ScenarioFile;
+use wearsim_host::simulate::{run as run_scenario, Scenario};
+use wearsim_host::sweep::{self, SweepError, SweepSpec};
+
+create_exception!(
+    _wearsim,
+    ConfigError,
+    PyValueError,
+    "Bad input: the message names the field and its allowed range."
+);
+
+fn cfg_err(m: impl std::fmt::Display) -> PyErr {
+    ConfigError::new_err(m.to_string())
+}
+
+fn sweep_err(e: SweepError) -> PyErr {
+    match e {
+        SweepError::Input(m) => cfg_err(m),
+        SweepError::Run(m) => PyRuntimeError::new_err(m),
+    }
+}
+
+/// Merges `over` into `base` (objects recursively, anything else replaced).
+fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
+    match (base, over) {
+        (serde_json::Value::Object(b), serde_json::Value::Object(o)) => {
+            for (k, v) in o {
+                match b.get_mut(&k) {
+                    Some(slot) if slot.is_object() && v.is_object() => merge(slot, v),
+                    _ => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (b, o) => *b = o,
+    }
+}
+
+/// The scenario file of `source` (a preset name, TOML text, or JSON text of a dict when
+/// `is_json`) with the JSON object `overrides` merged over it.
+fn scenario_file(source: &str, is_json: bool, overrides: &str) -> PyResult<ScenarioFile> {
+    let mut v: serde_json::Value = if is_json {
+        serde_json::from_str(source).map_err(cfg_err)?
+    } else if wearsim_core::presets::by_name(source.trim()).is_some() {
+        serde_json::json!({ "preset": source.trim() })
+    } else if source.contains('=') || source.contains('[') {
+        let t: toml::Value =
+            toml::from_str(source).map_err(|e| cfg_err(format!("configuration TOML: {e}")))?;
+        serde_json::to_value(t).map_err(cfg_err)?
+    } else {
+        return Err(cfg_err(format!(
+            "`preset` = \"{source}\" is not a preset; use one of: {} (or pass TOML text or a dict)",
+            wearsim_core::presets::NAMES.join(", ")
+        )));
+    };
+    let o: serde_json::Value = serde_json::from_str(overrides).map_err(cfg_err)?;
+    merge(&mut v, o);
+    serde_json::from_value(v).map_err(|e| cfg_err(format!("configuration: {e}")))
+}
+
+/// simulate(source, is_json, overrides_json) -> (accel ndarray, meta JSON)
+#[pyfunction]
+fn simulate<'py>(
+    py: Python<'py>,
+    source: &str,
+    is_json: bool,
+    overrides: &str,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, String)> {
+    let file = scenario_file(source, is_json, overrides)?;
+    let (cfg, run) = file.resolve().map_err(cfg_err)?;
+    let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
+    let out = py
+        .detach(|| run_scenario(&sc, |_, _| {}))
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let meta = serde_json::json!({
+        "fs": out.fs,
+        "duration_s": sc.run.duration,
+        "seed": sc.run.seed,
+        "preset": sc.run.preset,
+        "settle_s": sc.run.settle,
+        "units": "m/s^2",
+        "steps": out.steps,
+        "wall_s": out.wall_s,
+        "scenario": file,
+        "config": sc.model.config(),
+        "wearsim_version": env!("CARGO_PKG_VERSION"),
+    });
+    Ok((out.accel.into_pyarray(py), meta.to_string()))
+}
+
+/// effects() -> JSON of the effect registry.
+#[pyfunction]
+fn effects() -> String {
+    wearsim_host::effects::catalogue_json().to_string()
+}
+
+/// presets() -> JSON of the presets with derived frequencies.
+#[pyfunction]
+fn presets() -> PyResult<String> {
+    let rows =
+        wearsim_host::cmd::presets::catalogue().map_err(|e| PyRuntimeError::new_err(e.message))?;
+    Ok(serde_json::Value::Array(rows).to_string())
+}
+
+/// analyze(signal, fs, bearing, rpm) -> JSON of `wearsim analyze --json`.
+#[pyfunction]
+#[pyo3(signature = (signal, fs, bearing=None, rpm=None))]
+fn analyze(
+    py: Python<'_>,
+    signal: PyReadonlyArray1<'_, f64>,
+    fs: f64,
+    bearing: Option<String>,
+    rpm: Option<f64>,
+) -> PyResult<String> {
+    let x: Vec<f64> = signal.as_array().iter().copied().collect();
+    py.detach(move || {
+        let dir = tempfile::tempdir().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let path = dir.path().join("signal.npy");
+        write_npy_f64(&path, &x).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let args = wearsim_host::analyze::AnalyzeArgs {
+            file: path,
+            channel: None,
+            rpm,
+            fs: Some(fs),
+            bearing,
+            json: true,
+            plot: None,
+        };
+        let (a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
+            wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(m),
+            wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(m),
+        })?;
+        serde_json::to_string(&a).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    })
+}
+
+fn write_npy_f64(path: &std::path::Path, x: &[f64]) -> std::io::Result<()> {
+    let header = format!(
+        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({},), }}",
+        x.len()
+    );
+    let mut h = header.into_bytes();
+    while (10 + h.len() + 1) % 64 != 0 {
+        h.push(b' ');
+    }
+    h.push(b'\n');
+    let mut buf = Vec::with_capacity(10 + h.len() + 8 * x.len());
+    buf.extend_from_slice(b"\x93NUMPY\x01\x00");
+    buf.extend_from_slice(&(h.len() as u16).to_le_bytes());
+    buf.extend_from_slice(&h);
+    for v in x {
+        buf.extend_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(path, buf)
+}
+
+/// cli(argv) -> (exit code, message): runs one `wearsim` subcommand in-process (file
+/// level: `life` and `gap` write into their `--out` directory).
+#[pyfunction]
+fn cli(py: Python<'_>, argv: Vec<String>) -> (u8, String) {
+    py.detach(move || {
+        use clap::Parser;
+        let mut full = vec!["wearsim".to_string()];
+        full.extend(argv);
+        match wearsim_host::cmd::Cli::try_parse_from(full) {
+            Err(e) => (2, e.to_string()),
+            Ok(c) => match c.command {
+                None => (2, "no subcommand".into()),
+                Some(cmd) => match wearsim_host::cmd::dispatch(cmd) {
+                    Ok(()) => (0, String::new()),
+                    Err(e) => (e.code, e.message),
+                },
+            },
+        }
+    })
+}
+
+/// sweep_plan(spec_toml) -> JSON {shards, records, samples}: parses and validates a spec.
+#[pyfunction]
+fn sweep_plan(spec: &str) -> PyResult<String> {
+    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    sweep::validate(&s).map_err(sweep_err)?;
+    Ok(serde_json::json!({
+        "shards": s.shards(), "records": s.records, "samples_per_record": s.samples(),
+    })
+    .to_string())
+}
+
+/// sweep_prepare(spec_toml, out): creates or checks the data set directory.
+#[pyfunction]
+fn sweep_prepare(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<()> {
+    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    py.detach(|| {
+        sweep::validate(&s)?;
+        sweep::prepare_dir(&s, &out)
+    })
+    .map_err(sweep_err)
+}
+
+/// sweep_shard(spec_toml, out, s) -> records generated (0 when already complete).
+#[pyfunction]
+fn sweep_shard(py: Python<'_>, spec: &str, out: PathBuf, shard: u64) -> PyResult<u64> {
+    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    py.detach(|| sweep::shard::run_shard(&s, &out, shard))
+        .map_err(sweep_err)
+}
+
+/// sweep_finalize(spec_toml, out) -> (complete, bytes).
+#[pyfunction]
+fn sweep_finalize(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<(bool, u64)> {
+    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    py.detach(|| sweep::finalize(&s, &out)).map_err(sweep_err)
+}
+
+/// sweep_run(spec_toml, out, threads, part) -> JSON report (local threads).
+#[pyfunction]
+#[pyo3(signature = (spec, out, threads, part=None))]
+fn sweep_run(
+    py: Python<'_>,
+    spec: &str,
+    out: PathBuf,
+    threads: usize,
+    part: Option<(u64, u64)>,
+) -> PyResult<String> {
+    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    if let Some((i, n)) = part {
+        if n == 0 || i >= n {
+            return Err(cfg_err(format!("part = ({i}, {n}): expected 0 <= I < N")));
+        }
+    }
+    let shards = sweep::shard_set(&s, part);
+    let r = py
+        .detach(|| sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {}))
+        .map_err(sweep_err)?;
+    serde_json::to_string(&r).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// read_record(path, channel) -> (samples ndarray, meta JSON): any measurement file
+/// `wearsim analyze` reads (CWRU `.mat`, CSV, WAV, NPY, IMS snapshot).
+#[pyfunction]
+#[pyo3(signature = (path, channel=None))]
+fn read_record<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    channel: Option<String>,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, String)> {
+    let opts = wearsim_host::io::ReadOptions {
+        channel,
+        fs: None,
+        rpm: None,
+    };
+    let rec = py
+        .detach(|| wearsim_host::io::read_any(&path, &opts))
+        .map_err(cfg_err)?;
+    let meta = serde_json::json!({
+        "fs": rec.fs, "rpm": rec.rpm, "channel": rec.channel, "unit": rec.unit,
+        "bearing": rec.bearing, "source": rec.source, "meta": rec.meta,
+    });
+    Ok((rec.samples.into_pyarray(py), meta.to_string()))
+}
+
+/// The native module.
+#[pymodule]
+fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("ConfigError", m.py().get_type::<ConfigError>())?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(effects, m)?)?;
+    m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(analyze, m)?)?;
+    m.add_function(wrap_pyfunction!(cli, m)?)?;
+    m.add_function(wrap_pyfunction!(read_record, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_prepare, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_shard, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_finalize, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep_run, m)?)?;
+    Ok(())
+}
