@@ -228,7 +228,7 @@ pub fn attribute<T: Target>(
             ));
         }
         for p in &r.params {
-            if p.at_bound && r.shrink >= opt.min_shrink {
+            if p.at_bound && p.constrained && r.shrink >= opt.min_shrink {
                 findings.push(format!(
                     "`{}`: {} = {:.4} sits on the edge of its fitted range; the effect may need more than the range allows",
                     r.effect, p.name, p.value

@@ -10,7 +10,7 @@
 //! chase realisation noise.
 
 use super::matched::{merge, Evaluator, Target};
-use super::space::FitSpace;
+use super::space::{FitParam, FitSpace};
 use super::SEGMENTS;
 use serde::Serialize;
 use wearsim_core::effects::Effects;
@@ -67,9 +67,35 @@ pub struct FittedParam {
     pub std: Option<f64>,
     /// Catalogue unit.
     pub unit: String,
-    /// The optimum lies on the edge of the fitted range and the cells constrain the
-    /// parameter (normalised standard deviation < 0.25 of the range).
+    /// The optimum lies on the edge of the fitted range (whether or not the cells
+    /// constrain the parameter: see [`FittedParam::constrained`]).
     pub at_bound: bool,
+    /// The cells constrain the parameter: its normalised standard deviation is below
+    /// [`CONSTRAINED`] of the fitted range. An unconstrained parameter on its edge says
+    /// nothing about the range being too small.
+    pub constrained: bool,
+}
+
+/// Normalised standard deviation (fraction of the fitted range) below which the cells
+/// count as constraining a parameter.
+pub const CONSTRAINED: f64 = 0.25;
+
+impl FittedParam {
+    /// The report of parameter `f` at normalised coordinate `u` with normalised standard
+    /// deviation `s` (None: unconstrained). `at_bound` compares the coordinate with the
+    /// ends of the range only: it used to require a constrained parameter too, so a
+    /// parameter sitting exactly on its bound with a large std (load-zone `epsilon` =
+    /// 1.0 on [0.2, 1], std 34) was reported `at_bound: false` (issue 13).
+    pub fn new(f: &FitParam, u: f64, s: Option<f64>, unit: String) -> Self {
+        FittedParam {
+            name: f.name.to_string(),
+            value: f.value(u),
+            std: s.map(|s| s * f.slope(u)),
+            unit,
+            at_bound: u <= 1e-9 || u >= 1.0 - 1e-9,
+            constrained: s.is_some_and(|s| s < CONSTRAINED),
+        }
+    }
 }
 
 /// The result of fitting one effect.
@@ -231,18 +257,12 @@ pub fn fit_from<T: Target>(
         .iter()
         .zip(&best_u)
         .zip(&stds)
-        .map(|((f, u), s)| FittedParam {
-            name: f.name.to_string(),
-            value: f.value(*u),
-            std: s.map(|s| s * f.slope(*u)),
-            unit: info
+        .map(|((f, u), s)| {
+            let unit = info
                 .and_then(|i| i.params.iter().find(|q| q.name == f.name))
                 .map(|q| q.unit.to_string())
-                .unwrap_or_default(),
-            // Only a parameter the cells constrain (normalised std below a quarter of
-            // its range) is reported on the edge: one they do not constrain can sit
-            // anywhere, its edge says nothing about the range being too small.
-            at_bound: (*u <= 1e-9 || *u >= 1.0 - 1e-9) && s.is_some_and(|s| s < 0.25),
+                .unwrap_or_default();
+            FittedParam::new(f, *u, *s, unit)
         })
         .collect();
     Fit {
@@ -418,4 +438,32 @@ fn invert(a: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
         }
     }
     Some(inv)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 13: load-zone `epsilon` fitted to 1.0 on [0.2, 1] with std 34 was reported
+    /// `at_bound: false` because the edge flag also required a constrained parameter.
+    #[test]
+    fn a_parameter_on_its_bound_is_at_bound_even_unconstrained() {
+        let f = FitParam {
+            name: "epsilon",
+            lo: 0.2,
+            hi: 1.0,
+            log: false,
+        };
+        let p = FittedParam::new(&f, 1.0, Some(34.0 / 0.8), String::new());
+        assert_eq!(p.value, 1.0);
+        assert!(p.at_bound, "epsilon = 1.0 on [0.2, 1] must be at its bound");
+        assert!(!p.constrained);
+        assert!((p.std.unwrap_or(0.0) - 34.0).abs() < 1e-9);
+        let lo = FittedParam::new(&f, 0.0, None, String::new());
+        assert!(lo.at_bound && !lo.constrained);
+        let mid = FittedParam::new(&f, 0.5, Some(0.05), String::new());
+        assert!(!mid.at_bound && mid.constrained);
+        let near = FittedParam::new(&f, 1.0 - 1.0 / 128.0, Some(0.01), String::new());
+        assert!(!near.at_bound);
+    }
 }
