@@ -9,7 +9,7 @@
 //! so the objective is a deterministic function of the parameters and the search does not
 //! chase realisation noise.
 
-use super::matched::{merge, Evaluator, Target};
+use super::matched::{merge, Evaluator, Gaps, Target};
 use super::space::{FitParam, FitSpace};
 use super::SEGMENTS;
 use serde::Serialize;
@@ -114,6 +114,16 @@ pub struct Fit {
     pub converged: bool,
     /// Objective evaluations (each simulates every training record once).
     pub evaluations: usize,
+    /// Training cell gaps at the optimum (empty when the simulation was refused).
+    #[serde(skip)]
+    pub train_gaps: Gaps,
+    /// Jacobian of the training cell gaps (already in units of each cell's measured
+    /// spread) by the normalised coordinates at the optimum, one column per fitted
+    /// parameter (finite differences, step 0.02; empty when not computable): the
+    /// effect's signature subspace for the identifiability analysis
+    /// ([`super::identify`]).
+    #[serde(skip)]
+    pub jacobian: Vec<Vec<f64>>,
 }
 
 impl Fit {
@@ -249,7 +259,12 @@ pub fn fit_from<T: Target>(
         }
     }
     let converged = p == 0 || (step < budget.step_tol && best.is_finite());
-    let (stds, extra) = uncertainty(space, base, train, ev, &best_u);
+    let Local {
+        stds,
+        evaluations: extra,
+        gaps: train_gaps,
+        jacobian,
+    } = uncertainty(space, base, train, ev, &best_u);
     evaluations += extra;
     let info = wearsim_core::effects::info(space.effect);
     let params = space
@@ -272,21 +287,41 @@ pub fn fit_from<T: Target>(
         train_gap: best,
         converged,
         evaluations,
+        train_gaps,
+        jacobian,
     }
 }
 
-/// Standard deviation of each normalised coordinate at `u` (None: unconstrained), and the
-/// evaluations spent.
+/// The local analysis at an optimum.
+struct Local {
+    /// Standard deviation of each normalised coordinate (None: unconstrained).
+    stds: Vec<Option<f64>>,
+    /// Evaluations spent.
+    evaluations: usize,
+    /// Cell gaps at the optimum.
+    gaps: Gaps,
+    /// Jacobian columns (one per coordinate).
+    jacobian: Vec<Vec<f64>>,
+}
+
+/// Standard deviation of each normalised coordinate at `u` (None: unconstrained), the
+/// evaluations spent, the cell gaps at `u` and the Jacobian.
 fn uncertainty<T: Target>(
     space: &FitSpace,
     base: &Effects,
     train: &[T],
     ev: &Evaluator,
     u: &[f64],
-) -> (Vec<Option<f64>>, usize) {
+) -> Local {
     let p = u.len();
+    let none = |n: usize, gaps: Gaps, jacobian: Vec<Vec<f64>>| Local {
+        stds: vec![None; p],
+        evaluations: n,
+        gaps,
+        jacobian,
+    };
     if p == 0 {
-        return (vec![], 0);
+        return none(0, Gaps::default(), vec![]);
     }
     let h = 0.02;
     let res = |u: &Vec<f64>| with(space, base, u).and_then(|fx| ev.residuals(train, &fx).ok());
@@ -303,7 +338,7 @@ fn uncertainty<T: Target>(
     let r = ev.map(&pts, res);
     let n = pts.len();
     let Some(Some(r0)) = r.first() else {
-        return (vec![None; p], n);
+        return none(n, Gaps::default(), vec![]);
     };
     // Jacobian columns by central (or one-sided at a bound) differences.
     let mut jac: Vec<Vec<f64>> = vec![];
@@ -314,11 +349,11 @@ fn uncertainty<T: Target>(
             pts.get(1 + 2 * i).and_then(|w| w.get(i)),
             pts.get(2 + 2 * i).and_then(|w| w.get(i)),
         ) else {
-            return (vec![None; p], n);
+            return none(n, r0.clone(), vec![]);
         };
         let du = uhi - ulo;
         if du <= 0.0 {
-            return (vec![None; p], n);
+            return none(n, r0.clone(), vec![]);
         }
         jac.push(
             lo.gaps
@@ -354,11 +389,11 @@ fn uncertainty<T: Target>(
     let mut a = gram(1);
     let b = gram(2);
     let Some(inv) = invert(&mut a) else {
-        return (vec![None; p], n);
+        return none(n, r0.clone(), jac);
     };
     let cov = mul(&mul(&inv, &b), &inv);
-    (
-        (0..p)
+    Local {
+        stds: (0..p)
             .map(|i| {
                 cov.get(i)
                     .and_then(|row| row.get(i))
@@ -366,8 +401,10 @@ fn uncertainty<T: Target>(
                     .map(|d| (s2 * d).sqrt())
             })
             .collect(),
-        n,
-    )
+        evaluations: n,
+        gaps: r0.clone(),
+        jacobian: jac,
+    }
 }
 
 fn mul(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
