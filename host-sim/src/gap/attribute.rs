@@ -78,7 +78,7 @@ pub struct Ranked {
     /// [`WHERE_CELLS`] largest cells).
     pub where_shrink: f64,
     /// Total gap on the test part with the effect alone (set by
-    /// [`super::protocol::judge`]; `null` when there is no test part).
+    /// `gap::protocol::judge`; `null` when there is no test part).
     pub test_gap: Option<f64>,
     /// `1 − test_gap / baseline test gap`: the shrink to report (the test part chose
     /// nothing).
@@ -86,7 +86,7 @@ pub struct Ranked {
     /// The fit converged.
     pub converged: bool,
     /// Effects the cells cannot tell apart from this one at this record's noise (a
-    /// confounded set, [`super::identify`]); empty when it stands alone.
+    /// confounded set, `gap::identify`); empty when it stands alone.
     pub confounded_with: Vec<String>,
     /// Validation shrink per cell group (`zone`, `shape`, `stat`, `env`): where it acts.
     pub group_shrink: std::collections::BTreeMap<String, f64>,
@@ -95,7 +95,7 @@ pub struct Ranked {
     pub effects: Effects,
     /// Its weighted cell signature and subspace at the fitted point.
     #[serde(skip)]
-    pub signature: super::identify::Signature,
+    pub signature: super::signature::Signature,
     /// Validation cell gaps with the effect.
     #[serde(skip)]
     pub holdout: Gaps,
@@ -162,8 +162,8 @@ pub struct Attribution {
     /// The effects switched on at the end.
     #[serde(skip)]
     pub final_effects: Effects,
-    /// Totals on the test part, when one was judged ([`super::protocol::judge`]).
-    pub test: Option<super::protocol::TestTotals>,
+    /// Totals on the test part, when one was judged (`gap::protocol::judge`).
+    pub test: Option<TestTotals>,
     /// Held-out cell gaps of the baseline.
     #[serde(skip)]
     pub holdout_before: Gaps,
@@ -236,7 +236,7 @@ pub fn attribute<T: Target>(
             confounded_with: vec![],
             group_shrink: Default::default(),
             effects: fx,
-            signature: super::identify::Signature::new(&f.train_gaps, &f.jacobian, &train_r0),
+            signature: super::signature::Signature::new(&f.train_gaps, &f.jacobian, &train_r0),
             holdout: r,
             evaluations: f.evaluations,
         });
@@ -487,6 +487,17 @@ pub fn leave_one_out<T: Target>(
         });
     }
     Ok(out)
+}
+
+/// Total gaps on the test part.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TestTotals {
+    /// Baseline total gap on the test part.
+    pub before: f64,
+    /// Total gap of the chosen model (the kept effects) on the test part.
+    pub after: f64,
+    /// `1 − after/before`.
+    pub shrink: f64,
 }
 
 /// Total gaps. `before`/`after` are on the validation part, which chose the model (a

@@ -14,6 +14,7 @@ pub mod matched;
 pub mod protocol;
 pub mod records;
 pub mod report;
+pub mod signature;
 pub mod space;
 pub mod stationary;
 pub mod validate;

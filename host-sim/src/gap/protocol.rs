@@ -5,21 +5,9 @@
 //! A shrink measured on the part that chose the model is biased upwards (the choice
 //! picked whatever fitted that part's realisation best).
 
-use super::attribute::Attribution;
+use super::attribute::{Attribution, TestTotals};
 use super::matched::{Evaluator, Target};
-use serde::Serialize;
 use wearsim_core::effects::Effects;
-
-/// Total gaps on the test part.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct TestTotals {
-    /// Baseline total gap on the test part.
-    pub before: f64,
-    /// Total gap of the chosen model (the kept effects) on the test part.
-    pub after: f64,
-    /// `1 − after/before`.
-    pub shrink: f64,
-}
 
 /// Judges a finished attribution on the test part `test` (never seen by the fit or the
 /// choice): the baseline `base`, every ranked effect alone at its training fit, and the
