@@ -63,6 +63,13 @@ fn gap_rejects_bad_input_naming_the_field() {
         with(&["--rpm", "1797"], &short),
         "is the sample rate right?",
     );
+    // One record too short for three disjoint parts (1.25 s < 3 × 0.5 s) says how long
+    // it must be.
+    let mid = csv(dir.path(), "mid.csv", 15_000);
+    run(
+        with(&["--rpm", "1797"], &mid),
+        "must hold at least 1.5 s (18000 samples at 12000 Hz)",
+    );
     // Speed missing and not estimable from a broadband record.
     run(with(&[], &long), "not estimable");
     // Unknown defect location, size without unit, out-of-range size.

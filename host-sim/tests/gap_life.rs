@@ -93,9 +93,27 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         g.early_before,
         g.noise_only.1
     );
-    assert_eq!(g.early_effect.as_deref(), Some("running-in"));
+    // Which effect closes it is a tie on this record (running-in 13 % against roughness
+    // 11 %, inside the report's 2 % tie rule; issue 13): asserted is only that
+    // running-in shrinks it and is not beaten beyond the tie, not that it ranks first.
     let top = g.early.first().ok_or("no early ranking")?;
-    assert!(top.shrink >= 0.10, "early shrink {:.2}", top.shrink);
+    let ri = g
+        .early
+        .iter()
+        .find(|r| r.effect == "running-in")
+        .ok_or("running-in not ranked on the early part")?;
+    assert!(
+        ri.shrink >= 0.10,
+        "running-in early shrink {:.2}",
+        ri.shrink
+    );
+    assert!(
+        top.shrink - ri.shrink <= 0.02 + 1e-9,
+        "early part: `{}` {:.3} beats running-in {:.3} beyond the tie",
+        top.effect,
+        top.shrink,
+        ri.shrink
+    );
     // Whole life.
     assert!(
         at.final_holdout < (2.0 / 3.0) * at.baseline_holdout,

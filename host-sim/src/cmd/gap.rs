@@ -29,8 +29,8 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
 
 /// `wearsim gap` on records of seconds.
 fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
-    let (roles, train, hold) = prepare(a)?;
-    let (at, spaces, ev) = diagnose(a, &train, &hold, &roles)?;
+    let parts = prepare(a)?;
+    let (at, spaces, ev) = diagnose(a, &parts)?;
     let loo = if a.leave_one_out {
         let added = at.kept.clone();
         Some(
@@ -38,8 +38,8 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
                 &spaces,
                 &at.final_effects,
                 &added,
-                &train,
-                &hold,
+                &parts.train,
+                &parts.test,
                 &ev,
                 &Options::default(),
             )
@@ -48,7 +48,8 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
     } else {
         None
     };
-    let mut findings: Vec<String> = roles
+    let mut findings: Vec<String> = parts
+        .roles
         .iter()
         .flat_map(|r| {
             r.meta
@@ -60,8 +61,8 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
     findings.dedup();
     findings.extend(at.findings.iter().cloned());
     let mut out = GapOutput {
-        records: roles,
-        where_: where_cells(&hold, &at),
+        records: parts.roles.clone(),
+        where_: where_cells(&parts.valid, &at),
         ranking: at.ranking.clone(),
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
@@ -75,7 +76,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         seconds: at.seconds,
         files: vec![],
     };
-    out.files = report::write(&a.out, &out, &hold, &at)?;
+    out.files = report::write(&a.out, &out, &parts.valid, &at)?;
     if a.json {
         println!(
             "{}",

@@ -16,6 +16,9 @@ pub struct GapValidateArgs {
     /// Additional trials withholding two effects at once.
     #[arg(long, default_value_t = 0)]
     pub pairs: usize,
+    /// Additional twins with no effect withheld (false-attribution rate).
+    #[arg(long, default_value_t = 0)]
+    pub null: usize,
     /// Seed of the parameter draws and realisations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -40,6 +43,12 @@ impl GapValidateArgs {
             return Err(CliError::input(format!(
                 "--trials {} is out of range 1..=1000",
                 self.trials
+            )));
+        }
+        if self.null > 1000 {
+            return Err(CliError::input(format!(
+                "--null {} is out of range 0..=1000",
+                self.null
             )));
         }
         if self.pairs > 1000 {
@@ -75,6 +84,7 @@ impl GapValidateArgs {
             trials: self.trials,
             effects: self.effects.clone(),
             pair_trials: self.pairs,
+            null_trials: self.null,
             seed: self.seed,
             half_s: self.half,
             noise: self.noise,
@@ -129,6 +139,19 @@ pub fn print(r: &TwinReport) {
             print!(" {v:>6}");
         }
         println!();
+    }
+    println!();
+    for e in &r.rates {
+        println!(
+            "{:<18} truth inside the reported set {:>3}/{}, mean set size {:.2}",
+            e.effect, e.in_set, e.trials, e.mean_set_size
+        );
+    }
+    if let Some((n, named)) = r.null {
+        println!(
+            "no effect withheld ({n} trials): attributed to an effect {named} ({:.0} %)",
+            100.0 * named as f64 / n.max(1) as f64
+        );
     }
     if let Some((n, any, both)) = r.pairs {
         println!();

@@ -77,8 +77,28 @@ pub struct Ranked {
     /// The same shrink over the cells where the baseline's held-out gap lies (its
     /// [`WHERE_CELLS`] largest cells).
     pub where_shrink: f64,
+    /// Total gap on the test part with the effect alone (set by
+    /// `gap::protocol::judge`; `null` when there is no test part).
+    pub test_gap: Option<f64>,
+    /// `1 − test_gap / baseline test gap`: the shrink to report (the test part chose
+    /// nothing).
+    pub test_shrink: Option<f64>,
     /// The fit converged.
     pub converged: bool,
+    /// Effects the cells cannot tell apart from this one at this record's noise (a
+    /// confounded set, `gap::identify`); empty when it stands alone.
+    pub confounded_with: Vec<String>,
+    /// Validation shrink per cell group (`zone`, `shape`, `stat`, `env`): where it acts.
+    pub group_shrink: std::collections::BTreeMap<String, f64>,
+    /// The baseline with this effect alone at its fitted parameters.
+    #[serde(skip)]
+    pub effects: Effects,
+    /// Its weighted cell signature and subspace at the fitted point.
+    #[serde(skip)]
+    pub signature: super::signature::Signature,
+    /// Validation cell gaps with the effect.
+    #[serde(skip)]
+    pub holdout: Gaps,
     /// Objective evaluations of the fit.
     pub evaluations: usize,
 }
@@ -142,6 +162,8 @@ pub struct Attribution {
     /// The effects switched on at the end.
     #[serde(skip)]
     pub final_effects: Effects,
+    /// Totals on the test part, when one was judged (`gap::protocol::judge`).
+    pub test: Option<TestTotals>,
     /// Held-out cell gaps of the baseline.
     #[serde(skip)]
     pub holdout_before: Gaps,
@@ -180,7 +202,8 @@ pub fn attribute<T: Target>(
 ) -> Result<Attribution, String> {
     let t0 = Instant::now();
     let sims0 = ev.sims();
-    let train0 = ev.residuals(train, base)?.total();
+    let train_r0 = ev.residuals(train, base)?;
+    let train0 = train_r0.total();
     let hold_r0 = ev.residuals(holdout, base)?;
     let hold0 = hold_r0.total();
     let widx = where_indices(&hold_r0.gaps);
@@ -207,7 +230,14 @@ pub fn attribute<T: Target>(
             holdout_gap: g,
             shrink: 1.0 - g / hold0,
             where_shrink: 1.0 - wg / where0,
+            test_gap: None,
+            test_shrink: None,
             converged: f.converged,
+            confounded_with: vec![],
+            group_shrink: Default::default(),
+            effects: fx,
+            signature: super::signature::Signature::new(&f.train_gaps, &f.jacobian, &train_r0),
+            holdout: r,
             evaluations: f.evaluations,
         });
         fits.push((f, s));
@@ -228,7 +258,7 @@ pub fn attribute<T: Target>(
             ));
         }
         for p in &r.params {
-            if p.at_bound && r.shrink >= opt.min_shrink {
+            if p.at_bound && p.constrained && r.shrink >= opt.min_shrink {
                 findings.push(format!(
                     "`{}`: {} = {:.4} sits on the edge of its fitted range; the effect may need more than the range allows",
                     r.effect, p.name, p.value
@@ -382,6 +412,7 @@ pub fn attribute<T: Target>(
         simulations: ev.sims() - sims0,
         seconds: t0.elapsed().as_secs_f64(),
         final_effects: current,
+        test: None,
         holdout_before: hold_r0,
         holdout_after: cur_r,
     })
@@ -408,8 +439,9 @@ pub struct LeaveOneOut {
 
 /// Leave one effect out (sim-to-real.md, "Checked on data whose effect is withheld"): for
 /// every effect switched on in `full` (named in `added`), withhold it, check how far the
-/// held-out gap grows, and let the attribution (single-effect ranking, on top of the
-/// remaining effects, among the effects the reduced model lacks) name the missing one.
+/// gap on `holdout` grows, and let the attribution (single-effect ranking on top of the
+/// remaining effects, among *all* candidates) name the missing one. Pass the test part as
+/// `holdout` so that the check is judged on data that chose nothing.
 pub fn leave_one_out<T: Target>(
     spaces: &[FitSpace],
     full: &Effects,
@@ -424,14 +456,11 @@ pub fn leave_one_out<T: Target>(
     for name in added {
         let reduced = without(full, name)?;
         let g = ev.residuals(holdout, &reduced)?.total();
-        // The candidates are the effects the reduced model lacks: the withheld one and
-        // those never added. Re-fitting an effect the model already has is not naming a
-        // missing one (a refit path gain can absorb part of any level change).
-        let lacking: Vec<FitSpace> = spaces
-            .iter()
-            .filter(|s| s.effect == name || !added.iter().any(|a| a == s.effect))
-            .cloned()
-            .collect();
+        // Every candidate competes, those already in the model too (refitted on top of
+        // the reduced model): restricting the candidates to the effects the reduced
+        // model lacks made naming the withheld one close to circular (issue 13). The
+        // caller passes the test part as `holdout`, which chose nothing.
+        let lacking: Vec<FitSpace> = spaces.to_vec();
         let a = attribute(
             &lacking,
             &reduced,
@@ -460,17 +489,36 @@ pub fn leave_one_out<T: Target>(
     Ok(out)
 }
 
-/// Total gaps.
+/// Total gaps on the test part.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TestTotals {
+    /// Baseline total gap on the test part.
+    pub before: f64,
+    /// Total gap of the chosen model (the kept effects) on the test part.
+    pub after: f64,
+    /// `1 − after/before`.
+    pub shrink: f64,
+}
+
+/// Total gaps. `before`/`after` are on the validation part, which chose the model (a
+/// shrink there is biased upwards); `test_before`/`test_after` on the test part, which
+/// chose nothing: the figure to report (`null` when no test part was judged).
 #[derive(Debug, Clone, Serialize)]
 pub struct Totals {
     /// Baseline, training records.
     pub train_before: f64,
-    /// Baseline, held-out records.
+    /// Baseline, validation (held-out) records.
     pub before: f64,
-    /// Held-out after the greedy additions.
+    /// Validation after the greedy additions.
     pub after: f64,
-    /// `1 − after/before`.
+    /// `1 − after/before` (validation).
     pub shrink: f64,
+    /// Baseline, test part.
+    pub test_before: Option<f64>,
+    /// Test part, chosen model.
+    pub test_after: Option<f64>,
+    /// `1 − test_after/test_before`.
+    pub test_shrink: Option<f64>,
 }
 
 impl Totals {
@@ -481,6 +529,9 @@ impl Totals {
             before: at.baseline_holdout,
             after: at.final_holdout,
             shrink: 1.0 - at.final_holdout / at.baseline_holdout,
+            test_before: at.test.map(|t| t.before),
+            test_after: at.test.map(|t| t.after),
+            test_shrink: at.test.map(|t| t.shrink),
         }
     }
 }

@@ -9,8 +9,8 @@
 //! so the objective is a deterministic function of the parameters and the search does not
 //! chase realisation noise.
 
-use super::matched::{merge, Evaluator, Target};
-use super::space::FitSpace;
+use super::matched::{merge, Evaluator, Gaps, Target};
+use super::space::{FitParam, FitSpace};
 use super::SEGMENTS;
 use serde::Serialize;
 use wearsim_core::effects::Effects;
@@ -67,9 +67,35 @@ pub struct FittedParam {
     pub std: Option<f64>,
     /// Catalogue unit.
     pub unit: String,
-    /// The optimum lies on the edge of the fitted range and the cells constrain the
-    /// parameter (normalised standard deviation < 0.25 of the range).
+    /// The optimum lies on the edge of the fitted range (whether or not the cells
+    /// constrain the parameter: see [`FittedParam::constrained`]).
     pub at_bound: bool,
+    /// The cells constrain the parameter: its normalised standard deviation is below
+    /// [`CONSTRAINED`] of the fitted range. An unconstrained parameter on its edge says
+    /// nothing about the range being too small.
+    pub constrained: bool,
+}
+
+/// Normalised standard deviation (fraction of the fitted range) below which the cells
+/// count as constraining a parameter.
+pub const CONSTRAINED: f64 = 0.25;
+
+impl FittedParam {
+    /// The report of parameter `f` at normalised coordinate `u` with normalised standard
+    /// deviation `s` (None: unconstrained). `at_bound` compares the coordinate with the
+    /// ends of the range only: it used to require a constrained parameter too, so a
+    /// parameter sitting exactly on its bound with a large std (load-zone `epsilon` =
+    /// 1.0 on [0.2, 1], std 34) was reported `at_bound: false` (issue 13).
+    pub fn new(f: &FitParam, u: f64, s: Option<f64>, unit: String) -> Self {
+        FittedParam {
+            name: f.name.to_string(),
+            value: f.value(u),
+            std: s.map(|s| s * f.slope(u)),
+            unit,
+            at_bound: u <= 1e-9 || u >= 1.0 - 1e-9,
+            constrained: s.is_some_and(|s| s < CONSTRAINED),
+        }
+    }
 }
 
 /// The result of fitting one effect.
@@ -88,6 +114,16 @@ pub struct Fit {
     pub converged: bool,
     /// Objective evaluations (each simulates every training record once).
     pub evaluations: usize,
+    /// Training cell gaps at the optimum (empty when the simulation was refused).
+    #[serde(skip)]
+    pub train_gaps: Gaps,
+    /// Jacobian of the training cell gaps (already in units of each cell's measured
+    /// spread) by the normalised coordinates at the optimum, one column per fitted
+    /// parameter (finite differences, step 0.02; empty when not computable): the
+    /// effect's signature subspace for the identifiability analysis
+    /// ([`super::identify`]).
+    #[serde(skip)]
+    pub jacobian: Vec<Vec<f64>>,
 }
 
 impl Fit {
@@ -223,7 +259,12 @@ pub fn fit_from<T: Target>(
         }
     }
     let converged = p == 0 || (step < budget.step_tol && best.is_finite());
-    let (stds, extra) = uncertainty(space, base, train, ev, &best_u);
+    let Local {
+        stds,
+        evaluations: extra,
+        gaps: train_gaps,
+        jacobian,
+    } = uncertainty(space, base, train, ev, &best_u);
     evaluations += extra;
     let info = wearsim_core::effects::info(space.effect);
     let params = space
@@ -231,18 +272,12 @@ pub fn fit_from<T: Target>(
         .iter()
         .zip(&best_u)
         .zip(&stds)
-        .map(|((f, u), s)| FittedParam {
-            name: f.name.to_string(),
-            value: f.value(*u),
-            std: s.map(|s| s * f.slope(*u)),
-            unit: info
+        .map(|((f, u), s)| {
+            let unit = info
                 .and_then(|i| i.params.iter().find(|q| q.name == f.name))
                 .map(|q| q.unit.to_string())
-                .unwrap_or_default(),
-            // Only a parameter the cells constrain (normalised std below a quarter of
-            // its range) is reported on the edge: one they do not constrain can sit
-            // anywhere, its edge says nothing about the range being too small.
-            at_bound: (*u <= 1e-9 || *u >= 1.0 - 1e-9) && s.is_some_and(|s| s < 0.25),
+                .unwrap_or_default();
+            FittedParam::new(f, *u, *s, unit)
         })
         .collect();
     Fit {
@@ -252,21 +287,41 @@ pub fn fit_from<T: Target>(
         train_gap: best,
         converged,
         evaluations,
+        train_gaps,
+        jacobian,
     }
 }
 
-/// Standard deviation of each normalised coordinate at `u` (None: unconstrained), and the
-/// evaluations spent.
+/// The local analysis at an optimum.
+struct Local {
+    /// Standard deviation of each normalised coordinate (None: unconstrained).
+    stds: Vec<Option<f64>>,
+    /// Evaluations spent.
+    evaluations: usize,
+    /// Cell gaps at the optimum.
+    gaps: Gaps,
+    /// Jacobian columns (one per coordinate).
+    jacobian: Vec<Vec<f64>>,
+}
+
+/// Standard deviation of each normalised coordinate at `u` (None: unconstrained), the
+/// evaluations spent, the cell gaps at `u` and the Jacobian.
 fn uncertainty<T: Target>(
     space: &FitSpace,
     base: &Effects,
     train: &[T],
     ev: &Evaluator,
     u: &[f64],
-) -> (Vec<Option<f64>>, usize) {
+) -> Local {
     let p = u.len();
+    let none = |n: usize, gaps: Gaps, jacobian: Vec<Vec<f64>>| Local {
+        stds: vec![None; p],
+        evaluations: n,
+        gaps,
+        jacobian,
+    };
     if p == 0 {
-        return (vec![], 0);
+        return none(0, Gaps::default(), vec![]);
     }
     let h = 0.02;
     let res = |u: &Vec<f64>| with(space, base, u).and_then(|fx| ev.residuals(train, &fx).ok());
@@ -283,7 +338,7 @@ fn uncertainty<T: Target>(
     let r = ev.map(&pts, res);
     let n = pts.len();
     let Some(Some(r0)) = r.first() else {
-        return (vec![None; p], n);
+        return none(n, Gaps::default(), vec![]);
     };
     // Jacobian columns by central (or one-sided at a bound) differences.
     let mut jac: Vec<Vec<f64>> = vec![];
@@ -294,11 +349,11 @@ fn uncertainty<T: Target>(
             pts.get(1 + 2 * i).and_then(|w| w.get(i)),
             pts.get(2 + 2 * i).and_then(|w| w.get(i)),
         ) else {
-            return (vec![None; p], n);
+            return none(n, r0.clone(), vec![]);
         };
         let du = uhi - ulo;
         if du <= 0.0 {
-            return (vec![None; p], n);
+            return none(n, r0.clone(), vec![]);
         }
         jac.push(
             lo.gaps
@@ -334,11 +389,11 @@ fn uncertainty<T: Target>(
     let mut a = gram(1);
     let b = gram(2);
     let Some(inv) = invert(&mut a) else {
-        return (vec![None; p], n);
+        return none(n, r0.clone(), jac);
     };
     let cov = mul(&mul(&inv, &b), &inv);
-    (
-        (0..p)
+    Local {
+        stds: (0..p)
             .map(|i| {
                 cov.get(i)
                     .and_then(|row| row.get(i))
@@ -346,8 +401,10 @@ fn uncertainty<T: Target>(
                     .map(|d| (s2 * d).sqrt())
             })
             .collect(),
-        n,
-    )
+        evaluations: n,
+        gaps: r0.clone(),
+        jacobian: jac,
+    }
 }
 
 fn mul(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<Vec<f64>> {
@@ -418,4 +475,32 @@ fn invert(a: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
         }
     }
     Some(inv)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 13: load-zone `epsilon` fitted to 1.0 on [0.2, 1] with std 34 was reported
+    /// `at_bound: false` because the edge flag also required a constrained parameter.
+    #[test]
+    fn a_parameter_on_its_bound_is_at_bound_even_unconstrained() {
+        let f = FitParam {
+            name: "epsilon",
+            lo: 0.2,
+            hi: 1.0,
+            log: false,
+        };
+        let p = FittedParam::new(&f, 1.0, Some(34.0 / 0.8), String::new());
+        assert_eq!(p.value, 1.0);
+        assert!(p.at_bound, "epsilon = 1.0 on [0.2, 1] must be at its bound");
+        assert!(!p.constrained);
+        assert!((p.std.unwrap_or(0.0) - 34.0).abs() < 1e-9);
+        let lo = FittedParam::new(&f, 0.0, None, String::new());
+        assert!(lo.at_bound && !lo.constrained);
+        let mid = FittedParam::new(&f, 0.5, Some(0.05), String::new());
+        assert!(!mid.at_bound && mid.constrained);
+        let near = FittedParam::new(&f, 1.0 - 1.0 / 128.0, Some(0.01), String::new());
+        assert!(!near.at_bound);
+    }
 }

@@ -28,6 +28,14 @@ pub(crate) fn fmt_params(p: &[super::fit::FittedParam]) -> String {
         .join(", ")
 }
 
+/// Cell groups named in the per-group shrinks.
+fn groups(o: &GapOutput) -> Vec<String> {
+    o.ranking
+        .first()
+        .map(|r| r.group_shrink.keys().cloned().collect())
+        .unwrap_or_default()
+}
+
 /// The report as Markdown.
 pub fn markdown(o: &GapOutput) -> String {
     let mut s = String::new();
@@ -68,17 +76,17 @@ pub fn markdown(o: &GapOutput) -> String {
     }
     let _ = writeln!(
         s,
-        "\n## Which: each effect alone, fitted on training, judged held-out\n"
+        "\n## Which: each effect alone, fitted on training, ranked on validation, judged on test\n"
     );
     let _ = writeln!(
         s,
-        "| rank | effect | fitted parameters (± 1 σ) | train gap | held-out gap | shrink | shrink where | converged |"
+        "| rank | effect | fitted parameters (± 1 σ) | train gap | validation gap | validation shrink | shrink where | test shrink | converged |"
     );
-    let _ = writeln!(s, "|---:|---|---|---:|---:|---:|---:|---|");
+    let _ = writeln!(s, "|---:|---|---|---:|---:|---:|---:|---:|---|");
     for (i, r) in o.ranking.iter().enumerate() {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {:.2} | {:.2} | {:+.0} % | {:+.0} % | {} |",
+            "| {} | {} | {} | {:.2} | {:.2} | {:+.0} % | {:+.0} % | {} | {} |",
             i + 1,
             r.effect,
             fmt_params(&r.params),
@@ -86,24 +94,79 @@ pub fn markdown(o: &GapOutput) -> String {
             r.holdout_gap,
             100.0 * r.shrink,
             100.0 * r.where_shrink,
+            r.test_shrink
+                .map_or_else(|| "–".to_string(), |t| format!("{:+.0} %", 100.0 * t)),
             if r.converged { "yes" } else { "no" }
         );
     }
-    let _ = writeln!(s, "\n## How far: greedy addition (held-out total gap)\n");
     let _ = writeln!(
         s,
-        "Baseline: training {:.2}, held-out {:.2}.\n",
+        "\n### Identifiability: confounded sets and where each effect acts (validation shrink per cell group)\n"
+    );
+    let _ = writeln!(
+        s,
+        "| effect | confounded with | {} |",
+        groups(o).join(" | ")
+    );
+    let _ = writeln!(s, "|---|---|{}", "---:|".repeat(groups(o).len()));
+    for r in &o.ranking {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} |",
+            r.effect,
+            if r.confounded_with.is_empty() {
+                "–".to_string()
+            } else {
+                r.confounded_with.join(", ")
+            },
+            groups(o)
+                .iter()
+                .map(|g| r
+                    .group_shrink
+                    .get(g)
+                    .map_or_else(|| "–".to_string(), |v| format!("{:+.0} %", 100.0 * v)))
+                .collect::<Vec<_>>()
+                .join(" | ")
+        );
+    }
+    let _ = writeln!(s, "\n## How far: greedy addition (validation total gap)\n");
+    let _ = writeln!(
+        s,
+        "Baseline: training {:.2}, validation {:.2}.\n",
         o.totals.train_before, o.totals.before
     );
     greedy_section(&mut s, &o.greedy, &o.dropped, &o.kept);
     let _ = writeln!(
         s,
-        "\nTotal held-out gap: {:.2} → {:.2} ({:.0} % smaller).\n",
+        "\nTotal validation gap (chose the model, biased upwards): {:.2} → {:.2} ({:.0} % smaller).\n",
         o.totals.before,
         o.totals.after,
         100.0 * o.totals.shrink
     );
+    if let (Some(b), Some(a), Some(sh)) = (
+        o.totals.test_before,
+        o.totals.test_after,
+        o.totals.test_shrink,
+    ) {
+        let _ = writeln!(
+            s,
+            "**Total test gap** (chose nothing): {b:.2} → {a:.2} ({:.0} % smaller).\n",
+            100.0 * sh
+        );
+    }
     match &o.identified {
+        // A tie (the report's own tie rule) is never headlined.
+        Some(e) if !o.tied_with.is_empty() => {
+            let _ = writeln!(
+                s,
+                "Named first: none — `{e}` ties with {} (within the tie rule); the cells do not tell them apart here.",
+                o.tied_with
+                    .iter()
+                    .map(|t| format!("`{t}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
         Some(e) => {
             let _ = writeln!(s, "Named first: **{e}**.");
         }

@@ -4,7 +4,9 @@
 
 use super::attribute::{attribute, Attribution, Options, Totals};
 use super::error::GapError;
+use super::identify;
 use super::matched::{Evaluator, Matched};
+use super::protocol::judge;
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
 use crate::analysis::stats::rms;
@@ -36,10 +38,17 @@ pub struct GapArgs {
     /// their file names (default: one record → its first part; several → the first).
     #[arg(long)]
     pub train: Option<String>,
-    /// Held-out records (same syntax; default: one record → its second part; several →
-    /// all but the training ones).
+    /// Test records, on which the reported shrink is measured and nothing is chosen
+    /// (same syntax; default: one record → its third part; several → all but the
+    /// training and validation ones).
     #[arg(long)]
     pub holdout: Option<String>,
+    /// Validation records, on which the model is chosen (ranking, greedy addition,
+    /// dropping) (same syntax; default: one record → its second part; three or more →
+    /// the second record; two → a part of each training record right after its
+    /// training part, disjoint from it).
+    #[arg(long)]
+    pub validation: Option<String>,
     /// Seconds of each record (or record part) analysed, 0.5..=30.
     #[arg(long, default_value_t = 2.0)]
     pub seconds: f64,
@@ -135,7 +144,7 @@ pub struct GapOutput {
 /// A record in the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordRole {
-    /// `train` or `holdout`.
+    /// `train`, `validation` or `test`.
     pub role: String,
     /// Part label.
     pub part: String,
@@ -204,11 +213,21 @@ impl GapArgs {
     }
 }
 
-/// Records with their roles, training parts, held-out parts.
-pub type Prepared = (Vec<RecordRole>, Vec<Matched>, Vec<Matched>);
+/// The parts of the clean protocol: training (fit), validation (choice), test (report).
+#[derive(Debug, Clone)]
+pub struct Parts {
+    /// Records with their roles.
+    pub roles: Vec<RecordRole>,
+    /// Training parts: every parameter is fitted on these.
+    pub train: Vec<Matched>,
+    /// Validation parts: the model is chosen on these.
+    pub valid: Vec<Matched>,
+    /// Test parts: the reported shrink is measured on these only.
+    pub test: Vec<Matched>,
+}
 
-/// Loads the records and builds the training and held-out matched parts.
-pub fn prepare(a: &GapArgs) -> Result<Prepared, GapError> {
+/// Loads the records and builds the disjoint training, validation and test parts.
+pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
     a.check()?;
     let defect = match &a.defect {
         Some(d) => Some(records::parse_defect(d).map_err(GapError::input)?),
@@ -227,84 +246,132 @@ pub fn prepare(a: &GapArgs) -> Result<Prepared, GapError> {
         .map(|p| records::load(p, &o))
         .collect::<Result<_, _>>()
         .map_err(GapError::input)?;
-    let mut roles = vec![];
-    let (mut train, mut hold) = (vec![], vec![]);
-    if recs.len() == 1 && a.train.is_none() && a.holdout.is_none() {
+    let mut p = Parts {
+        roles: vec![],
+        train: vec![],
+        valid: vec![],
+        test: vec![],
+    };
+    let push = |p: &mut Parts, r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str| {
+        let m = records::part(r, start, len, seed, tag).map_err(GapError::input)?;
+        p.roles.push(RecordRole {
+            role: tag.into(),
+            part: m.label.clone(),
+            meta: r.clone(),
+        });
+        match tag {
+            "train" => p.train.push(m),
+            "validation" => p.valid.push(m),
+            _ => p.test.push(m),
+        }
+        Ok::<(), GapError>(())
+    };
+    if recs.len() == 1 && a.train.is_none() && a.holdout.is_none() && a.validation.is_none() {
         let Some(r) = recs.first() else {
             return Err(GapError::input("--real: no file"));
         };
-        let half = r.accel.len() / 2;
-        let len = half.min((a.seconds * r.fs).round() as usize);
-        for (start, tag, set) in [(0, "train", &mut train), (half, "holdout", &mut hold)] {
-            let m = records::part(r, start, len, a.seed + start as u64, tag)
-                .map_err(GapError::input)?;
-            roles.push(RecordRole {
-                role: tag.into(),
-                part: m.label.clone(),
-                meta: r.clone(),
-            });
-            set.push(m);
-        }
-    } else {
-        let ti = match &a.train {
-            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--train: {e}")))?,
-            None => vec![0],
-        };
-        let hi = match &a.holdout {
-            Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--holdout: {e}")))?,
-            None => (0..recs.len()).filter(|i| !ti.contains(i)).collect(),
-        };
-        if let Some(i) = ti.iter().find(|i| hi.contains(i)) {
+        let need = (3.0 * MIN_PART_S * r.fs).ceil() as usize;
+        if r.accel.len() < need {
             return Err(GapError::input(format!(
-                "--train and --holdout both hold {}: a held-out record must not be fitted on",
-                recs.get(*i)
-                    .map_or_else(String::new, |r| r.file.display().to_string())
+                "{}: {:.3} s is too short for three disjoint parts (training, validation, test); one record must hold at least {:.1} s ({} samples at {} Hz), or give several records",
+                r.file.display(),
+                r.accel.len() as f64 / r.fs,
+                3.0 * MIN_PART_S,
+                need,
+                r.fs
             )));
         }
-        if ti.is_empty() || hi.is_empty() {
-            return Err(GapError::input(
-                "--train/--holdout: give at least one training and one held-out record",
-            ));
+        let third = r.accel.len() / 3;
+        let len = third.min((a.seconds * r.fs).round() as usize);
+        for (k, tag) in ["train", "validation", "test"].iter().enumerate() {
+            let start = k * third;
+            push(&mut p, r, start, len, a.seed + start as u64, tag)?;
         }
-        for (idx, tag) in [(&ti, "train"), (&hi, "holdout")] {
-            for (k, i) in idx.iter().enumerate() {
-                let Some(r) = recs.get(*i) else { continue };
-                let len = r.accel.len().min((a.seconds * r.fs).round() as usize);
-                let m = records::part(r, 0, len, a.seed + 1000 * k as u64 + 7 * *i as u64, tag)
-                    .map_err(GapError::input)?;
-                roles.push(RecordRole {
-                    role: tag.into(),
-                    part: m.label.clone(),
-                    meta: r.clone(),
-                });
-                if tag == "train" {
-                    train.push(m);
-                } else {
-                    hold.push(m);
-                }
-            }
+        return Ok(p);
+    }
+    let ti = match &a.train {
+        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--train: {e}")))?,
+        None => vec![0],
+    };
+    let vi = match &a.validation {
+        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--validation: {e}")))?,
+        None if recs.len() >= 3 && a.holdout.is_none() => (0..recs.len())
+            .filter(|i| !ti.contains(i))
+            .take(1)
+            .collect(),
+        None => vec![],
+    };
+    let hi = match &a.holdout {
+        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--holdout: {e}")))?,
+        None => (0..recs.len())
+            .filter(|i| !ti.contains(i) && !vi.contains(i))
+            .collect(),
+    };
+    let clash = |x: &[usize], y: &[usize], what: &str| {
+        match x.iter().find(|i| y.contains(i)) {
+        Some(i) => Err(GapError::input(format!(
+            "{what} both hold {}: a held-out record must not be fitted on, nor the test part chosen on (one role per record: training, validation or test)",
+            recs.get(*i)
+                .map_or_else(String::new, |r| r.file.display().to_string())
+        ))),
+        None => Ok(()),
+    }
+    };
+    clash(&ti, &hi, "--train and --holdout")?;
+    clash(&ti, &vi, "--train and --validation")?;
+    clash(&vi, &hi, "--validation and --holdout")?;
+    if ti.is_empty() || hi.is_empty() {
+        return Err(GapError::input(
+            "--train/--holdout: give at least one training and one held-out (test) record",
+        ));
+    }
+    let window = |r: &RealRecord| r.accel.len().min((a.seconds * r.fs).round() as usize);
+    for (k, i) in ti.iter().enumerate() {
+        let Some(r) = recs.get(*i) else { continue };
+        let seed = a.seed + 1000 * k as u64 + 7 * *i as u64;
+        if vi.is_empty() {
+            // Validation from the training record itself, right after the training part.
+            let half = r.accel.len() / 2;
+            let len = window(r).min(half);
+            push(&mut p, r, 0, len, seed, "train")?;
+            push(&mut p, r, half, len, seed + 500, "validation")?;
+        } else {
+            push(&mut p, r, 0, window(r), seed, "train")?;
         }
     }
-    Ok((roles, train, hold))
+    for (idx, tag) in [(&vi, "validation"), (&hi, "test")] {
+        for (k, i) in idx.iter().enumerate() {
+            let Some(r) = recs.get(*i) else { continue };
+            let seed = a.seed + 1000 * k as u64 + 7 * *i as u64;
+            push(&mut p, r, 0, window(r), seed, tag)?;
+        }
+    }
+    Ok(p)
 }
 
-/// Runs the attribution on prepared records; returns it with the fit spaces and the
-/// evaluator (for further checks on the same records).
+/// Runs the attribution on prepared parts (fit on training, choice on validation) and
+/// judges it on the test part; returns it with the fit spaces and the evaluator (for
+/// further checks on the same records).
 pub fn diagnose(
     a: &GapArgs,
-    train: &[Matched],
-    hold: &[Matched],
-    recs: &[RecordRole],
+    p: &Parts,
 ) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), GapError> {
-    let first = train
+    let first = p
+        .train
         .first()
         .ok_or_else(|| GapError::input("no training record"))?;
-    let level = recs
+    let level = p
+        .roles
         .iter()
         .find(|r| r.role == "train")
         .map_or(1.0, |r| rms(&r.meta.accel));
     let ctx = space::context(first.spec(), level, a.mains);
-    let has_defect = train.iter().chain(hold).any(|m| m.base.defect.is_some());
+    let has_defect = p
+        .train
+        .iter()
+        .chain(&p.valid)
+        .chain(&p.test)
+        .any(|m| m.base.defect.is_some());
     let only = (!a.effects.is_empty()).then_some(a.effects.as_slice());
     let spaces = space::applicable(&ctx, has_defect, only);
     if spaces.is_empty() {
@@ -316,19 +383,24 @@ pub fn diagnose(
         a.jobs
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
-    let at = attribute(
-        &spaces,
-        &Effects::NONE,
-        train,
-        hold,
-        &ev,
-        &Options::default(),
-    )
-    .map_err(GapError::run)?;
+    let opt = Options::default();
+    let mut at =
+        attribute(&spaces, &Effects::NONE, &p.train, &p.valid, &ev, &opt).map_err(GapError::run)?;
+    identify::confounded(&mut at, opt.min_shrink);
+    if let Some(v) = p.valid.first() {
+        let groups: Vec<String> = v
+            .reference
+            .names
+            .iter()
+            .map(|(_, g, _)| g.to_string())
+            .collect();
+        identify::group_shrink(&mut at, &groups);
+    }
+    judge(&mut at, &Effects::NONE, &p.test, &ev).map_err(GapError::run)?;
     Ok((at, spaces, ev))
 }
 
-/// "Where", aggregated over the held-out records.
+/// "Where", aggregated over the validation records (where the model was chosen).
 pub fn where_cells(hold: &[Matched], at: &Attribution) -> Vec<WhereCell> {
     let Some(first) = hold.first() else {
         return vec![];

@@ -31,6 +31,9 @@ pub struct TwinOptions {
     pub effects: Vec<String>,
     /// Also run trials with two effects withheld at once (this many).
     pub pair_trials: usize,
+    /// Also diagnose this many twins with no effect withheld (noise floor only): the
+    /// false-attribution rate.
+    pub null_trials: usize,
     /// Seed of the parameter draws and realisations.
     pub seed: u64,
     /// Length of each half (training, held-out) of a twin record (s).
@@ -47,6 +50,7 @@ impl Default for TwinOptions {
             trials: 20,
             effects: vec![],
             pair_trials: 0,
+            null_trials: 0,
             seed: 1,
             half_s: 1.0,
             noise: 0.01,
@@ -64,6 +68,9 @@ pub struct Trial {
     pub params: Vec<Vec<(String, f64)>>,
     /// The effect the diagnosis ranked first (none: no effect shrank the gap).
     pub ranked_first: Option<String>,
+    /// The reported set: the first-ranked effect and those confounded with it
+    /// ([`super::identify`]); empty when none shrank the gap.
+    pub reported_set: Vec<String>,
     /// Parameters of the first-ranked effect as fitted.
     pub fitted: Vec<super::fit::FittedParam>,
     /// Held-out total gap of the baseline.
@@ -111,6 +118,10 @@ pub struct EffectRate {
     pub median_shrink: f64,
     /// Parameter draws rejected as undetectable over all its trials ([`Trial::redraws`]).
     pub redraws: usize,
+    /// Trials whose reported set (first-ranked effect and its confounded set) holds it.
+    pub in_set: usize,
+    /// Mean size of the reported set over its trials (0 when nothing was named).
+    pub mean_set_size: f64,
 }
 
 /// The result of `gap-validate`.
@@ -135,6 +146,9 @@ pub struct TwinReport {
     /// Two-effect trials: fraction whose first-ranked effect is one of the two withheld,
     /// and fraction whose two greedy additions are exactly the two.
     pub pairs: Option<(usize, f64, f64)>,
+    /// No-effect twins: trials, and how many the diagnosis attributed to an effect
+    /// (the false-attribution rate is their ratio).
+    pub null: Option<(usize, usize)>,
     /// Every trial.
     pub trials: Vec<Trial>,
     /// Simulations run.
@@ -324,7 +338,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         ..Options::default()
     };
     let mut rng = Xoshiro128pp::from_u64(opt.seed);
-    let total = chosen.len() * opt.trials + opt.trials + opt.pair_trials;
+    let total = chosen.len() * opt.trials + opt.trials + opt.pair_trials + opt.null_trials;
     let mut done = 0;
     // Noise-only twins: the floor every shrink is compared with.
     let mut noise_only = vec![];
@@ -358,7 +372,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             }
             let (tr, ho) = setup.halves(&fx, seed.wrapping_add(31 * redraws as u64))?;
             let seen = ev.total(std::slice::from_ref(&ho), &setup.floor);
-            if seen >= DETECTABLE * noise_gap || redraws >= MAX_REDRAWS {
+            if withheld.is_empty() || seen >= DETECTABLE * noise_gap || redraws >= MAX_REDRAWS {
                 break (fx, params, tr, ho);
             }
             redraws += 1;
@@ -366,7 +380,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         let mut truth = setup.floor;
         merge(&mut truth, &fx);
         let oracle = ev.total(std::slice::from_ref(&ho), &truth);
-        let a = attribute(
+        let mut a = attribute(
             &all,
             &setup.floor,
             &[tr],
@@ -377,13 +391,22 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 ..aopt
             },
         )?;
+        super::identify::confounded(&mut a, aopt.min_shrink);
         let first = a.ranking.first().filter(|r| r.shrink >= aopt.min_shrink);
+        let reported_set: Vec<String> = first
+            .map(|r| {
+                let mut v = vec![r.effect.clone()];
+                v.extend(r.confounded_with.iter().cloned());
+                v
+            })
+            .unwrap_or_default();
         let added: Vec<String> = a.kept.clone();
         Ok((
             Trial {
                 withheld: withheld.iter().map(|s| s.effect.to_string()).collect(),
                 params,
                 ranked_first: first.map(|r| r.effect.clone()),
+                reported_set,
                 fitted: first.map(|r| r.params.clone()).unwrap_or_default(),
                 before: a.baseline_holdout,
                 after: first.map_or(a.baseline_holdout, |r| r.holdout_gap),
@@ -401,6 +424,19 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             done += 1;
             progress(done, total);
         }
+    }
+    // No effect withheld: anything named is a false attribution.
+    let mut null = None;
+    if opt.null_trials > 0 {
+        let mut named = 0;
+        for t in 0..opt.null_trials {
+            let (tr, _) = run(&[], opt.seed * 5_000_011 + t as u64, &mut rng, 1)?;
+            named += usize::from(tr.ranked_first.is_some());
+            trials.push(tr);
+            done += 1;
+            progress(done, total);
+        }
+        null = Some((opt.null_trials, named));
     }
     // Two withheld effects at once.
     let mut pairs = None;
@@ -472,6 +508,12 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             median_after_over_noise: median(mine.iter().map(|t| t.after / t.oracle).collect()),
             median_shrink: median(mine.iter().map(|t| 1.0 - t.after / t.before).collect()),
             redraws: mine.iter().map(|t| t.redraws).sum(),
+            in_set: mine
+                .iter()
+                .filter(|t| t.reported_set.iter().any(|e| e == l))
+                .count(),
+            mean_set_size: mine.iter().map(|t| t.reported_set.len()).sum::<usize>() as f64
+                / mine.len().max(1) as f64,
         });
     }
     let mut columns = cols;
@@ -488,6 +530,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             .map(|(a, b, c)| (a.to_string(), b.to_string(), c.to_string()))
             .collect(),
         pairs,
+        null,
         trials,
         simulations: ev.sims(),
         seconds: t0.elapsed().as_secs_f64(),
