@@ -144,9 +144,19 @@ pub struct FamilyEvidence {
 /// Result of [`detect_fault`].
 #[derive(Debug, Clone, Serialize)]
 pub struct FaultDiagnosis {
-    /// Diagnosed family: the family of highest `exclusive_score` among those
-    /// with at least `min_harmonics` harmonics found, or `None`.
+    /// Diagnosed family: `candidate` when its calibrated confidence is at least
+    /// [`super::diagnose::CALL_MIN`], else `None`.
     pub family: FaultFamily,
+    /// Confidence in `family`, in [0, 1]: for a family, the probability that it is right
+    /// given `margin_db` (logistic calibration fitted on the development part of the CWRU
+    /// data, [`super::diagnose::CALIBRATION`]); for `None`, one minus that probability.
+    pub confidence: f64,
+    /// Leading family before the confidence gate: the family of highest `exclusive_score`
+    /// among those with at least `min_harmonics` harmonics found, or `None`.
+    pub candidate: FaultFamily,
+    /// Evidence margin of the candidate: its exclusive score minus the best other family's,
+    /// dB per searched harmonic (see [`super::diagnose::leading`]).
+    pub margin_db: f64,
     /// Exclusive score of the diagnosed family (0 for `None`).
     pub score: f64,
     /// Evidence for every family (inner, outer, ball).
@@ -305,7 +315,8 @@ fn family_evidence(
 /// around it. A line found by two families (e.g. 2×BPFI and 3×BPFO, 0.7 %
 /// apart on a 6205) counts for neither, and the family with the highest
 /// exclusive score among those with at least `min_harmonics` harmonics found
-/// is reported (Randall & Antoni 2011).
+/// is the candidate (Randall & Antoni 2011); it is called when its calibrated confidence
+/// ([`super::diagnose`]) is at least one half, otherwise the call is `None`.
 /// Non-positive or non-finite characteristic frequencies yield no evidence.
 pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> FaultDiagnosis {
     let mut evidence = vec![
@@ -314,13 +325,18 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
     mark_shared(&mut evidence, env.df, p);
-    let best = evidence
+    let (candidate, margin_db) = super::diagnose::leading(&evidence, p.min_harmonics);
+    let (family, confidence) =
+        super::diagnose::call(candidate, margin_db, &super::diagnose::CALIBRATION);
+    let score = evidence
         .iter()
-        .filter(|e| e.found >= p.min_harmonics.max(1) && e.exclusive_score > 0.0)
-        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
-    let (family, score) = best.map_or((FaultFamily::None, 0.0), |e| (e.family, e.exclusive_score));
+        .find(|e| e.family == family)
+        .map_or(0.0, |e| e.exclusive_score);
     FaultDiagnosis {
         family,
+        confidence,
+        candidate,
+        margin_db,
         score,
         evidence,
     }
