@@ -63,6 +63,18 @@ fn bench(c: &mut Criterion) {
             (s.kurtosis, psd.len(), d.score)
         })
     });
+    // The whole `wearsim analyze` decision chain (normalisation, kurtogram at the level set
+    // by the physical band width, pre-whitening, envelope, calibrated detector, zones).
+    let kin = wearsim_host::analyze::Kinematics::of_preset("cwru-6205-de", 29.95 * 60.0).unwrap();
+    let method = wearsim_host::analyze::Method::default();
+    g.bench_function("analyze_signal", |b| {
+        b.iter(|| {
+            let a =
+                wearsim_host::analyze::analyze_signal(black_box(&x), FS, &kin, &method).unwrap();
+            assert_eq!(a.diagnosis.family, FaultFamily::OuterRace);
+            a.diagnosis.confidence
+        })
+    });
     g.finish();
 }
 
