@@ -7,7 +7,6 @@
 //! [`fit_logistic`]). A family is called only when that probability is at least
 //! [`CALL_MIN`]; otherwise the call is `None`: a wrong family is worse than no call.
 
-use super::faults::{FamilyEvidence, FaultFamily};
 use serde::{Deserialize, Serialize};
 
 /// Logistic calibration `P(correct | margin) = 1 / (1 + exp(-slope (margin - centre)))`.
@@ -45,45 +44,15 @@ pub fn probability(margin: f64, cal: &Calibration) -> f64 {
     1.0 / (1.0 + (-z).exp())
 }
 
-/// The leading family of the evidence and its margin: the family of highest exclusive score
-/// among those with at least `min_harmonics` harmonics found (or `None`), and its exclusive
-/// score minus the highest exclusive score of the other families (dB per harmonic). With no
-/// leading family the margin is the largest exclusive score of any family minus the second
-/// (the strength of the best partial evidence).
-pub fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, f64) {
-    let lead = evidence
-        .iter()
-        .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
-        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
-    let top = |skip: Option<FaultFamily>| {
-        evidence
-            .iter()
-            .filter(|e| Some(e.family) != skip)
-            .map(|e| e.exclusive_score)
-            .fold(0.0_f64, f64::max)
-    };
-    match lead {
-        Some(l) => (l.family, l.exclusive_score - top(Some(l.family))),
-        None => {
-            let best = evidence
-                .iter()
-                .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
-            let m = best.map_or(0.0, |b| b.exclusive_score - top(Some(b.family)));
-            (FaultFamily::None, m)
-        }
-    }
-}
-
-/// The calibrated call: `(family, confidence)`. A leading family whose probability of being
+/// The calibrated call: `(family, confidence)` (`None`: no family called). A leading family whose probability of being
 /// right is at least [`CALL_MIN`] is called with that probability as confidence; otherwise
 /// the call is `None` with confidence `1 - P` (the probability that calling the leading
 /// family, or the best partial evidence, would have been wrong).
-pub fn call(lead: FaultFamily, margin: f64, cal: &Calibration) -> (FaultFamily, f64) {
+pub fn call<F: Copy>(lead: Option<F>, margin: f64, cal: &Calibration) -> (Option<F>, f64) {
     let p = probability(margin, cal);
     match lead {
-        FaultFamily::None => (FaultFamily::None, 1.0 - p),
-        f if p >= CALL_MIN => (f, p),
-        _ => (FaultFamily::None, 1.0 - p),
+        Some(f) if p >= CALL_MIN => (Some(f), p),
+        _ => (None, 1.0 - p),
     }
 }
 
@@ -149,9 +118,10 @@ mod tests {
             slope: 1.0,
             centre: 3.0,
         };
-        assert_eq!(call(FaultFamily::InnerRace, 1.0, &cal).0, FaultFamily::None);
-        let (f, c) = call(FaultFamily::OuterRace, 8.0, &cal);
-        assert_eq!(f, FaultFamily::OuterRace);
+        assert_eq!(call(Some("inner"), 1.0, &cal).0, None);
+        assert_eq!(call::<&str>(None, 9.0, &cal).0, None);
+        let (f, c) = call(Some("outer"), 8.0, &cal);
+        assert_eq!(f, Some("outer"));
         assert!(c > 0.99);
     }
 

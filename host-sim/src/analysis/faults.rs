@@ -155,7 +155,7 @@ pub struct FaultDiagnosis {
     /// among those with at least `min_harmonics` harmonics found, or `None`.
     pub candidate: FaultFamily,
     /// Evidence margin of the candidate: its exclusive score minus the best other family's,
-    /// dB per searched harmonic (see [`super::diagnose::leading`]).
+    /// dB per searched harmonic (see `leading`).
     pub margin_db: f64,
     /// Exclusive score of the diagnosed family (0 for `None`).
     pub score: f64,
@@ -325,9 +325,11 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
     mark_shared(&mut evidence, env.df, p);
-    let (candidate, margin_db) = super::diagnose::leading(&evidence, p.min_harmonics);
+    let (candidate, margin_db) = leading(&evidence, p.min_harmonics);
+    let lead = (candidate != FaultFamily::None).then_some(candidate);
     let (family, confidence) =
-        super::diagnose::call(candidate, margin_db, &super::diagnose::CALIBRATION);
+        super::diagnose::call(lead, margin_db, &super::diagnose::CALIBRATION);
+    let family = family.unwrap_or(FaultFamily::None);
     let score = evidence
         .iter()
         .find(|e| e.family == family)
@@ -339,6 +341,35 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         margin_db,
         score,
         evidence,
+    }
+}
+
+/// The leading family of the evidence and its margin: the family of highest exclusive score
+/// among those with at least `min_harmonics` harmonics found (or `None`), and its exclusive
+/// score minus the highest exclusive score of the other families (dB per harmonic). With no
+/// leading family the margin is the largest exclusive score of any family minus the second
+/// (the strength of the best partial evidence).
+fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, f64) {
+    let lead = evidence
+        .iter()
+        .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
+        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
+    let top = |skip: Option<FaultFamily>| {
+        evidence
+            .iter()
+            .filter(|e| Some(e.family) != skip)
+            .map(|e| e.exclusive_score)
+            .fold(0.0_f64, f64::max)
+    };
+    match lead {
+        Some(l) => (l.family, l.exclusive_score - top(Some(l.family))),
+        None => {
+            let best = evidence
+                .iter()
+                .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
+            let m = best.map_or(0.0, |b| b.exclusive_score - top(Some(b.family)));
+            (FaultFamily::None, m)
+        }
     }
 }
 
