@@ -121,7 +121,13 @@ pub struct Method {
     /// Cepstral pre-whitening of the record before the envelope (default true; the
     /// kurtogram always sees the raw record).
     pub prewhiten: bool,
-    /// Deepest fast-kurtogram level (default 6; reduced automatically for short records).
+    /// Demodulate in the band chosen by the kurtogram (default true); false: in the whole
+    /// admissible band above the fault zone (`top`..fs/2), as a plain envelope analysis.
+    pub kurtogram_band: bool,
+    /// Deepest fast-kurtogram level (default 6). The level actually used is the shallowest
+    /// whose narrowest band is at most `min_band_factor × top` Hz wide (so the admissible
+    /// bands are the same in Hz at every sample rate), and never deeper than this or than
+    /// the record supports.
     pub max_level: usize,
     /// Narrowest admissible demodulation band, as a multiple of the highest fault harmonic
     /// searched (`top = harmonics × max(BPFI, 2×BSF)`), so that the envelope can hold every
@@ -137,6 +143,7 @@ impl Default for Method {
     fn default() -> Self {
         Method {
             prewhiten: true,
+            kurtogram_band: true,
             max_level: 6,
             min_band_factor: 1.2,
             detect: DetectParams::default(),
@@ -291,13 +298,21 @@ pub fn kurtogram_band(kg: &Kurtogram, r: usize, i: usize) -> (f64, f64) {
 /// Analyse samples `x` at `fs` Hz of a bearing with frequencies `kin` using `method`.
 /// Errors (signal too short, constant, non-finite, bad fs) come from [`analysis`].
 pub fn analyze_signal(
-    x: &[f64],
+    raw: &[f64],
     fs: f64,
     kin: &Kinematics,
     method: &Method,
 ) -> Result<SignalAnalysis, analysis::AnalysisError> {
-    let stats = analysis::stats(x)?;
-    analysis::error::check_magnitude(x)?;
+    let stats = analysis::stats(raw)?;
+    analysis::error::check_magnitude(raw)?;
+    // DC and level removed: every decision below depends on the record's shape only, not
+    // on its units, gain or offset.
+    let normalised: Vec<f64> = if stats.std > 0.0 {
+        raw.iter().map(|v| (v - stats.mean) / stats.std).collect()
+    } else {
+        raw.to_vec()
+    };
+    let x = normalised.as_slice();
     let ff = kin.fault_frequencies();
     let white;
     let y: &[f64] = if method.prewhiten {
@@ -306,15 +321,20 @@ pub fn analyze_signal(
     } else {
         x
     };
-    // Deepest level the record supports (32 envelope samples in the narrowest band).
-    let mut level = method.max_level.clamp(1, 16);
+    let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
+    let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
+    // Shallowest level whose narrowest band is no wider than the narrowest admissible band
+    // (a physical width in Hz, the same at every sample rate), capped by `max_level` and by
+    // what the record supports (32 envelope samples in the narrowest band).
+    let mut level = 1usize;
+    while level < method.max_level.clamp(1, 16) && fs / 2.0 / (1u64 << level) as f64 > min_band_hz {
+        level += 1;
+    }
     while level > 1 && (32usize << (level + 1)) > x.len() {
         level -= 1;
     }
     // Spectral kurtosis of the raw record says where the impulses dominate (Antoni 2007).
     let kg = fast_kurtogram(x, fs, level)?;
-    let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
-    let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
     let mut best: Option<(f64, usize, usize)> = None;
     for (r, row) in kg.grid.iter().enumerate() {
         let width = fs / 2.0 / row.len().max(1) as f64;
@@ -332,7 +352,11 @@ pub fn analyze_signal(
         }
     }
     let (kurtosis, r, i) = best.unwrap_or((kg.grid[0][0], 0, 0));
-    let band = kurtogram_band(&kg, r, i);
+    let band = if method.kurtogram_band {
+        kurtogram_band(&kg, r, i)
+    } else {
+        (top.min(fs / 2.0 - min_band_hz), fs / 2.0)
+    };
     let summary = KurtogramSummary {
         max_level: level,
         min_band_hz,
@@ -344,8 +368,8 @@ pub fn analyze_signal(
     };
     let env = envelope_spectrum(y, fs, Some(band))?;
     let diagnosis = detect_fault(&env, &ff, &method.detect);
-    let spectrum = analysis::amplitude_spectrum(x, fs, Window::Hann)?;
-    let zones = zones(x, fs, kin);
+    let spectrum = analysis::amplitude_spectrum(raw, fs, Window::Hann)?;
+    let zones = zones(raw, fs, kin);
     Ok(SignalAnalysis {
         stats,
         kurtogram: summary,
@@ -542,8 +566,11 @@ pub fn print_analysis(a: &Analysis) {
     );
     let d = &a.diagnosis;
     println!(
-        "diagnosis: {} (exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
+        "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
         family_name(d.family),
+        d.confidence,
+        family_name(d.candidate),
+        d.margin_db,
         d.score
     );
     for e in &d.evidence {

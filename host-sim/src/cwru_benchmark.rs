@@ -4,11 +4,19 @@
 //! (Smith & Randall 2015, "Rolling element bearing diagnostics using the Case Western Reserve
 //! University data: a benchmark study", MSSP 64-65).
 //!
+//! The records are split once, before anything was tuned ([`part_of`], the one place): the
+//! drive-end records at 0 and 1 hp are the **development** part (every threshold and the
+//! confidence calibration are chosen on them), the drive-end records at 2 and 3 hp the
+//! **evaluation** part, the fan-end records (FE channel, `cwru-6203-fe` geometry) a further
+//! held-out **other sensor position** set, and the 48 kHz normal baseline checks the healthy
+//! call.
+//!
 //! Only the file's own speed (`XnnnRPM`) and the `cwru-6205-de` geometry enter the analysis;
 //! the label parsed from the file name is used only to score the result. The 48 kHz normal
 //! baseline is decimated by 4 (ideal FFT-domain anti-alias filter at 6 kHz) so that every
 //! record is analysed over the same 0–6 kHz band.
 
+use crate::analysis::diagnose::{fit_logistic, Calibration, CALIBRATION};
 use crate::analysis::FaultFamily;
 use crate::analyze::{analyze_signal, family_name, Kinematics, Method};
 use crate::io::{mat, parse_cwru_name, CwruLabel};
@@ -31,12 +39,55 @@ pub struct CwruBenchmarkArgs {
     /// Also write the report as Markdown to this file (e.g. `docs/cwru-benchmark.md`).
     #[arg(long)]
     pub markdown: Option<PathBuf>,
+    /// Skip the per-record comparison of raw, pre-whitened and SK-band envelopes (three
+    /// times faster).
+    #[arg(long)]
+    pub no_variants: bool,
+}
+
+/// Part of the CWRU data a record belongs to (see [`part_of`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Part {
+    /// Drive-end records at 0 and 1 hp: every threshold and the calibration are chosen here.
+    Development,
+    /// Drive-end records at 2 and 3 hp: judge only.
+    Evaluation,
+    /// Fan-end records on the FE channel: held-out other sensor position and bearing.
+    FanEnd,
+    /// Normal baseline(s): the healthy call.
+    Baseline,
+}
+
+/// The split, decided before any tuning: drive-end 0–1 hp development, drive-end 2–3 hp
+/// evaluation, fan end held out, normal baseline.
+pub fn part_of(label: &CwruLabel) -> Part {
+    match (&label.fault, label.fault_end.as_deref()) {
+        (mat::CwruFault::Normal, _) => Part::Baseline,
+        (_, Some("FE")) => Part::FanEnd,
+        _ if label.load_hp <= 1 => Part::Development,
+        _ => Part::Evaluation,
+    }
+}
+
+/// Outcome of one envelope variant on one record, as in Smith & Randall (2015) Table 3:
+/// `Y` the true family is called; `P` the true family leads the evidence but is not called
+/// (confidence below one half); `N` otherwise (another family, or nothing).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Outcome {
+    /// Diagnosed.
+    Y,
+    /// Partially diagnosed: leading, not called.
+    P,
+    /// Not diagnosed.
+    N,
 }
 
 /// Sample rate at which every record is analysed, Hz.
 pub const ANALYSIS_FS: f64 = 12_000.0;
 /// Bearing preset of the CWRU drive end (SKF 6205-2RS JEM).
 pub const BEARING: &str = "cwru-6205-de";
+/// Bearing preset of the CWRU fan end (SKF 6203-2RS JEM).
+pub const BEARING_FE: &str = "cwru-6203-fe";
 
 /// The benchmark's classes, in confusion-matrix order.
 pub const CLASSES: [FaultFamily; 4] = [
@@ -61,10 +112,20 @@ pub struct FileResult {
     pub or_clock: Option<u8>,
     /// Motor load, hp.
     pub load_hp: u8,
+    /// Part of the split.
+    pub part: Part,
+    /// Channel analysed (`DE` or `FE`).
+    pub channel: String,
     /// Speed stored in the file, rpm.
     pub rpm: f64,
     /// Diagnosed family (`None` also when the analysis failed, see `error`).
     pub predicted: FaultFamily,
+    /// Calibrated confidence of the call, [0, 1].
+    pub confidence: f64,
+    /// Leading family before the confidence gate.
+    pub candidate: FaultFamily,
+    /// Evidence margin of the leading family, dB per harmonic.
+    pub margin_db: f64,
     /// Score of the diagnosed family, dB per harmonic.
     pub score: f64,
     /// Exclusive scores of inner, outer, ball (dB per searched harmonic).
@@ -77,6 +138,10 @@ pub struct FileResult {
     pub band_kurtosis: f64,
     /// Whether `predicted == truth`.
     pub correct: bool,
+    /// Outcomes of the raw envelope (whole band above the fault zone, no pre-whitening),
+    /// the pre-whitened envelope (same band, cepstral pre-whitening) and the SK-band envelope
+    /// (kurtogram band, pre-whitened: the method), if computed.
+    pub variants: Option<[Outcome; 3]>,
     /// Read or analysis error, if any.
     pub error: Option<String>,
 }
@@ -90,21 +155,25 @@ pub struct Accuracy {
     pub correct: usize,
     /// Files in the group.
     pub total: usize,
+    /// Files called as a wrong fault family (worse than no call).
+    pub wrong_family: usize,
     /// `correct / total` (0 for an empty group).
     pub fraction: f64,
 }
 
 impl Accuracy {
     fn of<'a>(group: &str, rows: impl Iterator<Item = &'a FileResult>) -> Self {
-        let (mut correct, mut total) = (0, 0);
+        let (mut correct, mut total, mut wrong_family) = (0, 0, 0);
         for r in rows {
             total += 1;
             correct += usize::from(r.correct);
+            wrong_family += usize::from(!r.correct && r.predicted != FaultFamily::None);
         }
         Accuracy {
             group: group.into(),
             correct,
             total,
+            wrong_family,
             fraction: if total > 0 {
                 correct as f64 / total as f64
             } else {
@@ -125,13 +194,30 @@ pub struct BenchmarkReport {
     pub files: Vec<FileResult>,
     /// `confusion[t][p]`: files of true class `CLASSES[t]` diagnosed as `CLASSES[p]`.
     pub confusion: [[usize; 4]; 4],
-    /// Accuracy per group: inner+outer race (the target), inner, outer, ball, normal, all.
+    /// Accuracy per group (per part and for the whole set).
     pub accuracy: Vec<Accuracy>,
+    /// Calibration in force ([`CALIBRATION`]).
+    pub calibration: Calibration,
+    /// Calibration refitted now on the development records only ([`fit_development`]);
+    /// equal to `calibration` unless the chain changed since it was recorded.
+    pub calibration_fitted: Option<Calibration>,
+}
+
+/// Fit the confidence calibration on the development records only: one pair (margin, the
+/// leading family is the true one) per development record that has a leading family.
+pub fn fit_development(rows: &[FileResult]) -> Option<Calibration> {
+    let pairs: Vec<(f64, bool)> = rows
+        .iter()
+        .filter(|r| r.part == Part::Development && r.candidate != FaultFamily::None)
+        .map(|r| (r.margin_db, r.candidate == r.truth))
+        .collect();
+    fit_logistic(&pairs)
 }
 
 impl BenchmarkReport {
-    /// Accuracy of the named group (`"inner+outer race"`, `"inner race"`, `"outer race"`,
-    /// `"ball"`, `"normal"`, `"all"`).
+    /// Accuracy of the named group (`"development IR+OR"`, `"evaluation IR+OR"`,
+    /// `"drive end IR+OR"`, `"development ball"`, `"evaluation ball"`, `"fan end IR+OR"`,
+    /// `"fan end ball"`, `"normal"`, `"all"`).
     pub fn accuracy_of(&self, group: &str) -> Option<&Accuracy> {
         self.accuracy.iter().find(|a| a.group == group)
     }
@@ -200,13 +286,24 @@ pub fn cwru_dir(dir: &Path) -> PathBuf {
 }
 
 /// Analyse one file; `Err` carries a message naming the file.
-fn analyse_file(path: &Path, label: &CwruLabel, method: &Method) -> Result<FileResult, String> {
+fn analyse_file(
+    path: &Path,
+    label: &CwruLabel,
+    method: &Method,
+    variants: bool,
+) -> Result<FileResult, String> {
     let name = crate::analyze::short_name(path);
-    let rec = mat::read_cwru(path, "DE", None).map_err(|e| e.to_string())?;
+    let part = part_of(label);
+    let (channel, bearing) = if part == Part::FanEnd {
+        ("FE", BEARING_FE)
+    } else {
+        ("DE", BEARING)
+    };
+    let rec = mat::read_cwru(path, channel, None).map_err(|e| e.to_string())?;
     let rpm = rec
         .rpm
         .ok_or_else(|| format!("{name}: no RPM variable in the file"))?;
-    let kin = Kinematics::of_preset(BEARING, rpm).map_err(|e| format!("{name}: {e}"))?;
+    let kin = Kinematics::of_preset(bearing, rpm).map_err(|e| format!("{name}: {e}"))?;
     let factor = (rec.fs / ANALYSIS_FS).round() as usize;
     let (x, fs) = if factor > 1 && (rec.fs - factor as f64 * ANALYSIS_FS).abs() < 1e-6 {
         (decimate_fft(&rec.samples, factor), ANALYSIS_FS)
@@ -216,6 +313,37 @@ fn analyse_file(path: &Path, label: &CwruLabel, method: &Method) -> Result<FileR
     let a = analyze_signal(&x, fs, &kin, method).map_err(|e| format!("{name}: {e}"))?;
     let d = &a.diagnosis;
     let t = truth(label);
+    let outcome = |d: &crate::analysis::FaultDiagnosis| {
+        if d.family == t {
+            Outcome::Y
+        } else if d.candidate == t {
+            Outcome::P
+        } else {
+            Outcome::N
+        }
+    };
+    let variants = if variants {
+        let mut out = [Outcome::N; 3];
+        for (i, (prewhiten, kurtogram_band)) in [(false, false), (true, false), (true, true)]
+            .into_iter()
+            .enumerate()
+        {
+            let m = Method {
+                prewhiten,
+                kurtogram_band,
+                ..*method
+            };
+            out[i] = if m == *method {
+                outcome(d)
+            } else {
+                let v = analyze_signal(&x, fs, &kin, &m).map_err(|e| format!("{name}: {e}"))?;
+                outcome(&v.diagnosis)
+            };
+        }
+        Some(out)
+    } else {
+        None
+    };
     let mut scores = [0.0; 3];
     let mut found = [0; 3];
     for (i, e) in d.evidence.iter().take(3).enumerate() {
@@ -232,14 +360,20 @@ fn analyse_file(path: &Path, label: &CwruLabel, method: &Method) -> Result<FileR
             _ => None,
         },
         load_hp: label.load_hp,
+        part,
+        channel: channel.into(),
         rpm,
         predicted: d.family,
+        confidence: d.confidence,
+        candidate: d.candidate,
+        margin_db: d.margin_db,
         score: d.score,
         family_scores: scores,
         family_found: found,
         band_hz: a.kurtogram.band_hz,
         band_kurtosis: a.kurtogram.kurtosis,
         correct: d.family == t,
+        variants,
         error: None,
     })
 }
@@ -249,7 +383,11 @@ fn analyse_file(path: &Path, label: &CwruLabel, method: &Method) -> Result<FileR
 /// names, and other rates or ends, are skipped. A file that fails to read or analyse counts as
 /// diagnosed `None` with its error recorded. Error if the folder cannot be listed or holds no
 /// such file.
-pub fn run_benchmark(dir: &Path, method: &Method) -> Result<BenchmarkReport, String> {
+pub fn run_benchmark(
+    dir: &Path,
+    method: &Method,
+    variants: bool,
+) -> Result<BenchmarkReport, String> {
     let cwru = cwru_dir(dir);
     let entries = std::fs::read_dir(&cwru)
         .map_err(|e| format!("{}: cannot list the folder: {e}", cwru.display()))?;
@@ -259,18 +397,20 @@ pub fn run_benchmark(dir: &Path, method: &Method) -> Result<BenchmarkReport, Str
         .filter_map(|p| {
             let label = parse_cwru_name(&crate::analyze::short_name(&p))?;
             let keep = matches!(label.fault, mat::CwruFault::Normal)
-                || (label.fs_hz == ANALYSIS_FS && label.fault_end.as_deref() == Some("DE"));
+                || (label.fs_hz == ANALYSIS_FS
+                    && matches!(label.fault_end.as_deref(), Some("DE") | Some("FE")));
             keep.then_some((p, label))
         })
         .collect();
     if files.is_empty() {
         return Err(format!(
-            "{}: no CWRU 12 kHz drive-end or normal .mat files found",
+            "{}: no CWRU 12 kHz drive-end, fan-end or normal .mat files found",
             cwru.display()
         ));
     }
     let key = |l: &CwruLabel| {
         (
+            u8::from(part_of(l) == Part::FanEnd),
             class_index(truth(l)),
             (l.diameter_in.unwrap_or(0.0) * 1000.0).round() as u32,
             match l.fault {
@@ -284,21 +424,27 @@ pub fn run_benchmark(dir: &Path, method: &Method) -> Result<BenchmarkReport, Str
     let rows: Vec<FileResult> = files
         .iter()
         .map(|(p, label)| {
-            analyse_file(p, label, method).unwrap_or_else(|error| FileResult {
+            analyse_file(p, label, method, variants).unwrap_or_else(|error| FileResult {
                 file: crate::analyze::short_name(p),
                 record: label.record,
                 truth: truth(label),
                 diameter_in: label.diameter_in,
                 or_clock: None,
                 load_hp: label.load_hp,
+                part: part_of(label),
+                channel: String::new(),
                 rpm: 0.0,
                 predicted: FaultFamily::None,
+                confidence: 0.0,
+                candidate: FaultFamily::None,
+                margin_db: 0.0,
                 score: 0.0,
                 family_scores: [0.0; 3],
                 family_found: [0; 3],
                 band_hz: (0.0, 0.0),
                 band_kurtosis: 0.0,
                 correct: false,
+                variants: None,
                 error: Some(error),
             })
         })
@@ -307,25 +453,33 @@ pub fn run_benchmark(dir: &Path, method: &Method) -> Result<BenchmarkReport, Str
     for r in &rows {
         confusion[class_index(r.truth)][class_index(r.predicted)] += 1;
     }
-    let of = |f: FaultFamily| move |r: &&FileResult| r.truth == f;
+    let race = |r: &&FileResult| matches!(r.truth, FaultFamily::InnerRace | FaultFamily::OuterRace);
+    let ball = |r: &&FileResult| r.truth == FaultFamily::Ball;
+    let de = |r: &&FileResult| matches!(r.part, Part::Development | Part::Evaluation);
+    let in_part = |p: Part| move |r: &&FileResult| r.part == p;
+    let dev = in_part(Part::Development);
+    let eval = in_part(Part::Evaluation);
+    let fe = in_part(Part::FanEnd);
     let accuracy = vec![
-        Accuracy::of(
-            "inner+outer race",
-            rows.iter()
-                .filter(|r| matches!(r.truth, FaultFamily::InnerRace | FaultFamily::OuterRace)),
-        ),
-        Accuracy::of("inner race", rows.iter().filter(of(FaultFamily::InnerRace))),
-        Accuracy::of("outer race", rows.iter().filter(of(FaultFamily::OuterRace))),
-        Accuracy::of("ball", rows.iter().filter(of(FaultFamily::Ball))),
-        Accuracy::of("normal", rows.iter().filter(of(FaultFamily::None))),
+        Accuracy::of("development IR+OR", rows.iter().filter(dev).filter(race)),
+        Accuracy::of("evaluation IR+OR", rows.iter().filter(eval).filter(race)),
+        Accuracy::of("drive end IR+OR", rows.iter().filter(de).filter(race)),
+        Accuracy::of("development ball", rows.iter().filter(dev).filter(ball)),
+        Accuracy::of("evaluation ball", rows.iter().filter(eval).filter(ball)),
+        Accuracy::of("fan end IR+OR", rows.iter().filter(fe).filter(race)),
+        Accuracy::of("fan end ball", rows.iter().filter(fe).filter(ball)),
+        Accuracy::of("normal", rows.iter().filter(in_part(Part::Baseline))),
         Accuracy::of("all", rows.iter()),
     ];
+    let calibration_fitted = fit_development(&rows);
     Ok(BenchmarkReport {
         data_dir: cwru,
         method: *method,
         files: rows,
         confusion,
         accuracy,
+        calibration: CALIBRATION,
+        calibration_fitted,
     })
 }
 
@@ -351,42 +505,70 @@ fn case(r: &FileResult) -> String {
     }
 }
 
+/// Outcome letters of a row's variants (`Y P N`), or `-`.
+fn variant_letters(f: &FileResult) -> [&'static str; 3] {
+    f.variants.map_or(["-"; 3], |v| {
+        v.map(|o| match o {
+            Outcome::Y => "Y",
+            Outcome::P => "P",
+            Outcome::N => "N",
+        })
+    })
+}
+
+/// Name of a part for tables.
+fn part_name(p: Part) -> &'static str {
+    match p {
+        Part::Development => "dev",
+        Part::Evaluation => "eval",
+        Part::FanEnd => "FE",
+        Part::Baseline => "base",
+    }
+}
+
 /// The report as Markdown (the content of `docs/cwru-benchmark.md`).
 pub fn to_markdown(r: &BenchmarkReport) -> String {
     let mut s = String::new();
     s.push_str("# CWRU benchmark of `wearsim analyze`\n\n");
     s.push_str(
         "Generated by `wearsim cwru-benchmark --markdown docs/cwru-benchmark.md` (do not edit by \
-         hand). Every 12 kHz drive-end record of the CWRU Bearing Data Center in the data folder \
+         hand; method, split and the \"before\" figures are in `docs/cwru-detector.md`). Every \
+         12 kHz drive-end and fan-end record of the CWRU Bearing Data Center in the data folder \
          and the normal baseline (48 kHz, decimated to 12 kHz) go through the same chain with \
-         one fixed parameter set: fast kurtogram of the raw record restricted to bands above the \
-         fault zone and wide enough for the searched harmonics, envelope spectrum of the \
-         cepstrally pre-whitened record in that band, harmonic-family detector \
-         (`host-sim/src/analyze.rs`, `host-sim/src/analysis/faults.rs`). Inputs per file: its \
-         stored speed (`XnnnRPM`) and the `cwru-6205-de` geometry; the label in the file name \
-         is used only for scoring.\n\n",
+         one fixed parameter set. Inputs per file: its stored speed (`XnnnRPM`) and the \
+         `cwru-6205-de` (drive end, DE channel) or `cwru-6203-fe` (fan end, FE channel) \
+         geometry; the label in the file name is used only for scoring.\n\n\
+         **Split** (`cwru_benchmark::part_of`, decided before tuning): drive end 0-1 hp = \
+         development (chose every threshold and the confidence calibration); drive end 2-3 hp = \
+         evaluation (judges only); fan end = held-out other sensor position and bearing; \
+         normal baseline = healthy check.\n\n",
     );
+    s.push_str(&format!(
+        "Confidence calibration in force: slope {:.4} /dB, centre {:.3} dB; refitted now on the \
+         development records: {}.\n\n",
+        r.calibration.slope,
+        r.calibration.centre,
+        r.calibration_fitted.map_or("no fit".into(), |c| format!(
+            "slope {:.4} /dB, centre {:.3} dB",
+            c.slope, c.centre
+        ))
+    ));
     s.push_str(
-        "Reading the result: the target is >= 90 % of the inner- and outer-race records and the \
-         normal baseline healthy (`host-sim/tests/cwru_benchmark.rs` fails below it). Ball \
-         faults are reported, not targeted: Smith & Randall (2015) found them by far the hardest \
-         CWRU class, several not diagnosable by any of their methods. Misses are listed below \
-         as they are; Smith & Randall also found outcomes to depend more on each bearing's \
-         installation than on defect size or load, so one bearing (one defect size at one \
-         position, four loads) tends to be missed or found as a block.\n\n",
+        "## Accuracy\n\n`wrong family`: records called as another fault family (worse than no \
+         call).\n\n| group | correct | files | accuracy | wrong family |\n|---|---:|---:|---:|---:|\n",
     );
-    s.push_str("## Accuracy\n\n| group | correct | files | accuracy |\n|---|---:|---:|---:|\n");
     for a in &r.accuracy {
         s.push_str(&format!(
-            "| {} | {} | {} | {:.1} % |\n",
+            "| {} | {} | {} | {:.1} % | {} |\n",
             a.group,
             a.correct,
             a.total,
-            100.0 * a.fraction
+            100.0 * a.fraction,
+            a.wrong_family
         ));
     }
     s.push_str(
-        "\n## Confusion matrix\n\nRows: true class; columns: diagnosed family.\n\n\
+        "\n## Confusion matrix (all records)\n\nRows: true class; columns: diagnosed family.\n\n\
          | true \\ diagnosed | IR | OR | ball | none |\n|---|---:|---:|---:|---:|\n",
     );
     for (t, row) in r.confusion.iter().enumerate() {
@@ -400,35 +582,38 @@ pub fn to_markdown(r: &BenchmarkReport) -> String {
         ));
     }
     s.push_str(
-        "\n## Per file\n\nScores are exclusive scores in dB per searched harmonic: the heights over \
-         the local median floor of the found harmonics that no other family also claims, divided \
-         by the 5 harmonics searched; `found` counts harmonics at least 10 dB over the floor \
-         (IR / OR / ball), shared ones included. The band is the demodulation band chosen by \
-         the kurtogram.\n\n\
-         | file | case | load hp | rpm | band Hz | diagnosed | score | IR / OR / ball score | found | ok |\n\
-         |---|---|---:|---:|---|---|---:|---|---|---|\n",
+        "\n## Per file (Smith & Randall 2015 style)\n\n`raw` / `CPW` / `SK`: outcome of the raw \
+         envelope (whole band above the fault zone, no pre-whitening), the cepstrally \
+         pre-whitened envelope (same band) and the SK-band envelope (kurtogram band, \
+         pre-whitened: the method). Y = the true family is called (confidence >= 0.5); P = the \
+         true family leads the evidence but is not called; N = another family or nothing. \
+         `margin`: the leading family's exclusive score minus the best other's, dB per \
+         searched harmonic; `conf`: calibrated confidence of the call.\n\n\
+         | file | part | case | hp | rpm | band Hz | diagnosed | conf | leading | margin | raw | CPW | SK | ok |\n\
+         |---|---|---|---:|---:|---|---|---:|---|---:|---|---|---|---|\n",
     );
     for f in &r.files {
+        let v = variant_letters(f);
         s.push_str(&format!(
-            "| {} | {} | {} | {:.0} | {:.0}-{:.0} | {} | {:.1} | {:.1} / {:.1} / {:.1} | {}/{}/{} | {} |\n",
+            "| {} | {} | {} | {} | {:.0} | {:.0}-{:.0} | {} | {:.2} | {} | {:.1} | {} | {} | {} | {} |\n",
             f.file,
+            part_name(f.part),
             case(f),
             f.load_hp,
             f.rpm,
             f.band_hz.0,
             f.band_hz.1,
             family_name(f.predicted),
-            f.score,
-            f.family_scores[0],
-            f.family_scores[1],
-            f.family_scores[2],
-            f.family_found[0],
-            f.family_found[1],
-            f.family_found[2],
+            f.confidence,
+            family_name(f.candidate),
+            f.margin_db,
+            v[0],
+            v[1],
+            v[2],
             if f.correct { "yes" } else { "**no**" }
         ));
         if let Some(e) = &f.error {
-            s.push_str(&format!("|  | error: {e} | | | | | | | | |\n"));
+            s.push_str(&format!("|  | error: {e} | | | | | | | | | | | | |\n"));
         }
     }
     s
@@ -438,26 +623,26 @@ pub fn to_markdown(r: &BenchmarkReport) -> String {
 pub fn print_report(r: &BenchmarkReport) {
     println!("CWRU benchmark on {}", r.data_dir.display());
     println!(
-        "{:<34} {:<12} {:>2} {:>5} {:>11} {:<10} {:>6}  {:>17}  {:>5}  ok",
-        "file", "case", "hp", "rpm", "band Hz", "diagnosed", "score", "IR/OR/ball score", "found"
+        "{:<34} {:<4} {:<12} {:>2} {:>11} {:<10} {:>5} {:<10} {:>6}  raw CPW SK  ok",
+        "file", "part", "case", "hp", "band Hz", "diagnosed", "conf", "leading", "margin"
     );
     for f in &r.files {
+        let v = variant_letters(f);
         println!(
-            "{:<34} {:<12} {:>2} {:>5.0} {:>5.0}-{:<5.0} {:<10} {:>6.1}  {:>5.1}/{:>5.1}/{:>5.1}  {}/{}/{}  {}",
+            "{:<34} {:<4} {:<12} {:>2} {:>5.0}-{:<5.0} {:<10} {:>5.2} {:<10} {:>6.1}  {}   {}   {}   {}",
             f.file,
+            part_name(f.part),
             case(f),
             f.load_hp,
-            f.rpm,
             f.band_hz.0,
             f.band_hz.1,
             family_name(f.predicted),
-            f.score,
-            f.family_scores[0],
-            f.family_scores[1],
-            f.family_scores[2],
-            f.family_found[0],
-            f.family_found[1],
-            f.family_found[2],
+            f.confidence,
+            family_name(f.candidate),
+            f.margin_db,
+            v[0],
+            v[1],
+            v[2],
             if f.correct { "yes" } else { "NO" }
         );
         if let Some(e) = &f.error {
@@ -482,11 +667,16 @@ pub fn print_report(r: &BenchmarkReport) {
     println!();
     for a in &r.accuracy {
         println!(
-            "{:<17} {:>3}/{:<3} {:>5.1} %",
+            "{:<18} {:>3}/{:<3} {:>5.1} %  wrong family {}",
             a.group,
             a.correct,
             a.total,
-            100.0 * a.fraction
+            100.0 * a.fraction,
+            a.wrong_family
         );
     }
+    println!(
+        "calibration in force: slope {:.4} /dB centre {:.3} dB; fitted on development: {:?}",
+        r.calibration.slope, r.calibration.centre, r.calibration_fitted
+    );
 }

@@ -144,9 +144,19 @@ pub struct FamilyEvidence {
 /// Result of [`detect_fault`].
 #[derive(Debug, Clone, Serialize)]
 pub struct FaultDiagnosis {
-    /// Diagnosed family: the family of highest `exclusive_score` among those
-    /// with at least `min_harmonics` harmonics found, or `None`.
+    /// Diagnosed family: `candidate` when its calibrated confidence is at least
+    /// [`super::diagnose::CALL_MIN`], else `None`.
     pub family: FaultFamily,
+    /// Confidence in `family`, in [0, 1]: for a family, the probability that it is right
+    /// given `margin_db` (logistic calibration fitted on the development part of the CWRU
+    /// data, [`super::diagnose::CALIBRATION`]); for `None`, one minus that probability.
+    pub confidence: f64,
+    /// Leading family before the confidence gate: the family of highest `exclusive_score`
+    /// among those with at least `min_harmonics` harmonics found, or `None`.
+    pub candidate: FaultFamily,
+    /// Evidence margin of the candidate: its exclusive score minus the best other family's,
+    /// dB per searched harmonic (see `leading`).
+    pub margin_db: f64,
     /// Exclusive score of the diagnosed family (0 for `None`).
     pub score: f64,
     /// Evidence for every family (inner, outer, ball).
@@ -305,7 +315,8 @@ fn family_evidence(
 /// around it. A line found by two families (e.g. 2×BPFI and 3×BPFO, 0.7 %
 /// apart on a 6205) counts for neither, and the family with the highest
 /// exclusive score among those with at least `min_harmonics` harmonics found
-/// is reported (Randall & Antoni 2011).
+/// is the candidate (Randall & Antoni 2011); it is called when its calibrated confidence
+/// ([`super::diagnose`]) is at least one half, otherwise the call is `None`.
 /// Non-positive or non-finite characteristic frequencies yield no evidence.
 pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> FaultDiagnosis {
     let mut evidence = vec![
@@ -314,15 +325,51 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
     mark_shared(&mut evidence, env.df, p);
-    let best = evidence
+    let (candidate, margin_db) = leading(&evidence, p.min_harmonics);
+    let lead = (candidate != FaultFamily::None).then_some(candidate);
+    let (family, confidence) =
+        super::diagnose::call(lead, margin_db, &super::diagnose::CALIBRATION);
+    let family = family.unwrap_or(FaultFamily::None);
+    let score = evidence
         .iter()
-        .filter(|e| e.found >= p.min_harmonics.max(1) && e.exclusive_score > 0.0)
-        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
-    let (family, score) = best.map_or((FaultFamily::None, 0.0), |e| (e.family, e.exclusive_score));
+        .find(|e| e.family == family)
+        .map_or(0.0, |e| e.exclusive_score);
     FaultDiagnosis {
         family,
+        confidence,
+        candidate,
+        margin_db,
         score,
         evidence,
+    }
+}
+
+/// The leading family of the evidence and its margin: the family of highest exclusive score
+/// among those with at least `min_harmonics` harmonics found (or `None`), and its exclusive
+/// score minus the highest exclusive score of the other families (dB per harmonic). With no
+/// leading family the margin is the largest exclusive score of any family minus the second
+/// (the strength of the best partial evidence).
+fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, f64) {
+    let lead = evidence
+        .iter()
+        .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
+        .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
+    let top = |skip: Option<FaultFamily>| {
+        evidence
+            .iter()
+            .filter(|e| Some(e.family) != skip)
+            .map(|e| e.exclusive_score)
+            .fold(0.0_f64, f64::max)
+    };
+    match lead {
+        Some(l) => (l.family, l.exclusive_score - top(Some(l.family))),
+        None => {
+            let best = evidence
+                .iter()
+                .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
+            let m = best.map_or(0.0, |b| b.exclusive_score - top(Some(b.family)));
+            (FaultFamily::None, m)
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 //!   (Antoni 2007) to choose the demodulation band.
 //! - [`peaks`]: spectral peaks, noise floor, peak-over-floor in dB.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
+//! - [`diagnose`]: calibrated confidence and the call / no-call decision.
 //! - [`zones`]: band levels of the four El-Thalji frequency zones.
 //! - [`synth`]: seeded synthetic signals with known answers.
 //!
@@ -16,6 +17,7 @@
 //! amplitudes in the signal's own units. Typical chain: [`fast_kurtogram`]
 //! → [`envelope_spectrum`] in its best band → [`detect_fault`].
 
+pub mod diagnose;
 pub mod envelope;
 pub mod error;
 pub mod faults;

@@ -20,7 +20,8 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
             }
         },
     };
-    let report = run_benchmark(&dir, &Method::default()).map_err(CliError::input)?;
+    let report =
+        run_benchmark(&dir, &Method::default(), !args.no_variants).map_err(CliError::input)?;
     if let Some(md) = &args.markdown {
         std::fs::write(md, to_markdown(&report))
             .map_err(|e| CliError::run(format!("{}: cannot write: {e}", md.display())))?;
