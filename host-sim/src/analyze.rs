@@ -63,6 +63,17 @@ pub struct AnalyzeArgs {
     /// Write PNG and SVG plots (spectrum, envelope spectrum, kurtogram) into this directory.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// More files or directories: with several inputs, a directory, `--format` or `--out`,
+    /// every readable record is analysed and one table is written (see `crate::batch`).
+    #[arg(value_name = "MORE")]
+    pub more: Vec<PathBuf>,
+    /// Table format of a batch run: `csv`, `json` or `md` (default: from `--out`'s
+    /// extension, else `md`).
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Write the batch table to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 /// Characteristic frequencies of the analysed bearing at the record's speed, Hz.
@@ -480,18 +491,32 @@ pub fn analyze_record_with(
         }));
     }
     let kin = match (&custom, &file_model) {
-        (Some(c), _) => {
-            c.2.kinematics(rpm, crate::geometry::DEFAULT_STRUCTURE)
-                .map_err(|e| format!("{file}: {e}"))
-        }
+        (Some(c), _) => Kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
+            .map(|base| {
+                let f = c.2.fault_frequencies(rpm);
+                Kinematics {
+                    shaft_hz: f.shaft,
+                    ftf: f.ftf,
+                    bpfo: f.bpfo,
+                    bpfi: f.bpfi,
+                    bsf: f.bsf,
+                    natural_hz: base.natural_hz,
+                }
+            })
+            .map_err(|e| format!("{file}: {e}")),
         (None, Some(m)) => {
             Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}"))
         }
         (None, None) => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
     }
     .map_err(AnalyzeError::input)?;
-    crate::resolvable::check_resolvable(rec.samples.len(), rec.fs, &kin)
-        .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
+    crate::resolvable::check_resolvable(
+        rec.samples.len(),
+        rec.fs,
+        kin.shaft_hz,
+        [kin.bpfo, kin.bpfi, 2.0 * kin.bsf],
+    )
+    .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
         .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {

@@ -11,7 +11,6 @@
 //! listed: its geometry is not given in the PRONOSTIA documentation, so pass it with
 //! `--bearing-geometry`.
 
-use crate::analyze::Kinematics;
 use wearsim_core::bearing::BearingGeometry;
 use wearsim_core::kinematics::FaultOrders;
 
@@ -178,32 +177,37 @@ impl GeometrySpec {
         Self::parse(&parts.join(","))
     }
 
-    /// Characteristic frequencies at `rpm` (thesis eq. 17–20 via the core's [`FaultOrders`]).
-    /// `natural_hz` (the resonance-zone centre) is that of the model preset `structure_of`
-    /// (its structure, not this bearing).
-    pub fn kinematics(&self, rpm: f64, structure_of: &str) -> Result<Kinematics, String> {
-        let base = Kinematics::of_preset(structure_of, rpm)?;
+    /// Characteristic frequencies (Hz) at `rpm` (thesis eq. 17–20 via the core's
+    /// [`FaultOrders`]); the other fields of the geometry do not enter them.
+    pub fn fault_frequencies(&self, rpm: f64) -> wearsim_core::kinematics::FaultFrequencies {
         let mm = 1e-3;
         let g = BearingGeometry {
             elements: self.elements.min(u8::MAX as u32) as u8,
             element_diameter: self.ball_mm * mm,
             pitch_diameter: self.pitch_mm * mm,
             contact_angle: self.angle_deg.to_radians(),
-            ..wearsim_core::presets::by_name(structure_of)
-                .ok_or_else(|| format!("unknown preset {structure_of}"))?
-                .bearing
+            ..SHAPE
         };
-        let f = FaultOrders::of(&g).at(rpm / 60.0);
-        Ok(Kinematics {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-            natural_hz: base.natural_hz,
-        })
+        FaultOrders::of(&g).at(rpm / 60.0)
     }
 }
+
+/// Placeholder for the fields of [`BearingGeometry`] that the kinematics do not use.
+const SHAPE: BearingGeometry = BearingGeometry {
+    elements: 9,
+    element_diameter: 0.0,
+    pitch_diameter: 0.0,
+    contact_angle: 0.0,
+    bore: 0.0,
+    outside_diameter: 0.0,
+    contact: wearsim_core::bearing::ContactKind::Point,
+    outer_conformity: 0.52,
+    inner_conformity: 0.52,
+    roller_length: 0.0,
+    youngs_modulus: 208e9,
+    poisson: 0.3,
+    density: 7830.0,
+};
 
 /// The bearing `analyze` uses when it is not a model preset: from `--bearing-geometry`
 /// (`geometry`), a catalogue name given with `--bearing` (`preset`), a sidecar's
@@ -254,8 +258,11 @@ mod tests {
         // The CWRU drive-end bearing by its numbers (CWRU bearing page: 9 balls of 0.3126 in,
         // pitch 1.537 in) gives the preset's frequencies.
         let s = GeometrySpec::parse("elements=9,ball=7.94004,pitch=39.0398,angle=0").unwrap();
-        let k = s.kinematics(1797.0, DEFAULT_STRUCTURE).unwrap();
-        let p = Kinematics::of_preset("cwru-6205-de", 1797.0).unwrap();
+        let k = s.fault_frequencies(1797.0);
+        let b = wearsim_core::presets::by_name("cwru-6205-de")
+            .unwrap()
+            .bearing;
+        let p = FaultOrders::of(&b).at(1797.0 / 60.0);
         assert!(
             (k.bpfi - p.bpfi).abs() < 1e-3 * p.bpfi,
             "{} vs {}",
@@ -266,7 +273,7 @@ mod tests {
         assert!((k.bsf - p.bsf).abs() < 1e-3 * p.bsf);
         // BPFO + BPFI = N x shaft, whatever the geometry.
         let s = GeometrySpec::parse("elements=16, ball=8.4, pitch=71.5, angle=15.17").unwrap();
-        let k = s.kinematics(2000.0, DEFAULT_STRUCTURE).unwrap();
+        let k = s.fault_frequencies(2000.0);
         assert!((k.bpfo + k.bpfi - 16.0 * 2000.0 / 60.0).abs() < 1e-9);
         for (bad, field) in [
             ("elements=9,ball=8,pitch=7.9", "pitch"),

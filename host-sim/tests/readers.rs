@@ -188,3 +188,62 @@ fn bad_input_exits_2_naming_the_field() {
         &["no numeric array"],
     );
 }
+
+#[test]
+fn many_files_one_table_errors_are_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("in");
+    std::fs::create_dir_all(d.join("sub")).unwrap();
+    let a = mfpt_file(&d, 1.0);
+    let b = mfpt_file(&d.join("sub"), 1.0);
+    std::fs::write(d.join("broken.mat"), b"MATLAB 5.0 MAT-file but cut").unwrap();
+    std::fs::write(d.join("notes.json"), b"{}").unwrap();
+    let out = dir.path().join("table.csv");
+    let o = wearsim(&[
+        "analyze",
+        &d.to_string_lossy(),
+        "--out",
+        &out.to_string_lossy(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "one unreadable file: exit 2: {}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("1 of 3 files"), "{}", stderr(&o));
+    let t = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = t.lines().collect();
+    assert_eq!(lines.len(), 4, "{t}");
+    assert!(lines[0].starts_with("file,status,family,confidence"));
+    let broken: Vec<&&str> = lines.iter().filter(|l| l.contains("broken.mat")).collect();
+    assert_eq!(broken.len(), 1, "{t}");
+    assert!(
+        broken[0].contains(",error,") && broken[0].contains("truncated"),
+        "{t}"
+    );
+    let ok = lines
+        .iter()
+        .filter(|l| l.contains(",ok,") && l.contains("file:bearing.sr"));
+    assert_eq!(ok.count(), 2, "{t}");
+    // Two files given, all readable: exit 0, JSON rows in order.
+    let o = wearsim(&[
+        "analyze",
+        &a.to_string_lossy(),
+        &b.to_string_lossy(),
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v.as_array().unwrap().len(), 2);
+    assert_eq!(v[0]["status"], "ok");
+    assert!(v[0]["family"].is_string());
+    // Markdown to stdout.
+    let o = wearsim(&["analyze", &a.to_string_lossy(), "--format", "md"]);
+    assert!(String::from_utf8_lossy(&o.stdout).starts_with("| file | status | family |"));
+    assert_input_error(
+        &wearsim(&["analyze", &a.to_string_lossy(), "--format", "xls"]),
+        &["--format"],
+    );
+}
