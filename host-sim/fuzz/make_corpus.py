@@ -35,6 +35,29 @@ el = matrix("X097_DE_time", x)
 put("mat", "compressed.mat", hdr + struct.pack("<II", 15, len(zlib.compress(el))) + zlib.compress(el))
 put("mat", "int16.mat", hdr + matrix("X097_DE_time", [int(1000 * v) for v in x], cls=10, ty=3, fmt="<h"))
 
+def struct_matrix(name, fields):
+    """A 1x1 struct `name` with fields [(field name, miMATRIX element with an empty name)]."""
+    fl = 16
+    body = sub(6, struct.pack("<II", 2, 0)) + sub(5, struct.pack("<ii", 1, 1)) + sub(1, name.encode())
+    body += struct.pack("<HHi", 5, 4, fl)  # small element: field name length
+    body += sub(1, b"".join(f.encode().ljust(fl, b"\0") for f, _ in fields))
+    body += b"".join(m for _, m in fields)
+    return struct.pack("<II", 14, len(body)) + body
+
+
+def char_matrix(text):
+    body = sub(6, struct.pack("<II", 4, 0)) + sub(5, struct.pack("<ii", 1, len(text))) + sub(1, b"")
+    body += sub(4, text.encode("utf-16-le"))
+    return struct.pack("<II", 14, len(body)) + body
+
+
+mfpt = struct_matrix("bearing", [("sr", matrix("", [97656.0])), ("gs", matrix("", x)), ("load", matrix("", [270.0])), ("rate", matrix("", [25.0]))])
+put("mat", "mfpt_struct.mat", hdr + mfpt)
+z = zlib.compress(mfpt)
+put("mat", "mfpt_struct_compressed.mat", hdr + struct.pack("<II", 15, len(z)) + z)
+y = struct_matrix("Y", [("Name", char_matrix("vibration_1")), ("Data", matrix("", x, cls=7, ty=7, fmt="<f"))])
+put("mat", "paderborn_nested.mat", hdr + struct_matrix("N15_M07_F10_K001_1", [("Y", y)]))
+
 data = b"".join(struct.pack("<f", v) for v in x)
 fmt = struct.pack("<HHIIHH", 3, 1, 1000, 4000, 4, 32)
 wav = b"RIFF" + struct.pack("<I", 4 + 8 + len(fmt) + 8 + len(data)) + b"WAVE"

@@ -46,15 +46,34 @@ pub struct AnalyzeArgs {
     /// Sample rate (Hz), 1..=1e7; overrides the file / sidecar value.
     #[arg(long)]
     pub fs: Option<f64>,
-    /// Bearing preset giving the geometry (see `wearsim presets`); overrides the record's.
+    /// Bearing preset giving the geometry (see `wearsim presets`) or a catalogue bearing
+    /// (`mfpt-nice`, `paderborn-6203`, `xjtu-ldk-uer204`); overrides the record's.
     #[arg(long)]
     pub bearing: Option<String>,
+    /// Any bearing: `elements=N,ball=MM,pitch=MM,angle=DEG` (diameters in mm, contact angle in
+    /// degrees, 0 <= angle < 90, pitch > ball, 3..=200 elements); overrides the record's.
+    #[arg(
+        long = "bearing-geometry",
+        value_name = "elements=N,ball=MM,pitch=MM,angle=DEG"
+    )]
+    pub bearing_geometry: Option<String>,
     /// Print everything as one JSON object on standard output.
     #[arg(long)]
     pub json: bool,
     /// Write PNG and SVG plots (spectrum, envelope spectrum, kurtogram) into this directory.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// More files or directories: with several inputs, a directory, `--format` or `--out`,
+    /// every readable record is analysed and one table is written (see `crate::batch`).
+    #[arg(value_name = "MORE")]
+    pub more: Vec<PathBuf>,
+    /// Table format of a batch run: `csv`, `json` or `md` (default: from `--out`'s
+    /// extension, else `md`).
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Write the batch table to this file (atomically) instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
 }
 
 /// Characteristic frequencies of the analysed bearing at the record's speed, Hz.
@@ -190,6 +209,14 @@ pub struct Analysis {
     pub unit: String,
     /// Sample rate, Hz.
     pub fs: f64,
+    /// Where the sample rate came from: `argument`, `file:PATH` (stored in the file, e.g.
+    /// `file:bearing.sr`), `layout:NAME` (the data set's documented rate), `file name`,
+    /// `sidecar`, `header`.
+    pub fs_source: String,
+    /// What the reader found: `layout` (`cwru`, `mfpt`, `paderborn`, `ims`, `femto`,
+    /// `xjtu-sy`, `generic`), `variable` (path inside a MAT file), `rpm_source` (as `fs_source`),
+    /// `load` and `load_source` when the file stores a load; absent keys are unknown.
+    pub input: serde_json::Value,
     /// Number of samples.
     pub samples: usize,
     /// Duration, s.
@@ -414,9 +441,10 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
         rpm: args.rpm,
     };
     let rec = io::read_any(&args.file, &opts).map_err(AnalyzeError::input)?;
-    analyze_record(
+    analyze_record_with(
         &rec,
         args.bearing.as_deref(),
+        args.bearing_geometry.as_deref(),
         args.rpm.is_some(),
         &Method::default(),
     )
@@ -430,30 +458,47 @@ pub fn analyze_record(
     rpm_from_argument: bool,
     method: &Method,
 ) -> Result<(Analysis, Spectra), AnalyzeError> {
+    analyze_record_with(rec, bearing, None, rpm_from_argument, method)
+}
+
+/// [`analyze_record`] with an optional `--bearing-geometry` (see [`crate::geometry`]).
+pub fn analyze_record_with(
+    rec: &Record,
+    bearing: Option<&str>,
+    geometry: Option<&str>,
+    rpm_from_argument: bool,
+    method: &Method,
+) -> Result<(Analysis, Spectra), AnalyzeError> {
     let file = rec.source.display().to_string();
+    let custom = crate::geometry::choose(rec, bearing, geometry)
+        .map_err(|e| AnalyzeError::input(format!("{file}: {e}")))?;
     // A wearsim sidecar's structured model carries the geometry actually simulated (a
     // `[bearing]` override included); other files name a preset.
     let file_model = rec
         .meta
         .get("sidecar")
         .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
-    let (bearing, bearing_source, file_model) = match (bearing, file_model, rec.bearing.as_deref())
-    {
-        (Some(b), _, _) => (b.to_string(), "argument", None),
-        (None, Some(m), label) => (label.unwrap_or("custom").to_string(), "file", Some(m)),
-        (None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
-            (b.to_string(), "file", None)
-        }
-        (None, None, other) => {
-            return Err(AnalyzeError::input(format!(
-                "{file}: no bearing geometry{}: pass --bearing PRESET (one of {})",
+    let (bearing, bearing_source, file_model) =
+        match (&custom, bearing, file_model, rec.bearing.as_deref()) {
+            (Some(c), _, _, _) => (c.0.clone(), c.1, None),
+            (None, Some(b), _, _) => (b.to_string(), "argument", None),
+            (None, None, Some(m), label) => {
+                (label.unwrap_or("custom").to_string(), "file", Some(m))
+            }
+            (None, None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
+                (b.to_string(), "file", None)
+            }
+            (None, None, None, other) => {
+                return Err(AnalyzeError::input(format!(
+                "{file}: no bearing geometry{}: pass --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG or --bearing NAME (one of {}, {})",
                 other.map_or(String::new(), |b| format!(
                     " (the file names {b:?}, which is not a preset)"
                 )),
-                wearsim_core::presets::NAMES.join(", ")
+                wearsim_core::presets::NAMES.join(", "),
+                crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
             )))
-        }
-    };
+            }
+        };
     let Some(rpm) = rec.rpm else {
         return Err(AnalyzeError::input(format!(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
@@ -469,11 +514,33 @@ pub fn analyze_record(
             ),
         }));
     }
-    let kin = match &file_model {
-        Some(m) => Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}")),
-        None => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
+    let kin = match (&custom, &file_model) {
+        (Some(c), _) => Kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
+            .map(|base| {
+                let f = c.2.fault_frequencies(rpm);
+                Kinematics {
+                    shaft_hz: f.shaft,
+                    ftf: f.ftf,
+                    bpfo: f.bpfo,
+                    bpfi: f.bpfi,
+                    bsf: f.bsf,
+                    natural_hz: base.natural_hz,
+                }
+            })
+            .map_err(|e| format!("{file}: {e}")),
+        (None, Some(m)) => {
+            Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}"))
+        }
+        (None, None) => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
     }
     .map_err(AnalyzeError::input)?;
+    crate::resolvable::check_resolvable(
+        rec.samples.len(),
+        rec.fs,
+        kin.shaft_hz,
+        [kin.bpfo, kin.bpfi, 2.0 * kin.bsf],
+    )
+    .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
         .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {
@@ -485,6 +552,13 @@ pub fn analyze_record(
         channel: rec.channel.clone(),
         unit: rec.unit.clone(),
         fs: rec.fs,
+        fs_source: rec
+            .meta
+            .get("fs_source")
+            .and_then(|v| v.as_str())
+            .unwrap_or("file")
+            .to_string(),
+        input: input_provenance(rec),
         samples: rec.samples.len(),
         duration_s: rec.duration_s(),
         rpm,
@@ -512,6 +586,17 @@ pub fn analyze_record(
         )));
     }
     Ok((analysis, a.spectra))
+}
+
+/// The reader's findings that `analyze` reports under `input` (see [`Analysis::input`]).
+fn input_provenance(rec: &Record) -> serde_json::Value {
+    let mut m = serde_json::Map::new();
+    for k in ["layout", "variable", "rpm_source", "load", "load_source"] {
+        if let Some(v) = rec.meta.get(k).filter(|v| !v.is_null()) {
+            m.insert(k.into(), v.clone());
+        }
+    }
+    serde_json::Value::Object(m)
 }
 
 /// Human-readable name of a family.

@@ -88,6 +88,26 @@ proptest! {
     }
 
     #[test]
+    fn mat_struct_layouts_mutations_never_panic(e in edits(), k in keep(), which in 0usize..3, compressed in any::<bool>()) {
+        let x: Vec<f64> = (0..300).map(|i| (i as f64 * 0.3).sin()).collect();
+        let base = match which {
+            0 => mat::fixture::mfpt_fixture(&x, 48_828.0, 25.0, 0.0),
+            1 => mat::fixture::paderborn_fixture("N09_M07_F10_K001_1", &[("vibration_1", &x)]),
+            _ => mat::mat5_tree_bytes(&[("c", mat::FixtureValue::Cell(vec![
+                mat::FixtureValue::Doubles(x.clone()),
+                mat::FixtureValue::Char("note".into()),
+                mat::FixtureValue::Empty,
+            ])), ("fs", mat::FixtureValue::Doubles(vec![1000.0]))]),
+        };
+        let base = if compressed { mat::mat5_compress(&base) } else { base };
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("record.mat");
+        std::fs::write(&p, mutate(&base, &e, k)).unwrap();
+        check(&p, io::read_any(&p, &ReadOptions::default()))?;
+        let _ = mat::read_mat_tree(&p, &|_| true);
+    }
+
+    #[test]
     fn mat_header_fields_hostile(offset in 128usize..300, value in any::<u32>()) {
         // Overwrite one aligned 32-bit word (tags, sizes, dims, flags) with any value.
         let mut b = small_mat();

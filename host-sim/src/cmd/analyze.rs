@@ -5,6 +5,9 @@ use crate::cmd::args::CliError;
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    if crate::batch::is_batch(args) {
+        return crate::batch::run(args);
+    }
     // Exclusive, writable plot directory before any work (docs/reliability.md).
     let _lock = match &args.plot {
         Some(dir) => Some(crate::io::lock::DirLock::try_acquire(dir).map_err(CliError::input)?),

@@ -14,6 +14,7 @@ pub mod csv;
 pub mod error;
 pub mod ims;
 pub mod ims_life;
+pub mod layout;
 pub mod lock;
 pub mod mat;
 pub mod npy;
@@ -45,12 +46,14 @@ pub struct ReadOptions {
     pub rpm: Option<f64>,
 }
 
-/// Read one channel of any supported file, choosing the reader from the file name:
+/// Read one channel of any supported file. Text files of the IMS, FEMTO/PRONOSTIA and XJTU-SY
+/// layouts are recognised by content first ([`layout::sniff_text`]); otherwise the reader is
+/// chosen from the file name:
 ///
 /// | name | reader |
 /// |---|---|
 /// | IMS time stamp `YYYY.MM.DD.hh.mm.ss` (also with `.txt`) | [`ims::read_ims_snapshot`] |
-/// | `*.mat` | [`mat::read_cwru`] |
+/// | `*.mat` | [`mat::read_mat_record`] (CWRU, MFPT, Paderborn or any MAT v5 layout) |
 /// | `*.csv`, other `*.txt` | [`csv::read_csv`] |
 /// | `*.wav` | [`wav::read_wav`] |
 /// | `*.npy` | [`npy::read_npy`] |
@@ -63,6 +66,16 @@ pub fn read_any(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         .file_name()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    // Text layouts of the public data sets are recognised by content (IMS, FEMTO, XJTU-SY).
+    if !matches!(ext.as_str(), "mat" | "wav" | "npy" | "json") {
+        if let Some(l) = layout::sniff_text(path)? {
+            return layout::read_layout(path, l, opts);
+        }
+    }
     let ims_name = name.strip_suffix(".txt").unwrap_or(&name);
     if ims::parse_ims_name(ims_name).is_some() {
         let ch = match opts.channel.as_deref() {
@@ -87,18 +100,8 @@ pub fn read_any(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         }
         return Ok(r);
     }
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
     match ext.as_str() {
-        "mat" => {
-            let mut r = mat::read_cwru(path, opts.channel.as_deref().unwrap_or("DE"), opts.fs)?;
-            if let Some(rpm) = opts.rpm {
-                r.rpm = Some(record::check_rpm(path, rpm)?);
-            }
-            Ok(r)
-        }
+        "mat" => mat::read_mat_record(path, opts),
         "csv" | "txt" => csv::read_csv(path, opts),
         "wav" => wav::read_wav(path, opts),
         "npy" => npy::read_npy(path, opts),

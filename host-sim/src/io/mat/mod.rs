@@ -36,15 +36,22 @@
 //!
 //! # Layout and bounds
 //!
-//! [`v5`] parses the format (with the per-file bounds of [`Budget`]), [`cwru`] loads CWRU
-//! records, [`fixture`] writes the small MAT files the tests use.
+//! [`v5`] parses the format (with the per-file bounds of [`Budget`]), [`tree`] reads files as
+//! MATLAB writes them (structs, cells, chars, every numeric class) as a tree of named values,
+//! [`resolve`] recognises the layout (CWRU, MFPT, Paderborn, generic) and turns one channel into
+//! a record with the file's metadata, [`cwru`] loads CWRU records by the original rules, and
+//! [`fixture`] writes the small MAT files the tests use.
 
 pub mod cwru;
 pub mod fixture;
+pub mod resolve;
+pub mod tree;
 pub mod v5;
 
 pub use cwru::*;
-pub use fixture::{mat5_bytes, mat5_compress};
+pub use fixture::{mat5_bytes, mat5_compress, mat5_tree_bytes, FixtureValue};
+pub use resolve::{read_mat_record, recognise, MatLayout};
+pub use tree::{numeric_arrays, parse_mat_tree, read_mat_tree, ArrayInfo, MatNode, MatValue};
 pub use v5::{
     list_mat_variables, parse_mat, read_mat, Budget, MatClass, MatVariable,
     MAX_DECOMPRESSED_PER_FILE, MAX_SAMPLES_PER_FILE,
@@ -52,3 +59,5 @@ pub use v5::{
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tree_tests;

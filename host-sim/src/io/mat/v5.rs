@@ -46,7 +46,7 @@ pub enum MatClass {
 }
 
 impl MatClass {
-    fn from_code(c: u8) -> Self {
+    pub(crate) fn from_code(c: u8) -> Self {
         use MatClass::*;
         match c {
             1 => Cell,
@@ -153,20 +153,20 @@ const MAX_DEPTH: u32 = 4;
 
 /// Bounds-checked little/big-endian cursor over a byte slice.
 pub(crate) struct Cursor<'a> {
-    buf: &'a [u8],
-    pos: usize,
-    big: bool,
-    path: &'a Path,
+    pub(crate) buf: &'a [u8],
+    pub(crate) pos: usize,
+    pub(crate) big: bool,
+    pub(crate) path: &'a Path,
     /// Human-readable context for error messages ("file", "compressed element at 0x..").
-    ctx: &'a str,
+    pub(crate) ctx: &'a str,
 }
 
 impl<'a> Cursor<'a> {
-    fn remaining(&self) -> usize {
+    pub(crate) fn remaining(&self) -> usize {
         self.buf.len() - self.pos
     }
 
-    fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], IoError> {
+    pub(crate) fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], IoError> {
         if n > self.remaining() {
             return Err(IoError::truncated(
                 self.path,
@@ -183,7 +183,7 @@ impl<'a> Cursor<'a> {
         Ok(s)
     }
 
-    fn u32(&mut self, what: &str) -> Result<u32, IoError> {
+    pub(crate) fn u32(&mut self, what: &str) -> Result<u32, IoError> {
         let b = self.take(4, what)?;
         let a = [b[0], b[1], b[2], b[3]];
         Ok(if self.big {
@@ -194,7 +194,7 @@ impl<'a> Cursor<'a> {
     }
 
     /// Read an element tag; returns (data type, byte count, small-format flag).
-    fn tag(&mut self, what: &str) -> Result<(u32, usize, bool), IoError> {
+    pub(crate) fn tag(&mut self, what: &str) -> Result<(u32, usize, bool), IoError> {
         let first = self.u32(what)?;
         if first >> 16 != 0 {
             // Small data element: type in the low half, byte count in the high half, data in
@@ -218,7 +218,7 @@ impl<'a> Cursor<'a> {
     }
 
     /// Read one sub-element (tag + data + padding); returns (type, data bytes).
-    fn sub_element(&mut self, what: &str) -> Result<(u32, &'a [u8]), IoError> {
+    pub(crate) fn sub_element(&mut self, what: &str) -> Result<(u32, &'a [u8]), IoError> {
         let (ty, n, small) = self.tag(what)?;
         if small {
             let four = self.take(4, what)?;
@@ -234,13 +234,8 @@ impl<'a> Cursor<'a> {
     }
 }
 
-/// Parse a MAT v5 file from `bytes`. `want(name)` selects the variables whose data are
-/// converted; the others are listed with empty `data`.
-pub fn parse_mat(
-    bytes: &[u8],
-    path: &Path,
-    want: &dyn Fn(&str) -> bool,
-) -> Result<Vec<MatVariable>, IoError> {
+/// Check the 128-byte MAT v5 header of `bytes`; returns true for big-endian (`MI`) files.
+pub(crate) fn parse_header(bytes: &[u8], path: &Path) -> Result<bool, IoError> {
     if bytes.is_empty() {
         return Err(IoError::truncated(
             path,
@@ -285,6 +280,17 @@ pub fn parse_mat(
             })
         }
     };
+    Ok(big)
+}
+
+/// Parse a MAT v5 file from `bytes`. `want(name)` selects the variables whose data are
+/// converted; the others are listed with empty `data`.
+pub fn parse_mat(
+    bytes: &[u8],
+    path: &Path,
+    want: &dyn Fn(&str) -> bool,
+) -> Result<Vec<MatVariable>, IoError> {
+    let big = parse_header(bytes, path)?;
     let mut out = Vec::new();
     let mut cur = Cursor {
         buf: bytes,
@@ -532,7 +538,14 @@ pub(crate) fn parse_matrix(
         });
     }
     budget.samples_left -= numel;
-    let big = c.big;
+    var.data = decode_numeric(ty, width, real, c.big);
+    Ok(Some(var))
+}
+
+/// Convert the real-part bytes `real` of MAT type `ty` (element width `width` bytes) to
+/// `f64`. The caller has checked `real.len()` against the declared element count.
+pub(crate) fn decode_numeric(ty: u32, width: usize, real: &[u8], big: bool) -> Vec<f64> {
+    let numel = real.len() / width.max(1);
     let mut data = Vec::with_capacity(numel);
     for ch in real.chunks_exact(width) {
         let v = match (ty, width) {
@@ -609,15 +622,14 @@ pub(crate) fn parse_matrix(
         };
         data.push(v);
     }
-    var.data = data;
-    Ok(Some(var))
+    data
 }
 
 /// Largest MAT file read (bytes): 2²⁹ (512 MiB), twice what [`MAX_SAMPLES_PER_FILE`]
 /// doubles take uncompressed.
 pub const MAX_FILE_BYTES: u64 = 1 << 29;
 
-fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
+pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
     let len = std::fs::metadata(path)
         .map_err(|e| IoError::io(path, "stat", e))?
         .len();

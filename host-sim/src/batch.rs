@@ -1,0 +1,321 @@
+//! `wearsim analyze FILE|DIR...`: many records at once. Directories are walked (sorted,
+//! recursively, hidden entries and `.json` sidecars skipped) for readable records; each is
+//! analysed with the same options, and one table (CSV, JSON or Markdown) of calls, confidences
+//! and evidence per file is written, with a progress line on stderr. A file that cannot be read
+//! or analysed is a row with its error, not an abort; the exit code is 2 if any row failed
+//! (the table is still complete), else 0.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::analyze::{analyze, AnalyzeArgs};
+use crate::cli::CliError;
+
+/// Most files one batch run analyses.
+pub const MAX_BATCH_FILES: usize = 100_000;
+/// Deepest directory level walked.
+const MAX_WALK_DEPTH: usize = 16;
+/// Extensions of readable records (besides extension-less IMS snapshots).
+const RECORD_EXTS: [&str; 5] = ["mat", "csv", "txt", "wav", "npy"];
+
+/// True when `args` ask for a batch run: several inputs, a directory, `--format` or `--out`.
+pub fn is_batch(args: &AnalyzeArgs) -> bool {
+    !args.more.is_empty() || args.file.is_dir() || args.format.is_some() || args.out.is_some()
+}
+
+/// One row of the table.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Row {
+    /// The file.
+    pub file: PathBuf,
+    /// `ok` or `error`.
+    pub status: String,
+    /// Fault family called (`InnerRace`, `OuterRace`, `Ball`, `None`), if analysed.
+    pub family: Option<String>,
+    /// Confidence of the call, if the detector reports one.
+    pub confidence: Option<f64>,
+    /// Detector score (dB per searched harmonic), if analysed.
+    pub score: Option<f64>,
+    /// Evidence: harmonics found / searched of each family, e.g. `OuterRace 5/5; InnerRace 1/5`.
+    pub evidence: Option<String>,
+    /// Channel, sample rate (Hz) and its source, speed (rpm), bearing.
+    pub channel: Option<String>,
+    /// Sample rate, Hz.
+    pub fs: Option<f64>,
+    /// Where the sample rate came from.
+    pub fs_source: Option<String>,
+    /// Shaft speed, rpm.
+    pub rpm: Option<f64>,
+    /// Bearing used.
+    pub bearing: Option<String>,
+    /// The error, for a failed row.
+    pub error: Option<String>,
+}
+
+fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), String> {
+    if depth > MAX_WALK_DEPTH {
+        return Ok(());
+    }
+    let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: read directory: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    for p in entries {
+        let name = p
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if name.starts_with('.') {
+            continue;
+        }
+        if p.is_dir() {
+            walk(&p, depth + 1, out)?;
+        } else {
+            let ext = p
+                .extension()
+                .map(|e| e.to_string_lossy().to_ascii_lowercase());
+            let readable = match ext.as_deref() {
+                Some(e) => RECORD_EXTS.contains(&e),
+                None => true,
+            };
+            if readable {
+                out.push(p);
+            }
+        }
+        if out.len() > MAX_BATCH_FILES {
+            return Err(format!(
+                "inputs: more than {MAX_BATCH_FILES} files (allowed at most {MAX_BATCH_FILES} per run)"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The files of `inputs`: files as given, directories walked.
+pub fn collect_inputs(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+    let mut out = Vec::new();
+    for p in inputs {
+        if p.is_dir() {
+            walk(p, 0, &mut out)?;
+        } else {
+            out.push(p.clone());
+        }
+    }
+    Ok(out)
+}
+
+fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
+    let mut a = args.clone();
+    a.file = file.to_path_buf();
+    a.more.clear();
+    a.plot = None;
+    let mut row = Row {
+        file: file.to_path_buf(),
+        status: "ok".into(),
+        family: None,
+        confidence: None,
+        score: None,
+        evidence: None,
+        channel: None,
+        fs: None,
+        fs_source: None,
+        rpm: None,
+        bearing: None,
+        error: None,
+    };
+    match analyze(&a) {
+        Ok((an, _)) => {
+            let d = serde_json::to_value(&an.diagnosis).unwrap_or_default();
+            row.family = d.get("family").and_then(|v| v.as_str()).map(str::to_string);
+            row.confidence = d.get("confidence").and_then(serde_json::Value::as_f64);
+            row.score = d.get("score").and_then(serde_json::Value::as_f64);
+            let ev: Vec<String> = d
+                .get("evidence")
+                .and_then(|v| v.as_array())
+                .map(|a| {
+                    a.iter()
+                        .map(|e| {
+                            let n = e
+                                .get("harmonics")
+                                .and_then(|h| h.as_array())
+                                .map_or(0, Vec::len);
+                            format!(
+                                "{} {}/{}",
+                                e.get("family").and_then(|v| v.as_str()).unwrap_or("?"),
+                                e.get("found")
+                                    .and_then(serde_json::Value::as_u64)
+                                    .unwrap_or(0),
+                                n
+                            )
+                        })
+                        .collect()
+                })
+                .unwrap_or_default();
+            row.evidence = Some(ev.join("; "));
+            row.channel = Some(an.channel);
+            row.fs = Some(an.fs);
+            row.fs_source = Some(an.fs_source);
+            row.rpm = Some(an.rpm);
+            row.bearing = Some(an.bearing);
+        }
+        Err(e) => {
+            row.status = "error".into();
+            row.error = Some(e.to_string());
+        }
+    }
+    row
+}
+
+fn opt<T: ToString>(v: &Option<T>) -> String {
+    v.as_ref().map_or(String::new(), T::to_string)
+}
+
+const HEADER: [&str; 12] = [
+    "file",
+    "status",
+    "family",
+    "confidence",
+    "score",
+    "evidence",
+    "channel",
+    "fs",
+    "fs_source",
+    "rpm",
+    "bearing",
+    "error",
+];
+
+fn cells(r: &Row) -> [String; 12] {
+    [
+        r.file.display().to_string(),
+        r.status.clone(),
+        opt(&r.family),
+        opt(&r.confidence),
+        opt(&r.score),
+        opt(&r.evidence),
+        opt(&r.channel),
+        opt(&r.fs),
+        opt(&r.fs_source),
+        opt(&r.rpm),
+        opt(&r.bearing),
+        opt(&r.error),
+    ]
+}
+
+/// Render the table as `csv`, `json` or `md`.
+pub fn render(rows: &[Row], format: &str) -> Result<String, String> {
+    match format {
+        "json" => serde_json::to_string_pretty(rows).map_err(|e| e.to_string()),
+        "csv" => {
+            let mut w = ::csv::Writer::from_writer(Vec::new());
+            w.write_record(HEADER).map_err(|e| e.to_string())?;
+            for r in rows {
+                w.write_record(cells(r)).map_err(|e| e.to_string())?;
+            }
+            let b = w.into_inner().map_err(|e| e.to_string())?;
+            String::from_utf8(b).map_err(|e| e.to_string())
+        }
+        "md" => {
+            let mut s = format!(
+                "| {} |\n|{}|\n",
+                HEADER.join(" | "),
+                "---|".repeat(HEADER.len())
+            );
+            for r in rows {
+                let c: Vec<String> = cells(r)
+                    .iter()
+                    .map(|c| c.replace('|', "\\|").replace('\n', " "))
+                    .collect();
+                s.push_str(&format!("| {} |\n", c.join(" | ")));
+            }
+            Ok(s)
+        }
+        other => Err(format!(
+            "format: {other:?} is not a table format (allowed: csv, json, md)"
+        )),
+    }
+}
+
+/// Run a batch: collect the inputs, analyse each with a progress line on stderr, write the table.
+pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    let format = match (&args.format, &args.out) {
+        (Some(f), _) => f.to_ascii_lowercase(),
+        (None, Some(o)) => match o
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("csv") => "csv".into(),
+            Some("json") => "json".into(),
+            _ => "md".into(),
+        },
+        (None, None) if args.json => "json".into(),
+        (None, None) => "md".into(),
+    };
+    if !matches!(format.as_str(), "csv" | "json" | "md") {
+        return Err(CliError::input(format!(
+            "--format: {format:?} is not a table format (allowed: csv, json, md)"
+        )));
+    }
+    if args.plot.is_some() {
+        return Err(CliError::input(
+            "--plot: plots are written for one file at a time, not in a batch run",
+        ));
+    }
+    let inputs: Vec<PathBuf> = std::iter::once(args.file.clone())
+        .chain(args.more.iter().cloned())
+        .collect();
+    let files = collect_inputs(&inputs).map_err(CliError::input)?;
+    if files.is_empty() {
+        return Err(CliError::input("inputs: no readable record found (allowed: .mat, .csv, .txt, .wav, .npy, extension-less IMS snapshots)"));
+    }
+    let mut rows = Vec::with_capacity(files.len());
+    let n = files.len();
+    for (i, f) in files.iter().enumerate() {
+        let name = f
+            .file_name()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        eprint!("\ranalyze [{}/{}] {name:<40.40}", i + 1, n);
+        rows.push(row_of(f, args));
+    }
+    let failed = rows.iter().filter(|r| r.status != "ok").count();
+    eprintln!(
+        "\ranalyze: {n} files, {} analysed, {failed} failed{:30}",
+        n - failed,
+        ""
+    );
+    let text = render(&rows, &format).map_err(CliError::run)?;
+    match &args.out {
+        Some(o) => write_atomic(o, text.as_bytes()).map_err(CliError::run)?,
+        None => {
+            let mut so = std::io::stdout().lock();
+            so.write_all(text.as_bytes()).map_err(CliError::run)?;
+        }
+    }
+    if failed > 0 {
+        return Err(CliError::input(format!(
+            "{failed} of {n} files could not be analysed (their rows hold the errors)"
+        )));
+    }
+    Ok(())
+}
+
+/// Write `bytes` to `path` via a temporary file in the same directory and a rename, so a
+/// reader never sees a half-written table.
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut tmp =
+        tempfile::NamedTempFile::new_in(dir).map_err(|e| format!("{}: {e}", path.display()))?;
+    tmp.write_all(bytes)
+        .map_err(|e| format!("{}: write: {e}", path.display()))?;
+    tmp.persist(path)
+        .map_err(|e| format!("{}: rename: {e}", path.display()))?;
+    Ok(())
+}

@@ -1,0 +1,299 @@
+//! Any bearing: `--bearing-geometry elements=N,ball=D,pitch=P,angle=DEG` (ball and pitch
+//! diameters in **mm**, contact angle in **degrees**), the same in a sidecar
+//! (`"bearing_geometry"`), and a small catalogue of the bearings of public data sets that are
+//! not model presets. Defect frequencies come from the core's one kinematics
+//! ([`wearsim_core::kinematics::FaultOrders`], thesis eq. 17–20).
+//!
+//! Catalogue entries (each number from the data set's own documentation; see
+//! `docs/readers.md`): the CWRU and IMS bearings are model presets (`cwru-6205-de`,
+//! `cwru-6203-fe`, `ims-za2115`, see `wearsim presets`); [`CATALOGUE`] adds the MFPT (NICE),
+//! Paderborn (6203) and XJTU-SY (LDK UER204) bearings. The FEMTO/PRONOSTIA bearing is not
+//! listed: its geometry is not given in the PRONOSTIA documentation, so pass it with
+//! `--bearing-geometry`.
+
+use wearsim_core::bearing::BearingGeometry;
+use wearsim_core::kinematics::FaultOrders;
+
+/// A bearing's kinematic geometry in the units of the flag.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct GeometrySpec {
+    /// Number of rolling elements per row (3..=[`MAX_SPEC_ELEMENTS`]).
+    pub elements: u32,
+    /// Rolling-element diameter, mm (> 0).
+    pub ball_mm: f64,
+    /// Pitch diameter, mm (> ball diameter, ≤ 10 000).
+    pub pitch_mm: f64,
+    /// Contact angle, degrees, in [0, 90).
+    pub angle_deg: f64,
+}
+
+/// Most rolling elements accepted in a `--bearing-geometry`.
+pub const MAX_SPEC_ELEMENTS: u32 = 200;
+
+/// One catalogue bearing: name, description, geometry and where the numbers come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CatalogueEntry {
+    /// Name used by `--bearing` and by the readers (`mfpt-nice`).
+    pub name: &'static str,
+    /// What it is.
+    pub description: &'static str,
+    /// Geometry.
+    pub geometry: GeometrySpec,
+    /// Source of the numbers.
+    pub source: &'static str,
+}
+
+/// Bearings of public data sets that are not model presets.
+pub const CATALOGUE: [CatalogueEntry; 3] = [
+    CatalogueEntry {
+        name: "mfpt-nice",
+        description: "MFPT fault data sets test-rig bearing (NICE)",
+        geometry: GeometrySpec {
+            elements: 8,
+            ball_mm: 0.235 * 25.4,
+            pitch_mm: 1.245 * 25.4,
+            angle_deg: 0.0,
+        },
+        source: "MFPT Condition Based Maintenance Fault Database readme (E. Bechhoefer): roller diameter 0.235 in, pitch diameter 1.245 in, 8 elements, contact angle 0",
+    },
+    CatalogueEntry {
+        name: "paderborn-6203",
+        description: "Paderborn University KAt data centre, ball bearing 6203",
+        geometry: GeometrySpec {
+            elements: 8,
+            ball_mm: 6.75,
+            pitch_mm: 28.55,
+            angle_deg: 0.0,
+        },
+        source: "Lessmeier et al. (2016), KAt-DataCenter documentation, bearing 6203: 8 balls of 6.75 mm, pitch circle 28.55 mm, contact angle 0",
+    },
+    CatalogueEntry {
+        name: "xjtu-ldk-uer204",
+        description: "XJTU-SY run-to-failure data set, LDK UER204",
+        geometry: GeometrySpec {
+            elements: 8,
+            ball_mm: 7.92,
+            pitch_mm: 34.55,
+            angle_deg: 0.0,
+        },
+        source: "Wang et al. (2020), IEEE Trans. Reliability 69(1), XJTU-SY bearing parameters: 8 balls of 7.92 mm, pitch diameter 34.55 mm, contact angle 0",
+    },
+];
+
+/// The catalogue entry named `name`.
+pub fn catalogue(name: &str) -> Option<&'static CatalogueEntry> {
+    CATALOGUE.iter().find(|e| e.name == name)
+}
+
+impl GeometrySpec {
+    /// Check every field; the error names the field (`bearing-geometry.pitch`, ...) and its
+    /// allowed range.
+    pub fn checked(self) -> Result<Self, String> {
+        let f = |name: &str, v: f64, range: &str| {
+            format!("bearing-geometry.{name} = {v} is impossible (allowed {range})")
+        };
+        if !(3..=MAX_SPEC_ELEMENTS).contains(&self.elements) {
+            return Err(f(
+                "elements",
+                self.elements as f64,
+                &format!("3..={MAX_SPEC_ELEMENTS}"),
+            ));
+        }
+        if !(self.ball_mm.is_finite() && self.ball_mm > 0.0 && self.ball_mm <= 1000.0) {
+            return Err(f("ball", self.ball_mm, "0 < ball <= 1000 mm"));
+        }
+        if !(self.pitch_mm.is_finite() && self.pitch_mm > self.ball_mm && self.pitch_mm <= 10_000.0)
+        {
+            return Err(f(
+                "pitch",
+                self.pitch_mm,
+                &format!("ball diameter {} mm < pitch <= 10000 mm", self.ball_mm),
+            ));
+        }
+        if !(self.angle_deg.is_finite() && (0.0..90.0).contains(&self.angle_deg)) {
+            return Err(f("angle", self.angle_deg, "0 <= angle < 90 degrees"));
+        }
+        Ok(self)
+    }
+
+    /// Parse `elements=N,ball=D,pitch=P[,angle=DEG]` (mm, degrees; angle defaults to 0).
+    pub fn parse(s: &str) -> Result<Self, String> {
+        let (mut n, mut b, mut p, mut a) = (None, None, None, 0.0);
+        for part in s.split(',').map(str::trim).filter(|x| !x.is_empty()) {
+            let (k, v) = part.split_once('=').ok_or_else(|| {
+                format!("bearing-geometry: {part:?} is not KEY=VALUE (expected elements=N,ball=MM,pitch=MM,angle=DEG)")
+            })?;
+            let num: f64 = v
+                .trim()
+                .parse()
+                .map_err(|_| format!("bearing-geometry.{}: {v:?} is not a number", k.trim()))?;
+            match k.trim() {
+                "elements" | "n" => {
+                    if num.fract() != 0.0 || !(0.0..=1e6).contains(&num) {
+                        return Err(format!("bearing-geometry.elements = {num} is not a whole number of rolling elements (allowed 3..={MAX_SPEC_ELEMENTS})"));
+                    }
+                    n = Some(num as u32)
+                }
+                "ball" | "ball_mm" => b = Some(num),
+                "pitch" | "pitch_mm" => p = Some(num),
+                "angle" | "angle_deg" => a = num,
+                other => {
+                    return Err(format!(
+                        "bearing-geometry: unknown key {other:?} (allowed: elements, ball [mm], pitch [mm], angle [deg])"
+                    ))
+                }
+            }
+        }
+        let missing = |k: &str| {
+            format!(
+                "bearing-geometry.{k} is missing (expected elements=N,ball=MM,pitch=MM,angle=DEG)"
+            )
+        };
+        GeometrySpec {
+            elements: n.ok_or_else(|| missing("elements"))?,
+            ball_mm: b.ok_or_else(|| missing("ball"))?,
+            pitch_mm: p.ok_or_else(|| missing("pitch"))?,
+            angle_deg: a,
+        }
+        .checked()
+    }
+
+    /// Read the geometry from a sidecar value: a string in the flag's form, or an object with
+    /// `elements`, `ball_mm`, `pitch_mm`, `angle_deg`.
+    pub fn from_json(v: &serde_json::Value) -> Result<Self, String> {
+        if let Some(s) = v.as_str() {
+            return Self::parse(s);
+        }
+        let g = |k: &str| v.get(k).and_then(serde_json::Value::as_f64);
+        let parts: Vec<String> = [
+            ("elements", "elements"),
+            ("ball", "ball_mm"),
+            ("pitch", "pitch_mm"),
+            ("angle", "angle_deg"),
+        ]
+        .iter()
+        .filter_map(|(flag, key)| g(key).map(|x| format!("{flag}={x}")))
+        .collect();
+        Self::parse(&parts.join(","))
+    }
+
+    /// Characteristic frequencies (Hz) at `rpm` (thesis eq. 17–20 via the core's
+    /// [`FaultOrders`]); the other fields of the geometry do not enter them.
+    pub fn fault_frequencies(&self, rpm: f64) -> wearsim_core::kinematics::FaultFrequencies {
+        let mm = 1e-3;
+        let g = BearingGeometry {
+            elements: self.elements.min(u8::MAX as u32) as u8,
+            element_diameter: self.ball_mm * mm,
+            pitch_diameter: self.pitch_mm * mm,
+            contact_angle: self.angle_deg.to_radians(),
+            ..SHAPE
+        };
+        FaultOrders::of(&g).at(rpm / 60.0)
+    }
+}
+
+/// Placeholder for the fields of [`BearingGeometry`] that the kinematics do not use.
+const SHAPE: BearingGeometry = BearingGeometry {
+    elements: 9,
+    element_diameter: 0.0,
+    pitch_diameter: 0.0,
+    contact_angle: 0.0,
+    bore: 0.0,
+    outside_diameter: 0.0,
+    contact: wearsim_core::bearing::ContactKind::Point,
+    outer_conformity: 0.52,
+    inner_conformity: 0.52,
+    roller_length: 0.0,
+    youngs_modulus: 208e9,
+    poisson: 0.3,
+    density: 7830.0,
+};
+
+/// The bearing `analyze` uses when it is not a model preset: from `--bearing-geometry`
+/// (`geometry`), a catalogue name given with `--bearing` (`preset`), a sidecar's
+/// `"bearing_geometry"`, or a catalogue name a reader set from the file's layout. Returns
+/// `(name, source, geometry)`, or `None` when the bearing is a model preset (or unknown).
+pub fn choose(
+    rec: &crate::io::Record,
+    preset: Option<&str>,
+    geometry: Option<&str>,
+) -> Result<Option<(String, &'static str, GeometrySpec)>, String> {
+    if let Some(g) = geometry {
+        if preset.is_some() {
+            return Err("give either --bearing or --bearing-geometry, not both".into());
+        }
+        return Ok(Some(("custom".into(), "argument", GeometrySpec::parse(g)?)));
+    }
+    if let Some(b) = preset {
+        return Ok(catalogue(b).map(|e| (b.to_string(), "argument", e.geometry)));
+    }
+    if let Some(v) = rec
+        .meta
+        .get("sidecar")
+        .and_then(|s| s.get("bearing_geometry"))
+    {
+        return Ok(Some((
+            "custom".into(),
+            "sidecar",
+            GeometrySpec::from_json(v)?,
+        )));
+    }
+    Ok(rec
+        .bearing
+        .as_deref()
+        .and_then(catalogue)
+        .map(|e| (e.name.to_string(), "file", e.geometry)))
+}
+
+/// Model preset whose structure (mass, stiffness) gives the resonance-zone centre of a bearing
+/// that is no preset.
+pub const DEFAULT_STRUCTURE: &str = "cwru-6205-de";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_check_and_match_the_preset() {
+        // The CWRU drive-end bearing by its numbers (CWRU bearing page: 9 balls of 0.3126 in,
+        // pitch 1.537 in) gives the preset's frequencies.
+        let s = GeometrySpec::parse("elements=9,ball=7.94004,pitch=39.0398,angle=0").unwrap();
+        let k = s.fault_frequencies(1797.0);
+        let b = wearsim_core::presets::by_name("cwru-6205-de")
+            .unwrap()
+            .bearing;
+        let p = FaultOrders::of(&b).at(1797.0 / 60.0);
+        assert!(
+            (k.bpfi - p.bpfi).abs() < 1e-3 * p.bpfi,
+            "{} vs {}",
+            k.bpfi,
+            p.bpfi
+        );
+        assert!((k.bpfo - p.bpfo).abs() < 1e-3 * p.bpfo);
+        assert!((k.bsf - p.bsf).abs() < 1e-3 * p.bsf);
+        // BPFO + BPFI = N x shaft, whatever the geometry.
+        let s = GeometrySpec::parse("elements=16, ball=8.4, pitch=71.5, angle=15.17").unwrap();
+        let k = s.fault_frequencies(2000.0);
+        assert!((k.bpfo + k.bpfi - 16.0 * 2000.0 / 60.0).abs() < 1e-9);
+        for (bad, field) in [
+            ("elements=9,ball=8,pitch=7.9", "pitch"),
+            ("elements=9,ball=8,pitch=8", "pitch"),
+            ("elements=9,ball=8,pitch=30,angle=90", "angle"),
+            ("elements=9,ball=8,pitch=30,angle=-1", "angle"),
+            ("elements=2,ball=8,pitch=30", "elements"),
+            ("elements=9.5,ball=8,pitch=30", "elements"),
+            ("elements=9,ball=0,pitch=30", "ball"),
+            ("elements=9,ball=nan,pitch=30", "ball"),
+            ("elements=9,pitch=30", "ball"),
+            ("elements=9,ball=8,pitch=30,size=3", "size"),
+        ] {
+            let e = GeometrySpec::parse(bad).unwrap_err();
+            assert!(e.contains(field), "{bad}: {e}");
+        }
+        let j = serde_json::json!({"elements": 8, "ball_mm": 7.92, "pitch_mm": 34.55});
+        assert_eq!(GeometrySpec::from_json(&j).unwrap(), CATALOGUE[2].geometry);
+        for e in CATALOGUE {
+            assert_eq!(e.geometry.checked(), Ok(e.geometry), "{}", e.name);
+        }
+    }
+}

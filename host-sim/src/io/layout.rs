@@ -1,0 +1,314 @@
+//! Recognition of the text layouts of common public bearing data sets **by content** (the
+//! first line and the row count), never by file name, and their readers. Each layout supplies
+//! its documented sample rate, channels and bearing with source `layout:NAME`; `--fs` and
+//! `--channel` still override. MAT layouts (CWRU, MFPT, Paderborn) are recognised in
+//! [`crate::io::mat::resolve`].
+//!
+//! | layout | recognised by | fs | channels | source |
+//! |---|---|---|---|---|
+//! | `ims` | tab-separated, 4 or 8 numeric columns, exactly 20 480 rows | 20 kHz | `1`..`8` | IMS readme (Lee et al. 2007) |
+//! | `femto` | 6 comma/semicolon columns, first four integer hour, minute, second, µs | 25.6 kHz | `horiz`, `vert` (g) | PRONOSTIA (Nectoux et al. 2012) |
+//! | `xjtu-sy` | header `Horizontal_vibration_signals,Vertical_vibration_signals` | 25.6 kHz | the two headers | XJTU-SY (Wang et al. 2018) |
+
+use std::path::Path;
+
+use serde_json::json;
+
+use super::error::IoError;
+use super::ims::{read_ims_snapshot, IMS_ROWS, MAX_SNAPSHOT_BYTES};
+use super::record::{check_finite, check_fs, check_rpm, Record};
+use super::ReadOptions;
+
+/// FEMTO/PRONOSTIA accelerometer sample rate, Hz (25.6 kHz; Nectoux et al., IEEE PHM 2012).
+pub const FEMTO_FS: f64 = 25_600.0;
+/// XJTU-SY sample rate, Hz (25.6 kHz; Wang et al., IEEE Trans. Reliability 69, 2020).
+pub const XJTU_FS: f64 = 25_600.0;
+/// XJTU-SY column headers.
+pub const XJTU_HEADER: [&str; 2] = ["Horizontal_vibration_signals", "Vertical_vibration_signals"];
+
+/// A recognised text layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextLayout {
+    /// IMS raw ASCII snapshot with this many columns.
+    Ims(usize),
+    /// FEMTO/PRONOSTIA `acc_*.csv` snapshot (the column separator).
+    Femto(u8),
+    /// XJTU-SY CSV.
+    XjtuSy,
+}
+
+impl TextLayout {
+    /// Layout name as reported (`ims`, `femto`, `xjtu-sy`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            TextLayout::Ims(_) => "ims",
+            TextLayout::Femto(_) => "femto",
+            TextLayout::XjtuSy => "xjtu-sy",
+        }
+    }
+}
+
+fn femto_time(cells: &[&str]) -> bool {
+    let lim = [24.0, 60.0, 61.0, 1e6];
+    cells.len() == 6
+        && cells.iter().take(4).zip(lim).all(|(c, l)| {
+            c.trim()
+                .parse::<f64>()
+                .is_ok_and(|v| v.fract() == 0.0 && (0.0..l).contains(&v))
+        })
+        && cells
+            .iter()
+            .skip(4)
+            .all(|c| c.trim().parse::<f64>().is_ok_and(f64::is_finite))
+}
+
+/// Recognise the layout of a text file from its content: the first line and, for IMS, the
+/// number of rows. `None` if it is none of the layouts (the generic CSV reader applies then).
+pub fn sniff_text(path: &Path) -> Result<Option<TextLayout>, IoError> {
+    let len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    let head = {
+        use std::io::Read;
+        let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+        let mut buf = Vec::with_capacity(4096);
+        f.take(4096)
+            .read_to_end(&mut buf)
+            .map_err(|e| IoError::io(path, "read", e))?;
+        buf
+    };
+    let text = String::from_utf8_lossy(&head);
+    let Some(first) = text.lines().next().map(str::trim) else {
+        return Ok(None);
+    };
+    let cells: Vec<&str> = first.split(',').map(str::trim).collect();
+    if cells.len() == 2
+        && cells
+            .iter()
+            .zip(XJTU_HEADER)
+            .all(|(c, h)| c.trim_matches('"').eq_ignore_ascii_case(h))
+    {
+        return Ok(Some(TextLayout::XjtuSy));
+    }
+    if femto_time(&cells) {
+        return Ok(Some(TextLayout::Femto(b',')));
+    }
+    let semi: Vec<&str> = first.split(';').collect();
+    if femto_time(&semi) {
+        return Ok(Some(TextLayout::Femto(b';')));
+    }
+    if first.contains('\t') && !first.contains(',') && len <= MAX_SNAPSHOT_BYTES {
+        let cols: Vec<&str> = first.split_whitespace().collect();
+        if matches!(cols.len(), 4 | 8) && cols.iter().all(|c| c.parse::<f64>().is_ok()) {
+            let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+            let rows = bytes
+                .split(|&b| b == b'\n')
+                .filter(|l| l.iter().any(|b| !b.is_ascii_whitespace()))
+                .count();
+            if rows == IMS_ROWS {
+                return Ok(Some(TextLayout::Ims(cols.len())));
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// Read one channel of a file of a recognised text layout.
+pub fn read_layout(path: &Path, layout: TextLayout, opts: &ReadOptions) -> Result<Record, IoError> {
+    let mut rec = match layout {
+        TextLayout::Ims(ncols) => {
+            let ch = match opts.channel.as_deref() {
+                None => 1,
+                Some(c) => c
+                    .strip_prefix("ch")
+                    .unwrap_or(c)
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|k| (1..=ncols).contains(k))
+                    .ok_or_else(|| IoError::UnknownChannel {
+                        path: path.to_path_buf(),
+                        requested: c.to_string(),
+                        available: (1..=ncols)
+                            .map(|k| format!("{k} (IMS channels count from 1)"))
+                            .collect(),
+                    })?,
+            };
+            let mut r = read_ims_snapshot(path, ch)?;
+            r.bearing = Some("ims-za2115".into());
+            r
+        }
+        TextLayout::Femto(sep) => read_femto(path, sep, opts.channel.as_deref())?,
+        TextLayout::XjtuSy => {
+            let o = ReadOptions {
+                channel: Some(
+                    opts.channel
+                        .clone()
+                        .unwrap_or_else(|| XJTU_HEADER[0].into()),
+                ),
+                fs: Some(opts.fs.unwrap_or(XJTU_FS)),
+                rpm: opts.rpm,
+            };
+            let mut r = super::csv::read_csv(path, &o)?;
+            r.bearing = Some("xjtu-ldk-uer204".into());
+            r.unit = "g".into();
+            r
+        }
+    };
+    let fs_source = match opts.fs {
+        Some(f) => {
+            rec.fs = check_fs(path, f)?;
+            "argument".to_string()
+        }
+        None => format!("layout:{}", layout.name()),
+    };
+    let rpm_source = match opts.rpm {
+        Some(r) => {
+            rec.rpm = Some(check_rpm(path, r)?);
+            Some("argument".to_string())
+        }
+        None => rec.rpm.map(|_| format!("layout:{}", layout.name())),
+    };
+    if let Some(m) = rec.meta.as_object_mut() {
+        m.insert("layout".into(), json!(layout.name()));
+        m.insert("fs_source".into(), json!(fs_source));
+        m.insert("rpm_source".into(), json!(rpm_source));
+    }
+    Ok(rec)
+}
+
+/// FEMTO/PRONOSTIA `acc_NNNNN.csv`: rows of hour, minute, second, microsecond, horizontal and
+/// vertical acceleration (g); 2 560 rows = 0.1 s at [`FEMTO_FS`]. Channel `horiz` (default) or
+/// `vert` (also `4`/`5`, zero-based columns).
+pub fn read_femto(path: &Path, sep: u8, channel: Option<&str>) -> Result<Record, IoError> {
+    let col = match channel.map(|c| c.to_ascii_lowercase()) {
+        None => 4,
+        Some(c) if matches!(c.as_str(), "horiz" | "horizontal" | "h" | "4") => 4,
+        Some(c) if matches!(c.as_str(), "vert" | "vertical" | "v" | "5") => 5,
+        Some(c) => {
+            return Err(IoError::UnknownChannel {
+                path: path.to_path_buf(),
+                requested: c,
+                available: vec!["horiz".into(), "vert".into()],
+            })
+        }
+    };
+    let len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    if len > MAX_SNAPSHOT_BYTES {
+        return Err(IoError::unsupported(
+            path,
+            format!("{len} bytes is far larger than a FEMTO snapshot (about 100 kB)"),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let text = String::from_utf8_lossy(&bytes);
+    let mut samples = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        let cells: Vec<&str> = line.split(sep as char).collect();
+        if cells.len() != 6 {
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "line {}: {} columns, the FEMTO layout has 6 (hour, min, s, µs, horiz, vert)",
+                    i + 1,
+                    cells.len()
+                ),
+            ));
+        }
+        let cell = cells.get(col).map_or("", |c| c.trim());
+        let v: f64 = cell.parse().map_err(|_| {
+            IoError::malformed(path, format!("line {}: {cell:?} is not a number", i + 1))
+        })?;
+        samples.push(v);
+    }
+    if samples.is_empty() {
+        return Err(IoError::truncated(path, "no data rows"));
+    }
+    let name = if col == 4 { "horiz" } else { "vert" };
+    check_finite(path, name, &samples)?;
+    let rows = samples.len();
+    Ok(Record {
+        samples,
+        fs: FEMTO_FS,
+        rpm: None,
+        channel: name.into(),
+        unit: "g".into(),
+        source: path.to_path_buf(),
+        bearing: None,
+        meta: json!({
+            "format": "femto-csv",
+            "n_rows": rows,
+            "rows_note": "a PRONOSTIA snapshot has 2560 rows (0.1 s at 25.6 kHz); the speed (1800/1650/1500 rpm by operating condition) is not in the file: pass --rpm",
+        }),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::read_any;
+
+    fn opts(ch: Option<&str>) -> ReadOptions {
+        ReadOptions {
+            channel: ch.map(str::to_string),
+            ..ReadOptions::default()
+        }
+    }
+
+    #[test]
+    fn recognised_by_content_not_name() {
+        let dir = tempfile::tempdir().unwrap();
+        // FEMTO: hour, min, s, µs, horiz, vert.
+        let femto: String = (0..2560)
+            .map(|i| {
+                format!(
+                    "9,39,39,{},{:.3},{:.3}\n",
+                    65664 + i * 39,
+                    (i as f64).sin(),
+                    -0.5
+                )
+            })
+            .collect();
+        let p = dir.path().join("data1.csv");
+        std::fs::write(&p, &femto).unwrap();
+        let r = read_any(&p, &opts(None)).unwrap();
+        assert_eq!(
+            (r.fs, r.channel.as_str(), r.samples.len()),
+            (FEMTO_FS, "horiz", 2560)
+        );
+        assert_eq!(r.meta["fs_source"], "layout:femto");
+        assert_eq!(read_any(&p, &opts(Some("vert"))).unwrap().samples[0], -0.5);
+        // XJTU-SY.
+        let mut x = String::from("Horizontal_vibration_signals,Vertical_vibration_signals\n");
+        for i in 0..1000 {
+            x.push_str(&format!("{},{}\n", (i as f64 * 0.1).sin(), i));
+        }
+        let p = dir.path().join("1.csv");
+        std::fs::write(&p, &x).unwrap();
+        let r = read_any(&p, &opts(None)).unwrap();
+        assert_eq!((r.fs, r.samples.len()), (XJTU_FS, 1000));
+        assert_eq!(r.meta["layout"], "xjtu-sy");
+        assert_eq!(r.bearing.as_deref(), Some("xjtu-ldk-uer204"));
+        let r = read_any(&p, &opts(Some("Vertical_vibration_signals"))).unwrap();
+        assert_eq!(r.samples[3], 3.0);
+        // IMS: 20 480 rows of 4 tab-separated values, any name.
+        let ims: String = (0..IMS_ROWS)
+            .map(|i| format!("{:.3}\t0.1\t-0.2\t{}\n", (i as f64).cos(), i % 7))
+            .collect();
+        let p = dir.path().join("snapshot.txt");
+        std::fs::write(&p, &ims).unwrap();
+        let r = read_any(&p, &opts(Some("4"))).unwrap();
+        assert_eq!((r.fs, r.rpm, r.samples[8]), (20_000.0, Some(2000.0), 1.0));
+        assert_eq!(r.bearing.as_deref(), Some("ims-za2115"));
+        assert!(read_any(&p, &opts(Some("5"))).is_err());
+        // One row fewer is not an IMS snapshot: the generic CSV reader wants a rate.
+        let short: String = ims.lines().skip(1).map(|l| format!("{l}\n")).collect();
+        std::fs::write(&p, &short).unwrap();
+        assert!(sniff_text(&p).unwrap().is_none());
+    }
+}

@@ -1,0 +1,487 @@
+//! One channel of any MAT v5 file as a [`Record`]: the layout is recognised by content (CWRU,
+//! MFPT-style struct, Paderborn-style struct, or generic), the channel is resolved from a path
+//! inside the file or a layout's shorthand, and metadata stored in the file (sample rate, shaft
+//! rate or rpm, load) is used and reported with its source (`file:bearing.sr`,
+//! `layout:paderborn`, `file name`, `argument`).
+//!
+//! Layouts (see `docs/readers.md` for the sources):
+//!
+//! | layout | recognised by | channel default | fs | speed |
+//! |---|---|---|---|---|
+//! | `cwru` | a variable `X<n>_(DE\|FE\|BA)_time` | `DE` (`_DE_time`) | file name (`12k_`/`48k_`) | `X<n>RPM` |
+//! | `mfpt` | a struct with fields `gs` and `sr` | `<struct>.gs` | `<struct>.sr` | `<struct>.rate` (Hz) × 60 |
+//! | `paderborn` | a struct with a struct array `Y` of `Name`/`Data` | `vibration_1` | 64 kHz (layout) | `N<nn>` of the variable name × 100 rpm |
+//! | `generic` | anything else | the only long numeric vector | a scalar `fs`/`sr`/`sample_rate` | a scalar `rpm` |
+
+use std::path::{Path, PathBuf};
+
+use serde_json::json;
+
+use super::cwru::{cwru_bearing_preset, parse_cwru_name};
+use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode, MatValue};
+use crate::io::error::IoError;
+use crate::io::record::{check_finite, check_fs, check_rpm, Record};
+use crate::io::ReadOptions;
+
+/// Paderborn (KAt data center) vibration sample rate, Hz (Lessmeier et al. 2016: 64 kHz).
+pub const PADERBORN_FS: f64 = 64_000.0;
+/// Relative difference above which a stated sample rate and `--fs` contradict each other.
+pub const FS_AGREEMENT: f64 = 1e-3;
+
+/// The recognised layout of a MAT file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MatLayout {
+    /// CWRU bearing data center (`X118_DE_time`, `X118RPM`).
+    Cwru,
+    /// MFPT-style struct (name of the struct, e.g. `bearing`).
+    Mfpt(String),
+    /// Paderborn-style struct (name of the top variable, e.g. `N15_M07_F10_K001_1`).
+    Paderborn(String),
+    /// No known layout.
+    Generic,
+}
+
+impl MatLayout {
+    /// Layout name as reported (`cwru`, `mfpt`, `paderborn`, `generic`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            MatLayout::Cwru => "cwru",
+            MatLayout::Mfpt(_) => "mfpt",
+            MatLayout::Paderborn(_) => "paderborn",
+            MatLayout::Generic => "generic",
+        }
+    }
+}
+
+fn is_cwru_time(name: &str) -> bool {
+    let Some(rest) = name.strip_prefix('X') else {
+        return false;
+    };
+    let digits = rest.chars().take_while(|c| c.is_ascii_digit()).count();
+    digits > 0 && matches!(&rest[digits..], "_DE_time" | "_FE_time" | "_BA_time")
+}
+
+fn struct_fields(n: &MatNode) -> Option<&[String]> {
+    match &n.value {
+        MatValue::Struct { fields, .. } => Some(fields),
+        _ => None,
+    }
+}
+
+/// Recognise the layout of a parsed file by its content (never by its file name).
+pub fn recognise(nodes: &[MatNode]) -> MatLayout {
+    if nodes.iter().any(|n| is_cwru_time(&n.name)) {
+        return MatLayout::Cwru;
+    }
+    for n in nodes {
+        if let Some(f) = struct_fields(n) {
+            if f.iter().any(|x| x == "gs") && f.iter().any(|x| x == "sr") {
+                return MatLayout::Mfpt(n.name.clone());
+            }
+            if let Some(y) = n.field(0, "Y") {
+                if struct_fields(y)
+                    .is_some_and(|g| g.iter().any(|x| x == "Name") && g.iter().any(|x| x == "Data"))
+                {
+                    return MatLayout::Paderborn(n.name.clone());
+                }
+            }
+        }
+    }
+    MatLayout::Generic
+}
+
+/// Numeric prefix of a CWRU variable name: `X118_DE_time` → 118, `X097RPM` → 97.
+fn var_record(name: &str) -> Option<u32> {
+    let rest = name.strip_prefix('X')?;
+    let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
+    digits.parse().ok()
+}
+
+/// Among `cands`, the one whose CWRU record number is `record`, else the only one.
+fn pick_cwru<'n>(
+    path: &Path,
+    cands: &[&'n MatNode],
+    record: Option<u32>,
+    what: &str,
+) -> Result<Option<&'n MatNode>, IoError> {
+    if let Some(r) = record {
+        if let Some(v) = cands.iter().find(|v| var_record(&v.name) == Some(r)) {
+            return Ok(Some(v));
+        }
+    }
+    match cands {
+        [] => Ok(None),
+        [one] => Ok(Some(one)),
+        many => Err(IoError::contradiction(
+            path,
+            format!(
+                "several {what} variables ({}) and none matches record {record:?} of the file name; pass the full name with --channel",
+                many.iter().map(|v| v.path.as_str()).collect::<Vec<_>>().join(", ")
+            ),
+        )),
+    }
+}
+
+fn is_numeric(n: &MatNode) -> bool {
+    matches!(n.value, MatValue::Numeric { .. })
+}
+
+fn is_vector(n: &MatNode) -> bool {
+    n.dims.iter().filter(|&&d| d > 1).count() <= 1
+}
+
+fn unknown(path: &Path, requested: &str, arrays: &[ArrayInfo]) -> IoError {
+    IoError::UnknownChannel {
+        path: path.to_path_buf(),
+        requested: requested.to_string(),
+        available: arrays.iter().map(ArrayInfo::label).collect(),
+    }
+}
+
+/// Shortest record (samples) a channel chosen without `--channel` may have.
+const MIN_SIGNAL: usize = 256;
+
+/// The only numeric vector of at least [`MIN_SIGNAL`] elements at or below `nodes`.
+fn only_signal<'n>(nodes: &[&'n MatNode]) -> Option<&'n MatNode> {
+    let mut all = Vec::new();
+    for n in nodes {
+        walk(std::slice::from_ref(*n), &mut all);
+    }
+    let long: Vec<&MatNode> = all
+        .into_iter()
+        .filter(|n| is_numeric(n) && is_vector(n) && n.numel() >= MIN_SIGNAL)
+        .collect();
+    match long.as_slice() {
+        [one] => Some(one),
+        _ => None,
+    }
+}
+
+/// Resolve the channel's path in the tree (listing pass, data not converted).
+fn channel_path(
+    path: &Path,
+    nodes: &[MatNode],
+    layout: &MatLayout,
+    requested: Option<&str>,
+    record_no: Option<u32>,
+) -> Result<(String, String), IoError> {
+    let arrays = numeric_arrays(nodes);
+    if arrays.is_empty() {
+        return Err(IoError::unsupported(
+            path,
+            "no numeric array in the file (nothing to analyse)",
+        ));
+    }
+    let req = match (requested, layout) {
+        (Some(r), _) => r.to_string(),
+        (None, MatLayout::Cwru) => "DE".into(),
+        (None, MatLayout::Mfpt(s)) => format!("{s}.gs"),
+        (None, MatLayout::Paderborn(_)) => "vibration_1".into(),
+        (None, MatLayout::Generic) => {
+            let top: Vec<&MatNode> = nodes.iter().collect();
+            return match only_signal(&top) {
+                Some(n) => Ok((n.path.clone(), n.path.clone())),
+                None => Err(unknown(
+                    path,
+                    "(none given; the file holds no single signal of >= 256 samples, pass --channel PATH)",
+                    &arrays,
+                )),
+            };
+        }
+    };
+    // 1. A path inside the file.
+    if let Some(n) = find(nodes, &req) {
+        if is_numeric(n) {
+            return Ok((n.path.clone(), req));
+        }
+        if matches!(n.value, MatValue::Struct { .. } | MatValue::Cell(_)) {
+            return match only_signal(&[n]) {
+                Some(s) => Ok((s.path.clone(), req)),
+                None => Err(IoError::unsupported(
+                    path,
+                    format!(
+                        "{req:?} is a {} without a recognisable signal (no single numeric vector of >= {MIN_SIGNAL} samples inside); available: [{}]",
+                        if matches!(n.value, MatValue::Struct { .. }) { "struct" } else { "cell" },
+                        arrays.iter().map(ArrayInfo::label).collect::<Vec<_>>().join(", ")
+                    ),
+                )),
+            };
+        }
+        if matches!(n.value, MatValue::Sparse) {
+            return Err(IoError::unsupported(
+                path,
+                format!("{req:?} is a sparse array; sparse arrays are not read (store it with full() in MATLAB)"),
+            ));
+        }
+    }
+    let mut all = Vec::new();
+    walk(nodes, &mut all);
+    // 2. CWRU shorthand DE / FE / BA.
+    let up = req.to_ascii_uppercase();
+    if matches!(up.as_str(), "DE" | "FE" | "BA") {
+        let suffix = format!("_{up}_time");
+        let cands: Vec<&MatNode> = nodes
+            .iter()
+            .filter(|n| is_numeric(n) && n.name.ends_with(&suffix))
+            .collect();
+        if let Some(n) = pick_cwru(path, &cands, record_no, &suffix)? {
+            return Ok((n.path.clone(), up));
+        }
+    }
+    // 3. A Paderborn channel name (`Y(i).Name`).
+    if let MatLayout::Paderborn(top) = layout {
+        if let Some(y) = nodes
+            .iter()
+            .find(|n| &n.name == top)
+            .and_then(|t| t.field(0, "Y"))
+        {
+            if let MatValue::Struct { elems, .. } = &y.value {
+                for i in 0..elems.len() {
+                    if y.field(i, "Name").and_then(MatNode::text) == Some(req.as_str()) {
+                        if let Some(d) = y.field(i, "Data").filter(|d| is_numeric(d)) {
+                            return Ok((d.path.clone(), req));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // 4. A unique leaf name (case-insensitive).
+    let leaf: Vec<&&MatNode> = all
+        .iter()
+        .filter(|n| is_numeric(n) && n.name.eq_ignore_ascii_case(&req))
+        .collect();
+    if let [one] = leaf.as_slice() {
+        return Ok((one.path.clone(), req));
+    }
+    Err(unknown(path, &req, &arrays))
+}
+
+/// A scalar numeric node named one of `names` (case-insensitive): first among the siblings of
+/// `channel` (same parent path), else the only one in the file.
+fn find_scalar<'n>(all: &[&'n MatNode], channel: &str, names: &[&str]) -> Option<&'n MatNode> {
+    let parent = channel.rsplit_once('.').map(|(p, _)| p).unwrap_or("");
+    let hits: Vec<&MatNode> = all
+        .iter()
+        .copied()
+        .filter(|n| {
+            is_numeric(n) && n.numel() == 1 && names.iter().any(|k| n.name.eq_ignore_ascii_case(k))
+        })
+        .collect();
+    let sib = hits
+        .iter()
+        .find(|n| n.path.rsplit_once('.').map(|(p, _)| p).unwrap_or("") == parent);
+    match (sib, hits.as_slice()) {
+        (Some(s), _) => Some(s),
+        (None, [one]) => Some(one),
+        _ => None,
+    }
+}
+
+/// Names of a sample-rate scalar.
+const FS_NAMES: &[&str] = &[
+    "sr",
+    "fs",
+    "sample_rate",
+    "samplerate",
+    "sampling_rate",
+    "sampling_frequency",
+    "Fsamp",
+];
+/// Names of a shaft-speed scalar in rpm.
+const RPM_NAMES: &[&str] = &["rpm", "speed_rpm", "shaft_rpm"];
+/// Names of a shaft-rate scalar in Hz (MFPT `rate`).
+const RATE_NAMES: &[&str] = &["rate", "shaft_hz", "shaft_rate"];
+
+/// Shaft speed of a Paderborn variable name `N<nn>_M<mm>_F<ff>_...`: `nn` × 100 rpm
+/// (N09 = 900 rpm, N15 = 1500 rpm; Lessmeier et al. 2016).
+pub fn paderborn_rpm(var: &str) -> Option<f64> {
+    let rest = var.strip_prefix('N')?;
+    let (d, tail) = rest.split_at_checked(2)?;
+    if !tail.starts_with("_M") || !d.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    d.parse::<f64>().ok().map(|n| n * 100.0)
+}
+
+/// Bearing catalogue name of a layout, when the data set documents its bearing (see
+/// [`crate::geometry`]).
+fn layout_bearing(layout: &MatLayout, channel: &str) -> Option<String> {
+    match layout {
+        MatLayout::Cwru => cwru_bearing_preset(channel).map(str::to_string),
+        MatLayout::Mfpt(_) => Some("mfpt-nice".into()),
+        MatLayout::Paderborn(_) => Some("paderborn-6203".into()),
+        MatLayout::Generic => None,
+    }
+}
+
+/// Read one channel of any MAT v5 file (see the module doc). `opts.channel` is a path inside
+/// the file or a layout shorthand; `opts.fs` must agree with a rate the file states (within
+/// [`FS_AGREEMENT`]); `opts.rpm` overrides the file's speed.
+pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
+    let path = path.as_ref();
+    let listing = read_mat_tree(path, &|_| false)?;
+    let layout = recognise(&listing);
+    let file_name = path
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let label = parse_cwru_name(&file_name);
+    let record_no = label
+        .as_ref()
+        .map(|l| l.record)
+        .or_else(|| file_name.strip_suffix(".mat").and_then(|s| s.parse().ok()));
+    let (chan_path, chan_name) =
+        channel_path(path, &listing, &layout, opts.channel.as_deref(), record_no)?;
+    let mut all = Vec::new();
+    walk(&listing, &mut all);
+    let fs_node = find_scalar(&all, &chan_path, FS_NAMES).map(|n| n.path.clone());
+    let rpm_node = find_scalar(&all, &chan_path, RPM_NAMES).map(|n| n.path.clone());
+    let rate_node = find_scalar(&all, &chan_path, RATE_NAMES).map(|n| n.path.clone());
+    let load_node = find_scalar(&all, &chan_path, &["load"]).map(|n| n.path.clone());
+    let cwru_rpm: Vec<String> = if layout == MatLayout::Cwru {
+        let c: Vec<&MatNode> = listing
+            .iter()
+            .filter(|n| is_numeric(n) && n.name.ends_with("RPM"))
+            .collect();
+        pick_cwru(path, &c, record_no, "RPM")?
+            .map(|n| vec![n.path.clone()])
+            .unwrap_or_default()
+    } else {
+        vec![]
+    };
+    let wanted: Vec<String> = [
+        Some(chan_path.clone()),
+        fs_node.clone(),
+        rpm_node.clone(),
+        rate_node.clone(),
+        load_node.clone(),
+    ]
+    .into_iter()
+    .flatten()
+    .chain(cwru_rpm.iter().cloned())
+    .collect();
+    let tree = read_mat_tree(path, &|p: &str| wanted.iter().any(|w| w == p))?;
+    let get = |p: &str| find(&tree, p);
+    let chan = get(&chan_path).ok_or_else(|| unknown(path, &chan_path, &numeric_arrays(&tree)))?;
+    if let MatValue::Numeric { complex: true, .. } = chan.value {
+        return Err(IoError::unsupported(
+            path,
+            format!("{chan_path:?} is complex; only real signals are analysed"),
+        ));
+    }
+    if !is_vector(chan) {
+        return Err(IoError::unsupported(
+            path,
+            format!("{chan_path:?} is a {:?} matrix, expected a vector (pick one column with --channel)", chan.dims),
+        ));
+    }
+    let samples = chan.numbers().unwrap_or(&[]).to_vec();
+    if samples.is_empty() {
+        return Err(IoError::truncated(
+            path,
+            format!("{chan_path:?} holds no samples"),
+        ));
+    }
+    check_finite(path, &chan_path, &samples)?;
+
+    // Sample rate: stated in the file, else the layout's, else the CWRU file name; `--fs` must
+    // agree with a stated rate and overrides the others.
+    let stated = fs_node.as_deref().and_then(|p| {
+        get(p)
+            .and_then(MatNode::scalar)
+            .map(|v| (v, format!("file:{p}")))
+    });
+    let implied = match (&layout, &label) {
+        (MatLayout::Paderborn(_), _) => Some((PADERBORN_FS, "layout:paderborn".to_string())),
+        (MatLayout::Cwru, Some(l)) => Some((l.fs_hz, "file name".to_string())),
+        _ => None,
+    };
+    let (fs, fs_source) = match (opts.fs, stated, implied) {
+        (Some(a), Some((s, src)), _) => {
+            if (a - s).abs() > FS_AGREEMENT * s.abs().max(a.abs()) {
+                return Err(IoError::contradiction(
+                    path,
+                    format!("field fs: --fs {a} Hz contradicts the sample rate {s} Hz stored in the file ({src}); drop --fs or fix the file"),
+                ));
+            }
+            (a, "argument".to_string())
+        }
+        (Some(a), None, _) => (a, "argument".to_string()),
+        (None, Some(s), _) | (None, None, Some(s)) => s,
+        (None, None, None) => {
+            return Err(IoError::MissingSampleRate {
+                path: path.to_path_buf(),
+                detail: format!(
+                    "the {} layout stores none (no scalar named {}) and the file name does not give one; pass --fs HZ",
+                    layout.name(),
+                    FS_NAMES.join("/")
+                ),
+            })
+        }
+    };
+    let fs = check_fs(path, fs)?;
+
+    // Shaft speed.
+    let from_file = |p: &Option<String>, scale: f64| -> Option<(f64, String)> {
+        let p = p.as_deref()?;
+        get(p)
+            .and_then(MatNode::scalar)
+            .map(|v| (v * scale, format!("file:{p}")))
+    };
+    let file_rpm = cwru_rpm
+        .first()
+        .cloned()
+        .and_then(|p| from_file(&Some(p), 1.0))
+        .or_else(|| from_file(&rpm_node, 1.0))
+        .or_else(|| from_file(&rate_node, 60.0))
+        .or_else(|| match &layout {
+            MatLayout::Paderborn(v) => {
+                paderborn_rpm(v).map(|r| (r, "layout:paderborn(variable name)".to_string()))
+            }
+            _ => None,
+        });
+    let (rpm, rpm_source) = match (opts.rpm, file_rpm) {
+        (Some(r), _) => (Some(check_rpm(path, r)?), Some("argument".to_string())),
+        (None, Some((r, s))) => (Some(check_rpm(path, r)?), Some(s)),
+        (None, None) => (None, None),
+    };
+    let load = from_file(&load_node, 1.0);
+    let unit = match layout {
+        MatLayout::Cwru | MatLayout::Mfpt(_) => "g",
+        MatLayout::Paderborn(_) | MatLayout::Generic => "unknown",
+    };
+    let channel = match layout {
+        MatLayout::Cwru => ["DE", "FE", "BA"]
+            .into_iter()
+            .find(|c| chan_path.ends_with(&format!("_{c}_time")))
+            .map_or(chan_name, str::to_string),
+        _ => chan_name,
+    };
+    let meta = json!({
+        "format": if layout == MatLayout::Cwru { "cwru-mat5" } else { "mat5" },
+        "layout": layout.name(),
+        "variable": chan_path,
+        "arrays": numeric_arrays(&tree),
+        "fs_source": fs_source,
+        "rpm_source": rpm_source,
+        "load": load.as_ref().map(|l| l.0),
+        "load_source": load.as_ref().map(|l| l.1.clone()),
+        "unit_note": match layout {
+            MatLayout::Cwru => "CWRU does not state units; g is the common assumption",
+            MatLayout::Mfpt(_) => "MFPT stores acceleration in g (field gs)",
+            _ => "the file does not state units",
+        },
+        "label": if layout == MatLayout::Cwru { json!(label) } else { json!(null) },
+    });
+    Ok(Record {
+        samples,
+        fs,
+        rpm,
+        bearing: layout_bearing(&layout, &channel),
+        channel,
+        unit: unit.into(),
+        source: PathBuf::from(path),
+        meta,
+    })
+}
