@@ -2,7 +2,6 @@
 //! readers and writers, signal analysis, and the figures the `wearsim` command prints.
 pub mod analysis;
 pub mod analyze;
-pub mod batch;
 pub mod capture;
 pub mod cmd;
 pub mod config;

@@ -5,8 +5,8 @@ use crate::cmd::args::CliError;
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
-    if crate::batch::is_batch(args) {
-        return crate::batch::run(args);
+    if super::analyze_batch::is_batch(args) {
+        return super::analyze_batch::run(args);
     }
     // Exclusive, writable plot directory before any work (docs/reliability.md).
     let _lock = match &args.plot {

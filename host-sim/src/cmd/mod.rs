@@ -4,6 +4,7 @@
 //! code. `bin/wearsim.rs` only calls [`main`].
 
 pub mod analyze;
+pub mod analyze_batch;
 pub mod args;
 pub mod bench;
 pub mod bench_lanes;

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::analyze::{analyze, AnalyzeArgs};
-use crate::cli::CliError;
+use crate::cmd::args::CliError;
 
 /// Most files one batch run analyses.
 pub const MAX_BATCH_FILES: usize = 100_000;
@@ -290,7 +290,8 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
     );
     let text = render(&rows, &format).map_err(CliError::run)?;
     match &args.out {
-        Some(o) => write_atomic(o, text.as_bytes()).map_err(CliError::run)?,
+        Some(o) => crate::life::output::write_atomic(o, text.as_bytes())
+            .map_err(|e| CliError::run(format!("{}: {e}", o.display())))?,
         None => {
             let mut so = std::io::stdout().lock();
             so.write_all(text.as_bytes()).map_err(CliError::run)?;
@@ -301,21 +302,5 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
             "{failed} of {n} files could not be analysed (their rows hold the errors)"
         )));
     }
-    Ok(())
-}
-
-/// Write `bytes` to `path` via a temporary file in the same directory and a rename, so a
-/// reader never sees a half-written table.
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let mut tmp =
-        tempfile::NamedTempFile::new_in(dir).map_err(|e| format!("{}: {e}", path.display()))?;
-    tmp.write_all(bytes)
-        .map_err(|e| format!("{}: write: {e}", path.display()))?;
-    tmp.persist(path)
-        .map_err(|e| format!("{}: rename: {e}", path.display()))?;
     Ok(())
 }
