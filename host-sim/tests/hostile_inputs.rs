@@ -298,6 +298,58 @@ fn largest_imbalance_with_fastest_fluctuation_runs_or_is_refused() {
     }
 }
 
+/// Issue 11 (5): CSV, WAV and NPY readers refuse a record over 2²³ samples per channel before
+/// allocating it (they were bounded only by the file's size): an 8-bit WAV and an int8 NPY
+/// of 2²³ + 1 samples (8 MiB each) exit 2 naming the limit.
+#[test]
+fn binary_records_over_the_sample_limit_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let n: u32 = (1 << 23) + 1;
+    // 8-bit mono PCM WAV at 20 kHz.
+    let mut wav = Vec::new();
+    wav.extend_from_slice(b"RIFF");
+    wav.extend_from_slice(&(36 + n).to_le_bytes());
+    wav.extend_from_slice(b"WAVEfmt ");
+    wav.extend_from_slice(&16u32.to_le_bytes());
+    wav.extend_from_slice(&1u16.to_le_bytes()); // PCM
+    wav.extend_from_slice(&1u16.to_le_bytes()); // mono
+    wav.extend_from_slice(&20_000u32.to_le_bytes());
+    wav.extend_from_slice(&20_000u32.to_le_bytes());
+    wav.extend_from_slice(&1u16.to_le_bytes());
+    wav.extend_from_slice(&8u16.to_le_bytes());
+    wav.extend_from_slice(b"data");
+    wav.extend_from_slice(&n.to_le_bytes());
+    wav.resize(wav.len() + n as usize, 128);
+    // int8 NPY of shape (n,).
+    let mut head = format!("{{'descr': '|i1', 'fortran_order': False, 'shape': ({n},), }}");
+    while (10 + head.len() + 1) % 64 != 0 {
+        head.push(' ');
+    }
+    head.push('\n');
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    npy.extend_from_slice(&(head.len() as u16).to_le_bytes());
+    npy.extend_from_slice(head.as_bytes());
+    npy.resize(npy.len() + n as usize, 1);
+    for (name, bytes) in [("big.wav", wav), ("big.npy", npy)] {
+        let p = dir.path().join(name);
+        std::fs::write(&p, bytes).unwrap();
+        // The reader itself refuses (before, it returned the record and only `analyze`
+        // refused it, after the allocation).
+        let opts = wearsim_host::io::ReadOptions {
+            fs: Some(20_000.0),
+            ..Default::default()
+        };
+        match wearsim_host::io::read_any(&p, &opts) {
+            Err(wearsim_host::io::error::IoError::TooLarge { what, .. }) => {
+                assert!(what.contains("8388609"), "{name}: {what}")
+            }
+            other => panic!("{name}: {:?}", other.map(|r| r.samples.len())),
+        }
+        let o = wearsim(&["analyze", s(&p), "--fs", "20000", "--rpm", "1800", "--json"]);
+        refused(&o, &["too large", "8388608 samples"]);
+    }
+}
+
 // --- capture -------------------------------------------------------------------------------
 
 struct Stream {

@@ -118,6 +118,9 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             )
         })?;
         samples.push(v);
+        // Rows are streamed: refuse past the limit instead of growing with the file.
+        let kept = if time_col.is_some() { 2 } else { 1 };
+        super::record::check_record_size(path, samples.len(), kept * samples.len())?;
         if let Some(t) = time_col {
             let cell = &rec[t];
             let tv: f64 = cell.parse().map_err(|_| {

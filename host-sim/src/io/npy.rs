@@ -146,6 +146,19 @@ fn quoted(v: &str) -> Option<&str> {
 pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
     let path = path.as_ref();
     let sidecar = sidecar_for(path)?;
+    // The whole file is read: bound it by the largest array accepted (8-byte samples)
+    // plus the largest header (npy format 2/3: 4-byte header length).
+    let file_len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    let max_bytes = (super::record::MAX_FILE_SAMPLES as u64) * 8 + (1 << 16);
+    if file_len > max_bytes {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            what: format!("{file_len} bytes"),
+            limit: format!("{max_bytes} bytes"),
+        });
+    }
     let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
     let h = parse_npy_header(&bytes, path)?;
     let data = &bytes[h.data_offset..];
@@ -183,6 +196,7 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let numel = n.checked_mul(m).ok_or_else(|| {
         IoError::contradiction(path, format!("npy shape {:?} overflows", h.shape))
     })?;
+    super::record::check_record_size(path, n, numel)?;
     let need = numel.checked_mul(width).ok_or_else(|| {
         IoError::contradiction(path, format!("npy shape {:?} overflows", h.shape))
     })?;

@@ -42,6 +42,39 @@ pub const MIN_FS: f64 = 1.0;
 /// analysis needs about 14× the record in memory (measured: 1.8 GB RSS for 2²⁴ samples),
 /// so this keeps any accepted record under 1 GiB.
 pub const MAX_RECORD_SAMPLES: usize = 1 << 23;
+/// Most samples a text or binary record file (CSV, WAV, NPY) may hold over all its
+/// channels: 2²⁶ (eight channels of [`MAX_RECORD_SAMPLES`], 512 MiB as f64), so a reader's
+/// memory is bounded by a constant, not only by the file's size.
+pub const MAX_FILE_SAMPLES: usize = 1 << 26;
+
+/// Refuses a record file whose channel holds more than [`MAX_RECORD_SAMPLES`] samples or
+/// whose channels together hold more than [`MAX_FILE_SAMPLES`] (exit 2, naming the limit),
+/// before the samples are allocated.
+pub fn check_record_size(
+    path: &std::path::Path,
+    per_channel: usize,
+    total: usize,
+) -> Result<(), IoError> {
+    let too_large = |what: String, limit: usize| IoError::TooLarge {
+        path: path.to_path_buf(),
+        what,
+        limit: format!("{limit} samples"),
+    };
+    if per_channel > MAX_RECORD_SAMPLES {
+        return Err(too_large(
+            format!("{per_channel} samples per channel"),
+            MAX_RECORD_SAMPLES,
+        ));
+    }
+    if total > MAX_FILE_SAMPLES {
+        return Err(too_large(
+            format!("{total} samples in all"),
+            MAX_FILE_SAMPLES,
+        ));
+    }
+    Ok(())
+}
+
 /// Highest accepted sample rate, Hz (10 MHz).
 pub const MAX_FS: f64 = 10.0e6;
 

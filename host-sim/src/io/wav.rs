@@ -182,6 +182,12 @@ fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
             ),
         ));
     }
+    let frames = claimed / u64::from(spec.channels);
+    super::record::check_record_size(
+        path,
+        usize::try_from(frames).unwrap_or(usize::MAX),
+        usize::try_from(claimed).unwrap_or(usize::MAX),
+    )?;
     let cap = usize::try_from(claimed).unwrap_or(0);
     let mut out = Vec::with_capacity(cap);
     match (spec.sample_format, spec.bits_per_sample) {
