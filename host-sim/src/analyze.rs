@@ -76,6 +76,27 @@ pub struct AnalyzeArgs {
     pub out: Option<PathBuf>,
 }
 
+impl AnalyzeArgs {
+    /// Arguments for one file with every option at its default (no overrides, text output):
+    /// the starting point for library callers such as the Python package, so a new option
+    /// does not break them.
+    pub fn for_file(file: PathBuf) -> Self {
+        Self {
+            file,
+            channel: None,
+            rpm: None,
+            fs: None,
+            bearing: None,
+            bearing_geometry: None,
+            json: false,
+            plot: None,
+            more: Vec::new(),
+            format: None,
+            out: None,
+        }
+    }
+}
+
 /// Characteristic frequencies of the analysed bearing at the record's speed, Hz.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Kinematics {

@@ -130,13 +130,11 @@ fn analyze(
         let path = dir.path().join("signal.npy");
         write_npy_f64(&path, &x).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let args = wearsim_host::analyze::AnalyzeArgs {
-            file: path,
-            channel: None,
             rpm,
             fs: Some(fs),
             bearing,
             json: true,
-            plot: None,
+            ..wearsim_host::analyze::AnalyzeArgs::for_file(path)
         };
         let (a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
             wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(m),
