@@ -32,30 +32,41 @@ impl FaultOrders {
         }
     }
 
-    /// The same orders turned into frequencies (Hz) at shaft frequency `shaft_hz`.
-    pub fn at(&self, shaft_hz: Real) -> FaultFrequencies {
+    /// The same orders turned into frequencies (Hz) at shaft frequency `shaft_hz`, for a
+    /// bearing whose structure has the linearised natural frequency `natural_hz` (Hz; see
+    /// [`crate::Model::frequencies_at`], which supplies it).
+    pub fn at(&self, shaft_hz: Real, natural_hz: Real) -> FaultFrequencies {
         FaultFrequencies {
-            shaft: shaft_hz,
+            shaft_hz,
             ftf: self.ftf * shaft_hz,
             bpfo: self.bpfo * shaft_hz,
             bpfi: self.bpfi * shaft_hz,
             bsf: self.bsf * shaft_hz,
+            natural_hz,
         }
     }
 }
 
-/// Characteristic frequencies (Hz) at one shaft speed.
+/// Characteristic frequencies (Hz) of a bearing in its structure at one shaft speed: the
+/// one kinematics type of the project (the simulator's summary, the detector, the zone
+/// bands, the life runs and the gap all use it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FaultFrequencies {
     /// Shaft rotation frequency, 1× (Hz).
-    pub shaft: Real,
+    pub shaft_hz: Real,
     /// Cage frequency (Hz), eq. 17.
     pub ftf: Real,
     /// Outer-race ball pass frequency (Hz), eq. 18.
     pub bpfo: Real,
     /// Inner-race ball pass frequency (Hz), eq. 19.
     pub bpfi: Real,
-    /// Ball spin frequency (Hz), eq. 20.
+    /// Ball spin frequency (Hz), eq. 20; a ball defect strikes both races, so it shows at
+    /// 2×BSF.
     pub bsf: Real,
+    /// Linearised natural frequency of the structure with its contacts at static equilibrium,
+    /// `√((K + k_c0)/M)/2π` (Hz; [`crate::Model::natural_frequency_hz`]): the centre of the
+    /// resonance zone.
+    pub natural_hz: Real,
 }

@@ -30,9 +30,8 @@ fn record(ff: &FaultFrequencies) -> Vec<f64> {
 
 fn bench(c: &mut Criterion) {
     let cfg = wearsim_core::presets::by_name("cwru-6205-de").unwrap();
-    let ff: FaultFrequencies = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing)
-        .at(29.95)
-        .into();
+    let ff: FaultFrequencies =
+        wearsim_core::kinematics::FaultOrders::of(&cfg.bearing).at(29.95, 3000.0);
     let x = record(&ff);
     let mut g = c.benchmark_group("analysis_10s_48k");
     g.throughput(Throughput::Elements(N as u64));
@@ -65,7 +64,7 @@ fn bench(c: &mut Criterion) {
     });
     // The whole `wearsim analyze` decision chain (normalisation, kurtogram at the level set
     // by the physical band width, pre-whitening, envelope, calibrated detector, zones).
-    let kin = wearsim_host::analyze::Kinematics::of_preset("cwru-6205-de", 29.95 * 60.0).unwrap();
+    let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", 29.95 * 60.0).unwrap();
     let method = wearsim_host::analyze::Method::default();
     g.bench_function("analyze_signal", |b| {
         b.iter(|| {

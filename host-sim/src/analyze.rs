@@ -25,6 +25,7 @@ use crate::analysis::{
     ZoneBands, ZoneLevels,
 };
 use crate::io::{self, ReadOptions, Record};
+use crate::kinematics;
 use clap::Args;
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
@@ -93,64 +94,6 @@ impl AnalyzeArgs {
             more: Vec::new(),
             format: None,
             out: None,
-        }
-    }
-}
-
-/// Characteristic frequencies of the analysed bearing at the record's speed, Hz.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Kinematics {
-    /// Shaft rotation frequency 1×, Hz.
-    pub shaft_hz: f64,
-    /// Cage (fundamental train) frequency, Hz (El-Thalji 2016 eq. 17).
-    pub ftf: f64,
-    /// Ball pass frequency, outer race, Hz (eq. 18).
-    pub bpfo: f64,
-    /// Ball pass frequency, inner race, Hz (eq. 19).
-    pub bpfi: f64,
-    /// Ball spin frequency, Hz (eq. 20); a ball defect shows at 2×BSF.
-    pub bsf: f64,
-    /// Linearised natural frequency of the preset's structure, Hz (resonance zone centre).
-    pub natural_hz: f64,
-}
-
-impl Kinematics {
-    /// Frequencies of bearing preset `preset` at `rpm` (rev/min). Errors name the preset and
-    /// list the valid names.
-    pub fn of_preset(preset: &str, rpm: f64) -> Result<Self, String> {
-        let cfg = wearsim_core::presets::by_name(preset).ok_or_else(|| {
-            format!(
-                "unknown bearing preset {preset:?} (allowed: {})",
-                wearsim_core::presets::NAMES.join(", ")
-            )
-        })?;
-        Self::of_config(&cfg, rpm).map_err(|e| format!("bearing preset {preset}: {e}"))
-    }
-
-    /// Frequencies of the bearing and structure of model configuration `cfg` (e.g. the
-    /// structured `model` of a wearsim sidecar) at `rpm` (rev/min).
-    pub fn of_config(cfg: &wearsim_core::ModelConfig, rpm: f64) -> Result<Self, String> {
-        let model = wearsim_core::Model::new_checked(cfg.clone()).map_err(|e| e.to_string())?;
-        let shaft = rpm / 60.0;
-        let f = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing).at(shaft);
-        Ok(Kinematics {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-            natural_hz: model.natural_frequency_hz(),
-        })
-    }
-
-    /// The fault frequencies in the detector's form.
-    pub fn fault_frequencies(&self) -> FaultFrequencies {
-        FaultFrequencies {
-            shaft_hz: self.shaft_hz,
-            ftf: self.ftf,
-            bpfo: self.bpfo,
-            bpfi: self.bpfi,
-            bsf: self.bsf,
         }
     }
 }
@@ -252,7 +195,7 @@ pub struct Analysis {
     /// Where the bearing came from: `argument` or `file`.
     pub bearing_source: String,
     /// Characteristic frequencies at `rpm`, Hz.
-    pub kinematics: Kinematics,
+    pub kinematics: FaultFrequencies,
     /// The method's parameters.
     pub method: Method,
     /// RMS, peak, crest factor, kurtosis, skewness of the raw record (signal units).
@@ -348,7 +291,7 @@ pub fn kurtogram_band(kg: &Kurtogram, r: usize, i: usize) -> (f64, f64) {
 pub fn analyze_signal(
     raw: &[f64],
     fs: f64,
-    kin: &Kinematics,
+    kin: &FaultFrequencies,
     method: &Method,
 ) -> Result<SignalAnalysis, analysis::AnalysisError> {
     let stats = analysis::stats(raw)?;
@@ -361,7 +304,6 @@ pub fn analyze_signal(
         raw.to_vec()
     };
     let x = normalised.as_slice();
-    let ff = kin.fault_frequencies();
     let white;
     let y: &[f64] = if method.prewhiten {
         white = prewhiten(x);
@@ -415,7 +357,7 @@ pub fn analyze_signal(
         unrestricted_kurtosis: kg.best_kurtosis,
     };
     let env = envelope_spectrum(y, fs, Some(band))?;
-    let diagnosis = detect_fault(&env, &ff, &method.detect);
+    let diagnosis = detect_fault(&env, kin, &method.detect);
     let spectrum = analysis::amplitude_spectrum(raw, fs, Window::Hann)?;
     let zones = zones(raw, fs, kin);
     Ok(SignalAnalysis {
@@ -432,9 +374,8 @@ pub fn analyze_signal(
 }
 
 /// Zone levels from a Welch PSD (segments of about 1 Hz resolution, at most the record).
-fn zones(x: &[f64], fs: f64, kin: &Kinematics) -> Result<Zones, String> {
-    let bands = ZoneBands::new(&kin.fault_frequencies(), kin.natural_hz, fs)
-        .map_err(|e| format!("frequency zones undefined: {e}"))?;
+fn zones(x: &[f64], fs: f64, kin: &FaultFrequencies) -> Result<Zones, String> {
+    let bands = ZoneBands::new(kin, fs).map_err(|e| format!("frequency zones undefined: {e}"))?;
     let mut nperseg = 4096usize;
     while nperseg > x.len() && nperseg > 64 {
         nperseg /= 2;
@@ -536,23 +477,13 @@ pub fn analyze_record_with(
         }));
     }
     let kin = match (&custom, &file_model) {
-        (Some(c), _) => Kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
-            .map(|base| {
-                let f = c.2.fault_frequencies(rpm);
-                Kinematics {
-                    shaft_hz: f.shaft,
-                    ftf: f.ftf,
-                    bpfo: f.bpfo,
-                    bpfi: f.bpfi,
-                    bsf: f.bsf,
-                    natural_hz: base.natural_hz,
-                }
-            })
+        (Some(c), _) => kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
+            .map(|base| c.2.fault_frequencies(rpm, base.natural_hz))
             .map_err(|e| format!("{file}: {e}")),
         (None, Some(m)) => {
-            Kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}"))
+            kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}"))
         }
-        (None, None) => Kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
+        (None, None) => kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
     }
     .map_err(AnalyzeError::input)?;
     crate::resolvable::check_resolvable(

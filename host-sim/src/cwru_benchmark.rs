@@ -18,7 +18,7 @@
 
 use crate::analysis::diagnose::{fit_logistic, Calibration, CALIBRATION};
 use crate::analysis::FaultFamily;
-use crate::analyze::{analyze_signal, family_name, Kinematics, Method};
+use crate::analyze::{analyze_signal, family_name, Method};
 use crate::io::{mat, parse_cwru_name, CwruLabel};
 use clap::Args;
 use realfft::num_complex::Complex;
@@ -303,7 +303,7 @@ fn analyse_file(
     let rpm = rec
         .rpm
         .ok_or_else(|| format!("{name}: no RPM variable in the file"))?;
-    let kin = Kinematics::of_preset(bearing, rpm).map_err(|e| format!("{name}: {e}"))?;
+    let kin = crate::kinematics::of_preset(bearing, rpm).map_err(|e| format!("{name}: {e}"))?;
     let factor = (rec.fs / ANALYSIS_FS).round() as usize;
     let (x, fs) = if factor > 1 && (rec.fs - factor as f64 * ANALYSIS_FS).abs() < 1e-6 {
         (decimate_fft(&rec.samples, factor), ANALYSIS_FS)

@@ -178,8 +178,13 @@ impl GeometrySpec {
     }
 
     /// Characteristic frequencies (Hz) at `rpm` (thesis eq. 17–20 via the core's
-    /// [`FaultOrders`]); the other fields of the geometry do not enter them.
-    pub fn fault_frequencies(&self, rpm: f64) -> wearsim_core::kinematics::FaultFrequencies {
+    /// [`FaultOrders`]), in a structure of natural frequency `natural_hz` (Hz, which a bare
+    /// geometry does not give); the other fields of the geometry do not enter them.
+    pub fn fault_frequencies(
+        &self,
+        rpm: f64,
+        natural_hz: f64,
+    ) -> wearsim_core::kinematics::FaultFrequencies {
         let mm = 1e-3;
         let g = BearingGeometry {
             elements: self.elements.min(u8::MAX as u32) as u8,
@@ -188,7 +193,7 @@ impl GeometrySpec {
             contact_angle: self.angle_deg.to_radians(),
             ..SHAPE
         };
-        FaultOrders::of(&g).at(rpm / 60.0)
+        FaultOrders::of(&g).at(rpm / 60.0, natural_hz)
     }
 }
 
@@ -258,11 +263,11 @@ mod tests {
         // The CWRU drive-end bearing by its numbers (CWRU bearing page: 9 balls of 0.3126 in,
         // pitch 1.537 in) gives the preset's frequencies.
         let s = GeometrySpec::parse("elements=9,ball=7.94004,pitch=39.0398,angle=0").unwrap();
-        let k = s.fault_frequencies(1797.0);
+        let k = s.fault_frequencies(1797.0, 3000.0);
         let b = wearsim_core::presets::by_name("cwru-6205-de")
             .unwrap()
             .bearing;
-        let p = FaultOrders::of(&b).at(1797.0 / 60.0);
+        let p = FaultOrders::of(&b).at(1797.0 / 60.0, 3000.0);
         assert!(
             (k.bpfi - p.bpfi).abs() < 1e-3 * p.bpfi,
             "{} vs {}",
@@ -273,7 +278,7 @@ mod tests {
         assert!((k.bsf - p.bsf).abs() < 1e-3 * p.bsf);
         // BPFO + BPFI = N x shaft, whatever the geometry.
         let s = GeometrySpec::parse("elements=16, ball=8.4, pitch=71.5, angle=15.17").unwrap();
-        let k = s.fault_frequencies(2000.0);
+        let k = s.fault_frequencies(2000.0, 3000.0);
         assert!((k.bpfo + k.bpfi - 16.0 * 2000.0 / 60.0).abs() < 1e-9);
         for (bad, field) in [
             ("elements=9,ball=8,pitch=7.9", "pitch"),

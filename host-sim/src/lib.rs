@@ -10,6 +10,7 @@ pub mod effects;
 pub mod gap;
 pub mod geometry;
 pub mod io;
+pub mod kinematics;
 pub mod life;
 pub mod plot;
 pub mod resolvable;

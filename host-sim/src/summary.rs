@@ -3,70 +3,43 @@
 
 use crate::analysis::{self, Stats, Window};
 use serde::Serialize;
+use wearsim_core::kinematics::FaultFrequencies;
 use wearsim_core::Model;
 
-/// Characteristic frequencies of a scenario (Hz), at its initial shaft speed.
-#[derive(Debug, Clone, Copy, Serialize)]
-pub struct KinematicFrequencies {
-    /// Shaft, 1×.
-    pub shaft: f64,
-    /// Cage (eq. 17).
-    pub ftf: f64,
-    /// Outer-race ball pass (eq. 18).
-    pub bpfo: f64,
-    /// Inner-race ball pass (eq. 19).
-    pub bpfi: f64,
-    /// Ball spin (eq. 20).
-    pub bsf: f64,
-    /// Linearised natural frequency of the structure with its contacts.
-    pub natural: f64,
-    /// Outer-race waviness passing frequency `N_w·FTF` (0 without waviness).
-    pub waviness: f64,
+/// Nearest labelled line to `f` (Hz) among the characteristic frequencies `k` of a scenario
+/// and its outer-race waviness passing frequency `waviness_hz` (0 without waviness):
+/// harmonics 1–10 of the shaft, 1–20 of BPFO, BPFI and BSF, 1–3 of FTF, the natural and the
+/// waviness frequency. Returns (label, Hz).
+pub fn nearest_line(k: &FaultFrequencies, waviness_hz: f64, f: f64) -> (String, f64) {
+    let mut best = (String::from("-"), f64::INFINITY);
+    let mut consider = |label: String, c: f64| {
+        if c > 0.0 && (c - f).abs() < (best.1 - f).abs() {
+            best = (label, c);
+        }
+    };
+    // Fault families up to 20 harmonics: impacts ring the structure, so the largest
+    // lines of a defective bearing are high BPFO/BPFI harmonics near the resonance.
+    for n in 1..=20 {
+        let nf = n as f64;
+        if n <= 10 {
+            consider(format!("{n}x shaft"), nf * k.shaft_hz);
+        }
+        consider(format!("{n}x BPFO"), nf * k.bpfo);
+        consider(format!("{n}x BPFI"), nf * k.bpfi);
+        consider(format!("{n}x BSF"), nf * k.bsf);
+        if n <= 3 {
+            consider(format!("{n}x FTF"), nf * k.ftf);
+        }
+    }
+    consider("natural".into(), k.natural_hz);
+    consider("waviness".into(), waviness_hz);
+    best
 }
 
-impl KinematicFrequencies {
-    /// Frequencies of `model` at its speed at t = 0.
-    pub fn of(model: &Model) -> Self {
-        let f = model.config().speed.shaft_hz(0.0);
-        let k = model.orders().at(f);
-        KinematicFrequencies {
-            shaft: f,
-            ftf: k.ftf,
-            bpfo: k.bpfo,
-            bpfi: k.bpfi,
-            bsf: k.bsf,
-            natural: model.natural_frequency_hz(),
-            waviness: model.waviness_order() as f64 * k.ftf,
-        }
-    }
-
-    /// Nearest labelled frequency to `f`: harmonics 1–10 of the shaft, 1–20 of BPFO, BPFI
-    /// and BSF, 1–3 of FTF, the natural and the waviness frequency. Returns (label, Hz).
-    pub fn nearest(&self, f: f64) -> (String, f64) {
-        let mut best = (String::from("-"), f64::INFINITY);
-        let mut consider = |label: String, c: f64| {
-            if c > 0.0 && (c - f).abs() < (best.1 - f).abs() {
-                best = (label, c);
-            }
-        };
-        // Fault families up to 20 harmonics: impacts ring the structure, so the largest
-        // lines of a defective bearing are high BPFO/BPFI harmonics near the resonance.
-        for k in 1..=20 {
-            let kf = k as f64;
-            if k <= 10 {
-                consider(format!("{k}x shaft"), kf * self.shaft);
-            }
-            consider(format!("{k}x BPFO"), kf * self.bpfo);
-            consider(format!("{k}x BPFI"), kf * self.bpfi);
-            consider(format!("{k}x BSF"), kf * self.bsf);
-            if k <= 3 {
-                consider(format!("{k}x FTF"), kf * self.ftf);
-            }
-        }
-        consider("natural".into(), self.natural);
-        consider("waviness".into(), self.waviness);
-        best
-    }
+/// Outer-race waviness passing frequency `N_w·FTF` (Hz) of `model` at shaft frequency
+/// `shaft_hz` (0 without waviness; thesis section on waviness, `[surface] waviness_order`).
+pub fn waviness_hz(model: &Model, shaft_hz: f64) -> f64 {
+    model.waviness_order() as f64 * model.orders().ftf * shaft_hz
 }
 
 /// One labelled spectral peak.
@@ -91,8 +64,10 @@ pub struct Summary {
     pub peaks: Vec<LabelledPeak>,
     /// Largest peaks of the envelope spectrum (whole band), labelled likewise.
     pub envelope_peaks: Vec<LabelledPeak>,
-    /// The scenario's characteristic frequencies.
-    pub kinematics: KinematicFrequencies,
+    /// The scenario's characteristic frequencies at its initial shaft speed.
+    pub kinematics: FaultFrequencies,
+    /// Outer-race waviness passing frequency `N_w·FTF` (Hz; 0 without waviness).
+    pub waviness_hz: f64,
 }
 
 /// Number of peaks reported.
@@ -101,12 +76,14 @@ pub const PEAKS: usize = 8;
 /// Summarises acceleration `x` sampled at `fs` from `model`.
 pub fn summarize(x: &[f64], fs: f64, model: &Model) -> Result<Summary, analysis::AnalysisError> {
     let stats = analysis::stats(x)?;
-    let kin = KinematicFrequencies::of(model);
+    let shaft_hz = model.config().speed.shaft_hz(0.0);
+    let kin = model.frequencies_at(shaft_hz);
+    let waviness_hz = waviness_hz(model, shaft_hz);
     let label = |peaks: Vec<analysis::Peak>| -> Vec<LabelledPeak> {
         peaks
             .into_iter()
             .map(|p| {
-                let (nearest, nearest_hz) = kin.nearest(p.freq);
+                let (nearest, nearest_hz) = nearest_line(&kin, waviness_hz, p.freq);
                 LabelledPeak {
                     freq: p.freq,
                     amplitude: p.value,
@@ -132,5 +109,6 @@ pub fn summarize(x: &[f64], fs: f64, model: &Model) -> Result<Summary, analysis:
         peaks,
         envelope_peaks,
         kinematics: kin,
+        waviness_hz,
     })
 }

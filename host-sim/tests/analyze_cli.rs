@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use wearsim_host::analyze::Kinematics;
 
 const FS: f64 = 12_000.0;
 const RPM: f64 = 1797.0;
@@ -25,8 +24,8 @@ fn stderr(o: &Output) -> String {
 /// 1 % random slip of each interval (real rolling elements slip, Randall & Antoni 2011; a
 /// strictly periodic train would be pure discrete lines, which pre-whitening removes), each
 /// ringing a 3 kHz resonance (damping ratio 5 %), in white noise.
-fn outer_race_signal() -> (Vec<f64>, Kinematics) {
-    let kin = Kinematics::of_preset(BEARING, RPM).expect("preset exists");
+fn outer_race_signal() -> (Vec<f64>, wearsim_host::analysis::FaultFrequencies) {
+    let kin = wearsim_host::kinematics::of_preset(BEARING, RPM).expect("preset exists");
     let n = 4 * FS as usize;
     let mut x = wearsim_host::analysis::synth::gaussian_noise(n, 0.3, 7);
     let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -343,7 +342,7 @@ fn simulate_output_with_a_bearing_override_is_analysed_with_its_geometry() {
     assert_eq!(side["model"]["bearing"]["elements"], 12);
     let model: wearsim_core::ModelConfig =
         serde_json::from_value(side["model"].clone()).expect("structured model");
-    let preset = Kinematics::of_preset(BEARING, RPM).unwrap();
+    let preset = wearsim_host::kinematics::of_preset(BEARING, RPM).unwrap();
     let v = json_of(&wearsim(&[
         "analyze",
         &out.join("simulate.csv").to_string_lossy(),
@@ -352,7 +351,7 @@ fn simulate_output_with_a_bearing_override_is_analysed_with_its_geometry() {
     assert_eq!(v["bearing"], "custom");
     assert_eq!(v["bearing_source"], "file");
     let rpm = v["rpm"].as_f64().unwrap();
-    let want = wearsim_core::kinematics::FaultOrders::of(&model.bearing).at(rpm / 60.0);
+    let want = wearsim_core::kinematics::FaultOrders::of(&model.bearing).at(rpm / 60.0, 0.0);
     let got = |k: &str| v["kinematics"][k].as_f64().unwrap();
     for (k, w) in [("bpfo", want.bpfo), ("bpfi", want.bpfi), ("ftf", want.ftf)] {
         assert!((got(k) - w).abs() < 1e-9 * w, "{k}: {} vs {w}", got(k));

@@ -6,8 +6,10 @@
 
 use wearsim_core::forces::defect::DefectLocation;
 use wearsim_host::analysis::FaultFamily;
-use wearsim_host::analyze::{analyze_signal, Kinematics, Method};
+use wearsim_host::analysis::FaultFrequencies;
+use wearsim_host::analyze::{analyze_signal, Method};
 use wearsim_host::config::RunSettings;
+use wearsim_host::kinematics;
 use wearsim_host::simulate::{run, Scenario};
 
 /// Sample rates checked, Hz.
@@ -18,7 +20,7 @@ const SHORT_S: f64 = 1.0;
 const LONG_S: f64 = 2.0;
 
 /// Simulated acceleration of the preset with `defect` (`None`: healthy) at `fs` for `secs`.
-fn simulate(defect: Option<DefectLocation>, fs: f64, secs: f64) -> (Vec<f64>, Kinematics) {
+fn simulate(defect: Option<DefectLocation>, fs: f64, secs: f64) -> (Vec<f64>, FaultFrequencies) {
     let mut cfg = wearsim_core::presets::by_name("cwru-6205-de").expect("preset");
     cfg.output_rate = fs as _;
     cfg.defect = match (defect, cfg.defect) {
@@ -29,7 +31,7 @@ fn simulate(defect: Option<DefectLocation>, fs: f64, secs: f64) -> (Vec<f64>, Ki
         _ => None,
     };
     let rpm = 60.0 * cfg.speed.shaft_hz(0.0);
-    let kin = Kinematics::of_config(&cfg, rpm).expect("kinematics");
+    let kin = kinematics::of_config(&cfg, rpm).expect("kinematics");
     let sc = Scenario::new(
         cfg,
         RunSettings {
@@ -44,7 +46,7 @@ fn simulate(defect: Option<DefectLocation>, fs: f64, secs: f64) -> (Vec<f64>, Ki
 }
 
 /// The call and confidence for `x` at `fs`.
-fn call(x: &[f64], fs: f64, kin: &Kinematics) -> (FaultFamily, f64) {
+fn call(x: &[f64], fs: f64, kin: &FaultFrequencies) -> (FaultFamily, f64) {
     let a = analyze_signal(x, fs, kin, &Method::default()).expect("analysis");
     (a.diagnosis.family, a.diagnosis.confidence)
 }

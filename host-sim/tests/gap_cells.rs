@@ -3,7 +3,7 @@
 //! mode shows up as a large gap located in the zone and band of the mode.
 
 use wearsim_core::{presets, Model, ModelConfig, Sample, State};
-use wearsim_host::analysis::{FaultFamily, FaultFrequencies};
+use wearsim_host::analysis::FaultFamily;
 use wearsim_host::effects::{build, parse_arg};
 use wearsim_host::gap::{gap, CellSpec};
 
@@ -20,17 +20,9 @@ fn record(cfg: ModelConfig, seed: u64, seconds: f64) -> Vec<f64> {
 
 fn spec(cfg: &ModelConfig) -> CellSpec {
     let model = Model::new_checked(cfg.clone()).unwrap();
-    let f = model.orders().at(cfg.speed.shaft_hz(0.0));
     CellSpec {
         fs: cfg.output_rate,
-        ff: FaultFrequencies {
-            shaft_hz: f.shaft,
-            ftf: f.ftf,
-            bpfo: f.bpfo,
-            bpfi: f.bpfi,
-            bsf: f.bsf,
-        },
-        resonance_hz: model.natural_frequency_hz(),
+        ff: model.frequencies_at(cfg.speed.shaft_hz(0.0)),
         family: FaultFamily::OuterRace,
     }
 }

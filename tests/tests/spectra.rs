@@ -11,14 +11,7 @@ use wearsim_tests::{bare_reference, simulate};
 
 fn fault_freqs(cfg: &ModelConfig) -> FaultFrequencies {
     let model = wearsim_core::Model::new_checked(cfg.clone()).unwrap();
-    let f = model.orders().at(cfg.speed.shaft_hz(0.0));
-    FaultFrequencies {
-        shaft_hz: f.shaft,
-        ftf: f.ftf,
-        bpfo: f.bpfo,
-        bpfi: f.bpfi,
-        bsf: f.bsf,
-    }
+    model.frequencies_at(cfg.speed.shaft_hz(0.0))
 }
 
 /// Imbalance alone: the largest peak of the spectrum is at 1× within one bin.

@@ -7,7 +7,7 @@ use wearsim_core::forces::slip::Slip;
 use wearsim_core::forces::surface::{Roughness, Waviness};
 use wearsim_core::topography::{self, Topography};
 use wearsim_core::{presets, Model, ModelConfig};
-use wearsim_host::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
+use wearsim_host::analysis::{self, WelchParams, Window, ZoneBands};
 use wearsim_tests::{bare_reference, simulate};
 
 /// Reference with imbalance, waviness and roughness (the healthy background of the
@@ -42,14 +42,7 @@ struct Figures {
 fn figures(t: Option<Topography>, slip: f64) -> Figures {
     let cfg = scenario(t, slip);
     let model = Model::new_checked(cfg.clone()).unwrap();
-    let f = model.orders().at(cfg.speed.shaft_hz(0.0));
-    let ff = FaultFrequencies {
-        shaft_hz: f.shaft,
-        ftf: f.ftf,
-        bpfo: f.bpfo,
-        bpfi: f.bpfi,
-        bsf: f.bsf,
-    };
+    let ff = model.frequencies_at(cfg.speed.shaft_hz(0.0));
     let (x, fs) = simulate(cfg, 4.0, 11);
     let psd = analysis::welch_psd(
         &x,
@@ -60,7 +53,7 @@ fn figures(t: Option<Topography>, slip: f64) -> Figures {
         },
     )
     .unwrap();
-    let zones = ZoneBands::new(&ff, model.natural_frequency_hz(), fs).unwrap();
+    let zones = ZoneBands::new(&ff, fs).unwrap();
     let levels = analysis::zone_levels(&psd, &zones);
     let spec = analysis::amplitude_spectrum(&x, fs, Window::Hann).unwrap();
     let at = |k: f64| {

@@ -32,7 +32,7 @@ use crate::effects::sensor::SensorChain;
 use crate::effects::transfer_path::TransferPath;
 use crate::forces::defect::{DefectShape, StaticReference};
 use crate::integrate::Discretization;
-use crate::kinematics::FaultOrders;
+use crate::kinematics::{FaultFrequencies, FaultOrders};
 use crate::load_zone::Equilibrium;
 use crate::real::{sqrt, Real, STANDARD_GRAVITY, TAU};
 use crate::topography::Topography;
@@ -147,6 +147,11 @@ impl Model {
     /// Kinematic orders of the bearing (eq. 17–20).
     pub fn orders(&self) -> FaultOrders {
         self.orders
+    }
+    /// Characteristic frequencies (Hz) of this bearing and structure at shaft frequency
+    /// `shaft_hz` (Hz): eq. 17–20 and [`Model::natural_frequency_hz`].
+    pub fn frequencies_at(&self, shaft_hz: Real) -> FaultFrequencies {
+        self.orders.at(shaft_hz, self.natural_frequency_hz())
     }
     /// Hertz constants of one element (both races in series).
     pub fn contact(&self) -> &ElementContact {

@@ -6,36 +6,9 @@ use super::peaks::{noise_floor, peak_near, ratio_db, top_peaks, Peak};
 use super::spectrum::Spectrum;
 use serde::{Deserialize, Serialize};
 
-/// Characteristic frequencies of a rolling-element bearing, all in Hz.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FaultFrequencies {
-    /// Shaft rotation frequency, Hz.
-    pub shaft_hz: f64,
-    /// Fundamental train (cage) frequency, Hz.
-    pub ftf: f64,
-    /// Ball pass frequency, outer race, Hz.
-    pub bpfo: f64,
-    /// Ball pass frequency, inner race, Hz.
-    pub bpfi: f64,
-    /// Ball spin frequency, Hz (a ball defect strikes both races: 2×BSF).
-    pub bsf: f64,
-}
-
-/// The core's kinematic frequencies (eq. 17–20, `wearsim_core::kinematics`, the one
-/// implementation) in the detector's form: the only conversion between the two.
-impl From<wearsim_core::kinematics::FaultFrequencies> for FaultFrequencies {
-    // `Real` is f32 with the core's `f32` feature: the conversions are then not the identity.
-    #[allow(clippy::useless_conversion)]
-    fn from(f: wearsim_core::kinematics::FaultFrequencies) -> Self {
-        FaultFrequencies {
-            shaft_hz: f64::from(f.shaft),
-            ftf: f64::from(f.ftf),
-            bpfo: f64::from(f.bpfo),
-            bpfi: f64::from(f.bpfi),
-            bsf: f64::from(f.bsf),
-        }
-    }
-}
+/// The project's one kinematics type (thesis eq. 17–20 and the structure's natural
+/// frequency, Hz), defined in the core.
+pub use wearsim_core::kinematics::FaultFrequencies;
 
 /// Bearing fault family.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -444,6 +417,7 @@ mod tests {
             bpfo: 107.36,
             bpfi: 162.19,
             bsf: 70.58,
+            natural_hz: 3000.0,
         }
     }
 
@@ -481,9 +455,8 @@ mod tests {
         // SKF 6205-2RS: 9 balls, d = 7.94 mm, D = 39.04 mm (preset cwru-6205-de), through
         // the core's eq. 17–20.
         let cfg = wearsim_core::presets::by_name("cwru-6205-de").expect("preset");
-        let ff: FaultFrequencies = wearsim_core::kinematics::FaultOrders::of(&cfg.bearing)
-            .at(29.95)
-            .into();
+        let ff: FaultFrequencies =
+            wearsim_core::kinematics::FaultOrders::of(&cfg.bearing).at(29.95, 3000.0);
         assert!(
             (ff.bpfo / 29.95 - 3.5848).abs() < 0.001,
             "{}",
@@ -551,6 +524,7 @@ mod tests {
             bpfo: 101.0, // 1 % slip
             bpfi: 163.0,
             bsf: 71.0,
+            natural_hz: 3000.0,
         };
         let d = detect_fault(&env, &ff, &DetectParams::default());
         assert_eq!(d.family, FaultFamily::OuterRace);
@@ -610,7 +584,7 @@ mod tests {
             shaft in -10.0f64..100.0,
         ) {
             let env = Spectrum { df, values, kind: SpectrumKind::Amplitude };
-            let ff = FaultFrequencies { shaft_hz: shaft, ftf: 0.4 * shaft, bpfo: 3.6 * shaft, bpfi: 5.4 * shaft, bsf: 2.4 * shaft };
+            let ff = FaultFrequencies { shaft_hz: shaft, ftf: 0.4 * shaft, bpfo: 3.6 * shaft, bpfi: 5.4 * shaft, bsf: 2.4 * shaft, natural_hz: 3000.0 };
             let d = detect_fault(&env, &ff, &DetectParams::default());
             prop_assert!(d.score.is_finite());
         }

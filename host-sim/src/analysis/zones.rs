@@ -41,18 +41,18 @@ pub struct ZoneLevels {
 
 impl ZoneBands {
     /// Zones for a bearing with characteristic frequencies `ff` (the shaft
-    /// frequency is `ff.shaft_hz`), a structural resonance at `resonance_hz`
+    /// frequency is `ff.shaft_hz`, the structural resonance `ff.natural_hz`)
     /// and sampling frequency `fs`, all in Hz. Upper edges are clipped to
     /// fs/2. Errors: a non-positive or non-finite frequency, or a zone that
     /// is empty after clipping (e.g. resonance too close to fs/2).
-    pub fn new(ff: &FaultFrequencies, resonance_hz: f64, fs: f64) -> Result<Self, AnalysisError> {
+    pub fn new(ff: &FaultFrequencies, fs: f64) -> Result<Self, AnalysisError> {
         check_fs(fs)?;
         let positive = [
             ("shaft_hz", ff.shaft_hz),
             ("bpfo", ff.bpfo),
             ("bpfi", ff.bpfi),
             ("bsf", ff.bsf),
-            ("resonance_hz", resonance_hz),
+            ("natural_hz", ff.natural_hz),
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
@@ -79,8 +79,8 @@ impl ZoneBands {
         Ok(ZoneBands {
             rotating: clip(0.5 * ff.shaft_hz, 5.0 * ff.shaft_hz)?,
             fault: clip(0.5 * fmin, 5.0 * fmax)?,
-            natural: clip(0.7 * resonance_hz, 1.3 * resonance_hz)?,
-            high: clip(1.3 * resonance_hz, nyquist)?,
+            natural: clip(0.7 * ff.natural_hz, 1.3 * ff.natural_hz)?,
+            high: clip(1.3 * ff.natural_hz, nyquist)?,
         })
     }
 }
@@ -126,22 +126,27 @@ mod tests {
             bpfo: 107.0,
             bpfi: 162.0,
             bsf: 70.0,
+            natural_hz: 3000.0,
         }
+    }
+
+    fn with_natural(natural_hz: f64) -> FaultFrequencies {
+        FaultFrequencies { natural_hz, ..ff() }
     }
 
     #[test]
     fn bands_follow_the_definitions() {
-        let z = ZoneBands::new(&ff(), 3000.0, 12_000.0).unwrap();
+        let z = ZoneBands::new(&ff(), 12_000.0).unwrap();
         assert_eq!(z.rotating, (15.0, 150.0));
         assert_eq!(z.fault, (53.5, 810.0));
         assert!((z.natural.0 - 2100.0).abs() < 1e-9 && (z.natural.1 - 3900.0).abs() < 1e-9);
         assert_eq!(z.high, (3900.0, 6000.0));
-        assert!(ZoneBands::new(&ff(), 5000.0, 12_000.0).is_err());
-        assert!(ZoneBands::new(&ff(), 0.0, 12_000.0).is_err());
-        assert!(ZoneBands::new(&ff(), 3000.0, -1.0).is_err());
+        assert!(ZoneBands::new(&with_natural(5000.0), 12_000.0).is_err());
+        assert!(ZoneBands::new(&with_natural(0.0), 12_000.0).is_err());
+        assert!(ZoneBands::new(&ff(), -1.0).is_err());
         let mut bad = ff();
         bad.bpfi = f64::NAN;
-        assert!(ZoneBands::new(&bad, 3000.0, 12_000.0).is_err());
+        assert!(ZoneBands::new(&bad, 12_000.0).is_err());
     }
 
     #[test]
@@ -157,7 +162,7 @@ mod tests {
             }
         }
         let psd = welch_psd(&x, fs, &WelchParams::default()).unwrap();
-        let l = zone_levels(&psd, &ZoneBands::new(&ff(), 3000.0, fs).unwrap());
+        let l = zone_levels(&psd, &ZoneBands::new(&ff(), fs).unwrap());
         let rms = |a: f64| a / 2f64.sqrt();
         let close = |got: f64, want: f64| (got / want - 1.0).abs() < 0.01;
         assert!(close(l.rotating, rms(1.0)), "{l:?}");

@@ -317,12 +317,12 @@ pub fn print_summary(sc: &Scenario, s: &Summary, rtf: f64, files: &crate::io::wr
         sc.fs(),
         sc.run.duration,
         sc.run.seed,
-        k.shaft,
+        k.shaft_hz,
         rtf
     );
     println!(
         "kinematics: FTF {:.2}  BPFO {:.2}  BPFI {:.2}  BSF {:.2}  natural {:.0} Hz",
-        k.ftf, k.bpfo, k.bpfi, k.bsf, k.natural
+        k.ftf, k.bpfo, k.bpfi, k.bsf, k.natural_hz
     );
     let st = &s.stats;
     println!(

@@ -184,7 +184,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         ..run.spec.model.clone()
     })
     .map_err(CliError::input)?;
-    let bpfo = base.orders().at(run.shaft_hz).bpfo;
+    let bpfo = base.orders().bpfo * run.shaft_hz;
     plots.extend(crate::life::plot::events(
         &a.out,
         &event_windows,

@@ -2,7 +2,6 @@
 //! frequencies, and the catalogue of candidate effects.
 
 use crate::cmd::args::CliError;
-use crate::summary::KinematicFrequencies;
 use serde_json::json;
 
 /// `wearsim effects`.
@@ -33,7 +32,9 @@ pub fn catalogue() -> Result<Vec<serde_json::Value>, CliError> {
         };
         let model = wearsim_core::Model::new_checked(cfg.clone())
             .map_err(|e| CliError::run(format!("preset {name}: {e}")))?;
-        let k = KinematicFrequencies::of(&model);
+        let shaft_hz = cfg.speed.shaft_hz(0.0);
+        let k = model.frequencies_at(shaft_hz);
+        let waviness = crate::summary::waviness_hz(&model, shaft_hz);
         let o = model.orders();
         rows.push(json!({
             "name": name,
@@ -42,10 +43,10 @@ pub fn catalogue() -> Result<Vec<serde_json::Value>, CliError> {
             "element_diameter_m": cfg.bearing.element_diameter,
             "pitch_diameter_m": cfg.bearing.pitch_diameter,
             "contact_angle_deg": cfg.bearing.contact_angle.to_degrees(),
-            "shaft_hz": k.shaft,
+            "shaft_hz": k.shaft_hz,
             "orders": {"ftf": o.ftf, "bpfo": o.bpfo, "bpfi": o.bpfi, "bsf": o.bsf},
-            "hz": {"ftf": k.ftf, "bpfo": k.bpfo, "bpfi": k.bpfi, "bsf": k.bsf, "waviness": k.waviness},
-            "natural_hz": k.natural,
+            "hz": {"ftf": k.ftf, "bpfo": k.bpfo, "bpfi": k.bpfi, "bsf": k.bsf, "waviness": waviness},
+            "natural_hz": k.natural_hz,
             "damping_ratio": model.damping_ratio(),
             "fs": cfg.output_rate,
             "oversample": model.oversample(),

@@ -10,10 +10,9 @@ use crate::analysis::{self, AnalysisError, FaultFamily, FaultFrequencies, WelchP
 pub struct CellSpec {
     /// Sample rate (Hz).
     pub fs: f64,
-    /// Kinematic frequencies of the bearing at the record's speed.
+    /// Kinematic frequencies of the bearing at the record's speed; its `natural_hz` (the
+    /// structural resonance) sets the natural-frequency zone.
     pub ff: FaultFrequencies,
-    /// Structural resonance (Hz) that sets the natural-frequency zone.
-    pub resonance_hz: f64,
     /// Fault family whose harmonics the envelope cells follow (none: BPFO).
     pub family: FaultFamily,
 }
@@ -67,7 +66,7 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
             ..WelchParams::default()
         },
     )?;
-    let zones = ZoneBands::new(&spec.ff, spec.resonance_hz, fs)?;
+    let zones = ZoneBands::new(&spec.ff, fs)?;
     let amp = analysis::amplitude_spectrum(x, fs, analysis::Window::Hann).ok();
     // The natural-frequency zone of the cells spans every structural resonance band between
     // the fault zone and the high zone (the thesis's zone is the model's one resonance ±30 %;

@@ -13,7 +13,7 @@ use super::matched::{merge, Evaluator, Matched};
 use super::space::{self, FitSpace};
 use super::{CellSpec, Reference};
 use crate::analysis::stats::{self, rms};
-use crate::analysis::{FaultFamily, FaultFrequencies};
+use crate::analysis::FaultFamily;
 use serde::Serialize;
 use std::time::Instant;
 use wearsim_core::effects::Effects;
@@ -182,7 +182,6 @@ pub fn scenario() -> Option<ModelConfig> {
 /// Cell spec of a model at its configured speed.
 pub fn spec_of(cfg: &ModelConfig) -> Result<CellSpec, String> {
     let model = Model::new_checked(cfg.clone()).map_err(|e| e.to_string())?;
-    let f = model.orders().at(cfg.speed.shaft_hz(0.0));
     let family = match cfg.defect.map(|d| d.location) {
         Some(DefectLocation::InnerRace { .. }) => FaultFamily::InnerRace,
         Some(DefectLocation::Ball { .. }) => FaultFamily::Ball,
@@ -190,8 +189,7 @@ pub fn spec_of(cfg: &ModelConfig) -> Result<CellSpec, String> {
     };
     Ok(CellSpec {
         fs: cfg.output_rate,
-        ff: FaultFrequencies::from(f),
-        resonance_hz: model.natural_frequency_hz(),
+        ff: model.frequencies_at(cfg.speed.shaft_hz(0.0)),
         family,
     })
 }

@@ -5,7 +5,7 @@
 //! the whole life. Both advance the wear from the same measurement windows, so the same
 //! seed gives the same wear history in both.
 
-use crate::analysis::{self, FaultFrequencies, WelchParams, Window, ZoneBands};
+use crate::analysis::{self, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
 
@@ -261,7 +261,7 @@ impl LifeRun {
             ..self.spec.model.clone()
         })?;
         let fs = base.config().output_rate;
-        let ff = FaultFrequencies::from(base.orders().at(self.shaft_hz));
+        let ff = base.frequencies_at(self.shaft_hz);
         let st = analysis::stats(x).map_err(err)?;
         let nperseg = (x.len() / 4).next_power_of_two().clamp(256, 4096);
         let psd = analysis::welch_psd(
@@ -273,7 +273,7 @@ impl LifeRun {
             },
         )
         .map_err(err)?;
-        let zones = ZoneBands::new(&ff, base.natural_frequency_hz(), fs).map_err(err)?;
+        let zones = ZoneBands::new(&ff, fs).map_err(err)?;
         let z = analysis::zone_levels(&psd, &zones);
         let env = analysis::envelope_spectrum(x, fs, None).map_err(err)?;
         let fault_peak = analysis::peak_near(&env, ff.bpfo, 0.02 * ff.bpfo + env.df)

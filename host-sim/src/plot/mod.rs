@@ -9,8 +9,9 @@
 //! Text uses DejaVu Sans embedded in the binary (crate `dejavu`, registered with plotters'
 //! `ab_glyph` font backend), so rendering needs no system font and no fontconfig.
 
+use crate::analysis::FaultFrequencies;
 use crate::analysis::{Kurtogram, Spectrum};
-use crate::analyze::{family_name, Analysis, Kinematics, Spectra};
+use crate::analyze::{family_name, Analysis, Spectra};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -54,7 +55,7 @@ const NAT_C: RGBColor = RGBColor(200, 120, 0);
 
 /// Kinematic marks up to `harmonics` orders: shaft 1×–3×, FTF, BPFO and BPFI harmonics,
 /// BSF and the ball-defect family 2k×BSF.
-fn marks(k: &Kinematics, harmonics: usize) -> Vec<Mark> {
+fn marks(k: &FaultFrequencies, harmonics: usize) -> Vec<Mark> {
     let mut v = vec![];
     let name = |n: usize, s: &str| {
         if n == 1 {
