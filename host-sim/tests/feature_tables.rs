@@ -465,3 +465,59 @@ fn an_ims_bearing_reads_the_same_through_the_documented_format(
     );
     Ok(())
 }
+
+/// The whole lifetime diagnosis on IMS test 2 read both ways (about twice `gap_life`'s
+/// time, so not in the default run): `cargo test -p wearsim-host --test feature_tables --
+/// --ignored`. Every figure of the result must be equal; only the file labels, the run
+/// time and the simulation count (which depends on thread timing) may differ.
+#[test]
+#[ignore = "two whole lifetime diagnoses (~15 min on 2 cores); the default test checks their inputs bit for bit"]
+fn gap_life_gives_the_same_result_on_both_formats() -> Result<(), Box<dyn std::error::Error>> {
+    use wearsim_host::gap::lifetime::diagnose;
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        return Ok(());
+    };
+    let ims = data.join("ims/features_chocho66/test2_timefeatures.csv");
+    let tmp = tempfile::tempdir()?;
+    let mut tables = vec![];
+    for b in 1..=4 {
+        let (side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
+        let p = tmp.path().join(format!("test2_b{b}.csv"));
+        write_feature_table(&p, &side, &rows, &[])?;
+        tables.push(p);
+    }
+    let o = LifeOptions {
+        train: 1,
+        holdout: vec![2, 3, 4],
+        seed: 1,
+        jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        effects: vec![],
+        leave_one_out: false,
+    };
+    let norm = |g: &wearsim_host::gap::lifetime::LifeGap, names: &dyn Fn(usize) -> String| {
+        let mut v = serde_json::to_value(g).unwrap();
+        for k in ["seconds", "simulations", "train", "holdout"] {
+            v.as_object_mut().unwrap().remove(k);
+        }
+        let mut s = v.to_string();
+        for b in 1..=4 {
+            s = s.replace(&names(b), &format!("L{b}"));
+        }
+        s
+    };
+    let a = diagnose(&measured(&ims, &o)?, &o)?;
+    let b = diagnose(&measured_tables(&tables, &o)?, &o)?;
+    println!(
+        "IMS table: held-out {:.3} -> {:.3}, life factor {:.4e}; feature tables: {:.3} -> {:.3}, {:.4e}",
+        a.attribution.baseline_holdout,
+        a.attribution.final_holdout,
+        a.life_factor,
+        b.attribution.baseline_holdout,
+        b.attribution.final_holdout,
+        b.life_factor
+    );
+    let x = norm(&a, &|k| format!("test2_timefeatures.csv bearing {k}"));
+    let y = norm(&b, &|k| format!("test2_b{k}.csv bearing {k}"));
+    assert!(x == y, "the diagnoses differ");
+    Ok(())
+}

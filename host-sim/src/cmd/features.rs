@@ -5,6 +5,8 @@
 
 use crate::cmd::args::CliError;
 use crate::features::{convert, FeatureOptions, FeaturesError, RawLayout};
+use crate::io::feature_table::FeatureTableError;
+use crate::io::IoError;
 use clap::Args;
 use std::path::PathBuf;
 
@@ -64,10 +66,13 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
         bearing_id: a.bearing_id.clone(),
         failure_mode: a.failure_mode.clone(),
     };
+    // Writing the table failed (disk full, permissions after the lock was taken): the run
+    // failed; everything else is an input the table cannot be made from.
     let s = convert(&a.dir, a.layout, &a.out, &o).map_err(|e| match e {
-        FeaturesError::Table(crate::io::feature_table::FeatureTableError::Io(
-            ref io @ crate::io::IoError::Io { .. },
-        )) if io.path().starts_with(a.out.parent().unwrap_or(&a.out)) => CliError::run(e),
+        FeaturesError::Table(FeatureTableError::Io(IoError::Io {
+            op: "create temporary" | "write" | "rename" | "remove old sidecar",
+            ..
+        })) => CliError::run(e),
         e => CliError::input(e),
     })?;
     if a.json {
