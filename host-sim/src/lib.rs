@@ -7,6 +7,7 @@ pub mod cmd;
 pub mod config;
 pub mod cwru_benchmark;
 pub mod effects;
+pub mod features;
 pub mod gap;
 pub mod geometry;
 pub mod io;

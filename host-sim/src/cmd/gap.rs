@@ -8,6 +8,7 @@ use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
 use crate::gap::stationary::{diagnose, prepare, where_cells, GapArgs, GapOutput};
+use crate::io::feature_table::is_feature_table;
 
 /// `wearsim gap`: `--life` selects the lifetime diagnosis. A lifetime table given without
 /// it is refused with the invocation to use, rather than switching mode on a file name.
@@ -17,9 +18,13 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
     if a.life {
         return run_life(a);
     }
-    if let Some(p) = a.real.iter().find(|p| is_life_table(p)) {
+    if let Some(p) = a
+        .real
+        .iter()
+        .find(|p| is_life_table(p) || is_feature_table(p))
+    {
         return Err(CliError::input(format!(
-            "--real {}: this is a lifetime record (an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns); diagnose it along its life with `wearsim gap --life --real {}`",
+            "--real {}: this is a lifetime record (an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns, or a documented feature table); diagnose it along its life with `wearsim gap --life --real {}`",
             p.display(),
             p.display()
         )));
@@ -88,20 +93,26 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `wearsim gap --life`: the gap along the life of one IMS feature table.
+/// `wearsim gap --life`: the gap along the life of one IMS feature table, or of
+/// documented feature tables (one life each; `--train`/`--holdout` count them from 1).
 fn run_life(a: &GapArgs) -> Result<(), CliError> {
     let o = life_options(a)?;
     let path = a
         .real
         .first()
         .ok_or_else(|| CliError::input("--real: no file"))?;
-    if path.is_file() && !is_life_table(path) {
+    if path.is_file() && !is_life_table(path) && !is_feature_table(path) {
         return Err(CliError::input(format!(
-            "--life --real {}: not a lifetime record; --life needs an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns (e.g. test2_timefeatures.csv)",
+            "--life --real {}: not a lifetime record; --life needs an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns (e.g. test2_timefeatures.csv) or documented feature tables with their sidecars (docs/feature-tables.md)",
             path.display()
         )));
     }
-    let m = lifetime::measured(path, &o).map_err(CliError::input)?;
+    let m = if is_feature_table(path) {
+        lifetime::measured_tables(&a.real, &o)
+    } else {
+        lifetime::measured(path, &o)
+    }
+    .map_err(CliError::input)?;
     let g = lifetime::diagnose(&m, &o).map_err(CliError::run)?;
     let mut out = life_report::output(&g);
     out.files = life_report::write(&a.out, &out, &g)?;
@@ -135,7 +146,14 @@ fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
 /// Lifetime options from the arguments; options that only make sense for raw records
 /// are refused rather than ignored.
 fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
-    if a.real.len() != 1 {
+    let tables = a.real.iter().filter(|p| is_feature_table(p)).count();
+    if tables > 0 && tables != a.real.len() {
+        return Err(CliError::input(
+            "--real: documented feature tables (docs/feature-tables.md) and IMS tables cannot be mixed in one lifetime diagnosis",
+        ));
+    }
+    let lives = if tables > 0 { tables } else { 4 };
+    if tables == 0 && a.real.len() != 1 {
         return Err(CliError::input(format!(
             "--real: a lifetime record (IMS feature table) is diagnosed alone; got {} files",
             a.real.len()
@@ -150,7 +168,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
     ] {
         if given {
             return Err(CliError::input(format!(
-                "{flag}: a lifetime record is matched to the ims-za2115 preset (Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot) and its life; {flag} does not apply"
+                "{flag}: a lifetime record is matched to its preset (IMS tables: ims-za2115, Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot; documented tables: their sidecar) and its life; {flag} does not apply"
             )));
         }
     }
@@ -168,7 +186,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
     };
     let holdout = match &a.holdout {
         Some(s) => bearings(s, "--holdout")?,
-        None => (1..=4).filter(|b| b != train).collect(),
+        None => (1..=lives).filter(|b| b != train).collect(),
     };
     if holdout.contains(train) {
         return Err(CliError::input(format!(

@@ -11,6 +11,7 @@ pub mod bench_lanes;
 pub mod capture;
 pub mod cwru_benchmark;
 pub mod exit;
+pub mod features;
 pub mod gap;
 pub mod gap_validate;
 pub mod life;
@@ -52,6 +53,8 @@ pub enum Command {
     Capture(capture::CaptureArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
     Analyze(crate::analyze::AnalyzeArgs),
+    /// Turn a folder of raw run-to-failure snapshots (IMS, FEMTO, XJTU-SY) into the documented feature table + sidecar.
+    Features(features::FeaturesArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
     CwruBenchmark(crate::cwru_benchmark::CwruBenchmarkArgs),
     /// Diagnose the sim-to-real gap of measured records: where it lies, which candidate effect closes it, how far.
@@ -90,6 +93,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Analyze(a) => analyze::run(&a),
         Command::CwruBenchmark(a) => cwru_benchmark::run(&a),
         Command::Sweep(a) => sweep::run(&a),
+        Command::Features(a) => features::run(&a),
     }
 }
 

@@ -19,8 +19,9 @@ use wearsim_core::effects::Effects;
 #[derive(Debug, Clone, Args)]
 pub struct GapArgs {
     /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
-    /// With --life: one IMS feature table (`timefeatures.csv`), diagnosed along life;
-    /// --train/--holdout then name its bearings (B1, B2, ...).
+    /// With --life: one IMS feature table (`timefeatures.csv`), diagnosed along life,
+    /// --train/--holdout then name its bearings (B1, B2, ...); or documented feature
+    /// tables (docs/feature-tables.md), one life each, --train/--holdout counting them from 1.
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
     /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
@@ -81,7 +82,7 @@ pub struct GapArgs {
     #[arg(long)]
     pub json: bool,
     /// Lifetime mode: diagnose the gap along a whole life of one run-to-failure record
-    /// (an IMS feature table such as `test2_timefeatures.csv`).
+    /// (an IMS feature table such as `test2_timefeatures.csv`, or documented feature tables).
     #[arg(long)]
     pub life: bool,
 }

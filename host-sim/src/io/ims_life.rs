@@ -60,6 +60,9 @@ pub struct MeasuredLife {
     pub hours: f64,
     /// Snapshots dropped as dead (machine stopped).
     pub dropped: usize,
+    /// wearsim preset of the bearing, the model its simulated life runs (`ims-za2115` for
+    /// an IMS table; a documented feature table's `bearing.preset`).
+    pub preset: Option<String>,
 }
 
 /// Reads bearing `bearing` (1–4) of an IMS feature table with per-channel `rms`,
@@ -129,5 +132,6 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
         points,
         hours: h1 - h0,
         dropped: n - keep.len(),
+        preset: Some("ims-za2115".into()),
     })
 }

@@ -9,9 +9,12 @@
 //!   [`ims::read_ims_snapshot`] (IMS raw ASCII), with sample rate and speed from the file, a
 //!   JSON sidecar ([`sidecar`]) or [`ReadOptions`].
 //! * [`ims::read_ims_features`]: the IMS per-snapshot feature tables.
+//! * [`feature_table`]: the documented per-snapshot feature table of any run-to-failure test.
 
 pub mod csv;
 pub mod error;
+pub mod feature_table;
+pub mod feature_table_write;
 pub mod ims;
 pub mod ims_life;
 pub mod layout;

@@ -260,6 +260,28 @@ pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
         .iter()
         .map(|b| read_life(path, *b))
         .collect::<Result<_, _>>()?;
+    measured_from(train, holdout)
+}
+
+/// Builds the cells of a training life and its held-out lives, whichever reader read
+/// them (an IMS table, [`measured`]; documented feature tables,
+/// [`super::tables::measured_tables`]). All lives must name the same preset.
+pub fn measured_from(
+    train: MeasuredLife,
+    holdout: Vec<MeasuredLife>,
+) -> Result<MeasuredSet, String> {
+    if train.preset.is_none() {
+        return Err(format!(
+            "{}: bearing.preset: no wearsim preset named; a life gap simulates the bearing's preset (see `wearsim presets`)",
+            train.file
+        ));
+    }
+    if let Some(h) = holdout.iter().find(|h| h.preset != train.preset) {
+        return Err(format!(
+            "{}: bearing.preset {:?} differs from the training life's {:?}; the lives of one diagnosis share one simulated bearing",
+            h.file, h.preset, train.preset
+        ));
+    }
     if holdout.is_empty() {
         return Err("--holdout: give at least one held-out bearing".into());
     }
@@ -280,13 +302,14 @@ pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
 pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     let t0 = std::time::Instant::now();
     let (train_life, hold_lives) = (&m.train, &m.holdout);
-    let shaft_hz = wearsim_core::presets::by_name("ims-za2115")
-        .ok_or("preset ims-za2115 missing")?
+    let preset = train_life.preset.as_deref().unwrap_or("ims-za2115");
+    let shaft_hz = wearsim_core::presets::by_name(preset)
+        .ok_or_else(|| format!("preset {preset} missing"))?
         .speed
         .shaft_hz(0.0);
     let measured_revs = train_life.hours * 3600.0 * shaft_hz;
-    let (factor, revs, cal_runs) = calibrate("ims-za2115", o.seed, measured_revs)?;
-    let sim = Arc::new(LifeSim::new("ims-za2115", factor, o.seed, revs)?);
+    let (factor, revs, cal_runs) = calibrate(preset, o.seed, measured_revs)?;
+    let sim = Arc::new(LifeSim::new(preset, factor, o.seed, revs)?);
     let train = vec![LifeTarget {
         reference: m.train_ref.clone(),
         sim: sim.clone(),

@@ -40,13 +40,16 @@
 pub mod diagnose;
 pub mod report;
 pub mod sim;
+pub mod tables;
 pub mod target;
 
 pub use crate::io::ims_life::{LifePoint, MeasuredLife};
 pub use diagnose::{
-    diagnose, measured, EarlyShrink, LifeCell, LifeGap, LifeOptions, MeasuredSet, StageGap,
+    diagnose, measured, measured_from, EarlyShrink, LifeCell, LifeGap, LifeOptions, MeasuredSet,
+    StageGap,
 };
 pub use sim::{LifeSim, MAX_WINDOWS, SCHEDULE, WINDOW_SAMPLES};
+pub use tables::measured_tables;
 pub use target::{life_spaces, LifeTarget, SIGNIFICANCE};
 
 use crate::analysis::stats::{mean_std, upper_median};

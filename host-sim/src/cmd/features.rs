@@ -1,0 +1,98 @@
+//! `wearsim features DIR --layout ims|femto|xjtu|auto --out FILE.csv`: a folder of raw
+//! snapshots of a run-to-failure test into the documented feature table and its sidecar
+//! (`docs/feature-tables.md`); arguments, the run ([`crate::features::convert`]) and what
+//! is printed.
+
+use crate::cmd::args::CliError;
+use crate::features::{convert, FeatureOptions, FeaturesError, RawLayout};
+use crate::io::feature_table::FeatureTableError;
+use crate::io::IoError;
+use clap::Args;
+use std::path::PathBuf;
+
+/// `wearsim features` arguments.
+#[derive(Debug, Clone, Args)]
+pub struct FeaturesArgs {
+    /// Folder of raw snapshot files of one test (IMS time-stamp files, FEMTO acc_*.csv, XJTU-SY N.csv).
+    pub dir: PathBuf,
+    /// Layout of the snapshot files (`auto`: recognised from the first file's content).
+    #[arg(long, value_enum, default_value_t = RawLayout::Auto)]
+    pub layout: RawLayout,
+    /// Table to write (`.csv`); its sidecar goes next to it (`.json`).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Channel: IMS 1..8 (default 1), FEMTO horiz|vert (default horiz), XJTU-SY header (default horizontal).
+    #[arg(long)]
+    pub channel: Option<String>,
+    /// Shaft speed, rpm (IMS: 2000; required for FEMTO and XJTU-SY).
+    #[arg(long)]
+    pub rpm: Option<f64>,
+    /// Radial load, N (IMS: 6000 lbf = 26 689 N; required for FEMTO and XJTU-SY).
+    #[arg(long)]
+    pub load_n: Option<f64>,
+    /// wearsim preset of the bearing (IMS: ims-za2115); `gap --life` needs one.
+    #[arg(long)]
+    pub preset: Option<String>,
+    /// Bearing geometry `elements=N,ball=D,pitch=P,angle=DEG` (mm, degrees; XJTU-SY: LDK UER204).
+    #[arg(long)]
+    pub bearing_geometry: Option<String>,
+    /// Which bearing, free text (default: the folder name).
+    #[arg(long)]
+    pub bearing_id: Option<String>,
+    /// Failure mode: outer-race, inner-race, rolling-element, cage, none, unknown (default).
+    #[arg(long)]
+    pub failure_mode: Option<String>,
+    /// Machine-readable summary on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `wearsim features`: convert, then print the summary (or `--json`). Every refusal is
+/// bad input (exit 2) and writes nothing.
+pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
+    if let Some(p) = &a.preset {
+        if wearsim_core::presets::by_name(p).is_none() {
+            return Err(CliError::input(format!(
+                "--preset {p}: unknown (see `wearsim presets`)"
+            )));
+        }
+    }
+    let o = FeatureOptions {
+        channel: a.channel.clone(),
+        rpm: a.rpm,
+        load_n: a.load_n,
+        preset: a.preset.clone(),
+        geometry: a.bearing_geometry.clone(),
+        bearing_id: a.bearing_id.clone(),
+        failure_mode: a.failure_mode.clone(),
+    };
+    // Writing the table failed (disk full, permissions after the lock was taken): the run
+    // failed; everything else is an input the table cannot be made from.
+    let s = convert(&a.dir, a.layout, &a.out, &o).map_err(|e| match e {
+        FeaturesError::Table(FeatureTableError::Io(IoError::Io {
+            op: "create temporary" | "write" | "rename" | "remove old sidecar",
+            ..
+        })) => CliError::run(e),
+        e => CliError::input(e),
+    })?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&s).map_err(CliError::run)?
+        );
+    } else {
+        println!(
+            "{} snapshots ({:?} layout) over {:.2} h: RMS {:.4} -> {:.4} {} (x{:.2}); {} skipped",
+            s.snapshots,
+            s.layout,
+            s.hours,
+            s.rms_first_last.0,
+            s.rms_first_last.1,
+            s.meta.unit,
+            s.rms_first_last.1 / s.rms_first_last.0,
+            s.skipped.len()
+        );
+        println!("wrote {} and {}", s.csv.display(), s.sidecar.display());
+    }
+    Ok(())
+}

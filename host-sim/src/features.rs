@@ -1,0 +1,406 @@
+//! `wearsim features`: a folder of raw snapshots of a run-to-failure test (IMS, FEMTO /
+//! PRONOSTIA or XJTU-SY layout) turned into the documented per-snapshot feature table
+//! ([`crate::io::feature_table`], `docs/feature-tables.md`). Each snapshot is read by the
+//! layout readers of [`crate::io::layout`] / [`crate::io::ims`] and its statistics are
+//! [`crate::analysis::stats`] (kurtosis m4/m2², crest = peak / RMS).
+//!
+//! Time of each snapshot since the start of the test, per layout:
+//!
+//! | layout | files | time |
+//! |---|---|---|
+//! | `ims` | named by time stamp `YYYY.MM.DD.hh.mm.ss` | the name, less the first |
+//! | `femto` | `acc_NNNNN.csv` (others, e.g. `temp_*.csv`, ignored) | first row's hour, minute, s, µs (a wrap past midnight adds a day) |
+//! | `xjtu` | `N.csv`, N = 1, 2, ... (one a minute, Wang et al. 2020) | (N − 1) · 60 s |
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::analysis::stats::stats;
+use crate::geometry::{catalogue, GeometrySpec};
+use crate::io::feature_table::{
+    median_step, BearingInfo, FeatureRow, FeatureSidecar, FeatureTableError, Geometry,
+    FAILURE_MODES, FORMAT, FORMAT_VERSION,
+};
+use crate::io::feature_table_write::write_feature_table;
+use crate::io::ims::{parse_ims_name, read_ims_snapshot, IMS_FS, IMS_RPM};
+use crate::io::layout::{read_femto, read_layout, sniff_text, TextLayout, FEMTO_FS, XJTU_FS};
+use crate::io::{IoError, ReadOptions};
+
+/// Interval between XJTU-SY snapshots, s (one 1.28-s record a minute; Wang et al. 2020).
+pub const XJTU_INTERVAL_S: f64 = 60.0;
+/// IMS radial load, N (6000 lbf on the shaft and bearings; IMS readme).
+pub const IMS_LOAD_N: f64 = 6000.0 * 4.448_221_6;
+/// Most snapshot files of one folder (IMS test 1 has 2 156).
+pub const MAX_FILES: usize = 100_000;
+
+/// A raw snapshot layout (`--layout`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RawLayout {
+    /// IMS / NASA raw ASCII snapshots.
+    Ims,
+    /// FEMTO / PRONOSTIA `acc_*.csv`.
+    Femto,
+    /// XJTU-SY `N.csv`.
+    Xjtu,
+    /// Recognised from the content of the first snapshot file.
+    Auto,
+}
+
+/// What the caller knows that the files do not hold.
+#[derive(Debug, Clone, Default)]
+pub struct FeatureOptions {
+    /// Channel (layout-specific: IMS `1`..`8`, FEMTO `horiz`/`vert`, XJTU header).
+    pub channel: Option<String>,
+    /// Shaft speed, rpm (IMS: 2000 by default; FEMTO/XJTU: required).
+    pub rpm: Option<f64>,
+    /// Radial load, N (IMS: 6000 lbf by default; else required).
+    pub load_n: Option<f64>,
+    /// wearsim preset of the bearing (IMS: `ims-za2115` by default).
+    pub preset: Option<String>,
+    /// Geometry `elements=N,ball=D,pitch=P,angle=DEG` (mm, degrees; XJTU-SY: the
+    /// catalogue's LDK UER204 by default).
+    pub geometry: Option<String>,
+    /// Which bearing (free text; default: the folder name).
+    pub bearing_id: Option<String>,
+    /// Failure mode, one of [`FAILURE_MODES`] (default `unknown`).
+    pub failure_mode: Option<String>,
+}
+
+/// Why a folder could not be converted (all are bad input, exit 2).
+#[derive(Debug, thiserror::Error)]
+pub enum FeaturesError {
+    /// A reader or the table writer refused.
+    #[error(transparent)]
+    Table(#[from] FeatureTableError),
+    /// The folder, an argument or a snapshot is unusable.
+    #[error("{0}")]
+    Input(String),
+}
+
+impl From<IoError> for FeaturesError {
+    fn from(e: IoError) -> Self {
+        FeaturesError::Table(e.into())
+    }
+}
+
+/// Summary of a conversion (`--json`).
+#[derive(Debug, Clone, Serialize)]
+pub struct FeaturesSummary {
+    /// Layout used.
+    pub layout: RawLayout,
+    /// Table written.
+    pub csv: PathBuf,
+    /// Its sidecar.
+    pub sidecar: PathBuf,
+    /// Snapshots in the table.
+    pub snapshots: usize,
+    /// Snapshot files skipped (constant signal: a stopped machine), with the reason.
+    pub skipped: Vec<String>,
+    /// Span of the table, h.
+    pub hours: f64,
+    /// RMS of the first and the last snapshot (record unit).
+    pub rms_first_last: (f64, f64),
+    /// The sidecar written.
+    pub meta: FeatureSidecar,
+}
+
+fn femto_index(name: &str) -> Option<u64> {
+    name.strip_prefix("acc_")?
+        .strip_suffix(".csv")?
+        .parse()
+        .ok()
+}
+
+fn xjtu_index(name: &str) -> Option<u64> {
+    name.strip_suffix(".csv")?.parse().ok().filter(|k| *k >= 1)
+}
+
+/// The snapshot files of `dir` for `layout`, ordered, with their time since the start of
+/// the test where the name carries it.
+fn files(dir: &Path, layout: RawLayout) -> Result<Vec<(PathBuf, u64, Option<f64>)>, FeaturesError> {
+    let rd = std::fs::read_dir(dir).map_err(|e| IoError::io(dir, "read directory", e))?;
+    let mut out = vec![];
+    for e in rd {
+        let e = e.map_err(|e| IoError::io(dir, "read directory", e))?;
+        let p = e.path();
+        if !p.is_file() {
+            continue;
+        }
+        let name = e.file_name().to_string_lossy().into_owned();
+        let item = match layout {
+            RawLayout::Ims => parse_ims_name(name.strip_suffix(".txt").unwrap_or(&name))
+                .map(|u| (p.clone(), u as u64, Some(u as f64))),
+            RawLayout::Femto => femto_index(&name).map(|k| (p.clone(), k, None)),
+            RawLayout::Xjtu => {
+                xjtu_index(&name).map(|k| (p.clone(), k, Some((k - 1) as f64 * XJTU_INTERVAL_S)))
+            }
+            RawLayout::Auto => None,
+        };
+        if let Some(i) = item {
+            out.push(i);
+        }
+        if out.len() > MAX_FILES {
+            return Err(FeaturesError::Input(format!(
+                "{}: more than {MAX_FILES} snapshot files",
+                dir.display()
+            )));
+        }
+    }
+    out.sort_by_key(|(_, k, _)| *k);
+    if let (RawLayout::Ims, Some(&(_, _, Some(t0)))) = (layout, out.first()) {
+        for f in &mut out {
+            f.2 = f.2.map(|t| t - t0);
+        }
+    }
+    Ok(out)
+}
+
+/// Recognises the layout of `dir` from the content of its first snapshot file (by the
+/// naming of each layout, the first that names any file).
+pub fn detect(dir: &Path) -> Result<RawLayout, FeaturesError> {
+    for l in [RawLayout::Ims, RawLayout::Femto, RawLayout::Xjtu] {
+        let f = files(dir, l)?;
+        let Some((p, _, _)) = f.first() else {
+            continue;
+        };
+        let found = sniff_text(p)?;
+        let ok = matches!(
+            (l, found),
+            (RawLayout::Ims, Some(TextLayout::Ims(_)))
+                | (RawLayout::Femto, Some(TextLayout::Femto(_)))
+                | (RawLayout::Xjtu, Some(TextLayout::XjtuSy))
+        );
+        if ok {
+            return Ok(l);
+        }
+    }
+    Err(FeaturesError::Input(format!(
+        "--layout auto: {} holds no snapshot of a known layout (IMS time-stamp files of 20 480 rows, FEMTO acc_NNNNN.csv, XJTU-SY N.csv); give --layout",
+        dir.display()
+    )))
+}
+
+/// FEMTO clock of a snapshot's first row, s since midnight.
+fn femto_clock(path: &Path) -> Result<f64, FeaturesError> {
+    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read", e))?;
+    let first = text.lines().next().unwrap_or("");
+    let sep = if first.contains(';') { ';' } else { ',' };
+    let c: Vec<f64> = first
+        .split(sep)
+        .take(4)
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| {
+            FeaturesError::Input(format!(
+                "{}: row 1: hour, minute, second, µs are not numbers",
+                path.display()
+            ))
+        })?;
+    match c.as_slice() {
+        [h, m, s, us] => Ok(h * 3600.0 + m * 60.0 + s + us * 1e-6),
+        _ => Err(FeaturesError::Input(format!(
+            "{}: row 1: fewer than 4 time cells",
+            path.display()
+        ))),
+    }
+}
+
+/// Converts folder `dir` of layout `layout` into the table `out` (`.csv`) and its sidecar.
+/// Nothing is written unless every snapshot was read and the table passes the format's
+/// checks.
+pub fn convert(
+    dir: &Path,
+    layout: RawLayout,
+    out: &Path,
+    o: &FeatureOptions,
+) -> Result<FeaturesSummary, FeaturesError> {
+    if !dir.is_dir() {
+        return Err(FeaturesError::Input(format!(
+            "DIR {}: not a folder of snapshot files",
+            dir.display()
+        )));
+    }
+    let layout = match layout {
+        RawLayout::Auto => detect(dir)?,
+        l => l,
+    };
+    let failure_mode = o.failure_mode.clone().unwrap_or_else(|| "unknown".into());
+    if !FAILURE_MODES.contains(&failure_mode.as_str()) {
+        return Err(FeaturesError::Input(format!(
+            "--failure-mode {failure_mode}: one of {}",
+            FAILURE_MODES.join(", ")
+        )));
+    }
+    let ims = layout == RawLayout::Ims;
+    let rpm = o.rpm.or(ims.then_some(IMS_RPM)).ok_or_else(|| {
+        FeaturesError::Input(
+            "--rpm: the FEMTO and XJTU-SY files do not hold the shaft speed; give it (rpm)".into(),
+        )
+    })?;
+    let load_n = o.load_n.or(ims.then_some(IMS_LOAD_N)).ok_or_else(|| {
+        FeaturesError::Input(
+            "--load-n: the FEMTO and XJTU-SY files do not hold the radial load; give it (N)".into(),
+        )
+    })?;
+    let preset = o.preset.clone().or(ims.then(|| "ims-za2115".to_string()));
+    let geometry = match (&o.geometry, layout) {
+        (Some(g), _) => Some(
+            GeometrySpec::parse(g)
+                .map_err(|e| FeaturesError::Input(format!("--bearing-geometry: {e}")))?,
+        ),
+        (None, RawLayout::Xjtu) => catalogue("xjtu-ldk-uer204").map(|e| e.geometry),
+        _ => None,
+    };
+    if preset.is_none() && geometry.is_none() {
+        return Err(FeaturesError::Input(
+            "--preset or --bearing-geometry: the table's sidecar names its bearing; the FEMTO/PRONOSTIA documentation gives no geometry, pass elements=N,ball=D,pitch=P,angle=DEG (mm, degrees)".into(),
+        ));
+    }
+    let list = files(dir, layout)?;
+    let mut rows: Vec<FeatureRow> = vec![];
+    let mut skipped = vec![];
+    let mut fs = match layout {
+        RawLayout::Femto => FEMTO_FS,
+        RawLayout::Xjtu => XJTU_FS,
+        _ => IMS_FS,
+    };
+    let mut samples_per = None;
+    let mut unit = String::from("unknown");
+    let mut channel = String::new();
+    let mut clock0: Option<(f64, f64)> = None; // (first clock, days added)
+    let mut last_clock = 0.0;
+    for (k, (path, _, named_t)) in list.iter().enumerate() {
+        let rec =
+            match layout {
+                RawLayout::Ims => {
+                    let ch =
+                        match o.channel.as_deref() {
+                            None => 1,
+                            Some(c) => c.strip_prefix("ch").unwrap_or(c).parse::<usize>().map_err(
+                                |_| {
+                                    FeaturesError::Input(format!(
+                                        "--channel {c}: IMS channels are numbered 1..8"
+                                    ))
+                                },
+                            )?,
+                        };
+                    read_ims_snapshot(path, ch)?
+                }
+                RawLayout::Femto => {
+                    let sep = if std::fs::read_to_string(path)
+                        .map_err(|e| IoError::io(path, "read", e))?
+                        .lines()
+                        .next()
+                        .unwrap_or("")
+                        .contains(';')
+                    {
+                        b';'
+                    } else {
+                        b','
+                    };
+                    read_femto(path, sep, o.channel.as_deref())?
+                }
+                _ => read_layout(
+                    path,
+                    TextLayout::XjtuSy,
+                    &ReadOptions {
+                        channel: o.channel.clone(),
+                        ..ReadOptions::default()
+                    },
+                )?,
+            };
+        fs = rec.fs;
+        unit = rec.unit.clone();
+        channel = rec.channel.clone();
+        match samples_per {
+            None => samples_per = Some(rec.samples.len()),
+            Some(n) if n != rec.samples.len() => {
+                return Err(FeaturesError::Input(format!(
+                "{}: {} samples, the first snapshot has {n}; a table's snapshots share one length",
+                path.display(),
+                rec.samples.len()
+            )))
+            }
+            _ => {}
+        }
+        let time_s = match named_t {
+            Some(t) => *t,
+            None => {
+                let c = femto_clock(path)?;
+                let (c0, mut days) = clock0.unwrap_or((c, 0.0));
+                if k > 0 && c < last_clock {
+                    days += 86_400.0;
+                }
+                clock0 = Some((c0, days));
+                last_clock = c;
+                c + days - c0
+            }
+        };
+        let s = match stats(&rec.samples) {
+            Ok(s) => s,
+            Err(e) => {
+                skipped.push(format!("{}: {e}", path.display()));
+                continue;
+            }
+        };
+        rows.push(FeatureRow {
+            snapshot: k as u64,
+            time_s,
+            rms: s.rms,
+            kurtosis: s.kurtosis,
+            crest_factor: s.crest_factor,
+            skewness: s.skewness,
+            peak: s.peak,
+        });
+    }
+    let id = o.bearing_id.clone().unwrap_or_else(|| {
+        dir.file_name().map_or_else(
+            || dir.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
+    });
+    let sidecar = FeatureSidecar {
+        format: FORMAT.into(),
+        format_version: FORMAT_VERSION,
+        source: format!(
+            "wearsim features {} --layout {}",
+            dir.display(),
+            format!("{layout:?}").to_lowercase()
+        ),
+        bearing: BearingInfo {
+            preset,
+            geometry: geometry.map(|g| Geometry {
+                elements: g.elements,
+                ball_mm: g.ball_mm,
+                pitch_mm: g.pitch_mm,
+                angle_deg: g.angle_deg,
+            }),
+            id,
+        },
+        channel,
+        unit,
+        rpm,
+        radial_load_n: load_n,
+        sample_rate_hz: fs,
+        snapshot_samples: samples_per.unwrap_or(0) as u64,
+        snapshot_interval_s: median_step(&rows),
+        failure_mode,
+        n_snapshots: Some(rows.len() as u64),
+        notes: skipped.iter().map(|s| format!("skipped: {s}")).collect(),
+    };
+    let side = write_feature_table(out, &sidecar, &rows, &[])?;
+    let first = rows.first().map_or(0.0, |r| r.rms);
+    let last = rows.last().map_or(0.0, |r| r.rms);
+    Ok(FeaturesSummary {
+        layout,
+        csv: out.to_path_buf(),
+        sidecar: side,
+        snapshots: rows.len(),
+        skipped,
+        hours: rows.last().map_or(0.0, |r| r.time_s) / 3600.0,
+        rms_first_last: (first, last),
+        meta: sidecar,
+    })
+}

@@ -1,0 +1,671 @@
+//! The documented per-snapshot feature table of a run-to-failure test (`docs/feature-tables.md`):
+//! `<stem>.csv` with one row per snapshot and `<stem>.json`, its sidecar. Any rig's life can
+//! be written in it (by a lab, or by `wearsim features` from raw snapshot folders) and read
+//! as a [`MeasuredLife`] for `wearsim gap --life`.
+//!
+//! CSV columns (header row required, any order, comma-separated):
+//!
+//! | column | unit | required | meaning |
+//! |---|---|---|---|
+//! | `snapshot` | - | yes | snapshot index, strictly increasing integer (gaps allowed) |
+//! | `time_s` | s | yes | start of the snapshot since the start of the test, strictly increasing, ≥ 0 |
+//! | `rms` | record unit | yes | √(mean x²), > 0 |
+//! | `kurtosis` | - | yes | m4/m2² (Gaussian 3, **not** excess), ≥ 1 |
+//! | `crest_factor` | - | yes | peak / rms, ≥ 1 |
+//! | `skewness` | - | yes | m3/m2^1.5 |
+//! | `peak` | record unit | yes | max \|x\| |
+//! | `band_<lo>_<hi>_hz` | record unit | no | RMS in the band lo..hi Hz |
+//!
+//! Other columns are ignored (listed in [`FeatureTable::ignored_columns`]). The writer
+//! and the conversion of an IMS table are in [`super::feature_table_write`].
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::error::IoError;
+use super::ims_life::{LifePoint, MeasuredLife};
+
+/// Value of the sidecar key `format`.
+pub const FORMAT: &str = "wearsim-feature-table";
+/// Value of the sidecar key `format_version`.
+pub const FORMAT_VERSION: u64 = 1;
+/// Fewest snapshots of a table (a life needs a time line; `gap --life` needs far more,
+/// at least 3 in each of its stages).
+pub const MIN_SNAPSHOTS: usize = 10;
+/// Required CSV columns, in the order [`write_feature_table`] writes them.
+pub const REQUIRED: [&str; 7] = [
+    "snapshot",
+    "time_s",
+    "rms",
+    "kurtosis",
+    "crest_factor",
+    "skewness",
+    "peak",
+];
+/// Largest table accepted, bytes (a 10⁵-snapshot life with bands is about 20 MB).
+pub const MAX_TABLE_BYTES: u64 = 256 << 20;
+/// Relative tolerance of `crest_factor` against `peak / rms`.
+pub const CREST_TOL: f64 = 1e-3;
+/// Relative tolerance of the median time step against `snapshot_interval_s`.
+pub const INTERVAL_TOL: f64 = 0.1;
+/// Failure modes a sidecar may name.
+pub const FAILURE_MODES: [&str; 6] = [
+    "outer-race",
+    "inner-race",
+    "rolling-element",
+    "cage",
+    "none",
+    "unknown",
+];
+
+/// Rolling-element bearing geometry of a sidecar without a preset: the keys of a record
+/// sidecar's `bearing_geometry` object ([`crate::geometry::GeometrySpec`]; mm, degrees).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Geometry {
+    /// Rolling elements per row (3..=200).
+    pub elements: u32,
+    /// Rolling-element diameter, mm.
+    pub ball_mm: f64,
+    /// Pitch diameter, mm.
+    pub pitch_mm: f64,
+    /// Contact angle, degrees.
+    pub angle_deg: f64,
+}
+
+/// Which bearing the table describes: a wearsim preset and/or its geometry, its position.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BearingInfo {
+    /// wearsim preset (`wearsim presets`), e.g. `ims-za2115`; required by `gap --life`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preset: Option<String>,
+    /// Geometry, when there is no preset.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub geometry: Option<Geometry>,
+    /// Which bearing of the rig (free text, e.g. `test 2 bearing 1`).
+    pub id: String,
+}
+
+/// The JSON sidecar of a feature table (keys as in `docs/feature-tables.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeatureSidecar {
+    /// [`FORMAT`].
+    pub format: String,
+    /// [`FORMAT_VERSION`].
+    pub format_version: u64,
+    /// Where the data come from (data set, test, URL).
+    pub source: String,
+    /// The bearing.
+    pub bearing: BearingInfo,
+    /// Channel the statistics were computed on.
+    pub channel: String,
+    /// Unit of `rms`, `peak` and band levels (`g`, `m/s^2`, `unknown`).
+    pub unit: String,
+    /// Shaft speed, rpm (> 0).
+    pub rpm: f64,
+    /// Radial load on the bearing, N (≥ 0).
+    pub radial_load_n: f64,
+    /// Sample rate of the raw snapshots, Hz.
+    pub sample_rate_hz: f64,
+    /// Samples per snapshot.
+    pub snapshot_samples: u64,
+    /// Nominal time between snapshot starts, s.
+    pub snapshot_interval_s: f64,
+    /// Failure mode if known, one of [`FAILURE_MODES`].
+    pub failure_mode: String,
+    /// Rows of the CSV (optional; checked when given).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n_snapshots: Option<u64>,
+    /// Free notes (how dead snapshots were handled, ...).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+}
+
+/// One snapshot row.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FeatureRow {
+    /// Snapshot index.
+    pub snapshot: u64,
+    /// Time since the start of the test, s.
+    pub time_s: f64,
+    /// RMS (record unit).
+    pub rms: f64,
+    /// Kurtosis (Gaussian 3).
+    pub kurtosis: f64,
+    /// Crest factor peak / rms.
+    pub crest_factor: f64,
+    /// Skewness.
+    pub skewness: f64,
+    /// Peak max |x| (record unit).
+    pub peak: f64,
+}
+
+/// A feature table with its sidecar.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FeatureTable {
+    /// The CSV read (empty when built in memory).
+    pub path: PathBuf,
+    /// The sidecar.
+    pub sidecar: FeatureSidecar,
+    /// Rows, in time order.
+    pub rows: Vec<FeatureRow>,
+    /// Band levels `(column name, values)`, one value per row.
+    pub bands: Vec<(String, Vec<f64>)>,
+    /// Columns present but not part of the format.
+    pub ignored_columns: Vec<String>,
+}
+
+/// Why a feature table was refused. Every variant names the file and the field.
+#[derive(Debug, thiserror::Error)]
+pub enum FeatureTableError {
+    /// Reading the file failed, or the sidecar is missing.
+    #[error(transparent)]
+    Io(#[from] IoError),
+    /// A required CSV column is absent.
+    #[error("{}: missing column `{column}` (required: {})", path.display(), REQUIRED.join(", "))]
+    MissingColumn {
+        /// The CSV.
+        path: PathBuf,
+        /// The column.
+        column: String,
+    },
+    /// A cell is not a finite number (or out of its allowed range).
+    #[error("{}: column `{column}`, row {row}: {detail}", path.display())]
+    BadValue {
+        /// The CSV.
+        path: PathBuf,
+        /// The column.
+        column: String,
+        /// 1-based data row.
+        row: usize,
+        /// The value and its allowed range.
+        detail: String,
+    },
+    /// `time_s` or `snapshot` does not strictly increase.
+    #[error("{}: column `{column}` is not strictly increasing: row {row} holds {value} after {prev}", path.display())]
+    NonMonotonic {
+        /// The CSV.
+        path: PathBuf,
+        /// `time_s` or `snapshot`.
+        column: String,
+        /// 1-based data row.
+        row: usize,
+        /// Previous value.
+        prev: f64,
+        /// This value.
+        value: f64,
+    },
+    /// Fewer rows than [`MIN_SNAPSHOTS`].
+    #[error("{}: {n} snapshots; a life needs at least {min}", path.display())]
+    TooFewSnapshots {
+        /// The CSV.
+        path: PathBuf,
+        /// Rows found.
+        n: usize,
+        /// [`MIN_SNAPSHOTS`].
+        min: usize,
+    },
+    /// A sidecar field is missing, malformed, out of range, or contradicts the table.
+    #[error("{}: sidecar field `{field}`: {detail}", path.display())]
+    Sidecar {
+        /// The sidecar.
+        path: PathBuf,
+        /// The field (`rpm`, `snapshot_interval_s`, ...).
+        field: String,
+        /// Value, allowed range or the contradiction.
+        detail: String,
+    },
+}
+
+fn sidecar_err(path: &Path, field: &str, detail: impl Into<String>) -> FeatureTableError {
+    FeatureTableError::Sidecar {
+        path: path.to_path_buf(),
+        field: field.into(),
+        detail: detail.into(),
+    }
+}
+
+/// The sidecar path of a table: `<stem>.json` next to `<stem>.csv`.
+pub fn sidecar_path(csv: &Path) -> PathBuf {
+    csv.with_extension("json")
+}
+
+/// Whether `path` is a feature table of this format: a `.csv` with a sidecar whose
+/// `format` is [`FORMAT`].
+pub fn is_feature_table(path: &Path) -> bool {
+    let side = sidecar_path(path);
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
+        && std::fs::read_to_string(side)
+            .ok()
+            .and_then(|s| serde_json::from_str::<serde_json::Value>(&s).ok())
+            .is_some_and(|v| v["format"] == FORMAT)
+}
+
+/// Reads and checks a sidecar on its own (ranges of every field).
+pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
+    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read sidecar", e))?;
+    let v: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| IoError::malformed(path, format!("sidecar is not JSON: {e}")))?;
+    if v["format"] != FORMAT {
+        return Err(sidecar_err(
+            path,
+            "format",
+            format!("{} is not \"{FORMAT}\"", v["format"]),
+        ));
+    }
+    let s: FeatureSidecar = serde_json::from_value(v).map_err(|e| {
+        let msg = e.to_string();
+        let field = msg.split('`').nth(1).unwrap_or("(see message)").to_string();
+        sidecar_err(path, &field, msg)
+    })?;
+    check_sidecar(path, &s)?;
+    Ok(s)
+}
+
+pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), FeatureTableError> {
+    if s.format_version != FORMAT_VERSION {
+        return Err(sidecar_err(
+            path,
+            "format_version",
+            format!("{} (this reader knows {FORMAT_VERSION})", s.format_version),
+        ));
+    }
+    let pos = |field: &str, v: f64, lo: f64, hi: f64| {
+        if v.is_finite() && v > lo && v <= hi {
+            Ok(())
+        } else {
+            Err(sidecar_err(
+                path,
+                field,
+                format!("{v} is outside ({lo}, {hi}]"),
+            ))
+        }
+    };
+    pos("rpm", s.rpm, 0.0, 1e6)?;
+    pos("sample_rate_hz", s.sample_rate_hz, 0.0, super::MAX_FS)?;
+    pos("snapshot_interval_s", s.snapshot_interval_s, 0.0, 1e9)?;
+    if !(s.radial_load_n.is_finite() && (0.0..=1e8).contains(&s.radial_load_n)) {
+        return Err(sidecar_err(
+            path,
+            "radial_load_n",
+            format!("{} is outside [0, 1e8] N", s.radial_load_n),
+        ));
+    }
+    if s.snapshot_samples < 2 {
+        return Err(sidecar_err(
+            path,
+            "snapshot_samples",
+            format!("{} (at least 2)", s.snapshot_samples),
+        ));
+    }
+    let length = s.snapshot_samples as f64 / s.sample_rate_hz;
+    if length > s.snapshot_interval_s * (1.0 + 1e-9) {
+        return Err(sidecar_err(
+            path,
+            "snapshot_interval_s",
+            format!(
+                "{} s is shorter than one snapshot (snapshot_samples / sample_rate_hz = {length} s)",
+                s.snapshot_interval_s
+            ),
+        ));
+    }
+    if !FAILURE_MODES.contains(&s.failure_mode.as_str()) {
+        return Err(sidecar_err(
+            path,
+            "failure_mode",
+            format!(
+                "{:?} is not one of {}",
+                s.failure_mode,
+                FAILURE_MODES.join(", ")
+            ),
+        ));
+    }
+    if s.bearing.preset.is_none() && s.bearing.geometry.is_none() {
+        return Err(sidecar_err(
+            path,
+            "bearing",
+            "give `preset` (a wearsim preset) or `geometry` (elements, ball_mm, pitch_mm, angle_deg)",
+        ));
+    }
+    if let Some(p) = &s.bearing.preset {
+        if wearsim_core::presets::by_name(p).is_none() {
+            return Err(sidecar_err(
+                path,
+                "bearing.preset",
+                format!("unknown preset {p:?} (see `wearsim presets`)"),
+            ));
+        }
+    }
+    if let Some(g) = &s.bearing.geometry {
+        let ok = g.pitch_mm.is_finite()
+            && g.ball_mm.is_finite()
+            && g.ball_mm > 0.0
+            && g.ball_mm < g.pitch_mm
+            && g.pitch_mm <= 10_000.0
+            && (3..=200).contains(&g.elements)
+            && (0.0..90.0).contains(&g.angle_deg);
+        if !ok {
+            return Err(sidecar_err(
+                path,
+                "bearing.geometry",
+                format!("{g:?}: need 0 < ball_mm < pitch_mm ≤ 10000, elements 3..=200, 0 ≤ angle_deg < 90"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn parse_band(name: &str) -> Option<(f64, f64)> {
+    let rest = name.strip_prefix("band_")?.strip_suffix("_hz")?;
+    let (lo, hi) = rest.split_once('_')?;
+    let (lo, hi): (f64, f64) = (lo.parse().ok()?, hi.parse().ok()?);
+    (lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi).then_some((lo, hi))
+}
+
+/// Reads `<stem>.csv` and its sidecar `<stem>.json` and checks every rule of the format:
+/// required columns, finite values in range, strictly increasing `snapshot` and `time_s`,
+/// at least [`MIN_SNAPSHOTS`] rows, `crest_factor` = `peak / rms` (within [`CREST_TOL`]),
+/// the sidecar's ranges, `n_snapshots` = rows and the median time step within
+/// [`INTERVAL_TOL`] of `snapshot_interval_s`.
+pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError> {
+    let side = sidecar_path(path);
+    if !side.is_file() {
+        return Err(sidecar_err(
+            &side,
+            "format",
+            format!(
+                "no sidecar next to {} (a feature table is the CSV and its JSON sidecar)",
+                path.display()
+            ),
+        ));
+    }
+    let sidecar = read_sidecar(&side)?;
+    let len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    if len > MAX_TABLE_BYTES {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            what: format!("{len} bytes"),
+            limit: format!("{MAX_TABLE_BYTES} bytes"),
+        }
+        .into());
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read", e))?;
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let header: Vec<String> = lines
+        .next()
+        .ok_or_else(|| IoError::truncated(path, "no header row"))?
+        .split(',')
+        .map(|c| c.trim().trim_matches('"').to_string())
+        .collect();
+    let find = |c: &str| header.iter().position(|h| h == c);
+    let mut req = [0usize; 7];
+    for (k, c) in REQUIRED.iter().enumerate() {
+        req[k] = find(c).ok_or_else(|| FeatureTableError::MissingColumn {
+            path: path.to_path_buf(),
+            column: (*c).into(),
+        })?;
+    }
+    let band_idx: Vec<usize> = (0..header.len())
+        .filter(|i| parse_band(&header[*i]).is_some())
+        .collect();
+    let ignored_columns: Vec<String> = header
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !req.contains(i) && !band_idx.contains(i))
+        .map(|(_, h)| h.clone())
+        .collect();
+    let mut rows: Vec<FeatureRow> = vec![];
+    let mut bands: Vec<Vec<f64>> = vec![vec![]; band_idx.len()];
+    for (r, line) in lines.enumerate() {
+        let row = r + 1;
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        if cells.len() != header.len() {
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "row {row}: {} cells, the header has {}",
+                    cells.len(),
+                    header.len()
+                ),
+            )
+            .into());
+        }
+        let num = |i: usize| -> Result<f64, FeatureTableError> {
+            let c = cells.get(i).copied().unwrap_or("");
+            match c.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(FeatureTableError::BadValue {
+                    path: path.to_path_buf(),
+                    column: header[i].clone(),
+                    row,
+                    detail: format!("{c:?} is not a finite number"),
+                }),
+            }
+        };
+        let v: Vec<f64> = req.iter().map(|i| num(*i)).collect::<Result<_, _>>()?;
+        if v[0] < 0.0 || v[0].fract() != 0.0 || v[0] > 9.0e15 {
+            return Err(FeatureTableError::BadValue {
+                path: path.to_path_buf(),
+                column: "snapshot".into(),
+                row,
+                detail: format!("{} is not a non-negative integer", v[0]),
+            });
+        }
+        let this = FeatureRow {
+            snapshot: v[0] as u64,
+            time_s: v[1],
+            rms: v[2],
+            kurtosis: v[3],
+            crest_factor: v[4],
+            skewness: v[5],
+            peak: v[6],
+        };
+        check_row(path, row, rows.last(), &this)?;
+        for (b, i) in band_idx.iter().enumerate() {
+            let x = num(*i)?;
+            if x < 0.0 {
+                return Err(FeatureTableError::BadValue {
+                    path: path.to_path_buf(),
+                    column: header[*i].clone(),
+                    row,
+                    detail: format!("{x} (a band level is ≥ 0)"),
+                });
+            }
+            if let Some(col) = bands.get_mut(b) {
+                col.push(x);
+            }
+        }
+        rows.push(this);
+    }
+    if rows.len() < MIN_SNAPSHOTS {
+        return Err(FeatureTableError::TooFewSnapshots {
+            path: path.to_path_buf(),
+            n: rows.len(),
+            min: MIN_SNAPSHOTS,
+        });
+    }
+    check_against_table(&side, &sidecar, &rows)?;
+    Ok(FeatureTable {
+        path: path.to_path_buf(),
+        sidecar,
+        rows,
+        bands: band_idx
+            .iter()
+            .map(|i| header[*i].clone())
+            .zip(bands)
+            .collect(),
+        ignored_columns,
+    })
+}
+
+/// Checks one row (1-based `row`) against the format's ranges and the row before it.
+fn check_row(
+    path: &Path,
+    row: usize,
+    prev: Option<&FeatureRow>,
+    r: &FeatureRow,
+) -> Result<(), FeatureTableError> {
+    let bad = |column: &str, detail: String| FeatureTableError::BadValue {
+        path: path.to_path_buf(),
+        column: column.into(),
+        row,
+        detail,
+    };
+    for (c, v) in [
+        ("time_s", r.time_s),
+        ("rms", r.rms),
+        ("kurtosis", r.kurtosis),
+        ("crest_factor", r.crest_factor),
+        ("skewness", r.skewness),
+        ("peak", r.peak),
+    ] {
+        if !v.is_finite() {
+            return Err(bad(c, format!("{v} is not a finite number")));
+        }
+    }
+    if r.time_s < 0.0 {
+        return Err(bad(
+            "time_s",
+            format!("{} s is before the start of the test (≥ 0)", r.time_s),
+        ));
+    }
+    for (c, v) in [("rms", r.rms), ("peak", r.peak)] {
+        if v <= 0.0 {
+            return Err(bad(c, format!("{v} (allowed > 0)")));
+        }
+    }
+    if r.kurtosis < 1.0 {
+        return Err(bad(
+            "kurtosis",
+            format!("{} (allowed ≥ 1; the format's kurtosis is m4/m2², 3 for Gaussian, not the excess kurtosis)", r.kurtosis),
+        ));
+    }
+    if r.crest_factor < 1.0 {
+        return Err(bad(
+            "crest_factor",
+            format!("{} (allowed ≥ 1: peak / rms)", r.crest_factor),
+        ));
+    }
+    let ratio = r.peak / r.rms;
+    if (r.crest_factor - ratio).abs() > CREST_TOL * ratio {
+        return Err(bad(
+            "crest_factor",
+            format!(
+                "{} contradicts peak / rms = {ratio} (tolerance {CREST_TOL} relative)",
+                r.crest_factor
+            ),
+        ));
+    }
+    if let Some(prev) = prev {
+        for (col, p, t) in [
+            ("snapshot", prev.snapshot as f64, r.snapshot as f64),
+            ("time_s", prev.time_s, r.time_s),
+        ] {
+            if t <= p {
+                return Err(FeatureTableError::NonMonotonic {
+                    path: path.to_path_buf(),
+                    column: col.into(),
+                    row,
+                    prev: p,
+                    value: t,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks every row of `rows` ([`check_row`]).
+pub(crate) fn check_rows(path: &Path, rows: &[FeatureRow]) -> Result<(), FeatureTableError> {
+    let mut prev = None;
+    for (i, r) in rows.iter().enumerate() {
+        check_row(path, i + 1, prev, r)?;
+        prev = Some(r);
+    }
+    Ok(())
+}
+
+/// Median time step between consecutive snapshots, s.
+pub fn median_step(rows: &[FeatureRow]) -> f64 {
+    let steps: Vec<f64> = rows.windows(2).map(|w| w[1].time_s - w[0].time_s).collect();
+    crate::analysis::stats::upper_median(steps).unwrap_or(0.0)
+}
+
+pub(crate) fn check_against_table(
+    side: &Path,
+    s: &FeatureSidecar,
+    rows: &[FeatureRow],
+) -> Result<(), FeatureTableError> {
+    if let Some(n) = s.n_snapshots {
+        if n != rows.len() as u64 {
+            return Err(sidecar_err(
+                side,
+                "n_snapshots",
+                format!("{n}, but the table has {} rows", rows.len()),
+            ));
+        }
+    }
+    let step = median_step(rows);
+    if (step - s.snapshot_interval_s).abs() > INTERVAL_TOL * s.snapshot_interval_s {
+        return Err(sidecar_err(
+            side,
+            "snapshot_interval_s",
+            format!(
+                "{} s, but the median step of the time_s column is {step} s (tolerance {:.0} %)",
+                s.snapshot_interval_s,
+                100.0 * INTERVAL_TOL
+            ),
+        ));
+    }
+    let length = s.snapshot_samples as f64 / s.sample_rate_hz;
+    let min_gap = rows
+        .windows(2)
+        .map(|w| w[1].time_s - w[0].time_s)
+        .fold(f64::INFINITY, f64::min);
+    if min_gap < length * (1.0 - 1e-9) {
+        return Err(sidecar_err(
+            side,
+            "snapshot_samples",
+            format!(
+                "{} samples at {} Hz last {length} s, longer than the shortest time step {min_gap} s of the table (snapshots would overlap)",
+                s.snapshot_samples, s.sample_rate_hz
+            ),
+        ));
+    }
+    Ok(())
+}
+
+impl FeatureTable {
+    /// The life of this table on its own normalised time line (time over the span from
+    /// the first to the last snapshot), for `gap --life`. `bearing` is the life's number
+    /// in the diagnosis (its position among the tables given).
+    pub fn to_life(&self, bearing: usize) -> MeasuredLife {
+        let hours: Vec<f64> = self.rows.iter().map(|r| r.time_s / 3600.0).collect();
+        let h0 = hours.first().copied().unwrap_or(0.0);
+        let h1 = hours.last().copied().unwrap_or(0.0);
+        let points = self
+            .rows
+            .iter()
+            .zip(&hours)
+            .map(|(r, h)| LifePoint {
+                t: (h - h0) / (h1 - h0),
+                rms: r.rms,
+                kurtosis: r.kurtosis,
+                crest: r.crest_factor,
+                skewness: r.skewness,
+            })
+            .collect();
+        MeasuredLife {
+            file: self.path.display().to_string(),
+            bearing,
+            points,
+            hours: h1 - h0,
+            dropped: 0,
+            preset: self.sidecar.bearing.preset.clone(),
+        }
+    }
+}

@@ -1,0 +1,523 @@
+//! Issue 14, "any run-to-failure test as a lifetime record": the documented feature table
+//! (`docs/feature-tables.md`), `wearsim features` on synthetic raw folders of the IMS, FEMTO
+//! and XJTU-SY layouts whose statistics are known in closed form, the reader's refusals
+//! (exit 2, field named, nothing written), and `gap --life` reading an IMS bearing through
+//! the documented format exactly as through the IMS table.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use wearsim_host::gap::lifetime::{measured, measured_tables, LifeOptions};
+use wearsim_host::io::feature_table::{read_feature_table, sidecar_path, FeatureTableError};
+use wearsim_host::io::feature_table_write::{from_ims_features, write_feature_table};
+
+fn wearsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn refused(o: &Output, needles: &[&str]) {
+    let msg = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "exit {:?}: {msg}",
+        o.status.code()
+    );
+    for n in needles {
+        assert!(msg.contains(n), "message lacks {n:?}: {msg}");
+    }
+}
+
+/// Amplitude of snapshot `k`: grows over the life (a degradation in closed form).
+fn amp(k: usize) -> f64 {
+    0.1 * (1.0 + 0.25 * k as f64)
+}
+
+/// A sine of period 20 samples: RMS A/√2, kurtosis 1.5, crest √2 (sample 5 is the peak),
+/// skewness 0.
+fn sine(a: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| a * (2.0 * std::f64::consts::PI * i as f64 / 20.0).sin())
+        .collect()
+}
+
+fn ims_folder(dir: &Path, n: usize) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 0..n {
+        let x = sine(amp(k), 20_480);
+        let text: String = x
+            .iter()
+            .map(|v| format!("{v:.9}\t0.01\t-0.02\t0.03\n"))
+            .collect();
+        // 10-minute interval: 2004.02.12.10.00.00 + 10 k min.
+        let (h, m) = (10 + (k * 10) / 60, (k * 10) % 60);
+        std::fs::write(dir.join(format!("2004.02.12.{h:02}.{m:02}.00")), text).unwrap();
+    }
+}
+
+#[test]
+fn ims_folder_gives_closed_form_statistics() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("2nd_test");
+    ims_folder(&raw, 12);
+    let out = tmp.path().join("out/b1.csv");
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--layout",
+        "auto",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["layout"], "ims");
+    assert_eq!(j["snapshots"], 12);
+    let t = read_feature_table(&out).unwrap();
+    assert_eq!(t.sidecar.bearing.preset.as_deref(), Some("ims-za2115"));
+    assert_eq!(t.sidecar.snapshot_samples, 20_480);
+    assert_eq!(t.sidecar.snapshot_interval_s, 600.0);
+    for (k, r) in t.rows.iter().enumerate() {
+        assert_eq!(r.time_s, 600.0 * k as f64);
+        // Printed with 9 decimals: relative error ≤ ~1e-8 of the amplitude.
+        assert!(
+            (r.rms - amp(k) / 2f64.sqrt()).abs() < 1e-7,
+            "rms {k}: {}",
+            r.rms
+        );
+        assert!(
+            (r.kurtosis - 1.5).abs() < 1e-6,
+            "kurtosis {k}: {}",
+            r.kurtosis
+        );
+        assert!(
+            (r.crest_factor - 2f64.sqrt()).abs() < 1e-6,
+            "crest {k}: {}",
+            r.crest_factor
+        );
+        assert!(r.skewness.abs() < 1e-6);
+    }
+    // Channel 2 is constant (a stopped channel): every snapshot is skipped, so too few
+    // remain and nothing is written.
+    let out2 = tmp.path().join("out/b2.csv");
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--layout",
+        "ims",
+        "--channel",
+        "2",
+        "--out",
+        s(&out2),
+    ]);
+    refused(&o, &["0 snapshots", "at least 10"]);
+    assert!(!out2.exists() && !sidecar_path(&out2).exists());
+}
+
+fn femto_folder(dir: &Path, n: usize, bad: Option<usize>) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 0..n {
+        // 10 s apart, starting at 23:59:10 so that the clock wraps past midnight.
+        let t = (23 * 3600 + 59 * 60 + 10 + 10 * k) % 86_400;
+        let (h, m, sec) = (t / 3600, (t / 60) % 60, t % 60);
+        let a = amp(k);
+        let mut text = String::new();
+        for i in 0..2560 {
+            // A ±A square wave: RMS A, kurtosis 1, crest 1, skewness 0.
+            let v = if i % 2 == 0 { a } else { -a };
+            let cell = if bad == Some(k) && i == 7 {
+                "nan".to_string()
+            } else {
+                format!("{v}")
+            };
+            text.push_str(&format!("{h},{m},{sec},{},{cell},0.5\n", 39 * i));
+        }
+        std::fs::write(dir.join(format!("acc_{:05}.csv", k + 1)), text).unwrap();
+    }
+    std::fs::write(dir.join("temp_00001.csv"), "not a snapshot\n").unwrap();
+}
+
+#[test]
+fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("Bearing1_1");
+    femto_folder(&raw, 12, None);
+    let out = tmp.path().join("femto.csv");
+    // No speed in the files: refused, nothing written.
+    let o = wearsim(&["features", s(&raw), "--layout", "femto", "--out", s(&out)]);
+    refused(&o, &["--rpm"]);
+    assert!(!out.exists());
+    // No geometry either (not documented by PRONOSTIA).
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--out",
+        s(&out),
+        "--rpm",
+        "1800",
+        "--load-n",
+        "4000",
+    ]);
+    refused(&o, &["--bearing-geometry"]);
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--out",
+        s(&out),
+        "--rpm",
+        "1800",
+        "--load-n",
+        "4000",
+        "--bearing-geometry",
+        "elements=13,ball=3.5,pitch=25.6,angle=0",
+        "--failure-mode",
+        "outer-race",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    assert_eq!(t.rows.len(), 12);
+    assert_eq!(t.sidecar.sample_rate_hz, 25_600.0);
+    assert_eq!(t.sidecar.failure_mode, "outer-race");
+    for (k, r) in t.rows.iter().enumerate() {
+        assert_eq!(r.time_s, 10.0 * k as f64, "snapshot {k} across midnight");
+        assert!((r.rms - amp(k)).abs() < 1e-12 * amp(k));
+        assert!((r.kurtosis - 1.0).abs() < 1e-9 && (r.crest_factor - 1.0).abs() < 1e-9);
+    }
+    // A NaN in one snapshot: exit 2 naming it, the earlier table is left as it was.
+    let before = std::fs::read(&out).unwrap();
+    femto_folder(&raw, 12, Some(4));
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--out",
+        s(&out),
+        "--rpm",
+        "1800",
+        "--load-n",
+        "4000",
+        "--bearing-geometry",
+        "elements=13,ball=3.5,pitch=25.6,angle=0",
+    ]);
+    refused(&o, &["acc_00005.csv"]);
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+}
+
+#[test]
+fn xjtu_folder_is_a_minute_per_file_with_the_catalogue_bearing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("Bearing1_1");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 1..=11 {
+        let mut text = String::from("Horizontal_vibration_signals,Vertical_vibration_signals\n");
+        for v in sine(amp(k), 2000) {
+            text.push_str(&format!("{v},0.25\n"));
+        }
+        std::fs::write(raw.join(format!("{k}.csv")), text).unwrap();
+    }
+    let out = tmp.path().join("x.csv");
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--out",
+        s(&out),
+        "--rpm",
+        "2100",
+        "--load-n",
+        "12000",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    let g = t.sidecar.bearing.geometry.as_ref().unwrap();
+    assert_eq!((g.elements, g.ball_mm, g.pitch_mm), (8, 7.92, 34.55));
+    for (i, r) in t.rows.iter().enumerate() {
+        assert_eq!(r.time_s, 60.0 * i as f64);
+        assert!((r.rms - amp(i + 1) / 2f64.sqrt()).abs() < 1e-12);
+    }
+    // An empty folder is no layout.
+    let empty = tmp.path().join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    refused(
+        &wearsim(&["features", s(&empty), "--out", s(&out)]),
+        &["--layout auto"],
+    );
+}
+
+/// A valid table of `n` snapshots, 600 s apart, written by the library writer.
+fn good_table(dir: &Path, n: usize) -> PathBuf {
+    let raw = dir.join("raw");
+    ims_folder(&raw, n);
+    let out = dir.join("t.csv");
+    let o = wearsim(&["features", s(&raw), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    out
+}
+
+fn edit(path: &Path, f: impl Fn(String) -> String) {
+    let t = std::fs::read_to_string(path).unwrap();
+    std::fs::write(path, f(t)).unwrap();
+}
+
+#[test]
+fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let csv = good_table(tmp.path(), 12);
+    let side = sidecar_path(&csv);
+    let (csv0, side0) = (
+        std::fs::read_to_string(&csv).unwrap(),
+        std::fs::read_to_string(&side).unwrap(),
+    );
+    let reset = || {
+        std::fs::write(&csv, &csv0).unwrap();
+        std::fs::write(&side, &side0).unwrap();
+    };
+    let field = |e: FeatureTableError| e.to_string();
+    // Missing column.
+    edit(&csv, |t| t.replacen("kurtosis", "kurt", 1));
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::MissingColumn { ref column, .. } if column == "kurtosis"),
+        "{e}"
+    );
+    reset();
+    // Non-finite value (row 3 rms).
+    edit(&csv, |t| {
+        let mut l: Vec<String> = t.lines().map(String::from).collect();
+        let mut c: Vec<String> = l[3].split(',').map(String::from).collect();
+        c[2] = "inf".into();
+        l[3] = c.join(",");
+        l.join("\n")
+    });
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::BadValue { ref column, row: 3, .. } if column == "rms"),
+        "{e}"
+    );
+    reset();
+    // Non-monotonic time: swap the time of rows 5 and 6.
+    edit(&csv, |t| {
+        t.replace(",3000.0,", ",X,")
+            .replace(",3600.0,", ",3000.0,")
+            .replace(",X,", ",3600.0,")
+    });
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::NonMonotonic { ref column, .. } if column == "time_s"),
+        "{e}"
+    );
+    reset();
+    // Excess kurtosis given instead of m4/m2² (1.5 - 3 < 1).
+    edit(&csv, |t| {
+        let mut l: Vec<String> = t.lines().map(String::from).collect();
+        let mut c: Vec<String> = l[1].split(',').map(String::from).collect();
+        c[3] = "-1.5".into();
+        l[1] = c.join(",");
+        l.join("\n")
+    });
+    assert!(field(read_feature_table(&csv).unwrap_err()).contains("not the excess kurtosis"));
+    reset();
+    // Sidecar contradicts the table: snapshot count, interval.
+    edit(&side, |t| {
+        t.replace("\"n_snapshots\": 12", "\"n_snapshots\": 13")
+    });
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::Sidecar { ref field, .. } if field == "n_snapshots"),
+        "{e}"
+    );
+    reset();
+    edit(&side, |t| {
+        t.replace(
+            "\"snapshot_interval_s\": 600.0",
+            "\"snapshot_interval_s\": 60.0",
+        )
+    });
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::Sidecar { ref field, .. } if field == "snapshot_interval_s"),
+        "{e}"
+    );
+    reset();
+    // Too few snapshots.
+    edit(&csv, |t| t.lines().take(6).collect::<Vec<_>>().join("\n"));
+    edit(&side, |t| t.replace("\"n_snapshots\": 12,", ""));
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::TooFewSnapshots { n: 5, .. }),
+        "{e}"
+    );
+    // The same through `gap --life`: exit 2, field named, no report written.
+    let out = tmp.path().join("gap");
+    refused(
+        &wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&csv),
+            "--real",
+            s(&csv),
+            "--out",
+            s(&out),
+        ]),
+        &["5 snapshots"],
+    );
+    assert_eq!(std::fs::read_dir(&out).map_or(0, |d| d.count()), 0);
+    reset();
+    // A table the simulated life cannot stand for: another speed than its preset's.
+    edit(&side, |t| t.replace("\"rpm\": 2000.0", "\"rpm\": 1500.0"));
+    refused(
+        &wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&csv),
+            "--real",
+            s(&csv),
+            "--out",
+            s(&out),
+        ]),
+        &["`rpm`", "2000"],
+    );
+    assert_eq!(std::fs::read_dir(&out).map_or(0, |d| d.count()), 0);
+    reset();
+    // Valid tables, but 12 snapshots cannot fill the life's stages: refused before any simulation.
+    refused(
+        &wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&csv),
+            "--real",
+            s(&csv),
+            "--out",
+            s(&out),
+        ]),
+        &["running-in stage"],
+    );
+    assert_eq!(std::fs::read_dir(&out).map_or(0, |d| d.count()), 0);
+    // Without --life a feature table is refused with the invocation to use.
+    refused(
+        &wearsim(&["gap", "--real", s(&csv), "--out", s(&out)]),
+        &["gap --life --real"],
+    );
+    // The writer refuses what the reader would refuse: nothing is written.
+    let t = read_feature_table(&csv).unwrap();
+    let mut rows = t.rows.clone();
+    rows[4].time_s = rows[3].time_s;
+    let other = tmp.path().join("w/other.csv");
+    assert!(write_feature_table(&other, &t.sidecar, &rows, &[]).is_err());
+    assert!(!other.exists());
+}
+
+#[test]
+fn an_ims_bearing_reads_the_same_through_the_documented_format(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        return Ok(());
+    };
+    let ims = data.join("ims/features_chocho66/test2_timefeatures.csv");
+    let tmp = tempfile::tempdir()?;
+    let mut tables = vec![];
+    for b in 1..=4 {
+        let (side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
+        let p = tmp.path().join(format!("test2_b{b}.csv"));
+        write_feature_table(&p, &side, &rows, &[])?;
+        tables.push(p);
+    }
+    let o = LifeOptions {
+        train: 1,
+        holdout: vec![2, 3, 4],
+        seed: 1,
+        jobs: 1,
+        effects: vec![],
+        leave_one_out: false,
+    };
+    let a = measured(&ims, &o)?;
+    let b = measured_tables(&tables, &o)?;
+    // The diagnosis is a function of these (and the options): equal inputs, equal result.
+    for (x, y) in std::iter::once((&a.train, &b.train)).chain(a.holdout.iter().zip(&b.holdout)) {
+        assert_eq!(x.points, y.points, "bearing {}", x.bearing);
+        assert_eq!(x.hours, y.hours);
+        assert_eq!(x.preset, y.preset);
+        assert_eq!(x.bearing, y.bearing);
+    }
+    for (x, y) in std::iter::once((&a.train_ref, &b.train_ref))
+        .chain(a.holdout_ref.iter().zip(&b.holdout_ref))
+    {
+        assert_eq!(
+            (&x.names, &x.mean, &x.spread, &x.weight, &x.count),
+            (&y.names, &y.mean, &y.spread, &y.weight, &y.count)
+        );
+    }
+    println!(
+        "test 2 bearing 1: {} live snapshots over {:.1} h, {} dropped as dead",
+        a.train.points.len(),
+        a.train.hours,
+        a.train.dropped
+    );
+    Ok(())
+}
+
+/// The whole lifetime diagnosis on IMS test 2 read both ways (about twice `gap_life`'s
+/// time, so not in the default run): `cargo test -p wearsim-host --test feature_tables --
+/// --ignored`. Every figure of the result must be equal; only the file labels, the run
+/// time and the simulation count (which depends on thread timing) may differ.
+#[test]
+#[ignore = "two whole lifetime diagnoses (~15 min on 2 cores); the default test checks their inputs bit for bit"]
+fn gap_life_gives_the_same_result_on_both_formats() -> Result<(), Box<dyn std::error::Error>> {
+    use wearsim_host::gap::lifetime::diagnose;
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        return Ok(());
+    };
+    let ims = data.join("ims/features_chocho66/test2_timefeatures.csv");
+    let tmp = tempfile::tempdir()?;
+    let mut tables = vec![];
+    for b in 1..=4 {
+        let (side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
+        let p = tmp.path().join(format!("test2_b{b}.csv"));
+        write_feature_table(&p, &side, &rows, &[])?;
+        tables.push(p);
+    }
+    let o = LifeOptions {
+        train: 1,
+        holdout: vec![2, 3, 4],
+        seed: 1,
+        jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        effects: vec![],
+        leave_one_out: false,
+    };
+    let norm = |g: &wearsim_host::gap::lifetime::LifeGap, names: &dyn Fn(usize) -> String| {
+        let mut v = serde_json::to_value(g).unwrap();
+        for k in ["seconds", "simulations", "train", "holdout"] {
+            v.as_object_mut().unwrap().remove(k);
+        }
+        let mut s = v.to_string();
+        for b in 1..=4 {
+            s = s.replace(&names(b), &format!("L{b}"));
+        }
+        s
+    };
+    let a = diagnose(&measured(&ims, &o)?, &o)?;
+    let b = diagnose(&measured_tables(&tables, &o)?, &o)?;
+    println!(
+        "IMS table: held-out {:.3} -> {:.3}, life factor {:.4e}; feature tables: {:.3} -> {:.3}, {:.4e}",
+        a.attribution.baseline_holdout,
+        a.attribution.final_holdout,
+        a.life_factor,
+        b.attribution.baseline_holdout,
+        b.attribution.final_holdout,
+        b.life_factor
+    );
+    let x = norm(&a, &|k| format!("test2_timefeatures.csv bearing {k}"));
+    let y = norm(&b, &|k| format!("test2_b{k}.csv bearing {k}"));
+    assert!(x == y, "the diagnoses differ");
+    Ok(())
+}
