@@ -20,15 +20,14 @@
 //! One parameter set ([`Method::default`]) serves every record: nothing depends on a label.
 
 use crate::analysis::{
-    self, detect_fault, envelope_spectrum, fast_kurtogram, welch_psd, zone_levels, DetectParams,
-    FaultDiagnosis, FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window,
-    ZoneBands, ZoneLevels,
+    self, detect_fault, envelope_spectrum, welch_psd, zone_levels, DetectParams, FaultDiagnosis,
+    FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window, ZoneBands,
+    ZoneLevels,
 };
 use crate::io::{self, ReadOptions, Record};
 use crate::kinematics;
 use clap::Args;
 use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -247,13 +246,15 @@ pub fn prewhiten(x: &[f64]) -> Vec<f64> {
     if n < 2 {
         return vec![0.0; n];
     }
-    let mean = x.iter().sum::<f64>() / n as f64;
-    let mut planner = RealFftPlanner::<f64>::new();
-    let fwd = planner.plan_fft_forward(n);
-    let inv = planner.plan_fft_inverse(n);
-    let mut input: Vec<f64> = x.iter().map(|v| v - mean).collect();
-    let mut spec = fwd.make_output_vec();
-    if fwd.process(&mut input, &mut spec).is_err() {
+    prewhiten_spectrum(analysis::fft::rfft(x, analysis::stats::mean(x)), n)
+}
+
+/// [`prewhiten`] from `spec`, the one-sided spectrum (`n/2 + 1` bins) of the mean-removed
+/// record of `n >= 2` samples (the spectrum the fast kurtogram cuts its bands from; plans
+/// cached per thread).
+fn prewhiten_spectrum(mut spec: Vec<Complex<f64>>, n: usize) -> Vec<f64> {
+    let inv = analysis::fft::plan_c2r(n);
+    if spec.len() != n / 2 + 1 {
         return vec![0.0; n];
     }
     for (k, c) in spec.iter_mut().enumerate() {
@@ -304,13 +305,6 @@ pub fn analyze_signal(
         raw.to_vec()
     };
     let x = normalised.as_slice();
-    let white;
-    let y: &[f64] = if method.prewhiten {
-        white = prewhiten(x);
-        &white
-    } else {
-        x
-    };
     let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
     let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
     // Shallowest level whose narrowest band is no wider than the narrowest admissible band
@@ -324,7 +318,16 @@ pub fn analyze_signal(
         level -= 1;
     }
     // Spectral kurtosis of the raw record says where the impulses dominate (Antoni 2007).
-    let kg = fast_kurtogram(x, fs, level)?;
+    let (kg, spec) = analysis::kurtogram::fast_kurtogram_and_spectrum(x, fs, level)?;
+    // Cepstral pre-whitening from the same spectrum of the mean-removed record (the
+    // kurtogram has checked the record: finite, not constant, long enough).
+    let white;
+    let y: &[f64] = if method.prewhiten {
+        white = prewhiten_spectrum(spec, x.len());
+        &white
+    } else {
+        x
+    };
     let mut best: Option<(f64, usize, usize)> = None;
     for (r, row) in kg.grid.iter().enumerate() {
         let width = fs / 2.0 / row.len().max(1) as f64;

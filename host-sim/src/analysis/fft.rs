@@ -2,7 +2,7 @@
 //! the spectrum, envelope and kurtogram modules.
 
 use realfft::num_complex::Complex;
-use realfft::{RealFftPlanner, RealToComplex};
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 use std::cell::RefCell;
 use std::sync::Arc;
@@ -15,6 +15,11 @@ thread_local! {
 /// Forward real-to-complex plan of length `n` (cached per thread).
 pub(crate) fn plan_r2c(n: usize) -> Arc<dyn RealToComplex<f64>> {
     REAL_PLANNER.with(|p| p.borrow_mut().plan_fft_forward(n))
+}
+
+/// Inverse complex-to-real plan of length `n` (cached per thread, unnormalised).
+pub(crate) fn plan_c2r(n: usize) -> Arc<dyn ComplexToReal<f64>> {
+    REAL_PLANNER.with(|p| p.borrow_mut().plan_fft_inverse(n))
 }
 
 /// Inverse complex plan of length `n` (cached per thread, unnormalised).

@@ -62,7 +62,7 @@ pub fn spectral_kurtosis(x: &[f64], fs: f64, nperseg: usize) -> Result<Spectrum,
     }
     check_signal(x, nperseg, &format!("nperseg={nperseg}"))?;
     check_not_constant(x)?;
-    let w = Window::Hann.coefficients(nperseg);
+    let w = Window::Hann.cached(nperseg);
     let hop = nperseg / 4;
     let offset = mean(x);
     let bins = nperseg / 2 + 1;
@@ -139,6 +139,16 @@ pub struct Kurtogram {
 /// narrowest band to have 32 envelope samples (`32 · 2^(max_level+1)`
 /// samples), non-finite or constant signal.
 pub fn fast_kurtogram(x: &[f64], fs: f64, max_level: usize) -> Result<Kurtogram, AnalysisError> {
+    fast_kurtogram_and_spectrum(x, fs, max_level).map(|(kg, _)| kg)
+}
+
+/// [`fast_kurtogram`] and the one-sided spectrum it was cut from (`rfft(x, mean(x))`,
+/// `n/2 + 1` bins, unnormalised), for a caller that needs that spectrum too.
+pub(crate) fn fast_kurtogram_and_spectrum(
+    x: &[f64],
+    fs: f64,
+    max_level: usize,
+) -> Result<(Kurtogram, Vec<Complex<f64>>), AnalysisError> {
     check_fs(fs)?;
     if !(1..=MAX_LEVEL).contains(&max_level) {
         return Err(bad("max_level", &format!("in 1..={MAX_LEVEL}"), max_level));
@@ -182,7 +192,7 @@ pub fn fast_kurtogram(x: &[f64], fs: f64, max_level: usize) -> Result<Kurtogram,
     }
     let (best_kurtosis, r, i) = best;
     let width = nyquist / row_bands[r] as f64;
-    Ok(Kurtogram {
+    let kg = Kurtogram {
         levels: max_level,
         best_band: (i as f64 * width, (i + 1) as f64 * width),
         best_kurtosis,
@@ -190,7 +200,8 @@ pub fn fast_kurtogram(x: &[f64], fs: f64, max_level: usize) -> Result<Kurtogram,
         grid,
         level_values: row_bands.iter().map(|&b| (b as f64).log2()).collect(),
         fs,
-    })
+    };
+    Ok((kg, spec))
 }
 
 /// Smallest `2^a 3^b 5^c >= m` (a length rustfft transforms quickly).

@@ -21,7 +21,7 @@ pub mod diagnose;
 pub mod envelope;
 pub mod error;
 pub mod faults;
-mod fft;
+pub(crate) mod fft;
 pub mod finite;
 pub mod kurtogram;
 pub mod peaks;

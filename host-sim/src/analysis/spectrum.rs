@@ -105,7 +105,7 @@ pub fn welch_psd(x: &[f64], fs: f64, p: &WelchParams) -> Result<Spectrum, Analys
     let n = p.nperseg;
     check_signal(x, n, &format!("nperseg={n}"))?;
     let step = (n - (p.overlap * n as f64).round() as usize).max(1);
-    let w = p.window.coefficients(n);
+    let w = p.window.cached(n);
     let s2: f64 = w.iter().map(|v| v * v).sum();
     let mut acc = vec![0.0; n / 2 + 1];
     let mut segments = 0usize;
@@ -145,7 +145,7 @@ pub fn amplitude_spectrum(x: &[f64], fs: f64, window: Window) -> Result<Spectrum
 /// [`amplitude_spectrum`] without argument checks (callers have checked).
 pub(crate) fn amplitude_spectrum_unchecked(x: &[f64], fs: f64, window: Window) -> Spectrum {
     let n = x.len();
-    let w = window.coefficients(n);
+    let w = window.cached(n);
     let gain: f64 = w.iter().sum();
     let spec = rfft_windowed(x, &w, 0.0);
     let values = spec

@@ -1,7 +1,21 @@
 //! Spectral-analysis windows (periodic, "DFT-even" form; Harris 1978).
 
 use serde::{Deserialize, Serialize};
+use std::cell::RefCell;
 use std::f64::consts::PI;
+use std::rc::Rc;
+
+/// Windows kept by [`Window::cached`] per thread (a record's Hann window, the Welch and
+/// spectral-kurtosis segment windows).
+const CACHED_WINDOWS: usize = 4;
+
+/// One cached window: kind, length, coefficients.
+type CachedWindow = (Window, usize, Rc<[f64]>);
+
+thread_local! {
+    /// Most recently used windows, newest last.
+    static WINDOW_CACHE: RefCell<Vec<CachedWindow>> = const { RefCell::new(Vec::new()) };
+}
 
 /// Data window applied before an FFT. The periodic (DFT-even) form is used,
 /// as is usual for spectral analysis (Harris 1978, "On the use of windows
@@ -43,6 +57,28 @@ impl Window {
             Window::BlackmanHarris => cosine_sum(&[0.35875, 0.48829, 0.14128, 0.01168]),
         }
     }
+
+    /// [`Window::coefficients`], shared from a small per-thread cache: the same values, bit
+    /// for bit, without recomputing `n` cosines when the same window is asked for again
+    /// (the analysis chain windows the record and its envelope, of equal length, and
+    /// repeats segment windows).
+    pub(crate) fn cached(self, n: usize) -> Rc<[f64]> {
+        WINDOW_CACHE.with(|c| {
+            let mut c = c.borrow_mut();
+            if let Some(i) = c.iter().position(|(w, m, _)| *w == self && *m == n) {
+                let hit = c.remove(i);
+                let w = Rc::clone(&hit.2);
+                c.push(hit);
+                return w;
+            }
+            let w: Rc<[f64]> = self.coefficients(n).into();
+            if c.len() >= CACHED_WINDOWS {
+                c.remove(0);
+            }
+            c.push((self, n, Rc::clone(&w)));
+            w
+        })
+    }
 }
 
 #[cfg(test)]
@@ -60,5 +96,23 @@ mod tests {
         let hann = Window::Hann.coefficients(n);
         assert!(hann[0].abs() < 1e-15);
         assert!((hann[n / 2] - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn cached_windows_are_the_computed_ones() {
+        // More distinct windows than the cache holds, asked for twice: every answer equals
+        // the freshly computed coefficients, bit for bit.
+        for _ in 0..2 {
+            for (w, n) in [
+                (Window::Hann, 1000),
+                (Window::Hamming, 1000),
+                (Window::Hann, 64),
+                (Window::BlackmanHarris, 333),
+                (Window::Rectangular, 7),
+                (Window::Hann, 1000),
+            ] {
+                assert_eq!(&*w.cached(n), w.coefficients(n).as_slice(), "{w:?} {n}");
+            }
+        }
     }
 }
