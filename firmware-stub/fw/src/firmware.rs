@@ -80,8 +80,13 @@ const fn parse_u64(s: Option<&str>, default: u64) -> u64 {
 
 /// Ring from the model (main loop) to the pacing interrupt: wire words (f32 bits or i16).
 static mut RING: Queue<u32, 256> = Queue::new();
-/// Transmit queue from the pacing interrupt to the main loop: (sample index, word).
-static mut TXQ: Queue<(u32, u32), 256> = Queue::new();
+/// Transmit queue from the pacing interrupt to the main loop: (sample index, word). It
+/// holds twice the ring, so that everything the ring can release while the main loop is
+/// stalled (a life's model rebuild at a stage transition stalled it past the ring's 12.8 ms at
+/// 20 kHz: 18 samples were dropped with a queue of 256) fits: a stall then
+/// shows as overruns (deadlines the ring could not meet, reported) and never as dropped
+/// samples. heapless queues hold N − 1 items: 511 ≥ 255 in the ring + 256 in flight.
+static mut TXQ: Queue<(u32, u32), 512> = Queue::new();
 static RING_RX: Mutex<RefCell<Option<Consumer<'static, u32>>>> = Mutex::new(RefCell::new(None));
 type TxProducer = heapless::spsc::Producer<'static, (u32, u32)>;
 static TXQ_TX: Mutex<RefCell<Option<TxProducer>>> = Mutex::new(RefCell::new(None));
