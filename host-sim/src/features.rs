@@ -2,7 +2,7 @@
 //! PRONOSTIA or XJTU-SY layout) turned into the documented per-snapshot feature table
 //! ([`crate::io::feature_table`], `docs/feature-tables.md`). Each snapshot is read by the
 //! layout readers of [`crate::io::layout`] / [`crate::io::ims`] and its statistics are
-//! [`crate::analysis::stats`] (kurtosis m4/m2², crest = peak / RMS).
+//! [`crate::analysis::stats()`] (kurtosis m4/m2², crest = peak / RMS).
 //!
 //! Time of each snapshot since the start of the test, per layout:
 //!

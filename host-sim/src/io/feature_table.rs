@@ -33,7 +33,7 @@ pub const FORMAT_VERSION: u64 = 1;
 /// Fewest snapshots of a table (a life needs a time line; `gap --life` needs far more,
 /// at least 3 in each of its stages).
 pub const MIN_SNAPSHOTS: usize = 10;
-/// Required CSV columns, in the order [`write_feature_table`] writes them.
+/// Required CSV columns, in the order [`super::feature_table_write::write_feature_table`] writes them.
 pub const REQUIRED: [&str; 7] = [
     "snapshot",
     "time_s",

@@ -13,7 +13,7 @@ use super::feature_table::{
 /// Writes `csv` and its sidecar atomically: both go to temporary files in the same folder
 /// (which is locked, [`super::lock::DirLock`]), any old sidecar is removed, the CSV is
 /// renamed into place and the sidecar last, so a table with a sidecar is complete. The
-/// table is checked first (the same rules as [`read_feature_table`]); nothing is written
+/// table is checked first (the same rules as [`super::feature_table::read_feature_table`]); nothing is written
 /// if it fails. Numbers are written in shortest round-trip form.
 pub fn write_feature_table(
     csv: &Path,
