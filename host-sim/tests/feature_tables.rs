@@ -4,8 +4,10 @@
 //! (exit 2, field named, nothing written), and `gap --life` reading an IMS bearing through
 //! the documented format exactly as through the IMS table.
 
+mod support;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use support::refused;
 
 use wearsim_host::gap::lifetime::{measured, measured_tables, LifeOptions};
 use wearsim_host::io::feature_table::{read_feature_table, sidecar_path, FeatureTableError};
@@ -20,19 +22,6 @@ fn wearsim(args: &[&str]) -> Output {
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
-}
-
-fn refused(o: &Output, needles: &[&str]) {
-    let msg = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "exit {:?}: {msg}",
-        o.status.code()
-    );
-    for n in needles {
-        assert!(msg.contains(n), "message lacks {n:?}: {msg}");
-    }
 }
 
 /// Amplitude of snapshot `k`: grows over the life (a degradation in closed form).
@@ -417,12 +406,11 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
     assert!(!other.exists());
 }
 
-#[test]
-fn an_ims_bearing_reads_the_same_through_the_documented_format(
-) -> Result<(), Box<dyn std::error::Error>> {
-    let Some(data) = wearsim_host::io::data_dir()? else {
-        return Ok(());
-    };
+/// IMS test 2's shared feature table and its four bearings written in the documented format
+/// (kept alive by the returned temporary folder).
+fn ims_test2_as_tables(
+    data: &Path,
+) -> Result<(PathBuf, tempfile::TempDir, Vec<PathBuf>), Box<dyn std::error::Error>> {
     let ims = data.join("ims/features_chocho66/test2_timefeatures.csv");
     let tmp = tempfile::tempdir()?;
     let mut tables = vec![];
@@ -432,14 +420,29 @@ fn an_ims_bearing_reads_the_same_through_the_documented_format(
         write_feature_table(&p, &side, &rows, &[])?;
         tables.push(p);
     }
-    let o = LifeOptions {
+    Ok((ims, tmp, tables))
+}
+
+/// Bearing 1 trained, 2–4 held out, seed 1, no effects: the `gap_life` protocol.
+fn test2_options(jobs: usize) -> LifeOptions {
+    LifeOptions {
         train: 1,
         holdout: vec![2, 3, 4],
         seed: 1,
-        jobs: 1,
+        jobs,
         effects: vec![],
         leave_one_out: false,
+    }
+}
+
+#[test]
+fn an_ims_bearing_reads_the_same_through_the_documented_format(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        return Ok(());
     };
+    let (ims, _tmp, tables) = ims_test2_as_tables(&data)?;
+    let o = test2_options(1);
     let a = measured(&ims, &o)?;
     let b = measured_tables(&tables, &o)?;
     // The diagnosis is a function of these (and the options): equal inputs, equal result.
@@ -477,23 +480,8 @@ fn gap_life_gives_the_same_result_on_both_formats() -> Result<(), Box<dyn std::e
     let Some(data) = wearsim_host::io::data_dir()? else {
         return Ok(());
     };
-    let ims = data.join("ims/features_chocho66/test2_timefeatures.csv");
-    let tmp = tempfile::tempdir()?;
-    let mut tables = vec![];
-    for b in 1..=4 {
-        let (side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
-        let p = tmp.path().join(format!("test2_b{b}.csv"));
-        write_feature_table(&p, &side, &rows, &[])?;
-        tables.push(p);
-    }
-    let o = LifeOptions {
-        train: 1,
-        holdout: vec![2, 3, 4],
-        seed: 1,
-        jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
-        effects: vec![],
-        leave_one_out: false,
-    };
+    let (ims, _tmp, tables) = ims_test2_as_tables(&data)?;
+    let o = test2_options(std::thread::available_parallelism().map_or(1, |n| n.get()));
     let norm = |g: &wearsim_host::gap::lifetime::LifeGap, names: &dyn Fn(usize) -> String| {
         let mut v = serde_json::to_value(g).unwrap();
         for k in ["seconds", "simulations", "train", "holdout"] {

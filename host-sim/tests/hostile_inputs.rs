@@ -3,9 +3,11 @@
 //! reports duplicates, NaN samples and over-announced streams; an empty `rec.json` does not
 //! shadow a record; an unwritable output directory is refused before any work.
 
+mod support;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use support::refused;
 
 use wearsim_frame as frame;
 
@@ -14,19 +16,6 @@ fn wearsim(args: &[&str]) -> Output {
         .args(args)
         .output()
         .unwrap()
-}
-
-fn refused(o: &Output, needles: &[&str]) {
-    let msg = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "exit {:?}: {msg}",
-        o.status.code()
-    );
-    for n in needles {
-        assert!(msg.contains(n), "message lacks {n:?}: {msg}");
-    }
 }
 
 fn s(p: &Path) -> &str {
