@@ -17,9 +17,8 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::v5::{
-    decode_numeric, inflate, parse_header, read_file, Budget, Cursor, MatClass,
-    MAX_SAMPLES_PER_FILE, MI_COMPRESSED, MI_DOUBLE, MI_INT16, MI_INT32, MI_INT64, MI_INT8,
-    MI_MATRIX, MI_SINGLE, MI_UINT16, MI_UINT32, MI_UINT64, MI_UINT8, MI_UTF8,
+    inflate, parse_header, read_file, read_real_part, Budget, Cursor, MatClass, MI_COMPRESSED,
+    MI_INT16, MI_INT32, MI_INT8, MI_MATRIX, MI_UINT16, MI_UINT32, MI_UINT8, MI_UTF8,
 };
 use crate::io::error::IoError;
 
@@ -441,40 +440,8 @@ fn matrix(
             let selected = (ctx.want)(&node.path) && !complex;
             let mut data = Vec::new();
             if selected && numel > 0 {
-                let (ty, real) = c.sub_element("real part")?;
-                let width = match ty {
-                    MI_INT8 | MI_UINT8 => 1,
-                    MI_INT16 | MI_UINT16 => 2,
-                    MI_INT32 | MI_UINT32 | MI_SINGLE => 4,
-                    MI_DOUBLE | MI_INT64 | MI_UINT64 => 8,
-                    other => {
-                        return Err(IoError::unsupported(
-                            path,
-                            format!(
-                                "{where_}: array {:?} stores its data as MAT type {other}",
-                                node.path
-                            ),
-                        ))
-                    }
-                };
-                if real.len() % width != 0 || real.len() / width != numel {
-                    return Err(IoError::contradiction(
-                        path,
-                        format!(
-                            "{where_}: array {:?} has dimensions {:?} ({numel} elements) but {} data bytes of {width}-byte type {ty}",
-                            node.path, node.dims, real.len()
-                        ),
-                    ));
-                }
-                if numel > ctx.budget.samples_left {
-                    return Err(IoError::TooLarge {
-                        path: path.to_path_buf(),
-                        what: format!("{where_}: array {:?} with {numel} elements", node.path),
-                        limit: format!("{MAX_SAMPLES_PER_FILE} samples (2^23, 64 MiB of f64) converted per file"),
-                    });
-                }
-                ctx.budget.samples_left -= numel;
-                data = decode_numeric(ty, width, real, big);
+                let what = format!("{where_}: array {:?}", node.path);
+                data = read_real_part(&mut c, path, &what, &node.dims, numel, &mut ctx.budget)?;
             }
             MatValue::Numeric {
                 data,

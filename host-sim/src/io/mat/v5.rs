@@ -497,6 +497,24 @@ pub(crate) fn parse_matrix(
         .ok_or_else(|| {
             IoError::contradiction(path, format!("{ctx}: dimensions {:?} overflow", var.dims))
         })?;
+    let what = format!("{ctx}: variable {:?}", var.name);
+    var.data = read_real_part(&mut c, path, &what, &var.dims, numel, budget)?;
+    Ok(Some(var))
+}
+
+/// The real part of a numeric array of `numel` elements (dimensions `dims`), decoded to
+/// `f64`: the next sub-element of `c`, checked to be an integer or float MAT type whose byte
+/// count holds exactly `numel` elements, and charged to the per-file conversion `budget`
+/// ([`MAX_SAMPLES_PER_FILE`]). `what` names the array in the messages. Shared by the flat
+/// reader and the struct/cell tree (`super::tree`).
+pub(crate) fn read_real_part(
+    c: &mut Cursor<'_>,
+    path: &Path,
+    what: &str,
+    dims: &[usize],
+    numel: usize,
+    budget: &mut Budget,
+) -> Result<Vec<f64>, IoError> {
     let (ty, real) = c.sub_element("real part")?;
     let width = match ty {
         MI_INT8 | MI_UINT8 => 1,
@@ -506,10 +524,7 @@ pub(crate) fn parse_matrix(
         other => {
             return Err(IoError::unsupported(
                 path,
-                format!(
-                    "{ctx}: variable {:?} stores its data as MAT type {other}",
-                    var.name
-                ),
+                format!("{what} stores its data as MAT type {other}"),
             ))
         }
     };
@@ -517,9 +532,7 @@ pub(crate) fn parse_matrix(
         return Err(IoError::contradiction(
             path,
             format!(
-                "{ctx}: variable {:?} has dimensions {:?} ({numel} elements) but {} data bytes of {width}-byte type {ty}",
-                var.name,
-                var.dims,
+                "{what} has dimensions {dims:?} ({numel} elements) but {} data bytes of {width}-byte type {ty}",
                 real.len()
             ),
         ));
@@ -528,8 +541,7 @@ pub(crate) fn parse_matrix(
         return Err(IoError::TooLarge {
             path: path.to_path_buf(),
             what: format!(
-                "{ctx}: variable {:?} with {numel} elements ({} bytes as f64)",
-                var.name,
+                "{what} with {numel} elements ({} bytes as f64)",
                 numel.saturating_mul(8)
             ),
             limit: format!(
@@ -538,8 +550,7 @@ pub(crate) fn parse_matrix(
         });
     }
     budget.samples_left -= numel;
-    var.data = decode_numeric(ty, width, real, c.big);
-    Ok(Some(var))
+    Ok(decode_numeric(ty, width, real, c.big))
 }
 
 /// Convert the real-part bytes `real` of MAT type `ty` (element width `width` bytes) to
