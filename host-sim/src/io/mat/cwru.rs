@@ -158,16 +158,21 @@ fn var_record(name: &str) -> Option<u32> {
     digits.parse().ok()
 }
 
-/// Among `candidates` (variable names), pick the one whose record number matches `record`,
-/// else the only candidate; several candidates and no match is a contradiction.
-fn pick<'v>(
+/// Among `candidates` (named by `name`; `label` is what a message shows of each), pick the
+/// one whose CWRU record number matches `record` (the file name's), else the only candidate;
+/// several candidates and no match is a contradiction naming them, with `hint` appended.
+/// Shared by the flat CWRU reader and the tree resolver (`super::resolve`).
+pub(crate) fn pick_by_record<'v, T>(
     path: &Path,
-    candidates: &[&'v MatVariable],
+    candidates: &[&'v T],
+    name: impl Fn(&T) -> &str,
+    label: impl Fn(&T) -> &str,
     record: Option<u32>,
     what: &str,
-) -> Result<Option<&'v MatVariable>, IoError> {
+    hint: &str,
+) -> Result<Option<&'v T>, IoError> {
     if let Some(r) = record {
-        if let Some(v) = candidates.iter().find(|v| var_record(&v.name) == Some(r)) {
+        if let Some(v) = candidates.iter().find(|v| var_record(name(v)) == Some(r)) {
             return Ok(Some(v));
         }
     }
@@ -177,15 +182,24 @@ fn pick<'v>(
         many => Err(IoError::contradiction(
             path,
             format!(
-                "several {what} variables ({}) and none matches record {:?} of the file name",
-                many.iter()
-                    .map(|v| v.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                record
+                "several {what} variables ({}) and none matches record {record:?} of the file name{hint}",
+                many.iter().map(|v| label(v)).collect::<Vec<_>>().join(", ")
             ),
         )),
     }
+}
+
+/// [`pick_by_record`] over the flat reader's variables.
+fn pick<'v>(
+    path: &Path,
+    candidates: &[&'v MatVariable],
+    record: Option<u32>,
+    what: &str,
+) -> Result<Option<&'v MatVariable>, IoError> {
+    fn name(v: &MatVariable) -> &str {
+        &v.name
+    }
+    pick_by_record(path, candidates, name, name, record, what, "")
 }
 
 /// Read one channel of a CWRU `.mat` file.

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use super::cwru::{cwru_bearing_preset, parse_cwru_name};
+use super::cwru::{cwru_bearing_preset, parse_cwru_name, pick_by_record};
 use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode, MatValue};
 use crate::io::error::IoError;
 use crate::io::record::{check_finite, check_fs, check_rpm, Record};
@@ -90,36 +90,28 @@ pub fn recognise(nodes: &[MatNode]) -> MatLayout {
     MatLayout::Generic
 }
 
-/// Numeric prefix of a CWRU variable name: `X118_DE_time` → 118, `X097RPM` → 97.
-fn var_record(name: &str) -> Option<u32> {
-    let rest = name.strip_prefix('X')?;
-    let digits: String = rest.chars().take_while(|c| c.is_ascii_digit()).collect();
-    digits.parse().ok()
-}
-
-/// Among `cands`, the one whose CWRU record number is `record`, else the only one.
+/// [`pick_by_record`] over the tree's nodes (listed by their paths in a message).
 fn pick_cwru<'n>(
     path: &Path,
     cands: &[&'n MatNode],
     record: Option<u32>,
     what: &str,
 ) -> Result<Option<&'n MatNode>, IoError> {
-    if let Some(r) = record {
-        if let Some(v) = cands.iter().find(|v| var_record(&v.name) == Some(r)) {
-            return Ok(Some(v));
-        }
+    fn name(v: &MatNode) -> &str {
+        &v.name
     }
-    match cands {
-        [] => Ok(None),
-        [one] => Ok(Some(one)),
-        many => Err(IoError::contradiction(
-            path,
-            format!(
-                "several {what} variables ({}) and none matches record {record:?} of the file name; pass the full name with --channel",
-                many.iter().map(|v| v.path.as_str()).collect::<Vec<_>>().join(", ")
-            ),
-        )),
+    fn label(v: &MatNode) -> &str {
+        &v.path
     }
+    pick_by_record(
+        path,
+        cands,
+        name,
+        label,
+        record,
+        what,
+        "; pass the full name with --channel",
+    )
 }
 
 fn is_numeric(n: &MatNode) -> bool {
