@@ -382,18 +382,14 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
         ));
     }
     let sidecar = read_sidecar(&side)?;
-    let len = std::fs::metadata(path)
-        .map_err(|e| IoError::io(path, "stat", e))?
-        .len();
-    if len > MAX_TABLE_BYTES {
-        return Err(IoError::TooLarge {
-            path: path.to_path_buf(),
-            what: format!("{len} bytes"),
-            limit: format!("{MAX_TABLE_BYTES} bytes"),
-        }
-        .into());
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = super::record::read_capped(
+        path,
+        MAX_TABLE_BYTES,
+        "feature table",
+        &format!("{MAX_TABLE_BYTES} bytes per feature table"),
+    )?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| IoError::malformed(path, format!("feature table is not UTF-8 text: {e}")))?;
     let mut lines = text.lines().filter(|l| !l.trim().is_empty());
     let header: Vec<String> = lines
         .next()

@@ -93,16 +93,12 @@ pub fn parse_feature_timestamp(s: &str) -> Option<i64> {
 /// time stamp from the file name.
 pub fn read_ims_snapshot(path: impl AsRef<Path>, channel: usize) -> Result<Record, IoError> {
     let path = path.as_ref();
-    let len = std::fs::metadata(path)
-        .map_err(|e| IoError::io(path, "stat", e))?
-        .len();
-    if len > MAX_SNAPSHOT_BYTES {
-        return Err(IoError::unsupported(
-            path,
-            format!("{len} bytes is far larger than an IMS snapshot (about 1 MB)"),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = super::record::read_capped(
+        path,
+        MAX_SNAPSHOT_BYTES,
+        "IMS snapshot",
+        &format!("{MAX_SNAPSHOT_BYTES} bytes (an IMS snapshot is about 1 MB)"),
+    )?;
     let text = std::str::from_utf8(&bytes)
         .map_err(|e| IoError::malformed(path, format!("not ASCII text: {e}")))?;
     let mut ncols = 0usize;

@@ -192,16 +192,12 @@ pub fn read_femto(path: &Path, sep: u8, channel: Option<&str>) -> Result<Record,
             })
         }
     };
-    let len = std::fs::metadata(path)
-        .map_err(|e| IoError::io(path, "stat", e))?
-        .len();
-    if len > MAX_SNAPSHOT_BYTES {
-        return Err(IoError::unsupported(
-            path,
-            format!("{len} bytes is far larger than a FEMTO snapshot (about 100 kB)"),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = super::record::read_capped(
+        path,
+        MAX_SNAPSHOT_BYTES,
+        "FEMTO snapshot",
+        &format!("{MAX_SNAPSHOT_BYTES} bytes (a FEMTO snapshot is about 100 kB)"),
+    )?;
     let text = String::from_utf8_lossy(&bytes);
     let mut samples = Vec::new();
     for (i, line) in text.lines().enumerate() {

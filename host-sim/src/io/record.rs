@@ -78,6 +78,30 @@ pub fn check_record_size(
 /// Highest accepted sample rate, Hz (10 MHz).
 pub const MAX_FS: f64 = 10.0e6;
 
+/// The whole of file `path`, read only if it is at most `max_bytes` long (checked on its
+/// size before anything is allocated). `what` names the file's kind and `limit` describes
+/// the bound in the [`IoError::TooLarge`] message (e.g. "524288 bytes per sidecar"). The one
+/// size-checked read of the readers that take a file whole (MAT, IMS and FEMTO snapshots,
+/// sidecars, feature tables).
+pub fn read_capped(
+    path: &std::path::Path,
+    max_bytes: u64,
+    what: &str,
+    limit: &str,
+) -> Result<Vec<u8>, IoError> {
+    let len = std::fs::metadata(path)
+        .map_err(|e| IoError::io(path, "stat", e))?
+        .len();
+    if len > max_bytes {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            what: format!("{what} of {len} bytes"),
+            limit: limit.to_string(),
+        });
+    }
+    std::fs::read(path).map_err(|e| IoError::io(path, "read", e))
+}
+
 /// Check that `fs` (Hz) lies in [`MIN_FS`] ..= [`MAX_FS`]; `path` names the file that declared it.
 pub fn check_fs(path: &std::path::Path, fs: f64) -> Result<f64, IoError> {
     if fs.is_finite() && (MIN_FS..=MAX_FS).contains(&fs) {

@@ -104,16 +104,12 @@ pub fn sidecar_for(data: &Path) -> Result<Option<Sidecar>, IoError> {
 
 /// Read and validate one sidecar file.
 pub fn read_sidecar(path: &Path) -> Result<Sidecar, IoError> {
-    let len = std::fs::metadata(path)
-        .map_err(|e| IoError::io(path, "stat", e))?
-        .len();
-    if len > MAX_SIDECAR_BYTES {
-        return Err(IoError::unsupported(
-            path,
-            format!("sidecar of {len} bytes exceeds {MAX_SIDECAR_BYTES}"),
-        ));
-    }
-    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, "read", e))?;
+    let bytes = super::record::read_capped(
+        path,
+        MAX_SIDECAR_BYTES,
+        "sidecar",
+        &format!("{MAX_SIDECAR_BYTES} bytes per sidecar"),
+    )?;
     let raw: Value = serde_json::from_slice(&bytes)
         .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))?;
     parse_sidecar(path, raw)

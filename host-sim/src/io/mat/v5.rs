@@ -641,17 +641,12 @@ pub(crate) fn decode_numeric(ty: u32, width: usize, real: &[u8], big: bool) -> V
 pub const MAX_FILE_BYTES: u64 = 1 << 29;
 
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
-    let len = std::fs::metadata(path)
-        .map_err(|e| IoError::io(path, "stat", e))?
-        .len();
-    if len > MAX_FILE_BYTES {
-        return Err(IoError::TooLarge {
-            path: path.to_path_buf(),
-            what: format!("file of {len} bytes"),
-            limit: format!("{MAX_FILE_BYTES} bytes (512 MiB) per MAT file"),
-        });
-    }
-    std::fs::read(path).map_err(|e| IoError::io(path, "read", e))
+    crate::io::record::read_capped(
+        path,
+        MAX_FILE_BYTES,
+        "file",
+        &format!("{MAX_FILE_BYTES} bytes (512 MiB) per MAT file"),
+    )
 }
 
 /// Read every variable of a MAT v5 file, converting the numeric ones selected by `want`.
