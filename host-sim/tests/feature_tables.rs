@@ -255,6 +255,15 @@ fn edit(path: &Path, f: impl Fn(String) -> String) {
     std::fs::write(path, f(t)).unwrap();
 }
 
+/// CSV text `t` with the cell at line `row` (0 = header), column `col` replaced by `value`.
+fn set_cell(t: &str, row: usize, col: usize, value: &str) -> String {
+    let mut lines: Vec<String> = t.lines().map(String::from).collect();
+    let mut cells: Vec<&str> = lines[row].split(',').collect();
+    cells[col] = value;
+    lines[row] = cells.join(",");
+    lines.join("\n")
+}
+
 #[test]
 fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
     let tmp = tempfile::tempdir().unwrap();
@@ -278,13 +287,7 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
     );
     reset();
     // Non-finite value (row 3 rms).
-    edit(&csv, |t| {
-        let mut l: Vec<String> = t.lines().map(String::from).collect();
-        let mut c: Vec<String> = l[3].split(',').map(String::from).collect();
-        c[2] = "inf".into();
-        l[3] = c.join(",");
-        l.join("\n")
-    });
+    edit(&csv, |t| set_cell(&t, 3, 2, "inf"));
     let e = read_feature_table(&csv).unwrap_err();
     assert!(
         matches!(e, FeatureTableError::BadValue { ref column, row: 3, .. } if column == "rms"),
@@ -304,13 +307,7 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
     );
     reset();
     // Excess kurtosis given instead of m4/m2² (1.5 - 3 < 1).
-    edit(&csv, |t| {
-        let mut l: Vec<String> = t.lines().map(String::from).collect();
-        let mut c: Vec<String> = l[1].split(',').map(String::from).collect();
-        c[3] = "-1.5".into();
-        l[1] = c.join(",");
-        l.join("\n")
-    });
+    edit(&csv, |t| set_cell(&t, 1, 3, "-1.5"));
     assert!(field(read_feature_table(&csv).unwrap_err()).contains("not the excess kurtosis"));
     reset();
     // Sidecar contradicts the table: snapshot count, interval.
