@@ -109,6 +109,38 @@ fn mat_widening_is_counted() {
     refused(&o, &["too large", "samples", "per file"]);
 }
 
+/// A struct array with no fields and 2²⁴ elements in a 200-byte file (found by the `mat`
+/// fuzz target: its elements take no bytes, so the byte check let it through and the reader
+/// reserved 400 MB for the empty rows): refused on the per-file node budget.
+#[test]
+fn mat_fieldless_struct_elements_are_counted() {
+    let mut body = vec![];
+    sub(&mut body, 6, &[2, 0, 0, 0, 0, 0, 0, 0]); // mxSTRUCT_CLASS
+    let mut dims = vec![];
+    dims.extend_from_slice(&1i32.to_le_bytes());
+    dims.extend_from_slice(&(1i32 << 24).to_le_bytes());
+    sub(&mut body, 5, &dims);
+    sub(&mut body, 1, b"bearing");
+    sub(&mut body, 5, &32u32.to_le_bytes()); // field name length
+    sub(&mut body, 1, &[]); // no field names
+    let mut f = header();
+    f.extend_from_slice(&14u32.to_le_bytes());
+    f.extend_from_slice(&(body.len() as u32).to_le_bytes());
+    f.extend_from_slice(&body);
+    assert!(f.len() < 256, "{} bytes", f.len());
+    let e = wearsim_host::io::mat::parse_mat_tree(&f, Path::new("s.mat"), &|_| true).unwrap_err();
+    let msg = e.to_string();
+    assert!(
+        msg.contains("too large") && msg.contains("16777216 elements"),
+        "{msg}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    refused(
+        &analyze_mat(dir.path(), "s.mat", &f),
+        &["too large", "elements per MAT file"],
+    );
+}
+
 /// A double "bomb" (2²⁶ doubles, 512 MiB inflated from ≈0.5 MB): refused on the per-file
 /// decompressed budget.
 #[test]

@@ -314,6 +314,26 @@ fn top_elements(
     Ok(())
 }
 
+/// Refuses a struct or cell array of `numel` elements when they exceed the nodes left in the
+/// per-file budget ([`MAX_TREE_NODES`]), before anything is allocated for them.
+fn check_element_budget(
+    path: &Path,
+    where_: &str,
+    name: &str,
+    kind: &str,
+    numel: usize,
+    ctx: &Ctx<'_>,
+) -> Result<(), IoError> {
+    if numel > ctx.nodes_left {
+        return Err(IoError::TooLarge {
+            path: path.to_path_buf(),
+            what: format!("{where_}: {kind} {name:?} of {numel} elements"),
+            limit: format!("{MAX_TREE_NODES} arrays, fields, cells and elements per MAT file"),
+        });
+    }
+    Ok(())
+}
+
 fn u32_of(b: &[u8], big: bool) -> u32 {
     let a = [
         b.first().copied().unwrap_or(0),
@@ -489,6 +509,9 @@ fn matrix(
                     })
                     .collect()
             };
+            // Every element counts against the per-file node budget, so a struct with no
+            // fields (whose elements take no bytes) cannot declare millions of them.
+            check_element_budget(path, where_, &node.path, "struct", numel, ctx)?;
             let count = numel.saturating_mul(fields.len());
             if count > c.remaining() / 8 {
                 return Err(IoError::truncated(
@@ -524,6 +547,7 @@ fn matrix(
             MatValue::Struct { fields, elems }
         }
         MatClass::Cell => {
+            check_element_budget(path, where_, &node.path, "cell", numel, ctx)?;
             if numel > c.remaining() / 8 {
                 return Err(IoError::truncated(
                     path,
