@@ -30,6 +30,7 @@ use clap::Args;
 use realfft::num_complex::Complex;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+use wearsim_core::model::ModelConfig;
 
 /// `wearsim analyze` arguments.
 #[derive(Debug, Clone, Args, Default)]
@@ -57,6 +58,12 @@ pub struct AnalyzeArgs {
         value_name = "elements=N,ball=MM,pitch=MM,angle=DEG"
     )]
     pub bearing_geometry: Option<String>,
+    /// Scenario TOML (the `simulate --config` format) describing the bearing: its preset and
+    /// `[bearing]` give the geometry, its `[structure]` the resonance zone, and its `[speed]`
+    /// the shaft speed when neither `--rpm` nor the file gives one. Overrides the record's
+    /// bearing; not with `--bearing` or `--bearing-geometry`.
+    #[arg(long, value_name = "SCENARIO.toml", conflicts_with_all = ["bearing", "bearing_geometry"])]
+    pub config: Option<PathBuf>,
     /// Print everything as one JSON object on standard output.
     #[arg(long)]
     pub json: bool,
@@ -88,6 +95,7 @@ impl AnalyzeArgs {
             fs: None,
             bearing: None,
             bearing_geometry: None,
+            config: None,
             json: false,
             plot: None,
             more: Vec::new(),
@@ -186,12 +194,12 @@ pub struct Analysis {
     pub duration_s: f64,
     /// Shaft speed used, rpm.
     pub rpm: f64,
-    /// Where the speed came from: `argument` or `file`.
+    /// Where the speed came from: `argument`, `file` or `config` (the `--config` scenario's speed).
     pub rpm_source: String,
     /// Bearing preset used for the geometry (`custom`: the geometry of a wearsim
     /// sidecar's structured model that is no preset's).
     pub bearing: String,
-    /// Where the bearing came from: `argument` or `file`.
+    /// Where the bearing came from: `argument`, `file`, `sidecar` or `config` (`--config`).
     pub bearing_source: String,
     /// Characteristic frequencies at `rpm`, Hz.
     pub kinematics: FaultFrequencies,
@@ -405,14 +413,39 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
         fs: args.fs,
         rpm: args.rpm,
     };
-    let rec = io::read_any(&args.file, &opts).map_err(AnalyzeError::input)?;
-    analyze_record_with(
+    let mut rec = io::read_any(&args.file, &opts).map_err(AnalyzeError::input)?;
+    let scenario = match &args.config {
+        Some(path) => Some(scenario_bearing(path).map_err(AnalyzeError::input)?),
+        None => None,
+    };
+    // The speed: `--rpm`, else the file's, else the scenario's.
+    let rpm_from_config = scenario.is_some() && rec.rpm.is_none();
+    if let (true, Some((m, _))) = (rpm_from_config, &scenario) {
+        rec.rpm = Some(60.0 * m.speed.shaft_hz(0.0));
+    }
+    let (mut a, spectra) = analyze_chosen(
         &rec,
-        args.bearing.as_deref(),
-        args.bearing_geometry.as_deref(),
+        BearingChoice {
+            preset: args.bearing.as_deref(),
+            geometry: args.bearing_geometry.as_deref(),
+            scenario: scenario.as_ref().map(|(m, l)| (m, l.as_str())),
+        },
         args.rpm.is_some(),
         &Method::default(),
-    )
+    )?;
+    if rpm_from_config {
+        a.rpm_source = "config".into();
+    }
+    Ok((a, spectra))
+}
+
+/// The resolved model configuration of scenario file `path` (for `--config`) and the
+/// bearing's label: its preset's name when the geometry is the preset's, else `custom`.
+fn scenario_bearing(path: &Path) -> Result<(wearsim_core::model::ModelConfig, String), String> {
+    let file = crate::config::ScenarioFile::load(path).map_err(|e| format!("--config: {e}"))?;
+    let (model, _) = file.resolve().map_err(|e| format!("--config: {e}"))?;
+    let label = crate::io::sidecar::bearing_label(file.preset.as_deref(), &model);
+    Ok((model, label))
 }
 
 /// Analyse a record already read. `bearing` overrides the record's bearing preset;
@@ -434,28 +467,55 @@ pub fn analyze_record_with(
     rpm_from_argument: bool,
     method: &Method,
 ) -> Result<(Analysis, Spectra), AnalyzeError> {
+    let choice = BearingChoice {
+        preset: bearing,
+        geometry,
+        scenario: None,
+    };
+    analyze_chosen(rec, choice, rpm_from_argument, method)
+}
+
+/// Where the user said the bearing is described (each overrides the record's own).
+#[derive(Debug, Clone, Copy, Default)]
+struct BearingChoice<'a> {
+    /// `--bearing NAME`: a preset or catalogue bearing.
+    preset: Option<&'a str>,
+    /// `--bearing-geometry elements=..`.
+    geometry: Option<&'a str>,
+    /// `--config SCENARIO.toml`: its resolved model and bearing label.
+    scenario: Option<(&'a ModelConfig, &'a str)>,
+}
+
+fn analyze_chosen(
+    rec: &Record,
+    choice: BearingChoice,
+    rpm_from_argument: bool,
+    method: &Method,
+) -> Result<(Analysis, Spectra), AnalyzeError> {
     let file = rec.source.display().to_string();
-    let custom = crate::geometry::choose(rec, bearing, geometry)
+    let bearing = choice.preset;
+    let custom = crate::geometry::choose(rec, bearing, choice.geometry)
         .map_err(|e| AnalyzeError::input(format!("{file}: {e}")))?;
-    // A wearsim sidecar's structured model carries the geometry actually simulated (a
+    // A scenario file, or a wearsim sidecar's structured model, carries the whole model (a
     // `[bearing]` override included); other files name a preset.
     let file_model = rec
         .meta
         .get("sidecar")
         .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
     let (bearing, bearing_source, file_model) =
-        match (&custom, bearing, file_model, rec.bearing.as_deref()) {
-            (Some(c), _, _, _) => (c.0.clone(), c.1, None),
-            (None, Some(b), _, _) => (b.to_string(), "argument", None),
-            (None, None, Some(m), label) => {
+        match (&custom, bearing, choice.scenario, file_model, rec.bearing.as_deref()) {
+            (_, _, Some((m, label)), _, _) => (label.to_string(), "config", Some(m.clone())),
+            (Some(c), _, None, _, _) => (c.0.clone(), c.1, None),
+            (None, Some(b), None, _, _) => (b.to_string(), "argument", None),
+            (None, None, None, Some(m), label) => {
                 (label.unwrap_or("custom").to_string(), "file", Some(m))
             }
-            (None, None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
+            (None, None, None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
                 (b.to_string(), "file", None)
             }
-            (None, None, None, other) => {
+            (None, None, None, None, other) => {
                 return Err(AnalyzeError::input(format!(
-                "{file}: no bearing geometry{}: pass --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG or --bearing NAME (one of {}, {})",
+                "{file}: no bearing geometry{}: pass --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG, --bearing NAME (one of {}, {}) or --config SCENARIO.toml",
                 other.map_or(String::new(), |b| format!(
                     " (the file names {b:?}, which is not a preset)"
                 )),
@@ -480,12 +540,11 @@ pub fn analyze_record_with(
         }));
     }
     let kin = match (&custom, &file_model) {
-        (Some(c), _) => kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
+        (Some(c), None) => kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
             .map(|base| c.2.fault_frequencies(rpm, base.natural_hz))
             .map_err(|e| format!("{file}: {e}")),
-        (None, Some(m)) => {
-            kinematics::of_config(m, rpm).map_err(|e| format!("{file}: sidecar model: {e}"))
-        }
+        (_, Some(m)) => kinematics::of_config(m, rpm)
+            .map_err(|e| format!("{file}: {bearing_source} model: {e}")),
         (None, None) => kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),
     }
     .map_err(AnalyzeError::input)?;

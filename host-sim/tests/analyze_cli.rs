@@ -405,3 +405,105 @@ fn old_sidecar_with_a_debug_model_string_is_read() {
     assert_eq!(v["fs"], FS);
     assert_eq!(v["diagnosis"]["family"], "OuterRace");
 }
+
+/// `--config SCENARIO.toml` describes the bearing (and, for a file without one, the speed)
+/// of a record, in the `simulate --config` format: the outer-race record is diagnosed with
+/// the scenario's preset and speed, a `[bearing]` override moves the defect frequencies by
+/// its closed form, and the option refuses company it cannot keep.
+#[test]
+fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (x, kin) = outer_race_signal();
+    let csv = dir.path().join("or.csv");
+    write_csv(&csv, &x);
+    let (csv_s, fs) = (csv.to_string_lossy(), FS.to_string());
+    let scenario = dir.path().join("rig.toml");
+    std::fs::write(
+        &scenario,
+        format!("preset = \"{BEARING}\"\n[speed]\nrpm = {RPM}\n"),
+    )
+    .unwrap();
+    let sc = scenario.to_string_lossy();
+    let v = json_of(&wearsim(&[
+        "analyze", &csv_s, "--fs", &fs, "--config", &sc, "--json",
+    ]));
+    assert_eq!(v["diagnosis"]["family"], "OuterRace", "{v:#}");
+    assert_eq!(v["bearing"], BEARING);
+    assert_eq!(v["bearing_source"], "config");
+    assert_eq!(v["rpm_source"], "config");
+    assert!((v["rpm"].as_f64().unwrap() - RPM).abs() < 1e-9);
+    let bpfo = v["kinematics"]["bpfo"].as_f64().unwrap();
+    assert!(
+        (bpfo - kin.bpfo).abs() < 1e-9 * kin.bpfo,
+        "{bpfo} vs {}",
+        kin.bpfo
+    );
+
+    // `--rpm` still wins over the scenario's speed.
+    let v = json_of(&wearsim(&[
+        "analyze", &csv_s, "--fs", &fs, "--config", &sc, "--rpm", "1500", "--json",
+    ]));
+    assert_eq!(v["rpm_source"], "argument");
+    assert!((v["rpm"].as_f64().unwrap() - 1500.0).abs() < 1e-9);
+
+    // 12 elements instead of 9: BPFO = (n/2)(1 − d/D cos α) f_r scales by exactly 12/9.
+    let twelve = dir.path().join("twelve.toml");
+    std::fs::write(
+        &twelve,
+        format!("preset = \"{BEARING}\"\n[speed]\nrpm = {RPM}\n[bearing]\nelements = 12\n"),
+    )
+    .unwrap();
+    let v = json_of(&wearsim(&[
+        "analyze",
+        &csv_s,
+        "--fs",
+        &fs,
+        "--config",
+        &twelve.to_string_lossy(),
+        "--json",
+    ]));
+    assert_eq!(v["bearing"], "custom");
+    let bpfo12 = v["kinematics"]["bpfo"].as_f64().unwrap();
+    let want = kin.bpfo * 12.0 / 9.0;
+    assert!((bpfo12 - want).abs() < 1e-9 * want, "{bpfo12} vs {want}");
+
+    // Refusals: exit 2, the problem named.
+    let o = wearsim(&[
+        "analyze",
+        &csv_s,
+        "--fs",
+        &fs,
+        "--config",
+        &sc,
+        "--bearing",
+        BEARING,
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--bearing"), "{}", stderr(&o));
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[bearing]\nballs = 9\n").unwrap();
+    let o = wearsim(&[
+        "analyze",
+        &csv_s,
+        "--fs",
+        &fs,
+        "--config",
+        &bad.to_string_lossy(),
+    ]);
+    assert_input_error(&o, &["--config", "balls"]);
+    let out_of_range = dir.path().join("range.toml");
+    std::fs::write(
+        &out_of_range,
+        format!("preset = \"{BEARING}\"\n[speed]\nrpm = -5\n"),
+    )
+    .unwrap();
+    let o = wearsim(&[
+        "analyze",
+        &csv_s,
+        "--fs",
+        &fs,
+        "--config",
+        &out_of_range.to_string_lossy(),
+    ]);
+    assert_input_error(&o, &["speed.shaft_hz", "allowed"]);
+}
