@@ -580,3 +580,20 @@ fn unwritable_output_directory_is_refused_first() {
         refused(&o, &["blocker"]);
     }
 }
+
+/// A MATLAB 7.3 file (an HDF5 container behind a 512-byte MAT header) is refused as such,
+/// with the way to a readable file, not as a corrupt level-5 file.
+#[test]
+fn mat_v73_hdf5_is_refused_with_the_way_out() {
+    let mut f = vec![b' '; 512];
+    let text =
+        b"MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Mon Nov 23 2026 HDF5 schema 1.00 .";
+    f[..text.len()].copy_from_slice(text);
+    f.extend_from_slice(b"\x89HDF\r\n\x1a\n");
+    f.extend_from_slice(&[0u8; 64]);
+    let dir = tempfile::tempdir().unwrap();
+    refused(
+        &analyze_mat(dir.path(), "v73.mat", &f),
+        &["MATLAB 7.3 (HDF5)", "-v7"],
+    );
+}

@@ -261,7 +261,10 @@ pub(crate) fn parse_header(bytes: &[u8], path: &Path) -> Result<bool, IoError> {
             })
             .collect();
         if text.starts_with(b"MATLAB 7.3") || bytes.starts_with(b"\x89HDF") {
-            return Err(IoError::unsupported(path, "MATLAB 7.3 (HDF5) MAT-file"));
+            return Err(IoError::unsupported(
+                path,
+                "MATLAB 7.3 (HDF5) MAT-file; none of the public layouts read here needs it: re-save it as level 5 in MATLAB (`save(f, '-v7')`) or Octave (`save -v7 f`), or write the channel to CSV/NPY",
+            ));
         }
         return Err(IoError::BadMagic {
             path: path.to_path_buf(),
