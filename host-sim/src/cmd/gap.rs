@@ -69,6 +69,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         records: parts.roles.clone(),
         where_: where_cells(&parts.valid, &at),
         ranking: at.ranking.clone(),
+        uninformed: at.uninformed.clone(),
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
         kept: at.kept.clone(),

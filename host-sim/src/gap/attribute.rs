@@ -134,6 +134,9 @@ pub struct Dropped {
 /// The answer to "which" and "how far".
 #[derive(Debug, Clone, Serialize)]
 pub struct Attribution {
+    /// Candidate effects left out because the training records cannot inform them
+    /// (filled by the caller that checked, [`super::informed::split`]).
+    pub uninformed: Vec<super::informed::Uninformed>,
     /// Baseline total gap on the training records.
     pub baseline_train: f64,
     /// Baseline total gap on the held-out records.
@@ -399,6 +402,7 @@ pub fn attribute<T: Target>(
         }
     }
     Ok(Attribution {
+        uninformed: vec![],
         baseline_train: train0,
         baseline_holdout: hold0,
         ranking,

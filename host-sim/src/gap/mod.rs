@@ -9,6 +9,7 @@ pub mod cells;
 pub mod error;
 pub mod fit;
 pub mod identify;
+pub mod informed;
 pub mod lifetime;
 pub mod matched;
 pub mod protocol;

@@ -5,6 +5,7 @@
 use super::attribute::{attribute, Attribution, Options, Totals};
 use super::error::GapError;
 use super::identify;
+use super::informed;
 use super::matched::{Evaluator, Matched};
 use super::protocol::judge;
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
@@ -118,6 +119,8 @@ pub struct GapOutput {
     pub where_: Vec<WhereCell>,
     /// Effects ranked by held-out shrink (which).
     pub ranking: Vec<super::attribute::Ranked>,
+    /// Candidate effects not fitted because the training records cannot inform them.
+    pub uninformed: Vec<super::informed::Uninformed>,
     /// Effects added greedily (how far).
     pub greedy: Vec<super::attribute::Step>,
     /// Effects taken out again because a later addition made them redundant.
@@ -384,9 +387,24 @@ pub fn diagnose(
         a.jobs
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
+    let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
+    let (spaces, uninformed) =
+        informed::split(spaces, &Effects::NONE, &p.train, &ev, &names).map_err(GapError::run)?;
+    if spaces.is_empty() {
+        return Err(GapError::input(format!(
+            "--effects: these records cannot inform any of the chosen effects: {}",
+            uninformed
+                .iter()
+                .map(informed::finding)
+                .collect::<Vec<_>>()
+                .join("; ")
+        )));
+    }
     let opt = Options::default();
     let mut at =
         attribute(&spaces, &Effects::NONE, &p.train, &p.valid, &ev, &opt).map_err(GapError::run)?;
+    at.findings.extend(uninformed.iter().map(informed::finding));
+    at.uninformed = uninformed;
     identify::confounded(&mut at, opt.min_shrink);
     if let Some(v) = p.valid.first() {
         let groups: Vec<String> = v
