@@ -121,7 +121,7 @@ mod tests {
     impl Target for OnlyRoughness {
         fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
             sims.fetch_add(1, Ordering::Relaxed);
-            let r = fx.get(EffectKind::Roughness).map_or(0.0, |p| p[0] as f64);
+            let r = fx.get(EffectKind::Roughness).map_or(0.0, |p| p[0]);
             Ok((vec![0.3 + r, -1.0], vec![0.8, 0.6]))
         }
     }
