@@ -30,10 +30,12 @@ pub mod life;
 pub mod material;
 pub mod pass_meter;
 pub mod rating;
+pub mod site;
 pub mod stages;
 
 pub use events::{Event, EventLog, MAX_EVENTS};
 pub use life::{Life, LifeConfig, LifeState, PassLoads};
 pub use material::Material;
 pub use pass_meter::PassMeter;
+pub use site::Site;
 pub use stages::Stage;

@@ -7,7 +7,7 @@
 
 use crate::analysis::{self, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
-use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
+use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Site, Stage};
 
 pub mod calibrate;
 pub mod dense;
@@ -197,6 +197,7 @@ impl LifeRun {
             spec.life,
             &base.config().bearing,
             base.static_reference().q_max.max(1e-3),
+            Site::of(spec.model.defect.as_ref().map(|d| &d.location)),
         )?;
         let shaft_hz = spec.model.speed.shaft_hz(0.0);
         Ok(LifeRun {
@@ -226,19 +227,13 @@ impl LifeRun {
         let mut ds: State<CAPACITY> = State::new(&model, seed)?;
         let settle = (self.spec.settle * fs) as usize;
         let n = (self.spec.window * fs) as usize;
-        let exponent =
-            if model.config().bearing.contact == wearsim_core::bearing::ContactKind::Point {
-                3.0
-            } else {
-                10.0 / 3.0
-            };
-        let mut meter = PassMeter::new(model.config().bearing.elements, exponent);
+        let mut meter = PassMeter::new(self.life.site(), &model.config().bearing);
         let mut out = Vec::with_capacity(n);
         let mut emitted = 0usize;
         while out.len() < n {
             let s: Option<Sample> = model.step(&mut ds);
             if emitted >= settle {
-                meter.observe(ds.stats(), ds.cage_angle());
+                meter.observe(ds.stats(), ds.shaft_angle(), ds.cage_angle());
             }
             if let Some(s) = s {
                 if !s.accel.is_finite() {
