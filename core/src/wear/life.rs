@@ -535,8 +535,8 @@ impl Life {
         match base.defect {
             Some(d) if d.location.is_ball() => Err(ConfigError::Unsupported {
                 field: "defect.location",
-                what: "a rolling-element (ball) defect in a dynamic wear-life run (the \
-                       wear stages grow race topographies that do not fit on a ball)",
+                what: "a rolling-element (ball) defect in a wear-life run (the wear stages \
+                       grow race topographies that do not fit on a ball)",
             }),
             _ => Ok(()),
         }

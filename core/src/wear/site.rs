@@ -19,7 +19,7 @@
 use crate::bearing::BearingGeometry;
 use crate::contact::{ElementContact, HertzContact};
 use crate::forces::defect::DefectLocation;
-use crate::kinematics::FaultOrders;
+use crate::kinematics::{FaultFrequencies, FaultOrders};
 use crate::real::Real;
 
 /// The surface whose wear life is computed.
@@ -72,6 +72,16 @@ impl Site {
             Site::OuterRace => orders.bpfo,
             Site::InnerRace => orders.bpfi,
             Site::Element => 2.0 * orders.bsf,
+        }
+    }
+
+    /// The site's pass frequency (Hz) among the bearing's frequencies `ff`: BPFO, BPFI or
+    /// 2·BSF (where a defect on the site shows in the envelope spectrum).
+    pub fn pass_frequency_hz(self, ff: &FaultFrequencies) -> Real {
+        match self {
+            Site::OuterRace => ff.bpfo,
+            Site::InnerRace => ff.bpfi,
+            Site::Element => 2.0 * ff.bsf,
         }
     }
 

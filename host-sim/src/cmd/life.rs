@@ -184,12 +184,15 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         ..run.spec.model.clone()
     })
     .map_err(CliError::input)?;
-    let bpfo = base.orders().bpfo * run.shaft_hz;
+    let f_site = run
+        .life
+        .site()
+        .pass_frequency_hz(&base.frequencies_at(run.shaft_hz));
     plots.extend(crate::life::plot::events(
         &a.out,
         &event_windows,
         base.config().output_rate,
-        bpfo,
+        f_site,
         base.natural_frequency_hz(),
     )?);
     // The summary is written last: its presence means the set is complete.
@@ -201,6 +204,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         let v = json!({
             "complete": true,
             "cycles_to_failure": state.cycles,
+            "site": crate::life::site_json::site_json(&run),
             "timeline": timeline,
             "events": state.events.iter().map(crate::life::state_json::EventJson::from).collect::<Vec<_>>(),
             "snapshots": snapshots.len(),

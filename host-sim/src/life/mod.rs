@@ -16,6 +16,7 @@ pub mod ims;
 pub mod lives;
 pub mod output;
 pub mod plot;
+pub mod site_json;
 pub mod state_json;
 pub mod weibull;
 use wearsim_core::{Model, ModelConfig, Sample, State};
@@ -107,7 +108,8 @@ pub struct Features {
     pub zone_natural: f64,
     /// RMS in the high-frequency zone.
     pub zone_high: f64,
-    /// Envelope-spectrum amplitude at the fault frequency (BPFO).
+    /// Envelope-spectrum amplitude at the wear site's pass frequency (BPFO, BPFI or 2·BSF;
+    /// `wearsim_core::wear::Site::pass_frequency_hz`).
     pub fault_peak: f64,
     /// Amplitude-spectrum peak near the natural frequency.
     pub resonance_peak: f64,
@@ -271,7 +273,8 @@ impl LifeRun {
         let zones = ZoneBands::new(&ff, fs).map_err(err)?;
         let z = analysis::zone_levels(&psd, &zones);
         let env = analysis::envelope_spectrum(x, fs, None).map_err(err)?;
-        let fault_peak = analysis::peak_near(&env, ff.bpfo, 0.02 * ff.bpfo + env.df)
+        let f_site = self.life.site().pass_frequency_hz(&ff);
+        let fault_peak = analysis::peak_near(&env, f_site, 0.02 * f_site + env.df)
             .map(|p| p.value)
             .unwrap_or(0.0);
         let spec = analysis::amplitude_spectrum(x, fs, Window::Hann).map_err(err)?;
