@@ -284,6 +284,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     );
     let total = n * scales.len();
     let mut groups: Vec<LoadGroup> = vec![];
+    let mut site = serde_json::Value::Null;
     for (gi, scale) in scales.iter().enumerate() {
         let mut specs = vec![];
         let mut iso = (0.0, 0.0);
@@ -292,6 +293,9 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
             args.load_scale = *scale;
             args.seed = a.seed.wrapping_add(i as u64);
             let run = args.run()?;
+            if i == 0 && gi == 0 {
+                site = crate::life::site_json::site_json(&run);
+            }
             if i == 0 {
                 let p = if run.life.contact_kind() == ContactKind::Point {
                     3.0
@@ -328,6 +332,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     }
     let summary = json!({
         "lives_per_load": n,
+        "site": site,
         "threads": threads,
         "wall_s": wall,
         "groups": groups.iter().map(group_json).collect::<Vec<_>>(),
