@@ -545,6 +545,7 @@ impl ScenarioFile {
                 self.life_config(None, wearsim_core::wear::LifeConfig::DEFAULT.cycle_cap),
                 &cfg.bearing,
                 1.0,
+                wearsim_core::wear::Site::of(cfg.defect.as_ref().map(|d| &d.location)),
             )?;
         }
         Ok((cfg, run))

@@ -356,6 +356,8 @@ fn lives_give_weibull_and_load_exponent() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["site"]["name"], "outer_race");
+    assert_eq!(v["site"]["pass_frequency"], "BPFO");
     let groups = v["groups"].as_array().unwrap();
     assert_eq!(groups.len(), 2);
     for g in groups {

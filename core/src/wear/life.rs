@@ -7,6 +7,7 @@
 use super::events::{Event, EventLog};
 use super::material::Material;
 use super::rating::{dynamic_load_rating, lubrication_factor, stribeck_factor};
+use super::site::Site;
 use super::stages::Stage;
 use crate::bearing::{BearingGeometry, ContactKind};
 use crate::contact::{ElementContact, HertzContact};
@@ -132,6 +133,7 @@ pub struct Life {
     reference_pressure: Real,
     reference_load: Real,
     kind: ContactKind,
+    site: Site,
 }
 
 /// Weibull slope of rolling-bearing lives (ISO 281: e = 1.11 for ball bearings).
@@ -145,11 +147,21 @@ pub const MIN_FLAW: Real = 5e-6;
 
 impl Life {
     /// Validates `cfg` for `bearing`; `static_load` is the most loaded element's static
-    /// load (N) used when a window measured no pass.
+    /// load (N) used when a window measured no pass; `site` is the surface whose life is
+    /// computed ([`Site::of`] the base model's defect location).
+    ///
+    /// Per site (see [`Site`]): the passes per revolution that scale every per-pass law
+    /// (BPFO, BPFI or 2·BSF over `f_r`) and the Hertz contact that turns the measured loads
+    /// into pressures and contact half-widths (outer, inner, or the more stressed of the
+    /// element's two). The reference pressure that normalises the initiation laws stays
+    /// the outer contact's at `static_load` for every site: the material constants
+    /// (`initiation_passes`, `propagation_passes`) were set on outer-race lives, so a site
+    /// with a higher pressure accumulates faster instead of being renormalised away.
     pub fn new_checked(
         cfg: LifeConfig,
         bearing: &BearingGeometry,
         static_load: Real,
+        site: Site,
     ) -> Result<Self, ConfigError> {
         let material = Material::new_checked(cfg.material)?;
         check_range("lambda", cfg.lambda, 0.05, 20.0)?;
@@ -170,12 +182,13 @@ impl Life {
             exponent,
             elements: bearing.elements as Real,
             stribeck: stribeck_factor(bearing.contact),
-            passes_per_rev: orders.bpfo,
-            contact: contact.outer,
+            passes_per_rev: site.passes_per_rev(&orders),
+            contact: site.contact(&contact, static_load),
             element_radius: 0.5 * bearing.element_diameter,
             reference_pressure: contact.outer.max_pressure(static_load),
             reference_load: static_load,
             kind: bearing.contact,
+            site,
         })
     }
 
@@ -511,20 +524,19 @@ impl Life {
         }
     }
 
-    /// Checks that the dynamic model `base` of a life run can carry the wear history. The
-    /// stage machine is written for a race defect: it counts the defect's over-rollings as
-    /// element passes (BPFO per revolution), takes its pressures from the outer-race Hertz
-    /// contact, and grows the defect along thesis Table 1's race topographies up to a 3 mm
-    /// spall. None of that holds for a defect on a ball (over-rolled 2×BSF times per
-    /// revolution by both races, loaded only in the load-zone half of each cage turn, on a
-    /// surface a few millimetres round), so a ball defect is rejected:
+    /// Checks that the dynamic model `base` of a life run can carry the wear history. Pass
+    /// counting and contact follow the [`Site`] of the defect (element included), but the
+    /// stage machine grows the defect along thesis Table 1's race topographies up to a
+    /// 3 mm spall and several defects, which do not fit as a localized defect on a ball
+    /// (`DefectLocation::check_fit`: at most `π r_b / (1 + 1.5 (count − 1))`, 2.3 mm for
+    /// the CWRU ball at four defects). So a dynamic life with a ball defect is rejected:
     /// `ConfigError::Unsupported` naming `defect.location`. Race defects and no defect pass.
     pub fn check_base(base: &crate::model::ModelConfig) -> Result<(), ConfigError> {
         match base.defect {
             Some(d) if d.location.is_ball() => Err(ConfigError::Unsupported {
                 field: "defect.location",
                 what: "a rolling-element (ball) defect in a wear-life run (the wear stages \
-                       model race defects)",
+                       grow race topographies that do not fit on a ball)",
             }),
             _ => Ok(()),
         }
@@ -555,7 +567,23 @@ impl Life {
         cfg
     }
 
-    /// The reference Hertz pressure (Pa) of the static most loaded element.
+    /// The surface whose life is computed.
+    pub fn site(&self) -> Site {
+        self.site
+    }
+
+    /// Passes over the site per shaft revolution (–): BPFO, BPFI or 2·BSF over `f_r`.
+    pub fn passes_per_rev(&self) -> Real {
+        self.passes_per_rev
+    }
+
+    /// The Hertz contact of the site.
+    pub fn contact(&self) -> HertzContact {
+        self.contact
+    }
+
+    /// The reference Hertz pressure (Pa) of the static most loaded element at the outer
+    /// race (the normalisation of the initiation laws for every site).
     pub fn reference_pressure(&self) -> Real {
         self.reference_pressure
     }

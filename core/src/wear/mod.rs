@@ -1,9 +1,10 @@
 //! Wear evolution over the whole life (thesis §4.2, publication III §2.3–2.4 and its
 //! Fig. 3 flowchart; model.md §6–§7).
 //!
-//! The dynamic model's own contact loads, measured per element pass by
-//! [`pass_meter::PassMeter`], are turned into Hertz pressures and accumulated by the
-//! stage machine in [`life`]; no transition is scheduled by time:
+//! The dynamic model's own contact loads, measured per element pass over the wear
+//! [`site::Site`] (outer race at BPFO, inner race at BPFI, rolling element at 2·BSF) by
+//! [`pass_meter::PassMeter`], are turned into Hertz pressures with the site's contact and
+//! accumulated by the stage machine in [`life`]; no transition is scheduled by time:
 //!
 //! * running-in → steady state: the composite roughness wears down to its steady value
 //!   (abrasion per pass, faster at low λ);
@@ -30,10 +31,12 @@ pub mod life;
 pub mod material;
 pub mod pass_meter;
 pub mod rating;
+pub mod site;
 pub mod stages;
 
 pub use events::{Event, EventLog, MAX_EVENTS};
 pub use life::{Life, LifeConfig, LifeState, PassLoads};
 pub use material::Material;
 pub use pass_meter::PassMeter;
+pub use site::Site;
 pub use stages::Stage;

@@ -1,16 +1,32 @@
 //! Per-pass contact loads measured from the dynamic model: the largest element load in
-//! each element-pitch interval of cage rotation (one element passing a point of the outer
-//! race), and the largest load of an element over the defect, accumulated as power sums
-//! so that the wear laws get the right means without storing the passes.
+//! each pass interval of the wear [`Site`], and the largest load of an element over the
+//! defect, accumulated as power sums so that the wear laws get the right means without
+//! storing the passes. A pass of the site is:
+//!
+//! * outer race: an element pitch `2π/N` of cage rotation (an element passing a point of
+//!   the stationary race), BPFO per shaft revolution;
+//! * inner race: an element pitch of shaft rotation relative to the cage, `θ_shaft −
+//!   θ_cage`, BPFI per shaft revolution;
+//! * element: half a spin turn of the element, `φ_spin = (θ_shaft − θ_cage)(P − B_d cos
+//!   φ)/B_d` (a point on it meets the outer, then the inner race), 2·BSF per revolution.
 
 use super::life::PassLoads;
+use super::site::Site;
+use crate::bearing::{BearingGeometry, ContactKind};
 use crate::model::StepStats;
-use crate::real::{floor, pow, Real, TAU};
+use crate::real::{floor, pow, Real, PI, TAU};
 
 /// Accumulates per-pass peak loads from [`StepStats`] (fixed size, no allocation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PassMeter {
+    site: Site,
+    /// Passes per turn of the site angle (N for a race, 2 for an element).
     elements: Real,
+    /// Element spin per radian of shaft rotation relative to the cage (element site).
+    spin_ratio: Real,
+    /// Last shaft − cage angle (rad, element site) and the unwrapped spin angle (rad).
+    last_relative: Real,
+    spin: Real,
     exponent: Real,
     slot: i64,
     started: bool,
@@ -25,12 +41,19 @@ pub struct PassMeter {
 }
 
 impl PassMeter {
-    /// A meter for a bearing with `elements` elements and Lundberg–Palmgren exponent
-    /// `exponent` (3 balls, 10/3 rollers) for the zone mean.
-    pub fn new(elements: u8, exponent: Real) -> Self {
+    /// A meter of the passes over `site` of `bearing`, with the Lundberg–Palmgren exponent
+    /// of its contact (3 balls, 10/3 rollers) for the zone mean.
+    pub fn new(site: Site, bearing: &BearingGeometry) -> Self {
         PassMeter {
-            elements: elements as Real,
-            exponent,
+            site,
+            elements: site.passes_per_turn(bearing),
+            spin_ratio: Site::spin_ratio(bearing),
+            last_relative: 0.0,
+            spin: 0.0,
+            exponent: match bearing.contact {
+                ContactKind::Point => 3.0,
+                ContactKind::Line => 10.0 / 3.0,
+            },
             slot: 0,
             started: false,
             zone_peak: 0.0,
@@ -44,10 +67,41 @@ impl PassMeter {
         }
     }
 
-    /// Feeds one internal step: its contact figures and the cage angle (rad) after it.
+    /// The site measured.
+    pub fn site(&self) -> Site {
+        self.site
+    }
+
+    /// Feeds one internal step: its contact figures and the shaft and cage angles (rad,
+    /// wrapped to [0, 2π) as `State` gives them) after it.
     #[inline]
-    pub fn observe(&mut self, stats: StepStats, cage_angle: Real) {
-        let slot = floor(cage_angle * self.elements / TAU) as i64;
+    pub fn observe(&mut self, stats: StepStats, shaft_angle: Real, cage_angle: Real) {
+        let slot = match self.site {
+            Site::OuterRace => floor(cage_angle * self.elements / TAU) as i64,
+            Site::InnerRace => {
+                let mut rel = shaft_angle - cage_angle;
+                if rel < 0.0 {
+                    rel += TAU;
+                }
+                floor(rel * self.elements / TAU) as i64
+            }
+            Site::Element => {
+                // The spin angle is a non-integer multiple of the relative angle, so it is
+                // unwrapped here: each step adds its relative advance (|Δ| < π per step).
+                let rel = shaft_angle - cage_angle;
+                if self.started {
+                    let mut d = rel - self.last_relative;
+                    if d > PI {
+                        d -= TAU;
+                    } else if d < -PI {
+                        d += TAU;
+                    }
+                    self.spin += d * self.spin_ratio;
+                }
+                self.last_relative = rel;
+                floor(self.spin * self.elements / TAU) as i64
+            }
+        };
         if !self.started {
             self.started = true;
             self.slot = slot;

@@ -512,7 +512,7 @@ mod life {
     //! transition rebuilds the model for the new topography and is logged. The material is
     //! `Material::ACCELERATED` (a whole life in about 300 revolutions, ~12 s at 20 kHz).
     use super::{fatal, State, NB};
-    use wearsim_core::wear::{Life, LifeConfig, LifeState, Material, PassMeter, Stage};
+    use wearsim_core::wear::{Life, LifeConfig, LifeState, Material, PassMeter, Site, Stage};
     use wearsim_core::{Model, ModelConfig, Real};
 
     /// Shaft revolutions between wear updates.
@@ -530,7 +530,6 @@ mod life {
         shaft_hz: Real,
         block: u32,
         since: u32,
-        exponent: Real,
     }
 
     impl Wear {
@@ -550,26 +549,22 @@ mod life {
                 running_in: 1.0,
                 ..LifeConfig::DEFAULT
             };
-            let Ok(life) = Life::new_checked(cfg, &base.bearing, probe.static_reference().q_max)
+            let site = Site::of(base.defect.as_ref().map(|d| &d.location));
+            let Ok(life) =
+                Life::new_checked(cfg, &base.bearing, probe.static_reference().q_max, site)
             else {
                 fatal("life: configuration rejected")
             };
             let shaft_hz = base.speed.shaft_hz(0.0);
-            let exponent = if base.bearing.contact == wearsim_core::bearing::ContactKind::Point {
-                3.0
-            } else {
-                10.0 / 3.0
-            };
             Wear {
                 state: life.initial_state(seed),
                 life,
-                meter: PassMeter::new(base.bearing.elements, exponent),
+                meter: PassMeter::new(site, &base.bearing),
                 base: base.clone(),
                 rate,
                 shaft_hz,
                 block: (BLOCK_REVS / shaft_hz * rate + 0.5) as u32,
                 since: 0,
-                exponent,
             }
         }
 
@@ -584,7 +579,8 @@ mod life {
         /// Feeds one internal step's contact loads.
         #[inline]
         pub fn observe(&mut self, st: &State<NB>) {
-            self.meter.observe(st.stats(), st.cage_angle());
+            self.meter
+                .observe(st.stats(), st.shaft_angle(), st.cage_angle());
         }
 
         /// After output sample `k`: every block, advance the wear with the measured loads;
@@ -598,7 +594,7 @@ mod life {
             let mut revs = self.since as Real / self.rate * self.shaft_hz;
             self.since = 0;
             let loads = self.meter.loads();
-            self.meter = PassMeter::new(self.base.bearing.elements, self.exponent);
+            self.meter = PassMeter::new(self.life.site(), &self.base.bearing);
             let mut guard = 0;
             while revs > 0.0 && guard < 64 {
                 guard += 1;

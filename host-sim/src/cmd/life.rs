@@ -184,12 +184,15 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         ..run.spec.model.clone()
     })
     .map_err(CliError::input)?;
-    let bpfo = base.orders().bpfo * run.shaft_hz;
+    let f_site = run
+        .life
+        .site()
+        .pass_frequency_hz(&base.frequencies_at(run.shaft_hz));
     plots.extend(crate::life::plot::events(
         &a.out,
         &event_windows,
         base.config().output_rate,
-        bpfo,
+        f_site,
         base.natural_frequency_hz(),
     )?);
     // The summary is written last: its presence means the set is complete.
@@ -201,6 +204,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
         let v = json!({
             "complete": true,
             "cycles_to_failure": state.cycles,
+            "site": crate::life::site_json::site_json(&run),
             "timeline": timeline,
             "events": state.events.iter().map(crate::life::state_json::EventJson::from).collect::<Vec<_>>(),
             "snapshots": snapshots.len(),
@@ -280,6 +284,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     );
     let total = n * scales.len();
     let mut groups: Vec<LoadGroup> = vec![];
+    let mut site = serde_json::Value::Null;
     for (gi, scale) in scales.iter().enumerate() {
         let mut specs = vec![];
         let mut iso = (0.0, 0.0);
@@ -288,6 +293,9 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
             args.load_scale = *scale;
             args.seed = a.seed.wrapping_add(i as u64);
             let run = args.run()?;
+            if i == 0 && gi == 0 {
+                site = crate::life::site_json::site_json(&run);
+            }
             if i == 0 {
                 let p = if run.life.contact_kind() == ContactKind::Point {
                     3.0
@@ -324,6 +332,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     }
     let summary = json!({
         "lives_per_load": n,
+        "site": site,
         "threads": threads,
         "wall_s": wall,
         "groups": groups.iter().map(group_json).collect::<Vec<_>>(),

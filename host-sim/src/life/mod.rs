@@ -7,7 +7,7 @@
 
 use crate::analysis::{self, WelchParams, Window, ZoneBands};
 use serde::{Deserialize, Serialize};
-use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Stage};
+use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Site, Stage};
 
 pub mod calibrate;
 pub mod dense;
@@ -16,6 +16,7 @@ pub mod ims;
 pub mod lives;
 pub mod output;
 pub mod plot;
+pub mod site_json;
 pub mod state_json;
 pub mod weibull;
 use wearsim_core::{Model, ModelConfig, Sample, State};
@@ -107,7 +108,8 @@ pub struct Features {
     pub zone_natural: f64,
     /// RMS in the high-frequency zone.
     pub zone_high: f64,
-    /// Envelope-spectrum amplitude at the fault frequency (BPFO).
+    /// Envelope-spectrum amplitude at the wear site's pass frequency (BPFO, BPFI or 2·BSF;
+    /// `wearsim_core::wear::Site::pass_frequency_hz`).
     pub fault_peak: f64,
     /// Amplitude-spectrum peak near the natural frequency.
     pub resonance_peak: f64,
@@ -197,6 +199,7 @@ impl LifeRun {
             spec.life,
             &base.config().bearing,
             base.static_reference().q_max.max(1e-3),
+            Site::of(spec.model.defect.as_ref().map(|d| &d.location)),
         )?;
         let shaft_hz = spec.model.speed.shaft_hz(0.0);
         Ok(LifeRun {
@@ -226,19 +229,13 @@ impl LifeRun {
         let mut ds: State<CAPACITY> = State::new(&model, seed)?;
         let settle = (self.spec.settle * fs) as usize;
         let n = (self.spec.window * fs) as usize;
-        let exponent =
-            if model.config().bearing.contact == wearsim_core::bearing::ContactKind::Point {
-                3.0
-            } else {
-                10.0 / 3.0
-            };
-        let mut meter = PassMeter::new(model.config().bearing.elements, exponent);
+        let mut meter = PassMeter::new(self.life.site(), &model.config().bearing);
         let mut out = Vec::with_capacity(n);
         let mut emitted = 0usize;
         while out.len() < n {
             let s: Option<Sample> = model.step(&mut ds);
             if emitted >= settle {
-                meter.observe(ds.stats(), ds.cage_angle());
+                meter.observe(ds.stats(), ds.shaft_angle(), ds.cage_angle());
             }
             if let Some(s) = s {
                 if !s.accel.is_finite() {
@@ -276,7 +273,8 @@ impl LifeRun {
         let zones = ZoneBands::new(&ff, fs).map_err(err)?;
         let z = analysis::zone_levels(&psd, &zones);
         let env = analysis::envelope_spectrum(x, fs, None).map_err(err)?;
-        let fault_peak = analysis::peak_near(&env, ff.bpfo, 0.02 * ff.bpfo + env.df)
+        let f_site = self.life.site().pass_frequency_hz(&ff);
+        let fault_peak = analysis::peak_near(&env, f_site, 0.02 * f_site + env.df)
             .map(|p| p.value)
             .unwrap_or(0.0);
         let spec = analysis::amplitude_spectrum(x, fs, Window::Hann).map_err(err)?;

@@ -148,6 +148,7 @@ pub fn write_life(
         "complete": true,
         "cycles_to_failure": st.cycles,
         "stage": st.stage.name(),
+        "site": super::site_json::site_json(run),
         "events": events,
         "timeline": spans,
         "snapshots": snapshots.len(),
