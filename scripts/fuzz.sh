@@ -22,7 +22,7 @@ else
 fi
 
 python3 make_corpus.py
-TARGETS=(mat wav npy csv ims_snapshot ims_features sidecar frame)
+TARGETS=(mat wav npy csv ims_snapshot ims_features feature_table sidecar frame)
 cargo "${TOOLCHAIN[@]}" fuzz build "${SAN[@]}" -O --debug-assertions
 status=0
 for t in "${TARGETS[@]}"; do

@@ -80,6 +80,10 @@ put("ims_features", "vaibhav.csv", "Timestamp,B1_rms,B2_rms,B3_rms,B4_rms\n" + "
 put("ims_features", "chocho.csv", ",Bearing 1,Bearing 2,Bearing 3,Bearing 4\n" + "".join(f"2004-02-12 10:{i:02d}:39,{abs(v):.4f},0.1,0.2,0.3\n" for i, v in enumerate(x[:20])))
 put("sidecar", "sidecar.json", json.dumps({"format": "wearsim-output", "format_version": 1, "fs": 20000.0, "n_samples": 64, "columns": ["accel_m_s2"], "units": {"accel_m_s2": "m/s^2"}, "rpm": 1500.0, "complete": True}))
 put("sidecar", "minimal.json", json.dumps({"fs": 12000}))
+# feature_table: the sidecar, a NUL byte, then the CSV (docs/feature-tables.md).
+_side = {"format": "wearsim-feature-table", "format_version": 1, "source": "fuzz seed", "bearing": {"preset": "ims-za2115", "id": "b1"}, "channel": "ch1", "unit": "g", "rpm": 2000.0, "radial_load_n": 26689.0, "sample_rate_hz": 20000.0, "snapshot_samples": 20480, "snapshot_interval_s": 600.0, "failure_mode": "outer-race", "n_snapshots": 12}
+_rows = "".join(f"{i},{600.0 * i},{0.07 + 0.001 * i},{3.1 + 0.01 * i},{(0.3 + 0.002 * i) / (0.07 + 0.001 * i)!r},{0.01 * i},{0.3 + 0.002 * i},{0.02 + 0.0005 * i}\n" for i in range(12))
+put("feature_table", "table", json.dumps(_side) + "\0" + "snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak,band_2000_8000_hz\n" + _rows)
 
 
 def frame(kind, fmt, seq, first, scale, payload):
