@@ -416,17 +416,18 @@ fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
     let (x, kin) = outer_race_signal();
     let csv = dir.path().join("or.csv");
     write_csv(&csv, &x);
-    let (csv_s, fs) = (csv.to_string_lossy(), FS.to_string());
-    let scenario = dir.path().join("rig.toml");
-    std::fs::write(
-        &scenario,
-        format!("preset = \"{BEARING}\"\n[speed]\nrpm = {RPM}\n"),
-    )
-    .unwrap();
-    let sc = scenario.to_string_lossy();
-    let v = json_of(&wearsim(&[
-        "analyze", &csv_s, "--fs", &fs, "--config", &sc, "--json",
-    ]));
+    let (csv_s, fs) = (csv.to_string_lossy().into_owned(), FS.to_string());
+    // `analyze or.csv --fs FS --config <a scenario holding `toml`> [extra…]`.
+    let with_scenario = |name: &str, toml: String, extra: &[&str]| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, toml).expect("write scenario");
+        let path = path.to_string_lossy().into_owned();
+        let mut args = vec!["analyze", &csv_s, "--fs", &fs, "--config", &path];
+        args.extend_from_slice(extra);
+        wearsim(&args)
+    };
+    let rig = format!("preset = \"{BEARING}\"\n[speed]\nrpm = {RPM}\n");
+    let v = json_of(&with_scenario("rig.toml", rig.clone(), &["--json"]));
     assert_eq!(v["diagnosis"]["family"], "OuterRace", "{v:#}");
     assert_eq!(v["bearing"], BEARING);
     assert_eq!(v["bearing_source"], "config");
@@ -440,70 +441,29 @@ fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
     );
 
     // `--rpm` still wins over the scenario's speed.
-    let v = json_of(&wearsim(&[
-        "analyze", &csv_s, "--fs", &fs, "--config", &sc, "--rpm", "1500", "--json",
-    ]));
+    let v = json_of(&with_scenario(
+        "rig.toml",
+        rig.clone(),
+        &["--rpm", "1500", "--json"],
+    ));
     assert_eq!(v["rpm_source"], "argument");
     assert!((v["rpm"].as_f64().unwrap() - 1500.0).abs() < 1e-9);
 
     // 12 elements instead of 9: BPFO = (n/2)(1 − d/D cos α) f_r scales by exactly 12/9.
-    let twelve = dir.path().join("twelve.toml");
-    std::fs::write(
-        &twelve,
-        format!("preset = \"{BEARING}\"\n[speed]\nrpm = {RPM}\n[bearing]\nelements = 12\n"),
-    )
-    .unwrap();
-    let v = json_of(&wearsim(&[
-        "analyze",
-        &csv_s,
-        "--fs",
-        &fs,
-        "--config",
-        &twelve.to_string_lossy(),
-        "--json",
-    ]));
+    let twelve = format!("{rig}[bearing]\nelements = 12\n");
+    let v = json_of(&with_scenario("twelve.toml", twelve, &["--json"]));
     assert_eq!(v["bearing"], "custom");
     let bpfo12 = v["kinematics"]["bpfo"].as_f64().unwrap();
     let want = kin.bpfo * 12.0 / 9.0;
     assert!((bpfo12 - want).abs() < 1e-9 * want, "{bpfo12} vs {want}");
 
     // Refusals: exit 2, the problem named.
-    let o = wearsim(&[
-        "analyze",
-        &csv_s,
-        "--fs",
-        &fs,
-        "--config",
-        &sc,
-        "--bearing",
-        BEARING,
-    ]);
+    let o = with_scenario("rig.toml", rig, &["--bearing", BEARING]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--bearing"), "{}", stderr(&o));
-    let bad = dir.path().join("bad.toml");
-    std::fs::write(&bad, "[bearing]\nballs = 9\n").unwrap();
-    let o = wearsim(&[
-        "analyze",
-        &csv_s,
-        "--fs",
-        &fs,
-        "--config",
-        &bad.to_string_lossy(),
-    ]);
+    let o = with_scenario("bad.toml", "[bearing]\nballs = 9\n".into(), &[]);
     assert_input_error(&o, &["--config", "balls"]);
-    let out_of_range = dir.path().join("range.toml");
-    std::fs::write(
-        &out_of_range,
-        format!("preset = \"{BEARING}\"\n[speed]\nrpm = -5\n"),
-    )
-    .unwrap();
-    let o = wearsim(&[
-        "analyze",
-        &csv_s,
-        "--fs",
-        &fs,
-        "--config",
-        &out_of_range.to_string_lossy(),
-    ]);
+    let negative = format!("preset = \"{BEARING}\"\n[speed]\nrpm = -5\n");
+    let o = with_scenario("range.toml", negative, &[]);
     assert_input_error(&o, &["speed.shaft_hz", "allowed"]);
 }
