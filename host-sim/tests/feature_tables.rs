@@ -429,6 +429,7 @@ fn test2_options(jobs: usize) -> LifeOptions {
         jobs,
         effects: vec![],
         leave_one_out: false,
+        max_search: None,
     }
 }
 
@@ -449,6 +450,12 @@ fn an_ims_bearing_reads_the_same_through_the_documented_format(
         assert_eq!(x.preset, y.preset);
         assert_eq!(x.bearing, y.bearing);
     }
+    // One simulated bearing, described the same by the preset and by the sidecars.
+    assert_eq!(a.rig, b.rig);
+    assert_eq!(
+        a.rig.model()?,
+        wearsim_core::presets::by_name("ims-za2115").unwrap()
+    );
     for (x, y) in std::iter::once((&a.train_ref, &b.train_ref))
         .chain(a.holdout_ref.iter().zip(&b.holdout_ref))
     {

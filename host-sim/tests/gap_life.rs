@@ -29,6 +29,7 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
         effects: vec![],
         leave_one_out: false,
+        max_search: None,
     };
     let m = measured(&path, &o)?;
     let g = diagnose(&m, &o)?;
