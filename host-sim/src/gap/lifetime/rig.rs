@@ -17,7 +17,7 @@
 //! groove bearing's section; checked by the core, used by no force). The diagnosis may
 //! name this structure as part of the gap: it is not measured.
 
-use crate::geometry::GeometrySpec;
+use crate::geometry::{catalogue, GeometrySpec};
 use crate::io::feature_table::{sidecar_path, FeatureSidecar};
 use serde::Serialize;
 use std::path::Path;
@@ -129,20 +129,21 @@ impl RigDescription {
     }
 
     /// The description of a feature table's sidecar (`path` is the table, for errors): its
-    /// preset when named (whose speed, sample rate and snapshot length the sidecar must
-    /// match), else its geometry, rpm, radial load, sample rate and snapshot length with
-    /// a scaled structure (module docs).
+    /// preset when it names a model preset (whose speed, sample rate and snapshot length
+    /// the sidecar must match), else the geometry of the catalogue bearing it names
+    /// ([`crate::geometry::CATALOGUE`]) or its `geometry`, with its rpm, radial load,
+    /// sample rate and snapshot length and a scaled structure (module docs).
     pub fn from_sidecar(s: &FeatureSidecar, path: &Path) -> Result<Self, String> {
         let side = sidecar_path(path);
         let field =
             |f: &str, what: String| format!("{}: sidecar field `{f}`: {what}", side.display());
-        if let Some(name) = s.bearing.preset.as_deref() {
-            let d = Self::preset(name).map_err(|_| {
-                field(
-                    "bearing.preset",
-                    format!("unknown preset {name:?} (see `wearsim presets`)"),
-                )
-            })?;
+        let model_preset = s
+            .bearing
+            .preset
+            .as_deref()
+            .filter(|n| wearsim_core::presets::by_name(n).is_some());
+        if let Some(name) = model_preset {
+            let d = Self::preset(name)?;
             let rpm = d.shaft_hz * 60.0;
             if (s.rpm - rpm).abs() > RPM_TOL * rpm {
                 return Err(field(
@@ -174,20 +175,30 @@ impl RigDescription {
             }
             return Ok(d);
         }
-        let Some(g) = &s.bearing.geometry else {
-            return Err(field(
+        let spec = match (s.bearing.preset.as_deref(), &s.bearing.geometry) {
+            (Some(name), _) => {
+                catalogue(name)
+                    .ok_or_else(|| {
+                        field(
+                            "bearing.preset",
+                            format!("unknown preset {name:?} (see `wearsim presets`)"),
+                        )
+                    })?
+                    .geometry
+            }
+            (None, Some(g)) => GeometrySpec {
+                elements: g.elements,
+                ball_mm: g.ball_mm,
+                pitch_mm: g.pitch_mm,
+                angle_deg: g.angle_deg,
+            }
+            .checked()
+            .map_err(|e| field("bearing.geometry", e))?,
+            (None, None) => return Err(field(
                 "bearing.geometry",
-                "missing: a life gap simulates the sidecar's bearing, give `bearing.preset` or `bearing.geometry` (elements, ball_mm, pitch_mm, angle_deg)".into(),
-            ));
+                "missing: a life gap simulates the sidecar's bearing, give `bearing.preset` (a preset or catalogue bearing) or `bearing.geometry` (elements, ball_mm, pitch_mm, angle_deg)".into(),
+            )),
         };
-        let spec = GeometrySpec {
-            elements: g.elements,
-            ball_mm: g.ball_mm,
-            pitch_mm: g.pitch_mm,
-            angle_deg: g.angle_deg,
-        }
-        .checked()
-        .map_err(|e| field("bearing.geometry", e))?;
         if !(s.rpm.is_finite() && s.rpm > 0.0) {
             return Err(field("rpm", format!("{} (allowed (0, 10^6] rpm)", s.rpm)));
         }
@@ -379,5 +390,41 @@ mod tests {
         let mut e = d.clone();
         e.radial_load_n = 1.0;
         assert_eq!(d.differs(&e), Some("radial_load_n"));
+    }
+
+    #[test]
+    fn a_catalogue_bearing_is_a_geometry() {
+        use crate::io::feature_table::{BearingInfo, FeatureSidecar};
+        let side = |preset: Option<&str>| FeatureSidecar {
+            format: "wearsim-feature-table".into(),
+            format_version: 1,
+            source: "test".into(),
+            bearing: BearingInfo {
+                preset: preset.map(String::from),
+                geometry: None,
+                id: "b".into(),
+            },
+            channel: "h".into(),
+            unit: "g".into(),
+            rpm: 2100.0,
+            radial_load_n: 12_000.0,
+            sample_rate_hz: 25_600.0,
+            snapshot_samples: 32_768,
+            snapshot_interval_s: 60.0,
+            failure_mode: "unknown".into(),
+            n_snapshots: None,
+            notes: vec![],
+        };
+        let p = Path::new("x.csv");
+        let d = RigDescription::from_sidecar(&side(Some("xjtu-ldk-uer204")), p).unwrap();
+        assert_eq!(
+            (d.origin.as_str(), d.elements, d.ball_mm, d.pitch_mm),
+            ("sidecar geometry", 8, 7.92, 34.55)
+        );
+        assert_eq!(d.window_samples, 32_768);
+        let e = RigDescription::from_sidecar(&side(None), p).unwrap_err();
+        assert!(e.contains("`bearing.geometry`"), "{e}");
+        let e = RigDescription::from_sidecar(&side(Some("6205")), p).unwrap_err();
+        assert!(e.contains("`bearing.preset`"), "{e}");
     }
 }
