@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::analysis::octave_bands::{band_levels, band_name, octave_edges};
 use crate::analysis::stats::stats;
 use crate::geometry::{catalogue, GeometrySpec};
 use crate::io::feature_table::{
@@ -270,6 +271,8 @@ pub fn convert(
     let mut unit = String::from("unknown");
     let mut channel = String::new();
     let mut clock0: Option<(f64, f64)> = None; // (first clock, days added)
+                                               // Octave band levels (analysis::octave_bands), at the first snapshot's sample rate.
+    let mut bands: Vec<((f64, f64), Vec<f64>)> = vec![];
     let mut last_clock = 0.0;
     for (k, (path, _, named_t)) in list.iter().enumerate() {
         let rec =
@@ -345,6 +348,19 @@ pub fn convert(
                 continue;
             }
         };
+        if bands.is_empty() {
+            bands = octave_edges(rec.fs)
+                .into_iter()
+                .map(|b| (b, vec![]))
+                .collect();
+        }
+        let edges: Vec<(f64, f64)> = bands.iter().map(|(b, _)| *b).collect();
+        for ((_, col), v) in bands
+            .iter_mut()
+            .zip(band_levels(&rec.samples, rec.fs, &edges))
+        {
+            col.push(v);
+        }
         rows.push(FeatureRow {
             snapshot: k as u64,
             time_s,
@@ -390,7 +406,9 @@ pub fn convert(
         n_snapshots: Some(rows.len() as u64),
         notes: skipped.iter().map(|s| format!("skipped: {s}")).collect(),
     };
-    let side = write_feature_table(out, &sidecar, &rows, &[])?;
+    let band_cols: Vec<(String, Vec<f64>)> =
+        bands.into_iter().map(|(b, v)| (band_name(b), v)).collect();
+    let side = write_feature_table(out, &sidecar, &rows, &band_cols)?;
     let first = rows.first().map_or(0.0, |r| r.rms);
     let last = rows.last().map_or(0.0, |r| r.rms);
     Ok(FeaturesSummary {

@@ -74,6 +74,34 @@ fn ims_folder_gives_closed_form_statistics() {
     assert_eq!(t.sidecar.bearing.preset.as_deref(), Some("ims-za2115"));
     assert_eq!(t.sidecar.snapshot_samples, 20_480);
     assert_eq!(t.sidecar.snapshot_interval_s, 600.0);
+    // Octave band levels: the 1000 Hz sine (20 samples a period at 20 kHz) is A/√2 in
+    // 625–1250 Hz and nothing in the other octaves below Nyquist.
+    let names: Vec<&str> = t.bands.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "band_5000_10000_hz",
+            "band_2500_5000_hz",
+            "band_1250_2500_hz",
+            "band_625_1250_hz",
+            "band_313_625_hz",
+            "band_156_313_hz"
+        ]
+    );
+    for (name, v) in &t.bands {
+        for (k, x) in v.iter().enumerate() {
+            let want = if name == "band_625_1250_hz" {
+                amp(k) / 2f64.sqrt()
+            } else {
+                0.0
+            };
+            // Samples printed with 9 decimals: a floor of ~1e-9 in every band.
+            assert!(
+                (x - want).abs() < 1e-6 * amp(k),
+                "{name} snapshot {k}: {x} vs {want}"
+            );
+        }
+    }
     for (k, r) in t.rows.iter().enumerate() {
         assert_eq!(r.time_s, 600.0 * k as f64);
         // Printed with 9 decimals: relative error ≤ ~1e-8 of the amplitude.
@@ -179,6 +207,22 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
         assert_eq!(r.time_s, 10.0 * k as f64, "snapshot {k} across midnight");
         assert!((r.rms - amp(k)).abs() < 1e-12 * amp(k));
         assert!((r.kurtosis - 1.0).abs() < 1e-9 && (r.crest_factor - 1.0).abs() < 1e-9);
+    }
+    // The ±A square wave alternates every sample: a tone at Nyquist (12.8 kHz), all of its
+    // RMS A in the top octave, nothing in the others.
+    assert_eq!(t.bands.len(), 6);
+    for (name, v) in &t.bands {
+        for (k, x) in v.iter().enumerate() {
+            let want = if name == "band_6400_12800_hz" {
+                amp(k)
+            } else {
+                0.0
+            };
+            assert!(
+                (x - want).abs() < 1e-9 * amp(k),
+                "{name} snapshot {k}: {x} vs {want}"
+            );
+        }
     }
     // A NaN in one snapshot: exit 2 naming it, the earlier table is left as it was.
     let before = std::fs::read(&out).unwrap();
@@ -429,6 +473,7 @@ fn test2_options(jobs: usize) -> LifeOptions {
         jobs,
         effects: vec![],
         leave_one_out: false,
+        max_search: None,
     }
 }
 
@@ -449,6 +494,12 @@ fn an_ims_bearing_reads_the_same_through_the_documented_format(
         assert_eq!(x.preset, y.preset);
         assert_eq!(x.bearing, y.bearing);
     }
+    // One simulated bearing, described the same by the preset and by the sidecars.
+    assert_eq!(a.rig, b.rig);
+    assert_eq!(
+        a.rig.model()?,
+        wearsim_core::presets::by_name("ims-za2115").unwrap()
+    );
     for (x, y) in std::iter::once((&a.train_ref, &b.train_ref))
         .chain(a.holdout_ref.iter().zip(&b.holdout_ref))
     {

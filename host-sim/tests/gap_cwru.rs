@@ -50,6 +50,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         jobs: None,
         out: PathBuf::from("unused"),
         leave_one_out: false,
+        life_search: None,
         json: false,
         life: false,
     }

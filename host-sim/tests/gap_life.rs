@@ -38,6 +38,7 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
             vec!["running-in".into(), "roughness".into()]
         },
         leave_one_out: false,
+        max_search: None,
     };
     let m = measured(&path, &o)?;
     let g = diagnose(&m, &o)?;

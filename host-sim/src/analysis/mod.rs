@@ -24,6 +24,7 @@ pub mod faults;
 pub(crate) mod fft;
 pub mod finite;
 pub mod kurtogram;
+pub mod octave_bands;
 pub mod peaks;
 pub mod spectrum;
 pub mod stats;

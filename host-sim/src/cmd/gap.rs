@@ -222,5 +222,6 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
         effects: a.effects.clone(),
         leave_one_out: a.leave_one_out,
+        max_search: a.life_search.map(usize::from),
     })
 }

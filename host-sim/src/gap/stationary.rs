@@ -79,6 +79,10 @@ pub struct GapArgs {
     /// diagnosis names it (costs one attribution per added effect).
     #[arg(long)]
     pub leave_one_out: bool,
+    /// With --life: most pattern-search lives of each fit after its grid (default 48):
+    /// bounds the diagnosis's work, e.g. for a quick check of a new rig's tables.
+    #[arg(long, value_parser = clap::value_parser!(u16).range(0..=1000))]
+    pub life_search: Option<u16>,
     /// Machine-readable report on stdout.
     #[arg(long)]
     pub json: bool,

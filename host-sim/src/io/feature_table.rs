@@ -330,11 +330,14 @@ pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), Featu
         ));
     }
     if let Some(p) = &s.bearing.preset {
-        if wearsim_core::presets::by_name(p).is_none() {
+        if wearsim_core::presets::by_name(p).is_none() && crate::geometry::catalogue(p).is_none() {
             return Err(sidecar_err(
                 path,
                 "bearing.preset",
-                format!("unknown preset {p:?} (see `wearsim presets`)"),
+                format!(
+                    "unknown preset {p:?} (a wearsim preset, see `wearsim presets`, or a catalogue bearing: {})",
+                    crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
+                ),
             ));
         }
     }

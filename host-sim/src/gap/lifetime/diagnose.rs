@@ -2,6 +2,7 @@
 //! attribute the gap to candidate effects on the training life, judge it on the held-out
 //! lives, and the early-life part again on the early stages alone.
 
+use super::rig::{RigDescription, RigKinematics};
 use super::sim::{calibrate, LifeSim};
 use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
 use super::{
@@ -114,6 +115,10 @@ pub struct LifeGap {
     pub train: Vec<String>,
     /// Held-out lives.
     pub holdout: Vec<String>,
+    /// The simulated bearing (from the preset or the sidecar) and its assumptions.
+    pub rig: RigDescription,
+    /// Its closed-form defect frequencies.
+    pub kinematics: RigKinematics,
     /// Calibrated life factor and what it was calibrated on.
     pub life_factor: f64,
     /// Revolutions of the measured (training) life.
@@ -226,6 +231,8 @@ pub struct LifeOptions {
     pub effects: Vec<String>,
     /// Withhold each added effect from the final model and diagnose again.
     pub leave_one_out: bool,
+    /// Most pattern-search lives of each fit after its grid (`None`: [`Budget::LIFE`]'s).
+    pub max_search: Option<usize>,
 }
 
 /// The measured side of a lifetime diagnosis, read and checked before any simulation:
@@ -240,6 +247,8 @@ pub struct MeasuredSet {
     pub holdout: Vec<MeasuredLife>,
     /// Their cells before [`HOLDOUT_T_MAX`].
     pub holdout_ref: Vec<LifeReference>,
+    /// The simulated bearing all lives share.
+    pub rig: RigDescription,
 }
 
 fn label(m: &MeasuredLife) -> String {
@@ -260,28 +269,18 @@ pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
         .iter()
         .map(|b| read_life(path, *b))
         .collect::<Result<_, _>>()?;
-    measured_from(train, holdout)
+    let rig = RigDescription::preset(train.preset.as_deref().unwrap_or("ims-za2115"))?;
+    measured_from(train, holdout, rig)
 }
 
 /// Builds the cells of a training life and its held-out lives, whichever reader read
 /// them (an IMS table, [`measured`]; documented feature tables,
-/// [`super::tables::measured_tables`]). All lives must name the same preset.
+/// [`super::tables::measured_tables`]), all of which share the simulated bearing `rig`.
 pub fn measured_from(
     train: MeasuredLife,
     holdout: Vec<MeasuredLife>,
+    rig: RigDescription,
 ) -> Result<MeasuredSet, String> {
-    if train.preset.is_none() {
-        return Err(format!(
-            "{}: bearing.preset: no wearsim preset named; a life gap simulates the bearing's preset (see `wearsim presets`)",
-            train.file
-        ));
-    }
-    if let Some(h) = holdout.iter().find(|h| h.preset != train.preset) {
-        return Err(format!(
-            "{}: bearing.preset {:?} differs from the training life's {:?}; the lives of one diagnosis share one simulated bearing",
-            h.file, h.preset, train.preset
-        ));
-    }
     if holdout.is_empty() {
         return Err("--holdout: give at least one held-out bearing".into());
     }
@@ -295,6 +294,7 @@ pub fn measured_from(
         train_ref,
         holdout,
         holdout_ref,
+        rig,
     })
 }
 
@@ -302,14 +302,10 @@ pub fn measured_from(
 pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     let t0 = std::time::Instant::now();
     let (train_life, hold_lives) = (&m.train, &m.holdout);
-    let preset = train_life.preset.as_deref().unwrap_or("ims-za2115");
-    let shaft_hz = wearsim_core::presets::by_name(preset)
-        .ok_or_else(|| format!("preset {preset} missing"))?
-        .speed
-        .shaft_hz(0.0);
-    let measured_revs = train_life.hours * 3600.0 * shaft_hz;
-    let (factor, revs, cal_runs) = calibrate(preset, o.seed, measured_revs)?;
-    let sim = Arc::new(LifeSim::new(preset, factor, o.seed, revs)?);
+    let kinematics = m.rig.kinematics()?;
+    let measured_revs = train_life.hours * 3600.0 * m.rig.shaft_hz;
+    let (factor, revs, cal_runs) = calibrate(&m.rig, o.seed, measured_revs)?;
+    let sim = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs)?);
     let train = vec![LifeTarget {
         reference: m.train_ref.clone(),
         sim: sim.clone(),
@@ -328,7 +324,7 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     let base = sim.points(&Effects::NONE, ev.counter())?;
     let steady = stage_points(&base, &STAGES[STEADY]);
     let steady_rms = upper_median(steady.iter().map(|p| p.rms).collect()).unwrap_or(1.0);
-    let spaces: Vec<FitSpace> = life_spaces(steady_rms)
+    let spaces: Vec<FitSpace> = life_spaces(steady_rms, m.rig.sample_rate_hz, m.rig.shaft_hz)
         .into_iter()
         .filter(|s| o.effects.is_empty() || o.effects.iter().any(|e| e == s.effect))
         .collect();
@@ -340,7 +336,10 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     }
     let noise_whole = noise_only(&hold, &base);
     let opt = Options {
-        budget: Budget::LIFE,
+        budget: Budget {
+            max_search: o.max_search.unwrap_or(Budget::LIFE.max_search),
+            ..Budget::LIFE
+        },
         significant_gap: SIGNIFICANCE * noise_whole,
         ..Options::default()
     };
@@ -410,6 +409,8 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     Ok(LifeGap {
         train: vec![label(train_life)],
         holdout: hold_lives.iter().map(label).collect(),
+        rig: m.rig.clone(),
+        kinematics,
         life_factor: factor,
         measured_revs,
         stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train, &base)),

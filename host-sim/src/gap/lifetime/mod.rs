@@ -39,6 +39,7 @@
 
 pub mod diagnose;
 pub mod report;
+pub mod rig;
 pub mod sim;
 pub mod tables;
 pub mod target;
@@ -48,6 +49,7 @@ pub use diagnose::{
     diagnose, measured, measured_from, EarlyShrink, LifeCell, LifeGap, LifeOptions, MeasuredSet,
     StageGap,
 };
+pub use rig::{RigDescription, RigKinematics};
 pub use sim::{LifeSim, MAX_WINDOWS, SCHEDULE, WINDOW_SAMPLES};
 pub use tables::measured_tables;
 pub use target::{life_spaces, LifeTarget, SIGNIFICANCE};
@@ -353,7 +355,7 @@ mod tests {
 
     #[test]
     fn life_spaces_are_the_four_effects_that_act_along_a_life() {
-        let s = life_spaces(1.0);
+        let s = life_spaces(1.0, 20_000.0, 2000.0 / 60.0);
         let names: Vec<&str> = s.iter().map(|s| s.effect).collect();
         assert_eq!(names, ["running-in", "roughness", "sensor", "edge-shape"]);
         assert!(s.iter().all(|s| !s.needs_defect));

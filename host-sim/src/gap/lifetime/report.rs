@@ -83,6 +83,11 @@ pub struct LifeGapOutput {
     pub tied_with: Vec<String>,
     /// The early-life part.
     pub early: Early,
+    /// The simulated bearing (its preset, or the sidecar's geometry and operating point
+    /// with a scaled structure) and the assumptions behind it.
+    pub rig: lifetime::RigDescription,
+    /// Its closed-form defect frequencies (Hz).
+    pub kinematics: lifetime::RigKinematics,
     /// Calibrated life factor (on the training bearing's measured life).
     pub life_factor: f64,
     /// Training bearing's measured life (revolutions).
@@ -110,6 +115,11 @@ fn findings(g: &LifeGap) -> Vec<String> {
         "held-out lives are compared on the stages before {:.0} % of the test: they did not fail, and their late stages carry the failing neighbour's vibration through the shaft; the late-life part of the diagnosis (stages after that) rests on the training life alone",
         100.0 * lifetime::HOLDOUT_T_MAX
     ));
+    for a in &g.rig.assumptions {
+        f.push(format!(
+            "the simulated bearing is not a preset: {a}; this assumption may itself be part of the gap"
+        ));
+    }
     f.extend(g.attribution.findings.iter().cloned());
     f.extend(g.early_findings.iter().map(|x| format!("early life: {x}")));
     let threshold = lifetime::SIGNIFICANCE * g.noise_only.1;
@@ -169,6 +179,8 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
             closed_by: g.early_effect.clone(),
             noise_only: g.noise_only.1,
         },
+        rig: g.rig.clone(),
+        kinematics: g.kinematics,
         life_factor: g.life_factor,
         measured_revs: g.measured_revs,
         noise_only: g.noise_only.0,
@@ -230,9 +242,20 @@ pub fn markdown(o: &LifeGapOutput) -> String {
     let _ = writeln!(s, "# Sim-to-real gap along a life\n");
     let _ = writeln!(
         s,
-        "Training life: {}. Held-out: {}. Simulated: `ims-za2115` with the core's stress-driven wear, life factor {:.3e} (calibrated on the training life, {:.3e} revolutions).\n",
+        "Training life: {}. Held-out: {}. Simulated: {} ({} elements, ball {:.3} mm, pitch {:.3} mm, {:.2}°; {:.1} rpm, {:.0} N; structure: {}; BPFO {:.2} Hz, BPFI {:.2} Hz, natural frequency {:.0} Hz) with the core's stress-driven wear, life factor {:.3e} (calibrated on the training life, {:.3e} revolutions).\n",
         o.train.join(", "),
         o.holdout.join(", "),
+        o.rig.origin,
+        o.rig.elements,
+        o.rig.ball_mm,
+        o.rig.pitch_mm,
+        o.rig.angle_deg,
+        60.0 * o.rig.shaft_hz,
+        o.rig.radial_load_n,
+        o.rig.structure_origin,
+        o.kinematics.bpfo_hz,
+        o.kinematics.bpfi_hz,
+        o.kinematics.natural_hz,
         o.life_factor,
         o.measured_revs
     );

@@ -3,6 +3,7 @@
 //! snapshot's length rendered at every block of [`SCHEDULE`], cached per effect set; and
 //! the calibration of its life factor to the measured life.
 
+use super::rig::RigDescription;
 use super::{LifePoint, EARLY_T_MAX};
 use crate::analysis;
 use crate::gap::matched::merge;
@@ -22,9 +23,10 @@ pub const SCHEDULE: [(f64, f64); 3] = [(0.03, 0.001), (0.1, 0.01), (1.0, 0.02)];
 /// Most windows of one simulated life (the schedule needs about 90).
 pub const MAX_WINDOWS: u64 = 2_000;
 
-/// Samples per simulated window: the measured snapshot's length (crest factor and
-/// kurtosis depend on it).
-pub const WINDOW_SAMPLES: usize = 20_480;
+/// Samples per simulated window of a preset's life: the IMS snapshot's length (crest
+/// factor and kurtosis depend on it). A sidecar bearing's windows have its
+/// `snapshot_samples` ([`RigDescription::window_samples`]).
+pub const WINDOW_SAMPLES: usize = super::rig::PRESET_WINDOW_SAMPLES;
 
 /// A simulated life of the record's bearing with candidate effects, cached per effect set
 /// (the training and held-out bearings share the simulated life of the same seed).
@@ -38,6 +40,8 @@ pub struct LifeSim {
     pub seed: u64,
     /// Revolutions of the calibrated baseline life (the schedule's unit).
     pub expected_revs: f64,
+    /// Samples of a window (the measured snapshot's length).
+    pub window_samples: usize,
     cache: Mutex<Vec<(Effects, Arc<Vec<LifePoint>>)>>,
 }
 
@@ -46,17 +50,17 @@ pub struct LifeSim {
 const CACHE: usize = 1024;
 
 impl LifeSim {
-    /// A simulated life of preset `preset` with life factor `life_factor`.
+    /// A simulated life of the bearing `rig` describes with life factor `life_factor`.
     pub fn new(
-        preset: &str,
+        rig: &RigDescription,
         life_factor: f64,
         seed: u64,
         expected_revs: f64,
     ) -> Result<Self, String> {
-        let model = wearsim_core::presets::by_name(preset)
-            .ok_or_else(|| format!("preset {preset} missing"))?;
+        let model = rig.model()?;
         Ok(LifeSim {
             model,
+            window_samples: rig.window_samples,
             life: LifeConfig {
                 material: Material {
                     life_factor,
@@ -97,7 +101,7 @@ impl LifeSim {
             life: self.life,
             seed: self.seed,
             snapshot_every: self.block(0.0),
-            window: WINDOW_SAMPLES as f64 / fs,
+            window: self.window_samples as f64 / fs,
             settle: 0.05,
         })
         .map_err(|e| e.to_string())?;
@@ -157,28 +161,36 @@ impl LifeSim {
 /// the life; the rest makes the steps converge geometrically), up to 8. `wearsim
 /// ims-compare` uses the same function with the crack-to-failure part held fixed. Returns
 /// the factor, the life's revolutions and the lives run.
-pub fn calibrate(preset: &str, seed: u64, target: f64) -> Result<(f64, f64, usize), String> {
+pub fn calibrate(
+    rig: &RigDescription,
+    seed: u64,
+    target: f64,
+) -> Result<(f64, f64, usize), String> {
     // The schedule needs an expected life; every run uses the target.
     let run = |a: f64| -> Result<(f64, ()), String> {
         Ok((
-            LifeSim::new(preset, a, seed, target)?
-                .run(&Effects::NONE)?
-                .1,
+            LifeSim::new(rig, a, seed, target)?.run(&Effects::NONE)?.1,
             (),
         ))
     };
     let first = run(1.0)?;
+    let context = |e: String| {
+        format!(
+            "calibrating the life factor to the training life's {target:.3e} revolutions (the simulated life lasts {:.3e} at factor 1; its crack-to-failure part does not scale with the factor, so a measured life shorter than that part cannot be reached): {e}",
+            first.0
+        )
+    };
     let step = Secant {
         fixed: 0.0,
         min_steps: 0,
         max_steps: 8,
     };
-    let c = calibrate_life(target, first, &step, run)?;
+    let c = calibrate_life(target, first, &step, run).map_err(context)?;
     let (a, life, runs) = (c.factor, c.life, c.steps + 1);
     if (life / target - 1.0).abs() > 0.05 {
-        return Err(format!(
+        return Err(context(format!(
             "the life factor did not converge: {life:.3e} revolutions against the measured {target:.3e}"
-        ));
+        )));
     }
     Ok((a, life, runs))
 }

@@ -123,14 +123,15 @@ fn fp(name: &'static str, lo: f64, hi: f64, log: bool) -> FitParam {
 ///
 /// Effects that act within a snapshot only (slip, speed fluctuation, shaft harmonics,
 /// transfer path, load zone) change no statistic along life that these cells resolve;
-/// they are diagnosed on the raw records (`wearsim gap` on CWRU files).
-pub fn life_spaces(steady_rms: f64) -> Vec<FitSpace> {
+/// they are diagnosed on the raw records (`wearsim gap` on CWRU files). `fs` (Hz) and
+/// `shaft_hz` are the simulated bearing's sample rate and shaft speed.
+pub fn life_spaces(steady_rms: f64, fs: f64, shaft_hz: f64) -> Vec<FitSpace> {
     let r = steady_rms.max(1e-6);
     // Roughness and edge-shape as for records of seconds (their ranges do not depend on
     // the record); a life grows its own defects, so edge-shape needs none to start with.
     let stationary = crate::gap::space::spaces(&crate::gap::space::Context {
-        fs: 20_000.0,
-        shaft_hz: 2000.0 / 60.0,
+        fs,
+        shaft_hz,
         rms: r,
         mains_hz: 60.0,
     });

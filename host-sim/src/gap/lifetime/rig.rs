@@ -1,0 +1,430 @@
+//! The simulated bearing of a lifetime diagnosis, built from what the measured life says
+//! about it: a wearsim preset when one is named (a preset is a filled-in description), or
+//! else a feature-table sidecar's geometry, speed, load, sample rate and snapshot length
+//! with a structure scaled from the closest preset. Both go through one builder,
+//! [`RigDescription::model`], so the preset case gives the preset's model exactly.
+//!
+//! **Structure of a bearing that is no preset** (an assumption, reported as such): the
+//! vibrating structure (mass, stiffness, damping, hence its resonance) is that of the
+//! preset whose pitch diameter is closest on a log scale ([`STRUCTURE_PRESETS`]), scaled
+//! by geometric similitude with `s = pitch / pitch_preset` (same material and shape:
+//! mass ∝ s³, stiffness ∝ s, damping at the preset's damping ratio ∝ s², so the
+//! resonance ∝ 1/s; the scale-model law of an elastic structure, e.g. Harris & Piersol,
+//! *Harris' Shock and Vibration Handbook*, dimensional analysis). Everything else the
+//! model needs that a sidecar does not give (clearance, imbalance, waviness, roughness,
+//! slip, integrator, conformities) is that preset's too; a sidecar bearing has point
+//! contact (a ball bearing) and its bore/outside diameter are `pitch ∓ 1.7·ball` (a deep
+//! groove bearing's section; checked by the core, used by no force). The diagnosis may
+//! name this structure as part of the gap: it is not measured.
+
+use crate::geometry::{catalogue, GeometrySpec};
+use crate::io::feature_table::{sidecar_path, FeatureSidecar};
+use serde::Serialize;
+use std::path::Path;
+use wearsim_core::bearing::{BearingGeometry, ContactKind};
+use wearsim_core::kinematics::FaultOrders;
+use wearsim_core::model::{ModelConfig, Structure};
+use wearsim_core::speed::SpeedProfile;
+
+/// Window length of a preset's simulated life: the IMS snapshot's 20 480 samples (crest
+/// factor and kurtosis depend on the length).
+pub const PRESET_WINDOW_SAMPLES: usize = 20_480;
+
+/// Relative tolerance of a table's `rpm` against its preset's shaft speed.
+pub const RPM_TOL: f64 = 0.01;
+
+/// Presets a sidecar bearing's structure may be scaled from (`thesis-as-printed` is left
+/// out: its damping is the thesis's misprint).
+pub const STRUCTURE_PRESETS: [&str; 4] =
+    ["thesis-61810", "cwru-6203-fe", "cwru-6205-de", "ims-za2115"];
+
+/// Half the radial section of a sidecar bearing in ball diameters (bore = pitch − 1.7·ball,
+/// outside = pitch + 1.7·ball; a 6205 has 1.70, a 6203 1.74).
+const SECTION_BALLS: f64 = 1.7;
+
+/// Everything the simulated life of a measured bearing is built from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RigDescription {
+    /// Where the description comes from: `preset ims-za2115`, `sidecar geometry`.
+    pub origin: String,
+    /// The preset whose other settings the model keeps (the named one, or the one the
+    /// structure is scaled from).
+    pub base: String,
+    /// Rolling elements (per row).
+    pub elements: u32,
+    /// Rolling-element diameter, mm.
+    pub ball_mm: f64,
+    /// Pitch diameter, mm.
+    pub pitch_mm: f64,
+    /// Contact angle, degrees.
+    pub angle_deg: f64,
+    /// Shaft speed, Hz.
+    pub shaft_hz: f64,
+    /// Radial load on the simulated row, N.
+    pub radial_load_n: f64,
+    /// Sample rate of the simulated windows, Hz.
+    pub sample_rate_hz: f64,
+    /// Samples of a simulated window (the measured snapshot's length).
+    pub window_samples: usize,
+    /// Vibrating mass, kg.
+    pub mass_kg: f64,
+    /// Structural stiffness, N/m.
+    pub stiffness_n_per_m: f64,
+    /// Viscous damping, N·s/m.
+    pub damping_n_s_per_m: f64,
+    /// How the structure was obtained (the preset's own, or the scaling rule and factor).
+    pub structure_origin: String,
+    /// Assumptions the diagnosis may name as part of the gap (empty for a preset).
+    pub assumptions: Vec<String>,
+    #[serde(skip)]
+    geometry: BearingGeometry,
+}
+
+/// Closed-form defect frequencies of the simulated bearing (thesis eq. 17–20), Hz.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RigKinematics {
+    /// Shaft, 1×.
+    pub shaft_hz: f64,
+    /// Cage.
+    pub ftf_hz: f64,
+    /// Outer-race ball pass.
+    pub bpfo_hz: f64,
+    /// Inner-race ball pass.
+    pub bpfi_hz: f64,
+    /// Ball spin.
+    pub bsf_hz: f64,
+    /// Linearised natural frequency of the structure with its contacts (resonance-zone
+    /// centre).
+    pub natural_hz: f64,
+}
+
+fn preset(name: &str) -> Result<ModelConfig, String> {
+    wearsim_core::presets::by_name(name).ok_or_else(|| format!("preset {name} missing"))
+}
+
+impl RigDescription {
+    /// The description preset `name` fills in, simulated in windows of
+    /// [`PRESET_WINDOW_SAMPLES`].
+    pub fn preset(name: &str) -> Result<Self, String> {
+        let m = preset(name)?;
+        let g = m.bearing;
+        Ok(RigDescription {
+            origin: format!("preset {name}"),
+            base: name.to_string(),
+            elements: u32::from(g.elements),
+            ball_mm: g.element_diameter * 1e3,
+            pitch_mm: g.pitch_diameter * 1e3,
+            angle_deg: g.contact_angle.to_degrees(),
+            shaft_hz: m.speed.shaft_hz(0.0),
+            radial_load_n: m.radial_load,
+            sample_rate_hz: m.output_rate,
+            window_samples: PRESET_WINDOW_SAMPLES,
+            mass_kg: m.structure.mass,
+            stiffness_n_per_m: m.structure.stiffness,
+            damping_n_s_per_m: m.structure.damping,
+            structure_origin: format!("preset {name}"),
+            assumptions: vec![],
+            geometry: g,
+        })
+    }
+
+    /// The description of a feature table's sidecar (`path` is the table, for errors): its
+    /// preset when it names a model preset (whose speed, sample rate and snapshot length
+    /// the sidecar must match), else the geometry of the catalogue bearing it names
+    /// ([`crate::geometry::CATALOGUE`]) or its `geometry`, with its rpm, radial load,
+    /// sample rate and snapshot length and a scaled structure (module docs).
+    pub fn from_sidecar(s: &FeatureSidecar, path: &Path) -> Result<Self, String> {
+        let side = sidecar_path(path);
+        let field =
+            |f: &str, what: String| format!("{}: sidecar field `{f}`: {what}", side.display());
+        let model_preset = s
+            .bearing
+            .preset
+            .as_deref()
+            .filter(|n| wearsim_core::presets::by_name(n).is_some());
+        if let Some(name) = model_preset {
+            let d = Self::preset(name)?;
+            let rpm = d.shaft_hz * 60.0;
+            if (s.rpm - rpm).abs() > RPM_TOL * rpm {
+                return Err(field(
+                    "rpm",
+                    format!(
+                        "{} rpm, but preset {name} runs at {rpm} rpm (allowed ±{:.0} %; leave `preset` out and give `geometry` to simulate this bearing at its own speed)",
+                        s.rpm,
+                        100.0 * RPM_TOL
+                    ),
+                ));
+            }
+            if s.snapshot_samples != d.window_samples as u64 {
+                return Err(field(
+                    "snapshot_samples",
+                    format!(
+                        "{}, but the simulated windows of preset {name} hold {} samples (crest factor and kurtosis depend on the length)",
+                        s.snapshot_samples, d.window_samples
+                    ),
+                ));
+            }
+            if (s.sample_rate_hz - d.sample_rate_hz).abs() > 1e-6 * d.sample_rate_hz {
+                return Err(field(
+                    "sample_rate_hz",
+                    format!(
+                        "{} Hz, but preset {name} is rendered at {} Hz",
+                        s.sample_rate_hz, d.sample_rate_hz
+                    ),
+                ));
+            }
+            return Ok(d);
+        }
+        let spec = match (s.bearing.preset.as_deref(), &s.bearing.geometry) {
+            (Some(name), _) => {
+                catalogue(name)
+                    .ok_or_else(|| {
+                        field(
+                            "bearing.preset",
+                            format!("unknown preset {name:?} (see `wearsim presets`)"),
+                        )
+                    })?
+                    .geometry
+            }
+            (None, Some(g)) => GeometrySpec {
+                elements: g.elements,
+                ball_mm: g.ball_mm,
+                pitch_mm: g.pitch_mm,
+                angle_deg: g.angle_deg,
+            }
+            .checked()
+            .map_err(|e| field("bearing.geometry", e))?,
+            (None, None) => return Err(field(
+                "bearing.geometry",
+                "missing: a life gap simulates the sidecar's bearing, give `bearing.preset` (a preset or catalogue bearing) or `bearing.geometry` (elements, ball_mm, pitch_mm, angle_deg)".into(),
+            )),
+        };
+        if !(s.rpm.is_finite() && s.rpm > 0.0) {
+            return Err(field("rpm", format!("{} (allowed (0, 10^6] rpm)", s.rpm)));
+        }
+        if !(s.radial_load_n.is_finite() && s.radial_load_n > 0.0) {
+            return Err(field(
+                "radial_load_n",
+                format!(
+                    "{} N: a simulated life needs the load that wears the bearing (allowed (0, 10^8] N)",
+                    s.radial_load_n
+                ),
+            ));
+        }
+        let window = usize::try_from(s.snapshot_samples)
+            .ok()
+            .filter(|n| (64..=1 << 22).contains(n))
+            .ok_or_else(|| {
+                field(
+                    "snapshot_samples",
+                    format!(
+                        "{}: a simulated window needs 64..=4194304 samples",
+                        s.snapshot_samples
+                    ),
+                )
+            })?;
+        Self::scaled(
+            spec,
+            s.rpm / 60.0,
+            s.radial_load_n,
+            s.sample_rate_hz,
+            window,
+        )
+    }
+
+    /// A bearing of geometry `g` at `shaft_hz`, `load_n`, rendered at `rate_hz` in
+    /// windows of `window` samples, with the structure of the closest preset scaled to its
+    /// size (module docs).
+    pub fn scaled(
+        g: GeometrySpec,
+        shaft_hz: f64,
+        load_n: f64,
+        rate_hz: f64,
+        window: usize,
+    ) -> Result<Self, String> {
+        let pitch = |n: &str| preset(n).map(|m| m.bearing.pitch_diameter * 1e3);
+        let mut best = (STRUCTURE_PRESETS[0], f64::INFINITY);
+        for n in STRUCTURE_PRESETS {
+            let d = (g.pitch_mm / pitch(n)?).ln().abs();
+            if d < best.1 {
+                best = (n, d);
+            }
+        }
+        let base = preset(best.0)?;
+        let s = g.pitch_mm / (base.bearing.pitch_diameter * 1e3);
+        let st = base.structure;
+        let mm = 1e-3;
+        let geometry = BearingGeometry {
+            elements: u8::try_from(g.elements).map_err(|_| {
+                format!(
+                    "bearing.geometry.elements = {} (allowed 3..=255 for a simulated life)",
+                    g.elements
+                )
+            })?,
+            element_diameter: g.ball_mm * mm,
+            pitch_diameter: g.pitch_mm * mm,
+            contact_angle: g.angle_deg.to_radians(),
+            bore: ((g.pitch_mm - SECTION_BALLS * g.ball_mm) * mm).max(0.0),
+            outside_diameter: (g.pitch_mm + SECTION_BALLS * g.ball_mm) * mm,
+            contact: ContactKind::Point,
+            roller_length: 0.0,
+            ..wearsim_core::presets::SKF_61810
+        };
+        Ok(RigDescription {
+            origin: "sidecar geometry".into(),
+            base: best.0.to_string(),
+            elements: g.elements,
+            ball_mm: g.ball_mm,
+            pitch_mm: g.pitch_mm,
+            angle_deg: g.angle_deg,
+            shaft_hz,
+            radial_load_n: load_n,
+            sample_rate_hz: rate_hz,
+            window_samples: window,
+            mass_kg: st.mass * s.powi(3),
+            stiffness_n_per_m: st.stiffness * s,
+            damping_n_s_per_m: st.damping * s * s,
+            structure_origin: format!(
+                "preset {} scaled by geometric similitude, s = pitch {} mm / {:.2} mm = {s:.4}: mass × s³, stiffness × s, damping × s²",
+                best.0,
+                g.pitch_mm,
+                base.bearing.pitch_diameter * 1e3
+            ),
+            assumptions: vec![
+                format!("structure (mass, stiffness, damping, resonance) scaled from preset {}, not measured", best.0),
+                format!("clearance, imbalance, waviness, roughness and slip of preset {}", best.0),
+                "ball bearing (point contact), conformities 0.52/0.515".into(),
+            ],
+            geometry,
+        })
+    }
+
+    /// The dynamic model of the simulated life: the base preset with every described
+    /// field set. For a preset's own description this is the preset, bit for bit.
+    pub fn model(&self) -> Result<ModelConfig, String> {
+        let mut m = preset(&self.base)?;
+        m.bearing = self.geometry;
+        m.structure = Structure {
+            mass: self.mass_kg,
+            stiffness: self.stiffness_n_per_m,
+            damping: self.damping_n_s_per_m,
+        };
+        m.speed = SpeedProfile::Constant(self.shaft_hz);
+        m.radial_load = self.radial_load_n;
+        m.output_rate = self.sample_rate_hz;
+        Ok(m)
+    }
+
+    /// Closed-form defect frequencies of the simulated bearing and its natural frequency.
+    pub fn kinematics(&self) -> Result<RigKinematics, String> {
+        let model = wearsim_core::Model::new_checked(self.model()?)
+            .map_err(|e| format!("simulated bearing ({}): {e}", self.origin))?;
+        let f = FaultOrders::of(&self.geometry).at(self.shaft_hz, model.natural_frequency_hz());
+        Ok(RigKinematics {
+            shaft_hz: f.shaft_hz,
+            ftf_hz: f.ftf,
+            bpfo_hz: f.bpfo,
+            bpfi_hz: f.bpfi,
+            bsf_hz: f.bsf,
+            natural_hz: f.natural_hz,
+        })
+    }
+
+    /// The first field in which `other` differs from this description, if any.
+    pub fn differs(&self, other: &Self) -> Option<&'static str> {
+        let f = [
+            (
+                "bearing",
+                self.origin != other.origin || self.base != other.base,
+            ),
+            ("bearing.geometry", self.geometry != other.geometry),
+            ("rpm", self.shaft_hz != other.shaft_hz),
+            ("radial_load_n", self.radial_load_n != other.radial_load_n),
+            (
+                "sample_rate_hz",
+                self.sample_rate_hz != other.sample_rate_hz,
+            ),
+            (
+                "snapshot_samples",
+                self.window_samples != other.window_samples,
+            ),
+        ];
+        f.iter().find(|(_, d)| *d).map(|(n, _)| *n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_preset_is_its_own_description_and_a_geometry_scales_the_closest_structure() {
+        for n in wearsim_core::presets::NAMES {
+            let d = RigDescription::preset(n).unwrap();
+            assert_eq!(d.model().unwrap(), preset(n).unwrap(), "{n}");
+        }
+        // An XJTU-like bearing (34.55 mm pitch) is closest to the 6205 (39.04 mm).
+        let g = GeometrySpec::parse("elements=8,ball=7.92,pitch=34.55").unwrap();
+        let d = RigDescription::scaled(g, 35.0, 12_000.0, 25_600.0, 32_768).unwrap();
+        assert_eq!(d.base, "cwru-6205-de");
+        let b = preset("cwru-6205-de").unwrap().structure;
+        let s: f64 = 34.55 / (1.537 * 25.4);
+        assert!((d.mass_kg / b.mass - s.powi(3)).abs() < 1e-12);
+        assert!((d.stiffness_n_per_m / b.stiffness - s).abs() < 1e-12);
+        // Same damping ratio: C / √(K M) unchanged.
+        let z = |c: f64, k: f64, m: f64| c / (k * m).sqrt();
+        assert!(
+            (z(d.damping_n_s_per_m, d.stiffness_n_per_m, d.mass_kg)
+                / z(b.damping, b.stiffness, b.mass)
+                - 1.0)
+                .abs()
+                < 1e-12
+        );
+        let m = d.model().unwrap();
+        assert_eq!(m.output_rate, 25_600.0);
+        assert_eq!(m.radial_load, 12_000.0);
+        assert!(wearsim_core::Model::new_checked(m).is_ok());
+        let k = d.kinematics().unwrap();
+        assert!((k.bpfo_hz + k.bpfi_hz - 8.0 * 35.0).abs() < 1e-9);
+        assert!(d.differs(&d.clone()).is_none());
+        let mut e = d.clone();
+        e.radial_load_n = 1.0;
+        assert_eq!(d.differs(&e), Some("radial_load_n"));
+    }
+
+    #[test]
+    fn a_catalogue_bearing_is_a_geometry() {
+        use crate::io::feature_table::{BearingInfo, FeatureSidecar};
+        let side = |preset: Option<&str>| FeatureSidecar {
+            format: "wearsim-feature-table".into(),
+            format_version: 1,
+            source: "test".into(),
+            bearing: BearingInfo {
+                preset: preset.map(String::from),
+                geometry: None,
+                id: "b".into(),
+            },
+            channel: "h".into(),
+            unit: "g".into(),
+            rpm: 2100.0,
+            radial_load_n: 12_000.0,
+            sample_rate_hz: 25_600.0,
+            snapshot_samples: 32_768,
+            snapshot_interval_s: 60.0,
+            failure_mode: "unknown".into(),
+            n_snapshots: None,
+            notes: vec![],
+        };
+        let p = Path::new("x.csv");
+        let d = RigDescription::from_sidecar(&side(Some("xjtu-ldk-uer204")), p).unwrap();
+        assert_eq!(
+            (d.origin.as_str(), d.elements, d.ball_mm, d.pitch_mm),
+            ("sidecar geometry", 8, 7.92, 34.55)
+        );
+        assert_eq!(d.window_samples, 32_768);
+        let e = RigDescription::from_sidecar(&side(None), p).unwrap_err();
+        assert!(e.contains("`bearing.geometry`"), "{e}");
+        let e = RigDescription::from_sidecar(&side(Some("6205")), p).unwrap_err();
+        assert!(e.contains("`bearing.preset`"), "{e}");
+    }
+}
