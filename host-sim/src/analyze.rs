@@ -540,9 +540,11 @@ fn analyze_chosen(
         }));
     }
     let kin = match (&custom, &file_model) {
-        (Some(c), None) => kinematics::of_preset(crate::geometry::DEFAULT_STRUCTURE, rpm)
-            .map(|base| c.2.fault_frequencies(rpm, base.natural_hz))
-            .map_err(|e| format!("{file}: {e}")),
+        (Some(c), None) => {
+            c.2.model()
+                .and_then(|m| kinematics::of_config(&m.model, rpm))
+                .map_err(|e| format!("{file}: {e}"))
+        }
         (_, Some(m)) => kinematics::of_config(m, rpm)
             .map_err(|e| format!("{file}: {bearing_source} model: {e}")),
         (None, None) => kinematics::of_preset(&bearing, rpm).map_err(|e| format!("{file}: {e}")),

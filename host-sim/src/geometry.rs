@@ -11,8 +11,8 @@
 //! listed: its geometry is not given in the PRONOSTIA documentation, so pass it with
 //! `--bearing-geometry`.
 
-use wearsim_core::bearing::BearingGeometry;
-use wearsim_core::kinematics::FaultOrders;
+use wearsim_core::bearing::{BearingGeometry, ContactKind};
+use wearsim_core::model::{ModelConfig, Structure};
 
 /// A bearing's kinematic geometry in the units of the flag.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -177,42 +177,85 @@ impl GeometrySpec {
         Self::parse(&parts.join(","))
     }
 
-    /// Characteristic frequencies (Hz) at `rpm` (thesis eq. 17–20 via the core's
-    /// [`FaultOrders`]), in a structure of natural frequency `natural_hz` (Hz, which a bare
-    /// geometry does not give); the other fields of the geometry do not enter them.
-    pub fn fault_frequencies(
-        &self,
-        rpm: f64,
-        natural_hz: f64,
-    ) -> wearsim_core::kinematics::FaultFrequencies {
+    /// The core's geometry of this bearing: a deep-groove ball bearing (point contact,
+    /// conformities and material of the reference bearing) whose bore and outside diameter
+    /// are `pitch ∓ 1.7·ball` (a 6205's section is 1.70 balls, a 6203's 1.74; the core checks
+    /// them, no force uses them).
+    pub fn bearing(&self) -> Result<BearingGeometry, String> {
         let mm = 1e-3;
-        let g = BearingGeometry {
-            elements: self.elements.min(u8::MAX as u32) as u8,
+        Ok(BearingGeometry {
+            elements: u8::try_from(self.elements).map_err(|_| {
+                format!(
+                    "bearing-geometry.elements = {} (allowed 3..={MAX_SPEC_ELEMENTS})",
+                    self.elements
+                )
+            })?,
             element_diameter: self.ball_mm * mm,
             pitch_diameter: self.pitch_mm * mm,
             contact_angle: self.angle_deg.to_radians(),
-            ..SHAPE
+            bore: ((self.pitch_mm - SECTION_BALLS * self.ball_mm) * mm).max(0.0),
+            outside_diameter: (self.pitch_mm + SECTION_BALLS * self.ball_mm) * mm,
+            contact: ContactKind::Point,
+            roller_length: 0.0,
+            ..wearsim_core::presets::SKF_61810
+        })
+    }
+
+    /// A model of this bearing (the one rule for a bearing that is no preset): the settings
+    /// of the preset among [`STRUCTURE_PRESETS`] whose pitch diameter is closest on a log
+    /// scale, with this geometry and that preset's structure scaled by geometric similitude,
+    /// `s = pitch / pitch_preset`: mass × s³, stiffness × s, damping × s² (same damping
+    /// ratio, resonance × 1/s; the scale-model law of an elastic structure, Harris &
+    /// Piersol, *Harris' Shock and Vibration Handbook*, dimensional analysis). An
+    /// assumption, not a measurement: reports say so.
+    pub fn model(&self) -> Result<ScaledModel, String> {
+        let preset = |n: &str| {
+            wearsim_core::presets::by_name(n).ok_or_else(|| format!("preset {n} missing"))
         };
-        FaultOrders::of(&g).at(rpm / 60.0, natural_hz)
+        let mut best = (STRUCTURE_PRESETS[0], f64::INFINITY);
+        for n in STRUCTURE_PRESETS {
+            let d = (self.pitch_mm / (preset(n)?.bearing.pitch_diameter * 1e3))
+                .ln()
+                .abs();
+            if d < best.1 {
+                best = (n, d);
+            }
+        }
+        let mut model = preset(best.0)?;
+        let scale = self.pitch_mm / (model.bearing.pitch_diameter * 1e3);
+        let st = model.structure;
+        model.bearing = self.bearing()?;
+        model.structure = Structure {
+            mass: st.mass * scale.powi(3),
+            stiffness: st.stiffness * scale,
+            damping: st.damping * scale * scale,
+        };
+        Ok(ScaledModel {
+            model,
+            base: best.0,
+            scale,
+        })
     }
 }
 
-/// Placeholder for the fields of [`BearingGeometry`] that the kinematics do not use.
-const SHAPE: BearingGeometry = BearingGeometry {
-    elements: 9,
-    element_diameter: 0.0,
-    pitch_diameter: 0.0,
-    contact_angle: 0.0,
-    bore: 0.0,
-    outside_diameter: 0.0,
-    contact: wearsim_core::bearing::ContactKind::Point,
-    outer_conformity: 0.52,
-    inner_conformity: 0.52,
-    roller_length: 0.0,
-    youngs_modulus: 208e9,
-    poisson: 0.3,
-    density: 7830.0,
-};
+/// Presets a bearing that is no preset may take its structure from ([`GeometrySpec::model`];
+/// `thesis-as-printed` is left out: its damping is the thesis's misprint).
+pub const STRUCTURE_PRESETS: [&str; 4] =
+    ["thesis-61810", "cwru-6203-fe", "cwru-6205-de", "ims-za2115"];
+
+/// Half the radial section of a bearing that is no preset, in ball diameters.
+const SECTION_BALLS: f64 = 1.7;
+
+/// A model of a bearing that is no preset ([`GeometrySpec::model`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScaledModel {
+    /// The model: the base preset's settings with the geometry and the scaled structure.
+    pub model: ModelConfig,
+    /// The preset the structure and the other settings come from.
+    pub base: &'static str,
+    /// Similitude factor `s` = pitch / the base preset's pitch.
+    pub scale: f64,
+}
 
 /// The bearing `analyze` uses when it is not a model preset: from `--bearing-geometry`
 /// (`geometry`), a catalogue name given with `--bearing` (`preset`), a sidecar's
@@ -250,20 +293,17 @@ pub fn choose(
         .map(|e| (e.name.to_string(), "file", e.geometry)))
 }
 
-/// Model preset whose structure (mass, stiffness) gives the resonance-zone centre of a bearing
-/// that is no preset.
-pub const DEFAULT_STRUCTURE: &str = "cwru-6205-de";
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use wearsim_core::kinematics::FaultOrders;
 
     #[test]
     fn parse_check_and_match_the_preset() {
         // The CWRU drive-end bearing by its numbers (CWRU bearing page: 9 balls of 0.3126 in,
         // pitch 1.537 in) gives the preset's frequencies.
         let s = GeometrySpec::parse("elements=9,ball=7.94004,pitch=39.0398,angle=0").unwrap();
-        let k = s.fault_frequencies(1797.0, 3000.0);
+        let k = FaultOrders::of(&s.bearing().unwrap()).at(1797.0 / 60.0, 3000.0);
         let b = wearsim_core::presets::by_name("cwru-6205-de")
             .unwrap()
             .bearing;
@@ -278,7 +318,7 @@ mod tests {
         assert!((k.bsf - p.bsf).abs() < 1e-3 * p.bsf);
         // BPFO + BPFI = N x shaft, whatever the geometry.
         let s = GeometrySpec::parse("elements=16, ball=8.4, pitch=71.5, angle=15.17").unwrap();
-        let k = s.fault_frequencies(2000.0, 3000.0);
+        let k = FaultOrders::of(&s.bearing().unwrap()).at(2000.0 / 60.0, 3000.0);
         assert!((k.bpfo + k.bpfi - 16.0 * 2000.0 / 60.0).abs() < 1e-9);
         for (bad, field) in [
             ("elements=9,ball=8,pitch=7.9", "pitch"),

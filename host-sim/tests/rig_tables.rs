@@ -131,8 +131,8 @@ fn a_rig_that_is_no_preset_is_diagnosed_from_its_sidecar() {
     let (n, fr, r) = (13.0, 1800.0 / 60.0, 3.5 / 25.6);
     let k = &j["kinematics"];
     for (key, want) in [
-        ("bpfo_hz", n / 2.0 * fr * (1.0 - r)),
-        ("bpfi_hz", n / 2.0 * fr * (1.0 + r)),
+        ("bpfo", n / 2.0 * fr * (1.0 - r)),
+        ("bpfi", n / 2.0 * fr * (1.0 + r)),
         ("shaft_hz", fr),
     ] {
         let got = k[key].as_f64().unwrap();

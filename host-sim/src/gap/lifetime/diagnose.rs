@@ -2,7 +2,7 @@
 //! attribute the gap to candidate effects on the training life, judge it on the held-out
 //! lives, and the early-life part again on the early stages alone.
 
-use super::rig::{RigDescription, RigKinematics};
+use super::rig::RigDescription;
 use super::sim::{calibrate, LifeSim};
 use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
 use super::{
@@ -118,7 +118,7 @@ pub struct LifeGap {
     /// The simulated bearing (from the preset or the sidecar) and its assumptions.
     pub rig: RigDescription,
     /// Its closed-form defect frequencies.
-    pub kinematics: RigKinematics,
+    pub kinematics: wearsim_core::kinematics::FaultFrequencies,
     /// Calibrated life factor and what it was calibrated on.
     pub life_factor: f64,
     /// Revolutions of the measured (training) life.

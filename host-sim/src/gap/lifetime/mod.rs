@@ -49,7 +49,7 @@ pub use diagnose::{
     diagnose, measured, measured_from, EarlyShrink, LifeCell, LifeGap, LifeOptions, MeasuredSet,
     StageGap,
 };
-pub use rig::{RigDescription, RigKinematics};
+pub use rig::RigDescription;
 pub use sim::{LifeSim, MAX_WINDOWS, SCHEDULE, WINDOW_SAMPLES};
 pub use tables::measured_tables;
 pub use target::{life_spaces, LifeTarget, SIGNIFICANCE};

@@ -87,7 +87,7 @@ pub struct LifeGapOutput {
     /// with a scaled structure) and the assumptions behind it.
     pub rig: lifetime::RigDescription,
     /// Its closed-form defect frequencies (Hz).
-    pub kinematics: lifetime::RigKinematics,
+    pub kinematics: wearsim_core::kinematics::FaultFrequencies,
     /// Calibrated life factor (on the training bearing's measured life).
     pub life_factor: f64,
     /// Training bearing's measured life (revolutions).
@@ -253,8 +253,8 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         60.0 * o.rig.shaft_hz,
         o.rig.radial_load_n,
         o.rig.structure_origin,
-        o.kinematics.bpfo_hz,
-        o.kinematics.bpfi_hz,
+        o.kinematics.bpfo,
+        o.kinematics.bpfi,
         o.kinematics.natural_hz,
         o.life_factor,
         o.measured_revs

@@ -4,9 +4,10 @@
 //! with a structure scaled from the closest preset. Both go through one builder,
 //! [`RigDescription::model`], so the preset case gives the preset's model exactly.
 //!
-//! **Structure of a bearing that is no preset** (an assumption, reported as such): the
+//! **Structure of a bearing that is no preset** (an assumption, reported as such; the one
+//! rule, [`crate::geometry::GeometrySpec::model`], which `analyze` uses too): the
 //! vibrating structure (mass, stiffness, damping, hence its resonance) is that of the
-//! preset whose pitch diameter is closest on a log scale ([`STRUCTURE_PRESETS`]), scaled
+//! preset whose pitch diameter is closest on a log scale, scaled
 //! by geometric similitude with `s = pitch / pitch_preset` (same material and shape:
 //! mass ∝ s³, stiffness ∝ s, damping at the preset's damping ratio ∝ s², so the
 //! resonance ∝ 1/s; the scale-model law of an elastic structure, e.g. Harris & Piersol,
@@ -21,8 +22,8 @@ use crate::geometry::{catalogue, GeometrySpec};
 use crate::io::feature_table::{sidecar_path, FeatureSidecar};
 use serde::Serialize;
 use std::path::Path;
-use wearsim_core::bearing::{BearingGeometry, ContactKind};
-use wearsim_core::kinematics::FaultOrders;
+use wearsim_core::bearing::BearingGeometry;
+use wearsim_core::kinematics::FaultFrequencies;
 use wearsim_core::model::{ModelConfig, Structure};
 use wearsim_core::speed::SpeedProfile;
 
@@ -32,15 +33,6 @@ pub const PRESET_WINDOW_SAMPLES: usize = 20_480;
 
 /// Relative tolerance of a table's `rpm` against its preset's shaft speed.
 pub const RPM_TOL: f64 = 0.01;
-
-/// Presets a sidecar bearing's structure may be scaled from (`thesis-as-printed` is left
-/// out: its damping is the thesis's misprint).
-pub const STRUCTURE_PRESETS: [&str; 4] =
-    ["thesis-61810", "cwru-6203-fe", "cwru-6205-de", "ims-za2115"];
-
-/// Half the radial section of a sidecar bearing in ball diameters (bore = pitch − 1.7·ball,
-/// outside = pitch + 1.7·ball; a 6205 has 1.70, a 6203 1.74).
-const SECTION_BALLS: f64 = 1.7;
 
 /// Everything the simulated life of a measured bearing is built from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -78,24 +70,6 @@ pub struct RigDescription {
     pub assumptions: Vec<String>,
     #[serde(skip)]
     geometry: BearingGeometry,
-}
-
-/// Closed-form defect frequencies of the simulated bearing (thesis eq. 17–20), Hz.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct RigKinematics {
-    /// Shaft, 1×.
-    pub shaft_hz: f64,
-    /// Cage.
-    pub ftf_hz: f64,
-    /// Outer-race ball pass.
-    pub bpfo_hz: f64,
-    /// Inner-race ball pass.
-    pub bpfi_hz: f64,
-    /// Ball spin.
-    pub bsf_hz: f64,
-    /// Linearised natural frequency of the structure with its contacts (resonance-zone
-    /// centre).
-    pub natural_hz: f64,
 }
 
 fn preset(name: &str) -> Result<ModelConfig, String> {
@@ -242,37 +216,13 @@ impl RigDescription {
         rate_hz: f64,
         window: usize,
     ) -> Result<Self, String> {
-        let pitch = |n: &str| preset(n).map(|m| m.bearing.pitch_diameter * 1e3);
-        let mut best = (STRUCTURE_PRESETS[0], f64::INFINITY);
-        for n in STRUCTURE_PRESETS {
-            let d = (g.pitch_mm / pitch(n)?).ln().abs();
-            if d < best.1 {
-                best = (n, d);
-            }
-        }
-        let base = preset(best.0)?;
-        let s = g.pitch_mm / (base.bearing.pitch_diameter * 1e3);
-        let st = base.structure;
-        let mm = 1e-3;
-        let geometry = BearingGeometry {
-            elements: u8::try_from(g.elements).map_err(|_| {
-                format!(
-                    "bearing.geometry.elements = {} (allowed 3..=255 for a simulated life)",
-                    g.elements
-                )
-            })?,
-            element_diameter: g.ball_mm * mm,
-            pitch_diameter: g.pitch_mm * mm,
-            contact_angle: g.angle_deg.to_radians(),
-            bore: ((g.pitch_mm - SECTION_BALLS * g.ball_mm) * mm).max(0.0),
-            outside_diameter: (g.pitch_mm + SECTION_BALLS * g.ball_mm) * mm,
-            contact: ContactKind::Point,
-            roller_length: 0.0,
-            ..wearsim_core::presets::SKF_61810
-        };
+        let scaled = g.model()?;
+        let (base, s, st) = (scaled.base, scaled.scale, scaled.model.structure);
+        let base_pitch_mm = g.pitch_mm / s;
+        let geometry = scaled.model.bearing;
         Ok(RigDescription {
             origin: "sidecar geometry".into(),
-            base: best.0.to_string(),
+            base: base.to_string(),
             elements: g.elements,
             ball_mm: g.ball_mm,
             pitch_mm: g.pitch_mm,
@@ -281,18 +231,18 @@ impl RigDescription {
             radial_load_n: load_n,
             sample_rate_hz: rate_hz,
             window_samples: window,
-            mass_kg: st.mass * s.powi(3),
-            stiffness_n_per_m: st.stiffness * s,
-            damping_n_s_per_m: st.damping * s * s,
+            mass_kg: st.mass,
+            stiffness_n_per_m: st.stiffness,
+            damping_n_s_per_m: st.damping,
             structure_origin: format!(
                 "preset {} scaled by geometric similitude, s = pitch {} mm / {:.2} mm = {s:.4}: mass × s³, stiffness × s, damping × s²",
-                best.0,
+                base,
                 g.pitch_mm,
-                base.bearing.pitch_diameter * 1e3
+                base_pitch_mm
             ),
             assumptions: vec![
-                format!("structure (mass, stiffness, damping, resonance) scaled from preset {}, not measured", best.0),
-                format!("clearance, imbalance, waviness, roughness and slip of preset {}", best.0),
+                format!("structure (mass, stiffness, damping, resonance) scaled from preset {}, not measured", base),
+                format!("clearance, imbalance, waviness, roughness and slip of preset {base}"),
                 "ball bearing (point contact), conformities 0.52/0.515".into(),
             ],
             geometry,
@@ -315,19 +265,11 @@ impl RigDescription {
         Ok(m)
     }
 
-    /// Closed-form defect frequencies of the simulated bearing and its natural frequency.
-    pub fn kinematics(&self) -> Result<RigKinematics, String> {
-        let model = wearsim_core::Model::new_checked(self.model()?)
-            .map_err(|e| format!("simulated bearing ({}): {e}", self.origin))?;
-        let f = FaultOrders::of(&self.geometry).at(self.shaft_hz, model.natural_frequency_hz());
-        Ok(RigKinematics {
-            shaft_hz: f.shaft_hz,
-            ftf_hz: f.ftf,
-            bpfo_hz: f.bpfo,
-            bpfi_hz: f.bpfi,
-            bsf_hz: f.bsf,
-            natural_hz: f.natural_hz,
-        })
+    /// Closed-form defect frequencies of the simulated bearing (thesis eq. 17–20) and the
+    /// natural frequency of its structure with the contacts, Hz (the one kinematics type).
+    pub fn kinematics(&self) -> Result<FaultFrequencies, String> {
+        crate::kinematics::of_config(&self.model()?, 60.0 * self.shaft_hz)
+            .map_err(|e| format!("simulated bearing ({}): {e}", self.origin))
     }
 
     /// The first field in which `other` differs from this description, if any.
@@ -385,7 +327,7 @@ mod tests {
         assert_eq!(m.radial_load, 12_000.0);
         assert!(wearsim_core::Model::new_checked(m).is_ok());
         let k = d.kinematics().unwrap();
-        assert!((k.bpfo_hz + k.bpfi_hz - 8.0 * 35.0).abs() < 1e-9);
+        assert!((k.bpfo + k.bpfi - 8.0 * 35.0).abs() < 1e-9);
         assert!(d.differs(&d.clone()).is_none());
         let mut e = d.clone();
         e.radial_load_n = 1.0;
