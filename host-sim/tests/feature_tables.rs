@@ -6,23 +6,11 @@
 
 mod support;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use support::refused;
+use support::{refused, s, wearsim};
 
 use wearsim_host::gap::lifetime::{measured, measured_tables, LifeOptions};
 use wearsim_host::io::feature_table::{read_feature_table, sidecar_path, FeatureTableError};
 use wearsim_host::io::feature_table_write::{from_ims_features, write_feature_table};
-
-fn wearsim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 /// Amplitude of snapshot `k`: grows over the life (a degradation in closed form).
 fn amp(k: usize) -> f64 {

@@ -6,21 +6,10 @@
 mod support;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use support::refused;
+use std::process::Output;
+use support::{refused, s, wearsim};
 
 use wearsim_frame as frame;
-
-fn wearsim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
 
 // --- MAT files -----------------------------------------------------------------------------
 

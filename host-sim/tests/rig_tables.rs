@@ -7,19 +7,8 @@
 
 mod support;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use support::refused;
-
-fn wearsim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
+use std::process::Output;
+use support::{refused, s, wearsim};
 
 const N: usize = 400;
 /// An hour between snapshots: 400 of them are 399 h, 4.3·10⁷ revolutions at 1800 rpm,
