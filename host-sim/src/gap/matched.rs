@@ -4,8 +4,10 @@
 //! returns the cell gaps. The evaluator counts every simulation it runs, so a report can
 //! say how many were needed and how long they took.
 
+use super::memo::Memo;
 use super::{CellSpec, Reference};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
@@ -29,14 +31,26 @@ pub struct Matched {
     pub seed: u64,
     /// The measured samples (m/s²), kept for the report's plots (may be empty).
     pub real: Vec<f64>,
+    /// Simulated cell means already computed, by the full configuration, seed and length
+    /// simulated (so that a changed baseline cannot hit a stale entry).
+    pub memo: Memo<(ModelConfig, u64, usize), Vec<f64>>,
 }
 
+/// Most simulations a [`Matched`] remembers (a few hundred bytes each): a fit's grid and
+/// search, and the greedy steps' refits, stay within it.
+pub const MEMO: usize = 4096;
+
 impl Matched {
-    /// Simulates the matched record with effects `fx` added to the baseline's.
-    pub fn simulate(&self, fx: &Effects) -> Result<Vec<f64>, String> {
+    /// The baseline configuration with effects `fx` added.
+    fn config(&self, fx: &Effects) -> ModelConfig {
         let mut cfg = self.base.clone();
         merge(&mut cfg.effects, fx);
-        let model = Model::new_checked(cfg).map_err(|e| e.to_string())?;
+        cfg
+    }
+
+    /// Simulates the matched record with effects `fx` added to the baseline's.
+    pub fn simulate(&self, fx: &Effects) -> Result<Vec<f64>, String> {
+        let model = Model::new_checked(self.config(fx)).map_err(|e| e.to_string())?;
         let fs = model.config().output_rate;
         let mut st: State<{ crate::simulate::CAPACITY }> =
             State::new(&model, self.seed).map_err(|e| e.to_string())?;
@@ -51,10 +65,14 @@ impl Matched {
         Ok(x)
     }
 
-    /// Mean simulated cell values with effects `fx`.
-    pub fn sim_cells(&self, fx: &Effects) -> Result<Vec<f64>, String> {
-        let x = self.simulate(fx)?;
-        self.reference.sim_means(&x).map_err(|e| e.to_string())
+    /// Mean simulated cell values with effects `fx`, from the memo when this
+    /// configuration was simulated before; `sims` counts the simulations actually run.
+    pub fn sim_cells(&self, fx: &Effects, sims: &AtomicUsize) -> Result<Arc<Vec<f64>>, String> {
+        let key = (self.config(fx), self.seed, self.samples);
+        self.memo.get_or_run(&key, sims, || {
+            let x = self.simulate(fx)?;
+            self.reference.sim_means(&x).map_err(|e| e.to_string())
+        })
     }
 
     /// The spec the cells use.
@@ -76,8 +94,7 @@ pub trait Target: Sync {
 
 impl Target for Matched {
     fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
-        sims.fetch_add(1, Ordering::Relaxed);
-        let c = self.sim_cells(fx)?;
+        let c = self.sim_cells(fx, sims)?;
         Ok((self.reference.residuals(&c), self.reference.weight.clone()))
     }
 }

@@ -12,6 +12,7 @@ pub mod identify;
 pub mod informed;
 pub mod lifetime;
 pub mod matched;
+pub mod memo;
 pub mod protocol;
 pub mod records;
 pub mod report;

@@ -3,7 +3,8 @@
 //! that metadata against the content, and building the matched simulations of the
 //! training and held-out parts.
 
-use super::matched::Matched;
+use super::matched::{Matched, MEMO};
+use super::memo::Memo;
 use super::validate::spec_of;
 use super::Reference;
 use crate::analysis::stats::upper_median;
@@ -367,5 +368,6 @@ pub fn part(
         samples: len,
         seed,
         real: x.to_vec(),
+        memo: Memo::new(MEMO),
     })
 }

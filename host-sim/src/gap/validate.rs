@@ -9,7 +9,8 @@
 pub use super::attribute::{same_class, INDISTINGUISHABLE};
 
 use super::attribute::{attribute, Options};
-use super::matched::{merge, Evaluator, Matched};
+use super::matched::{merge, Evaluator, Matched, MEMO};
+use super::memo::Memo;
 use super::space::{self, FitSpace};
 use super::{CellSpec, Reference};
 use crate::analysis::stats::{self, rms};
@@ -209,6 +210,7 @@ pub fn record(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>, 
         samples,
         seed,
         real: vec![],
+        memo: Memo::new(MEMO),
     };
     m.simulate(&Effects::NONE)
 }
@@ -279,6 +281,7 @@ impl TwinSetup {
                 samples: part.len(),
                 seed: seed.wrapping_add(k),
                 real: vec![],
+                memo: Memo::new(MEMO),
             })
         };
         Ok((m(a, 101, "train")?, m(b, 202, "holdout")?))

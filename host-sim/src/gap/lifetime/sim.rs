@@ -9,8 +9,9 @@ use crate::analysis;
 use crate::gap::matched::merge;
 use crate::life::calibrate::{calibrate as calibrate_life, Secant};
 use crate::life::{LifeError, LifeRun, LifeSpec};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+use crate::gap::memo::Memo;
+use std::sync::atomic::AtomicUsize;
+use std::sync::Arc;
 use wearsim_core::effects::Effects;
 use wearsim_core::wear::{LifeConfig, Material};
 
@@ -42,7 +43,7 @@ pub struct LifeSim {
     pub expected_revs: f64,
     /// Samples of a window (the measured snapshot's length).
     pub window_samples: usize,
-    cache: Mutex<Vec<(Effects, Arc<Vec<LifePoint>>)>>,
+    memo: Memo<Effects, Vec<LifePoint>>,
 }
 
 /// Most effect sets kept in a [`LifeSim`]'s cache (about 3 KB each): the early-life
@@ -71,7 +72,7 @@ impl LifeSim {
             },
             seed,
             expected_revs,
-            cache: Mutex::new(vec![]),
+            memo: Memo::new(CACHE),
         })
     }
 
@@ -137,21 +138,7 @@ impl LifeSim {
     /// The life with effects `fx`, from the cache when it was run before; `sims` counts
     /// the lives actually run.
     pub fn points(&self, fx: &Effects, sims: &AtomicUsize) -> Result<Arc<Vec<LifePoint>>, String> {
-        if let Ok(c) = self.cache.lock() {
-            if let Some((_, p)) = c.iter().find(|(e, _)| e == fx) {
-                return Ok(p.clone());
-            }
-        }
-        sims.fetch_add(1, Ordering::Relaxed);
-        let (p, _) = self.run(fx)?;
-        let p = Arc::new(p);
-        if let Ok(mut c) = self.cache.lock() {
-            if c.len() >= CACHE {
-                c.remove(0);
-            }
-            c.push((*fx, p.clone()));
-        }
-        Ok(p)
+        self.memo.get_or_run(fx, sims, || Ok(self.run(fx)?.0))
     }
 }
 

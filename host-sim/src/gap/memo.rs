@@ -1,0 +1,114 @@
+//! The memo of simulations a fit has already run. Every simulation of the gap uses the
+//! same seed for a given target (common random numbers), so a simulation is a
+//! deterministic function of its configuration: a pattern search that polls back to the
+//! point it just left, a greedy step that re-simulates the effect set it chose, a
+//! backward step that removes an effect again, all ask for a simulation that exists. The
+//! memo returns it, and only simulations actually run are counted.
+//!
+//! A clone starts empty: the owner's key does not say everything a result depends on
+//! (the cell spec, the measured stretch), so a memo is never shared between owners.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// A bounded first-in-first-out memo from `K` to shared results `V`.
+pub struct Memo<K, V> {
+    entries: Mutex<Vec<(K, Arc<V>)>>,
+    capacity: usize,
+}
+
+impl<K: PartialEq + Clone, V> Memo<K, V> {
+    /// An empty memo keeping at most `capacity` results (at least 1).
+    pub fn new(capacity: usize) -> Self {
+        Memo {
+            entries: Mutex::new(vec![]),
+            capacity: capacity.max(1),
+        }
+    }
+
+    /// The result for `key`: the memo's when it holds one, else `run()`'s, which is kept
+    /// (the oldest entry goes when the memo is full) and counted in `sims`. Errors are not
+    /// kept: a refused configuration is refused again, cheaply.
+    pub fn get_or_run(
+        &self,
+        key: &K,
+        sims: &AtomicUsize,
+        run: impl FnOnce() -> Result<V, String>,
+    ) -> Result<Arc<V>, String> {
+        if let Ok(c) = self.entries.lock() {
+            if let Some((_, v)) = c.iter().find(|(k, _)| k == key) {
+                return Ok(v.clone());
+            }
+        }
+        sims.fetch_add(1, Ordering::Relaxed);
+        let v = Arc::new(run()?);
+        if let Ok(mut c) = self.entries.lock() {
+            if c.len() >= self.capacity {
+                c.remove(0);
+            }
+            c.push((key.clone(), v.clone()));
+        }
+        Ok(v)
+    }
+
+    /// Results held.
+    pub fn len(&self) -> usize {
+        self.entries.lock().map(|c| c.len()).unwrap_or(0)
+    }
+
+    /// Whether the memo holds nothing.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl<K: PartialEq + Clone, V> Clone for Memo<K, V> {
+    /// An empty memo of the same capacity (see the module documentation).
+    fn clone(&self) -> Self {
+        Memo::new(self.capacity)
+    }
+}
+
+impl<K, V> std::fmt::Debug for Memo<K, V> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = self.entries.lock().map(|c| c.len()).unwrap_or(0);
+        write!(f, "Memo({n}/{})", self.capacity)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_result_is_run_once_and_counted_once() {
+        let m: Memo<u32, u32> = Memo::new(2);
+        let sims = AtomicUsize::new(0);
+        let runs = AtomicUsize::new(0);
+        let run = |x: u32| {
+            runs.fetch_add(1, Ordering::Relaxed);
+            Ok(x * 10)
+        };
+        assert_eq!(*m.get_or_run(&1, &sims, || run(1)).unwrap(), 10);
+        assert_eq!(*m.get_or_run(&1, &sims, || run(1)).unwrap(), 10);
+        assert_eq!(sims.load(Ordering::Relaxed), 1);
+        assert_eq!(runs.load(Ordering::Relaxed), 1);
+        // Full: the oldest goes.
+        m.get_or_run(&2, &sims, || run(2)).unwrap();
+        m.get_or_run(&3, &sims, || run(3)).unwrap();
+        assert_eq!(m.len(), 2);
+        m.get_or_run(&1, &sims, || run(1)).unwrap();
+        assert_eq!(runs.load(Ordering::Relaxed), 4);
+    }
+
+    #[test]
+    fn errors_are_not_kept_and_clones_start_empty() {
+        let m: Memo<u32, u32> = Memo::new(4);
+        let sims = AtomicUsize::new(0);
+        assert!(m.get_or_run(&1, &sims, || Err("refused".into())).is_err());
+        assert!(m.is_empty());
+        m.get_or_run(&2, &sims, || Ok(5)).unwrap();
+        assert_eq!(m.len(), 1);
+        assert!(m.clone().is_empty());
+    }
+}
