@@ -1,29 +1,24 @@
-//! Twin experiments (issue 6): "measured" records simulated with one candidate effect at
-//! random parameters plus a measurement noise floor, diagnosed from the baseline.
+//! Twin experiments (issues 6 and 13): "measured" bearings simulated with candidate
+//! effects at random parameters over their whole range, a measurement noise floor, and a
+//! structure, defect size, load and speed that differ from the baseline by realistic
+//! random amounts the diagnosis does not know; fitted on one run, chosen on another,
+//! strength measured on a third (independent seeds).
 //!
-//! Two versions of the same check (issue 13, CI time):
-//! * `twins_name_the_withheld_effect_ci` (default `cargo test`, ≈ 1–2 min on two cores):
-//!   3 trials per effect on seed 7, a different seed from the long run. It can still
-//!   fail: every effect must be named (counting the indistinguishable pair as one class)
-//!   in at least 2 of its 3 trials, at least 90 % of all trials must be named, the
-//!   median held-out gap after adding the named effect must stay within 1.5× the trial's
-//!   noise-only gap, and the median shrink above 0.2. A wrong model, a broken fit or a
-//!   broken cell fails it.
+//! Two versions of the same check (CI time):
+//! * `twins_name_the_withheld_effect_ci` (default `cargo test`, a few minutes on two
+//!   cores): 3 trials per effect on seed 7, a different seed from the long run. It can
+//!   still fail: at least two detectable trials per effect on average, the truth inside
+//!   the reported set in ≥ 75 % of the detectable trials, a median shrink above 0.2 for
+//!   every effect, and the strongest trials detected at least as often as the weak ones.
 //! * `twins_name_the_withheld_effect` (`#[ignore]`: `cargo test -p wearsim-host --test
-//!   gap_validate -- --ignored --nocapture`, or `wearsim gap-validate --trials 20`):
-//!   the long validation, 20 trials per effect (≈ 10 min on two cores); its figures are
-//!   recorded in `docs/sim-to-real-results.md` ("Twin experiments").
-//!
-//! Thresholds of the long run are the acceptance's: every effect ranked first in ≥ 90 % of
-//! its trials (counting the one indistinguishable pair, running-in / roughness, as one
-//! class, and requiring its misses to stay inside the pair), and a median held-out gap
-//! after adding the named effect ≤ 1.5× the trial's noise-only gap. Twins whose withheld
-//! effect the baseline cannot see (its held-out gap below 2× the noise-only gap) are
-//! redrawn and counted, never scored.
+//!   gap_validate -- --ignored --nocapture`, or `wearsim gap-validate --trials 20 --null 20
+//!   --pairs 20 --triples 20 --outside 20`): the issue's acceptance — truth inside the
+//!   reported set in ≥ 90 % of each effect's detectable trials with a mean set size
+//!   ≤ 1.5, no-effect twins attributed in ≤ 10 %, out-of-library twins reported as not
+//!   closed in ≥ 80 %, two-effect twins with both named in ≥ 80 %. Its figures, met or
+//!   not, are recorded in `docs/sim-to-real-results.md` ("Twin experiments").
 
-use wearsim_host::gap::validate::{
-    same_class, validate, TwinOptions, TwinReport, INDISTINGUISHABLE,
-};
+use wearsim_host::gap::validate::{validate, TwinOptions, TwinReport, DETECTABLE};
 
 fn print(r: &TwinReport) {
     println!(
@@ -51,19 +46,18 @@ fn print(r: &TwinReport) {
     if let Some((n, any, both)) = r.pairs {
         println!("two-effect twins ({n}): one named first {any:.2}, both added {both:.2}");
     }
-}
-
-fn paired(e: &str) -> bool {
-    INDISTINGUISHABLE.iter().any(|(a, b, _)| *a == e || *b == e)
-}
-
-/// Trials of effect `e` named first (its class for a paired effect).
-fn named(e: &wearsim_host::gap::validate::EffectRate) -> usize {
-    if paired(&e.effect) {
-        e.top1_class
-    } else {
-        e.top1
+    for b in &r.power {
+        println!(
+            "strength >= {:.1}: in set {}/{}",
+            b.from, b.in_set, b.trials
+        );
     }
+}
+
+/// Single-effect trials of `e` that were detectable, and of them those whose reported set
+/// holds `e`.
+fn detected(e: &wearsim_host::gap::validate::EffectRate) -> (usize, usize) {
+    (e.detectable, e.in_set_detectable)
 }
 
 #[test]
@@ -72,7 +66,6 @@ fn twins_name_the_withheld_effect_ci() {
     let opt = TwinOptions {
         trials,
         seed: 7,
-        null_trials: 3,
         ..TwinOptions::default()
     };
     let r = validate(&opt, &|_, _| {}).expect("twin experiments run");
@@ -85,87 +78,92 @@ fn twins_name_the_withheld_effect_ci() {
     let mut all = (0, 0);
     for e in &r.rates {
         assert_eq!(e.trials, trials);
-        all.0 += named(e);
-        all.1 += e.trials;
-        assert!(
-            named(e) >= 2,
-            "{}: named in {} of {} trials, need 2",
-            e.effect,
-            named(e),
-            e.trials
-        );
-        assert!(
-            e.median_after_over_noise <= 1.5,
-            "{}: held-out gap after adding it is {:.2}x the noise-only gap (limit 1.5)",
-            e.effect,
-            e.median_after_over_noise
-        );
-        assert!(
-            e.median_shrink > 0.2,
-            "{}: median shrink {}",
-            e.effect,
-            e.median_shrink
-        );
+        let (n, held) = detected(e);
+        all.0 += held;
+        all.1 += n;
+        let mut shrink: Vec<f64> = r
+            .trials
+            .iter()
+            .filter(|t| t.withheld == [e.effect.clone()] && t.strength >= DETECTABLE)
+            .map(|t| 1.0 - t.after / t.before)
+            .collect();
+        shrink.sort_by(f64::total_cmp);
+        if let Some(m) = shrink.get(shrink.len() / 2) {
+            assert!(
+                *m > 0.2,
+                "{}: median shrink {m} over its detectable trials",
+                e.effect
+            );
+        }
     }
+    // Twins differ from the baseline by a realistic mismatch the diagnosis does not know
+    // and effects are drawn over their whole range; still, where the withheld effect is
+    // detectable, the reported set must hold it in at least three quarters of the trials
+    // (the long run's acceptance is 90 % per effect). A broken fit, cell or model fails.
     assert!(
-        all.0 as f64 >= 0.9 * all.1 as f64,
-        "named in {} of {} trials, need 90 %",
+        all.1 >= 2 * r.rates.len(),
+        "only {} detectable trials",
+        all.1
+    );
+    assert!(
+        all.0 as f64 >= 0.75 * all.1 as f64,
+        "truth inside the reported set in {} of {} detectable trials, need 75 %",
         all.0,
         all.1
     );
+    // Strength orders detection: the strongest band is detected at least as often as the
+    // trials below the detectability threshold.
+    let rate = |b: &wearsim_host::gap::validate::PowerBin| b.in_set as f64 / b.trials.max(1) as f64;
+    let weak: Vec<_> = r
+        .power
+        .iter()
+        .filter(|b| b.from < 2.0 && b.trials > 0)
+        .collect();
+    if let (Some(strong), false) = (r.power.last().filter(|b| b.trials > 0), weak.is_empty()) {
+        for w in weak {
+            assert!(rate(strong) >= rate(w), "power {:?} below {:?}", strong, w);
+        }
+    }
 }
 
 #[test]
-#[ignore = "long validation (~10 min on two cores); figures in docs/sim-to-real-results.md"]
+#[ignore = "long validation (~45 min on two cores); figures in docs/sim-to-real-results.md"]
 fn twins_name_the_withheld_effect() {
     let opt = TwinOptions {
         trials: 20,
         null_trials: 20,
         pair_trials: 20,
+        triple_trials: 20,
+        outside_trials: 20,
         ..TwinOptions::default()
     };
     let r = validate(&opt, &|_, _| {}).expect("twin experiments run");
     print(&r);
-    assert!(
-        r.noise_only_gap < 1.0,
-        "noise-only gap {}",
-        r.noise_only_gap
-    );
-    for (e, row) in r.rates.iter().zip(&r.confusion) {
-        assert_eq!(e.trials, 20);
-        let rate = named(e) as f64 / e.trials as f64;
+    // The issue's acceptance, with realistic mismatch.
+    for e in &r.rates {
+        let (n, held) = detected(e);
         assert!(
-            rate >= 0.9,
-            "{}: ranked first in {:.0} % of trials, need 90 %",
-            e.effect,
-            100.0 * rate
+            held as f64 >= 0.9 * n as f64,
+            "{}: truth inside the reported set in {held} of {n} detectable trials, need 90 %",
+            e.effect
         );
         assert!(
-            e.median_after_over_noise <= 1.5,
-            "{}: held-out gap after adding it is {:.2}x the noise-only gap (limit 1.5)",
+            e.mean_set_size_detectable <= 1.5,
+            "{}: mean set size {:.2}, limit 1.5",
             e.effect,
-            e.median_after_over_noise
-        );
-        // Misses of a paired effect go to its partner, nowhere else.
-        if paired(&e.effect) {
-            let outside: usize = row
-                .iter()
-                .zip(&r.columns)
-                .filter(|(_, c)| !same_class(c, &e.effect))
-                .map(|(n, _)| n)
-                .sum();
-            assert!(
-                outside <= 2,
-                "{}: {outside} misses outside its pair",
-                e.effect
-            );
-        }
-        // Whatever is named, the gap must shrink when the withheld effect is real.
-        assert!(
-            e.median_shrink > 0.2,
-            "{}: median shrink {}",
-            e.effect,
-            e.median_shrink
+            e.mean_set_size_detectable
         );
     }
+    let (n, named) = r.null.expect("no-effect twins");
+    assert!(
+        named as f64 <= 0.1 * n as f64,
+        "no-effect twins attributed {named}/{n}"
+    );
+    let (n, open) = r.outside.expect("out-of-library twins");
+    assert!(
+        open as f64 >= 0.8 * n as f64,
+        "out-of-library not closed {open}/{n}"
+    );
+    let (_, _, both) = r.pairs.expect("two-effect twins");
+    assert!(both >= 0.8, "two-effect twins both named {both:.2}");
 }

@@ -19,6 +19,7 @@ pub mod report;
 pub mod signature;
 pub mod space;
 pub mod stationary;
+pub mod twin;
 pub mod validate;
 
 pub use cells::{cells, CellSpec, CellValue};

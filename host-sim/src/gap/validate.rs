@@ -1,10 +1,16 @@
 //! Twin experiments (sim-to-real.md, "Checked on data whose effect is withheld"): a
-//! "measured" record is simulated with one (or two) candidate effects switched on at
-//! random parameter values, plus white measurement noise and a different random
-//! realisation; the diagnosis starts from the baseline, which lacks them, fits on the
-//! first half of the record and judges on the second. Over many trials per effect this
-//! gives the top-1 identification rate, the confusion matrix, and the held-out shrink
-//! relative to the noise-only gap (the baseline against a twin with no effect at all).
+//! "measured" bearing is simulated with zero to three candidate effects switched on at
+//! random parameter values over their whole range, or with a mechanism outside the
+//! library ([`super::twin::Outside`]), plus white measurement noise, and (by default) a
+//! structure, defect size, load and speed that differ from the baseline by realistic
+//! random amounts ([`super::twin::Mismatch`]). The diagnosis starts from the nominal
+//! baseline, fits on one run of the twin and chooses on another (independent seeds); a
+//! third run measures how strong the withheld effect is, for the report only (nothing is
+//! redrawn or selected on it). Over many trials this gives, per effect, the top-1 rate, the
+//! truth inside the reported confounded set and the set's size, against the effect's
+//! strength (detection power); the false-attribution rate on no-effect twins; the
+//! not-closed rate on out-of-library twins; and how often two or three withheld effects
+//! are all named.
 
 pub use super::attribute::{same_class, INDISTINGUISHABLE};
 
@@ -12,6 +18,7 @@ use super::attribute::{attribute, Options};
 use super::matched::{merge, Evaluator, Matched, MEMO};
 use super::memo::Memo;
 use super::space::{self, FitSpace};
+use super::twin::{Mismatch, Outside};
 use super::{CellSpec, Reference};
 use crate::analysis::stats::{self, rms};
 use crate::analysis::FaultFamily;
@@ -32,12 +39,18 @@ pub struct TwinOptions {
     pub effects: Vec<String>,
     /// Also run trials with two effects withheld at once (this many).
     pub pair_trials: usize,
+    /// Also run trials with three effects withheld at once (this many).
+    pub triple_trials: usize,
+    /// Also run trials whose twin has a mechanism outside the library (this many).
+    pub outside_trials: usize,
+    /// How the twins differ from the baseline beyond the withheld effects.
+    pub mismatch: Mismatch,
     /// Also diagnose this many twins with no effect withheld (noise floor only): the
     /// false-attribution rate.
     pub null_trials: usize,
     /// Seed of the parameter draws and realisations.
     pub seed: u64,
-    /// Length of each half (training, held-out) of a twin record (s).
+    /// Length of each twin record (training, held-out, strength) (s).
     pub half_s: f64,
     /// White measurement noise, as a fraction of the twin record's RMS.
     pub noise: f64,
@@ -51,6 +64,9 @@ impl Default for TwinOptions {
             trials: 20,
             effects: vec![],
             pair_trials: 0,
+            triple_trials: 0,
+            outside_trials: 0,
+            mismatch: Mismatch::REALISTIC,
             null_trials: 0,
             seed: 1,
             half_s: 1.0,
@@ -83,21 +99,44 @@ pub struct Trial {
     pub oracle: f64,
     /// Simulations this trial ran.
     pub simulations: usize,
-    /// Parameter draws rejected before this one because the baseline's held-out gap to
-    /// the twin was below [`DETECTABLE`] × the noise-only gap (within the measurement's
-    /// own variability: nothing to identify).
-    pub redraws: usize,
+    /// The twin's mismatch factors (name, factor; empty without mismatch).
+    pub mismatch: Vec<(String, f64)>,
+    /// The out-of-library mechanism's parameters, when the twin has one.
+    pub outside: Option<Vec<(String, f64)>>,
+    /// Strength of what was withheld: the total gap between a third, independent run of
+    /// the twin and the twin's own configuration without the withheld effects (or the
+    /// out-of-library mechanism), over the noise-only gap. For the report only: nothing
+    /// is redrawn or chosen on it.
+    pub strength: f64,
+    /// Effects the greedy addition kept.
+    pub kept: Vec<String>,
+    /// Held-out total gap of the final (greedy) model.
+    pub final_gap: f64,
+    /// The final model closes the gap: its held-out total is within [`DETECTABLE`] × the
+    /// noise-only gap.
+    pub closed: bool,
 }
 
-/// A twin counts only when the baseline's held-out gap to it is at least this multiple
-/// of the noise-only gap ([`TwinReport::noise_only_gap`]); weaker draws are redrawn (at
-/// most [`MAX_REDRAWS`] times) and counted, so that the identification rate is measured on
-/// effects the cells can see at all, and how often a random level could not be seen is
-/// reported rather than hidden.
+/// A withheld effect counts as detectable when its strength ([`Trial::strength`]) is at
+/// least this multiple of the noise-only gap
+/// ([`TwinReport::noise_only_gap`]); the same multiple of the noise-only gap left after
+/// the final model counts as a gap the library did not close.
 pub const DETECTABLE: f64 = 2.0;
 
-/// Redraws allowed per trial before the last draw is kept however weak.
-pub const MAX_REDRAWS: usize = 20;
+/// Edges of the strength bins of the detection-power table (multiples of the noise-only
+/// gap).
+pub const STRENGTH_BINS: [f64; 5] = [0.0, 1.0, 2.0, 4.0, 8.0];
+
+/// Detection power in one band of effect strength (single-effect trials).
+#[derive(Debug, Clone, Serialize)]
+pub struct PowerBin {
+    /// Lower edge of the strength band (× noise-only gap; the band ends at the next edge).
+    pub from: f64,
+    /// Trials whose strength is in the band.
+    pub trials: usize,
+    /// Of them, trials whose reported set holds the withheld effect.
+    pub in_set: usize,
+}
 
 /// Per-effect summary.
 #[derive(Debug, Clone, Serialize)]
@@ -117,12 +156,16 @@ pub struct EffectRate {
     pub median_after_over_noise: f64,
     /// Median held-out shrink of the total gap.
     pub median_shrink: f64,
-    /// Parameter draws rejected as undetectable over all its trials ([`Trial::redraws`]).
-    pub redraws: usize,
     /// Trials whose reported set (first-ranked effect and its confounded set) holds it.
     pub in_set: usize,
     /// Mean size of the reported set over its trials (0 when nothing was named).
     pub mean_set_size: f64,
+    /// Trials in which it was detectable ([`DETECTABLE`]).
+    pub detectable: usize,
+    /// Of those, trials whose reported set holds it.
+    pub in_set_detectable: usize,
+    /// Mean reported set size over the detectable trials.
+    pub mean_set_size_detectable: f64,
 }
 
 /// The result of `gap-validate`.
@@ -150,6 +193,15 @@ pub struct TwinReport {
     /// No-effect twins: trials, and how many the diagnosis attributed to an effect
     /// (the false-attribution rate is their ratio).
     pub null: Option<(usize, usize)>,
+    /// Three-effect trials: trials, and the fraction whose greedy additions hold all three
+    /// (the indistinguishable pair counted as one class).
+    pub triples: Option<(usize, f64)>,
+    /// Out-of-library twins: trials, and how many the final model left not closed.
+    pub outside: Option<(usize, usize)>,
+    /// Detection power against strength, over the single-effect trials.
+    pub power: Vec<PowerBin>,
+    /// The mismatch ranges the twins were drawn with.
+    pub mismatch: String,
     /// Every trial.
     pub trials: Vec<Trial>,
     /// Simulations run.
@@ -215,36 +267,41 @@ pub fn record(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>, 
     m.simulate(&Effects::NONE)
 }
 
-/// Normalised coordinates drawn for a twin: the part of each fitted range that differs
-/// detectably from the baseline (the lower ends of slip, jitter, noise, hum and shaft
-/// harmonics, a roughness scale near 1 and an edge shape near the baseline's are the
-/// baseline within the measurement's variability, and would test nothing).
+/// Normalised coordinates drawn for a twin: uniform over the whole fitted range. Draws
+/// the baseline cannot tell from noise are kept and scored against their strength
+/// ([`Trial::strength`]), not redrawn.
 fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
     #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
     let mut u01 = || 0.5 * (rng.uniform_pm1() as f64 + 1.0);
-    space
-        .fitted
-        .iter()
-        .map(|p| {
-            let (lo, hi) = match (space.effect, p.name) {
-                ("load-zone", "depth") => (0.6, 1.0),
-                ("load-zone", "epsilon") => (0.0, 0.6),
-                // Half the twins narrow the zone only, half also preload it (the
-                // coordinate is clamped at 0 below the range).
-                ("load-zone", "preload") => (-0.5, 0.5),
-                ("roughness", _) => (0.65, 1.0),
-                ("running-in", _) => (0.5, 1.0),
-                ("edge-shape", "length_scale") => (0.0, 0.3),
-                ("edge-shape", "asperity_scale") => (0.4, 1.0),
-                ("sensor", "hum") => (0.3, 1.0),
-                ("transfer-path", "path_gain") => (0.2, 0.9),
-                ("slip", _) => (0.55, 1.0),
-                ("speed-fluctuation", _) => (0.65, 1.0),
-                _ => (0.4, 1.0),
-            };
-            lo + (hi - lo) * u01()
-        })
-        .collect()
+    space.fitted.iter().map(|_| u01()).collect()
+}
+
+/// Whether trial `t`'s reported set holds effect `e`.
+fn holds(t: &Trial, e: &str) -> bool {
+    t.reported_set.iter().any(|x| x == e)
+}
+
+/// Mean reported set size over `ts` (0 for none).
+fn mean_size(ts: &[&Trial]) -> f64 {
+    ts.iter().map(|t| t.reported_set.len()).sum::<usize>() as f64 / ts.len().max(1) as f64
+}
+
+/// `k` distinct indices below `n` for trial `t` (k ≤ n): every combination is visited in
+/// turn as `t` grows, starting at `t mod n` with a stride that changes every `n` trials.
+fn distinct(t: usize, k: usize, n: usize) -> Vec<usize> {
+    let n = n.max(1);
+    let stride = 1 + (t / n) % (n - 1).max(1);
+    let mut out = vec![];
+    let mut i = t % n;
+    while out.len() < k.min(n) {
+        if out.contains(&i) {
+            i = (i + 1) % n;
+            continue;
+        }
+        out.push(i);
+        i = (i + stride) % n;
+    }
+    out
 }
 
 /// Median of the finite values (NaN when there is none: reported as such).
@@ -261,30 +318,66 @@ struct TwinSetup {
     floor: Effects,
 }
 
+/// The three runs of one twin bearing, matched against the nominal baseline.
+struct TwinRuns {
+    /// Fitted on.
+    train: Matched,
+    /// Chosen on (the held-out run).
+    holdout: Matched,
+    /// Only measures the strength of what was withheld: a third run matched against the
+    /// twin's true configuration without the withheld effects (the mismatch is not part
+    /// of the strength).
+    strength: Matched,
+    /// The held-out run matched against the twin's true configuration (mismatch
+    /// included): the "exactly right model" for the oracle gap.
+    truth: Matched,
+}
+
 impl TwinSetup {
-    /// A twin record with effects `fx`, split into matched training and held-out halves.
-    fn halves(&self, fx: &Effects, seed: u64) -> Result<(Matched, Matched), String> {
-        let mut cfg = self.base.clone();
-        cfg.effects = self.floor;
-        merge(&mut cfg.effects, fx);
-        let x = record(
-            &cfg,
-            seed.wrapping_mul(7919).wrapping_add(13),
-            2 * self.half,
-        )?;
-        let (a, b) = x.split_at(self.half);
-        let m = |part: &[f64], k: u64, label: &str| -> Result<Matched, String> {
+    /// Three independent runs (seeds derived from `seed`) of the twin `cfg` with effects
+    /// `fx` and the floor, with the out-of-library mechanism `outside` added to each.
+    fn runs(
+        &self,
+        cfg: &ModelConfig,
+        fx: &Effects,
+        outside: Option<&Outside>,
+        seed: u64,
+    ) -> Result<TwinRuns, String> {
+        let mut twin = cfg.clone();
+        twin.effects = self.floor;
+        merge(&mut twin.effects, fx);
+        #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
+        let shaft_hz = twin.speed.shaft_hz(0.0) as f64;
+        let run = |k: u64, label: &str| -> Result<Matched, String> {
+            let mut x = record(
+                &twin,
+                seed.wrapping_mul(7919).wrapping_add(13 + 1_000_003 * k),
+                self.half,
+            )?;
+            if let Some(o) = outside {
+                o.add(&mut x, shaft_hz, self.spec.fs);
+            }
             Ok(Matched {
                 label: label.to_string(),
                 base: self.base.clone(),
-                reference: Reference::new(part, &self.spec).map_err(|e| e.to_string())?,
-                samples: part.len(),
-                seed: seed.wrapping_add(k),
+                reference: Reference::new(&x, &self.spec).map_err(|e| e.to_string())?,
+                samples: x.len(),
+                seed: seed.wrapping_add(101 * (k + 1)),
                 real: vec![],
                 memo: Memo::new(MEMO),
             })
         };
-        Ok((m(a, 101, "train")?, m(b, 202, "holdout")?))
+        let holdout = run(1, "holdout")?;
+        let mut truth = holdout.clone();
+        truth.base = cfg.clone();
+        let mut strength = run(2, "strength")?;
+        strength.base = cfg.clone();
+        Ok(TwinRuns {
+            train: run(0, "train")?,
+            holdout,
+            strength,
+            truth,
+        })
     }
 }
 
@@ -339,53 +432,55 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         ..Options::default()
     };
     let mut rng = Xoshiro128pp::from_u64(opt.seed);
-    let total = chosen.len() * opt.trials + opt.trials + opt.pair_trials + opt.null_trials;
+    let total = chosen.len() * opt.trials
+        + opt.trials
+        + opt.pair_trials
+        + opt.triple_trials
+        + opt.outside_trials
+        + opt.null_trials;
     let mut done = 0;
-    // Noise-only twins: the floor every shrink is compared with.
+    // Noise-only twins (the baseline itself, another realisation): the floor every gap
+    // is compared with.
     let mut noise_only = vec![];
     for t in 0..opt.trials {
-        let (_, ho) = setup.halves(&Effects::NONE, opt.seed * 1000 + t as u64)?;
-        noise_only.push(ev.total(&[ho], &setup.floor));
+        let r = setup.runs(&base, &Effects::NONE, None, opt.seed * 1000 + t as u64)?;
+        noise_only.push(ev.total(&[r.holdout], &setup.floor));
         done += 1;
         progress(done, total);
     }
     let noise_gap = median(noise_only);
     let mut trials = vec![];
     let run = |withheld: &[&FitSpace],
+               outside: bool,
                seed: u64,
                rng: &mut Xoshiro128pp,
                max_effects: usize|
-     -> Result<(Trial, Vec<String>), String> {
+     -> Result<Trial, String> {
         let sims0 = ev.sims();
-        let mut redraws = 0;
-        let (fx, params, tr, ho) = loop {
-            let mut fx = Effects::NONE;
-            let mut params: Vec<Vec<(String, f64)>> = vec![];
-            for s in withheld {
-                let u = draw(s, rng);
-                s.apply(&mut fx, &u)?;
-                params.push(
-                    s.named(&u)
-                        .into_iter()
-                        .map(|(n, v)| (n.to_string(), v))
-                        .collect(),
-                );
-            }
-            let (tr, ho) = setup.halves(&fx, seed.wrapping_add(31 * redraws as u64))?;
-            let seen = ev.total(std::slice::from_ref(&ho), &setup.floor);
-            if withheld.is_empty() || seen >= DETECTABLE * noise_gap || redraws >= MAX_REDRAWS {
-                break (fx, params, tr, ho);
-            }
-            redraws += 1;
-        };
+        let (cfg, mismatch) = opt.mismatch.apply(&base, rng);
+        let out = outside.then(|| Outside::draw(rng));
+        let mut fx = Effects::NONE;
+        let mut params: Vec<Vec<(String, f64)>> = vec![];
+        for s in withheld {
+            let u = draw(s, rng);
+            s.apply(&mut fx, &u)?;
+            params.push(
+                s.named(&u)
+                    .into_iter()
+                    .map(|(n, v)| (n.to_string(), v))
+                    .collect(),
+            );
+        }
+        let r = setup.runs(&cfg, &fx, out.as_ref(), seed)?;
+        let strength = ev.total(std::slice::from_ref(&r.strength), &setup.floor) / noise_gap;
         let mut truth = setup.floor;
         merge(&mut truth, &fx);
-        let oracle = ev.total(std::slice::from_ref(&ho), &truth);
+        let oracle = ev.total(std::slice::from_ref(&r.truth), &truth);
         let mut a = attribute(
             &all,
             &setup.floor,
-            &[tr],
-            &[ho],
+            &[r.train],
+            std::slice::from_ref(&r.holdout),
             &ev,
             &Options {
                 max_effects,
@@ -401,27 +496,28 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 v
             })
             .unwrap_or_default();
-        let added: Vec<String> = a.kept.clone();
-        Ok((
-            Trial {
-                withheld: withheld.iter().map(|s| s.effect.to_string()).collect(),
-                params,
-                ranked_first: first.map(|r| r.effect.clone()),
-                reported_set,
-                fitted: first.map(|r| r.params.clone()).unwrap_or_default(),
-                before: a.baseline_holdout,
-                after: first.map_or(a.baseline_holdout, |r| r.holdout_gap),
-                oracle,
-                simulations: ev.sims() - sims0,
-                redraws,
-            },
-            added,
-        ))
+        Ok(Trial {
+            withheld: withheld.iter().map(|s| s.effect.to_string()).collect(),
+            params,
+            ranked_first: first.map(|r| r.effect.clone()),
+            reported_set,
+            fitted: first.map(|r| r.params.clone()).unwrap_or_default(),
+            before: a.baseline_holdout,
+            after: first.map_or(a.baseline_holdout, |r| r.holdout_gap),
+            oracle,
+            simulations: ev.sims() - sims0,
+            mismatch,
+            outside: out.map(|o| o.named()),
+            strength,
+            kept: a.kept.clone(),
+            final_gap: a.final_holdout,
+            closed: a.final_holdout <= DETECTABLE * noise_gap,
+        })
     };
     for (i, s) in chosen.iter().enumerate() {
         for t in 0..opt.trials {
             let seed = opt.seed * 1_000_003 + (i * 1000 + t) as u64;
-            trials.push(run(&[s], seed, &mut rng, 1)?.0);
+            trials.push(run(&[s], false, seed, &mut rng, 1)?);
             done += 1;
             progress(done, total);
         }
@@ -431,7 +527,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     if opt.null_trials > 0 {
         let mut named = 0;
         for t in 0..opt.null_trials {
-            let (tr, _) = run(&[], opt.seed * 5_000_011 + t as u64, &mut rng, 1)?;
+            let tr = run(&[], false, opt.seed * 5_000_011 + t as u64, &mut rng, 1)?;
             named += usize::from(tr.ranked_first.is_some());
             trials.push(tr);
             done += 1;
@@ -439,17 +535,42 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         }
         null = Some((opt.null_trials, named));
     }
-    // Two withheld effects at once.
+    // A mechanism outside the library: the full greedy model should leave the gap open.
+    let mut outside = None;
+    if opt.outside_trials > 0 {
+        let mut open = 0;
+        for t in 0..opt.outside_trials {
+            let tr = run(
+                &[],
+                true,
+                opt.seed * 9_000_011 + t as u64,
+                &mut rng,
+                Options::default().max_effects,
+            )?;
+            open += usize::from(!tr.closed);
+            trials.push(tr);
+            done += 1;
+            progress(done, total);
+        }
+        outside = Some((opt.outside_trials, open));
+    }
+    // Two and three withheld effects at once: all of them named by the greedy additions.
     let mut pairs = None;
-    if opt.pair_trials > 0 && chosen.len() >= 2 {
-        let (mut any, mut both) = (0, 0);
-        for t in 0..opt.pair_trials {
-            let i = t % chosen.len();
-            let j = (i + 1 + (t / chosen.len()) % (chosen.len() - 1)) % chosen.len();
-            let (Some(a), Some(b)) = (chosen.get(i), chosen.get(j)) else {
-                continue;
-            };
-            let (tr, added) = run(&[a, b], opt.seed * 7_000_003 + t as u64, &mut rng, 2)?;
+    let mut triples = None;
+    for (k, n, seed0) in [
+        (2, opt.pair_trials, 7_000_003),
+        (3, opt.triple_trials, 8_000_009),
+    ] {
+        if n == 0 || chosen.len() < k {
+            continue;
+        }
+        let (mut any, mut all_named) = (0, 0);
+        for t in 0..n {
+            let picked: Vec<&FitSpace> = distinct(t, k, chosen.len())
+                .into_iter()
+                .filter_map(|i| chosen.get(i))
+                .collect();
+            let tr = run(&picked, false, opt.seed * seed0 + t as u64, &mut rng, k)?;
             if tr
                 .ranked_first
                 .as_ref()
@@ -457,20 +578,24 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             {
                 any += 1;
             }
-            if added.len() == 2
+            if tr.kept.len() == k
                 && tr
                     .withheld
                     .iter()
-                    .all(|w| added.iter().any(|x| same_class(w, x)))
+                    .all(|w| tr.kept.iter().any(|x| same_class(w, x)))
             {
-                both += 1;
+                all_named += 1;
             }
             trials.push(tr);
             done += 1;
             progress(done, total);
         }
-        let n = opt.pair_trials as f64;
-        pairs = Some((opt.pair_trials, any as f64 / n, both as f64 / n));
+        let nf = n as f64;
+        if k == 2 {
+            pairs = Some((n, any as f64 / nf, all_named as f64 / nf));
+        } else {
+            triples = Some((n, all_named as f64 / nf));
+        }
     }
     // Summaries.
     let labels: Vec<String> = chosen.iter().map(|s| s.effect.to_string()).collect();
@@ -492,6 +617,11 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 *c += 1;
             }
         }
+        let seen: Vec<&Trial> = mine
+            .iter()
+            .copied()
+            .filter(|t| t.strength >= DETECTABLE)
+            .collect();
         let top1 = mine
             .iter()
             .filter(|t| t.ranked_first.as_deref() == Some(l.as_str()))
@@ -508,15 +638,33 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             top1_class,
             median_after_over_noise: median(mine.iter().map(|t| t.after / t.oracle).collect()),
             median_shrink: median(mine.iter().map(|t| 1.0 - t.after / t.before).collect()),
-            redraws: mine.iter().map(|t| t.redraws).sum(),
-            in_set: mine
-                .iter()
-                .filter(|t| t.reported_set.iter().any(|e| e == l))
-                .count(),
-            mean_set_size: mine.iter().map(|t| t.reported_set.len()).sum::<usize>() as f64
-                / mine.len().max(1) as f64,
+            in_set: mine.iter().filter(|t| holds(t, l)).count(),
+            mean_set_size: mean_size(&mine),
+            detectable: seen.len(),
+            in_set_detectable: seen.iter().filter(|t| holds(t, l)).count(),
+            mean_set_size_detectable: mean_size(&seen),
         });
     }
+    let power = STRENGTH_BINS
+        .iter()
+        .enumerate()
+        .map(|(b, from)| {
+            let to = STRENGTH_BINS.get(b + 1).copied().unwrap_or(f64::INFINITY);
+            let band: Vec<&Trial> = trials
+                .iter()
+                .filter(|t| t.withheld.len() == 1 && t.outside.is_none())
+                .filter(|t| (*from..to).contains(&t.strength))
+                .collect();
+            PowerBin {
+                from: *from,
+                trials: band.len(),
+                in_set: band
+                    .iter()
+                    .filter(|t| t.withheld.first().is_some_and(|w| holds(t, w)))
+                    .count(),
+            }
+        })
+        .collect();
     let mut columns = cols;
     columns.push("none".into());
     Ok(TwinReport {
@@ -532,6 +680,10 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             .collect(),
         pairs,
         null,
+        triples,
+        outside,
+        power,
+        mismatch: format!("{:?}", opt.mismatch),
         trials,
         simulations: ev.sims(),
         seconds: t0.elapsed().as_secs_f64(),
