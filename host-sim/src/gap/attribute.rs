@@ -502,6 +502,9 @@ pub struct TestTotals {
     pub after: f64,
     /// `1 − after/before`.
     pub shrink: f64,
+    /// The chosen model closes the gap: `after` is below [`Options::significant_gap`],
+    /// within the measurement's own segment-to-segment variability.
+    pub closed: bool,
 }
 
 /// Total gaps. `before`/`after` are on the validation part, which chose the model (a
@@ -523,6 +526,9 @@ pub struct Totals {
     pub test_after: Option<f64>,
     /// `1 − test_after/test_before`.
     pub test_shrink: Option<f64>,
+    /// Whether the chosen model closes the test gap ([`TestTotals::closed`]); when it
+    /// does not, a mechanism outside the library remains.
+    pub closed_by_library: Option<bool>,
 }
 
 impl Totals {
@@ -536,6 +542,7 @@ impl Totals {
             test_before: at.test.map(|t| t.before),
             test_after: at.test.map(|t| t.after),
             test_shrink: at.test.map(|t| t.shrink),
+            closed_by_library: at.test.map(|t| t.closed),
         }
     }
 }

@@ -12,12 +12,15 @@ use wearsim_core::effects::Effects;
 /// Judges a finished attribution on the test part `test` (never seen by the fit or the
 /// choice): the baseline `base`, every ranked effect alone at its training fit, and the
 /// final model. Fills [`super::attribute::Ranked::test_shrink`] and
-/// [`Attribution::test`].
+/// [`Attribution::test`]; when the final model leaves a test gap at or above
+/// `significant` (the measurement's variability, [`super::attribute::Options`]), a
+/// finding says that the library does not close the gap.
 pub fn judge<T: Target>(
     at: &mut Attribution,
     base: &Effects,
     test: &[T],
     ev: &Evaluator,
+    significant: f64,
 ) -> Result<TestTotals, String> {
     let before = ev.residuals(test, base)?.total();
     for r in &mut at.ranking {
@@ -30,7 +33,72 @@ pub fn judge<T: Target>(
         before,
         after,
         shrink: 1.0 - after / before,
+        closed: after < significant,
     };
+    if !t.closed && before >= significant {
+        at.findings.push(format!(
+            "the chosen model leaves a test gap of {after:.2} (from {before:.2}), above the measurement's own variability ({significant:.1}): the effect library does not close the gap, a mechanism outside it remains"
+        ));
+    }
     at.test = Some(t);
     Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gap::attribute::{attribute, Options};
+    use crate::gap::space::{spaces, Context};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use wearsim_core::effects::EffectKind;
+
+    /// A record whose one cell is 4 spreads off the baseline and `floor` with roughness
+    /// on, whatever its parameters: roughness is the only effect that helps, and it helps
+    /// down to `floor`.
+    struct Floor(f64);
+
+    impl Target for Floor {
+        fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
+            sims.fetch_add(1, Ordering::Relaxed);
+            let g = if fx.is_on(EffectKind::Roughness) {
+                self.0
+            } else {
+                4.0
+            };
+            Ok((vec![g], vec![1.0]))
+        }
+    }
+
+    fn judged(floor: f64) -> (TestTotals, Vec<String>) {
+        let ctx = Context {
+            fs: 12_000.0,
+            shaft_hz: 30.0,
+            rms: 1.0,
+            mains_hz: 60.0,
+        };
+        let rough: Vec<_> = spaces(&ctx)
+            .into_iter()
+            .filter(|s| s.effect == "roughness")
+            .collect();
+        let ev = Evaluator::new(1);
+        let opt = Options::default();
+        let t = [Floor(floor)];
+        let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
+        assert_eq!(at.kept, ["roughness"]);
+        let tt = judge(&mut at, &Effects::NONE, &t, &ev, opt.significant_gap).unwrap();
+        (tt, at.findings)
+    }
+
+    #[test]
+    fn a_gap_the_library_leaves_above_the_variability_is_reported_as_not_closed() {
+        let (t, findings) = judged(2.0);
+        assert_eq!((t.before, t.after), (4.0, 2.0));
+        assert!(!t.closed);
+        assert!(findings
+            .iter()
+            .any(|f| f.contains("does not close the gap")));
+        let (t, findings) = judged(0.5);
+        assert!(t.closed);
+        assert!(!findings.iter().any(|f| f.contains("does not close")));
+    }
 }

@@ -148,9 +148,13 @@ pub fn markdown(o: &GapOutput) -> String {
         o.totals.test_after,
         o.totals.test_shrink,
     ) {
+        let closed = match o.totals.closed_by_library {
+            Some(true) => "the library closes it (within the measurement's variability)",
+            _ => "the library does **not** close it (above the measurement's variability)",
+        };
         let _ = writeln!(
             s,
-            "**Total test gap** (chose nothing): {b:.2} → {a:.2} ({:.0} % smaller).\n",
+            "**Total test gap** (chose nothing): {b:.2} → {a:.2} ({:.0} % smaller); {closed}.\n",
             100.0 * sh
         );
     }

@@ -419,7 +419,7 @@ pub fn diagnose(
             .collect();
         identify::group_shrink(&mut at, &groups);
     }
-    judge(&mut at, &Effects::NONE, &p.test, &ev).map_err(GapError::run)?;
+    judge(&mut at, &Effects::NONE, &p.test, &ev, opt.significant_gap).map_err(GapError::run)?;
     Ok((at, spaces, ev))
 }
 
