@@ -42,7 +42,8 @@ pub struct Options {
     /// Two effects whose single shrinks differ by less than this are reported as not told
     /// apart by the cells.
     pub tie: f64,
-    /// A held-out baseline gap below this is within the measurement's own variability.
+    /// A held-out baseline gap below this is within the measurement's own variability:
+    /// no effect is named (every effect is still fitted and ranked).
     pub significant_gap: f64,
     /// How far each fit may search.
     pub budget: Budget,
@@ -275,7 +276,14 @@ pub fn attribute<T: Target>(
             opt.significant_gap
         ));
     }
-    let best = ranking.first().filter(|r| r.shrink >= opt.min_shrink);
+    // An effect is named only where there is a gap to explain: below the significance
+    // level the ranking is not evidence for any (the finding above says so), and naming
+    // one would attribute the measurement's own variability, or a rig that differs a
+    // little from its nominal description, to an effect.
+    let significant = hold0 >= opt.significant_gap;
+    let best = ranking
+        .first()
+        .filter(|r| significant && r.shrink >= opt.min_shrink);
     let identified = best.map(|r| r.effect.clone());
     let tied_with: Vec<String> = match best {
         Some(b) => ranking
@@ -286,7 +294,7 @@ pub fn attribute<T: Target>(
             .collect(),
         None => vec![],
     };
-    if best.is_none() {
+    if best.is_none() && significant {
         findings.push(format!(
             "no candidate effect shrinks the held-out gap by {:.0} % or more: the gap is not explained by the effect library",
             100.0 * opt.min_shrink

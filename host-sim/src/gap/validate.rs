@@ -488,7 +488,10 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             },
         )?;
         super::identify::confounded(&mut a, aopt.min_shrink);
-        let first = a.ranking.first().filter(|r| r.shrink >= aopt.min_shrink);
+        let first = a
+            .identified
+            .as_ref()
+            .and_then(|e| a.ranking.iter().find(|r| &r.effect == e));
         let reported_set: Vec<String> = first
             .map(|r| {
                 let mut v = vec![r.effect.clone()];
