@@ -12,6 +12,7 @@ pub mod gap;
 pub mod geometry;
 pub mod io;
 pub mod kinematics;
+pub mod lanes;
 pub mod life;
 pub mod plot;
 pub mod resolvable;

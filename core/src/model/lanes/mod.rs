@@ -21,6 +21,7 @@ mod check;
 mod step;
 
 pub use check::LaneError;
+pub use step::{LibmSqrt, SqrtLanes};
 
 use super::{Model, Sample, State, StepStats};
 use crate::decimate::MAX_TAPS;
@@ -201,10 +202,17 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
     /// Fills `out` with output samples, lane by lane (`out[j][i]` is lane `i`'s sample `j`);
     /// returns how many were written (all of them).
     pub fn fill(&mut self, out: &mut [[Sample; K]]) -> usize {
+        self.fill_with(out, &LibmSqrt)
+    }
+
+    /// [`LaneGroup::fill`] with the square roots of the Hertz loads taken by `sqrt` (see
+    /// [`SqrtLanes`]).
+    #[inline(always)]
+    pub fn fill_with<S: SqrtLanes<K>>(&mut self, out: &mut [[Sample; K]], sqrt: &S) -> usize {
         let mut written = 0;
         for slot in out.iter_mut() {
             loop {
-                if let Some(s) = self.step() {
+                if let Some(s) = self.step_with(sqrt) {
                     *slot = s;
                     break;
                 }

@@ -14,14 +14,15 @@ use crate::rng::Xoshiro128pp;
 /// Steps between two checks of the slip bookkeeping (as the scalar step).
 const SLIP_CHECK_EVERY: u64 = 8;
 
-/// `x^{3/2}` per lane (`x·√x` for `x > 0`, else 0), as [`crate::real::pow_3_2`].
+/// `x^{3/2}` per lane (`x·√x` for `x > 0`, else 0), as [`crate::real::pow_3_2`], with
+/// the square roots taken by `sqrt`.
 #[inline(always)]
-fn pow_3_2_lanes<const K: usize>(x: &[Real; K]) -> [Real; K] {
+fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt: &S) -> [Real; K] {
     let mut s = [0.0; K];
     for (si, xi) in s.iter_mut().zip(x) {
         *si = if *xi > 0.0 { *xi } else { 0.0 };
     }
-    sqrt_lanes(&mut s);
+    sqrt.sqrt_lanes(&mut s);
     let mut out = [0.0; K];
     for ((o, xi), si) in out.iter_mut().zip(x).zip(&s) {
         *o = if *xi > 0.0 { *xi * *si } else { 0.0 };
@@ -29,11 +30,25 @@ fn pow_3_2_lanes<const K: usize>(x: &[Real; K]) -> [Real; K] {
     out
 }
 
-/// `√x` per lane (libm's, correctly rounded: the scalar step's bits).
-#[inline(always)]
-fn sqrt_lanes<const K: usize>(s: &mut [Real; K]) {
-    for x in s.iter_mut() {
-        *x = crate::real::sqrt(*x);
+/// Square roots of K lanes at once. Every implementation must return IEEE-754's
+/// correctly rounded `√x` of each lane (as libm's does), so that the lanes keep the
+/// scalar step's bits: a host may supply one that uses packed SIMD instructions
+/// (`sqrtpd`), which the core, free of `unsafe`, cannot call.
+pub trait SqrtLanes<const K: usize> {
+    /// Replaces every element of `x` (≥ 0) by its square root.
+    fn sqrt_lanes(&self, x: &mut [Real; K]);
+}
+
+/// [`SqrtLanes`] with libm's square root, one lane at a time.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LibmSqrt;
+
+impl<const K: usize> SqrtLanes<K> for LibmSqrt {
+    #[inline(always)]
+    fn sqrt_lanes(&self, x: &mut [Real; K]) {
+        for v in x.iter_mut() {
+            *v = crate::real::sqrt(*v);
+        }
     }
 }
 
@@ -101,6 +116,12 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
     /// Advances every lane by one internal step; returns one sample per lane every
     /// [`super::super::Model::oversample`] steps (lane `i`'s equals `Model::step`'s).
     pub fn step(&mut self) -> Option<[Sample; K]> {
+        self.step_with(&LibmSqrt)
+    }
+
+    /// [`LaneGroup::step`] with the square roots of the Hertz loads taken by `sqrt`.
+    #[inline(always)]
+    pub fn step_with<S: SqrtLanes<K>>(&mut self, sqrt: &S) -> Option<[Sample; K]> {
         let models = self.models;
         let m0 = models.first()?;
         if models.iter().any(|m| m.summits) {
@@ -130,7 +151,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             }
         }
         let mut stats = [StepStats::default(); K];
-        let fe = self.element_forces(&k0, &mut stats);
+        let fe = self.element_forces(&k0, &mut stats, sqrt);
 
         // Exact ZOH/FOH integrator, per lane.
         let c = &self.c;
@@ -259,7 +280,12 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
     /// roughness drawn in the loop: the geometry of each element once, the per-lane work
     /// in loops over the lanes.
     #[inline(always)]
-    fn element_forces(&mut self, k: &Kinematics, stats: &mut [StepStats; K]) -> [Real; K] {
+    fn element_forces<S: SqrtLanes<K>>(
+        &mut self,
+        k: &Kinematics,
+        stats: &mut [StepStats; K],
+        sqrt: &S,
+    ) -> [Real; K] {
         let models = self.models;
         let mut fy = [0.0; K];
         let Some(m0) = models.first() else {
@@ -308,6 +334,8 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             !crate::real::SINGLE_PRECISION && m0.contact.kind == crate::bearing::ContactKind::Point;
         let y = self.y;
         let c = &self.c;
+        let mut max_load = [0.0; K];
+        let mut defect_load = [0.0; K];
         let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
         let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
         let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
@@ -330,16 +358,13 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             let (cwe, swe) = *wcs;
             let wave = sw * cwe + cw * swe;
             let mut delta = [0.0; K];
-            for l in 0..K {
-                let (Some(d), Some(yl), Some(g), Some(r), Some(wa)) = (
-                    delta.get_mut(l),
-                    y.get(l),
-                    c.gamma.get(l),
-                    rough.get(l),
-                    c.wave_amp.get(l),
-                ) else {
-                    continue;
-                };
+            for ((((d, yl), g), r), wa) in delta
+                .iter_mut()
+                .zip(&y)
+                .zip(&c.gamma)
+                .zip(&rough)
+                .zip(&c.wave_amp)
+            {
                 let x = *yl * sin_t - *g - *r;
                 *d = if *wa != 0.0 { x - *wa * wave } else { x };
             }
@@ -414,7 +439,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             }
             let mut q = [0.0; K];
             if fast_hertz {
-                let p = pow_3_2_lanes(&delta);
+                let p = pow_3_2_lanes(&delta, sqrt);
                 for ((qi, s), pi) in q.iter_mut().zip(&c.stiffness).zip(&p) {
                     *qi = *s * *pi;
                 }
@@ -425,27 +450,29 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                     }
                 }
             }
-            for l in 0..K {
-                let (Some(ql), Some(ul), Some(al), Some(sl), Some(fl)) = (
-                    q.get_mut(l),
-                    unload.get(l),
-                    add.get(l),
-                    stats.get_mut(l),
-                    fy.get_mut(l),
-                ) else {
-                    continue;
-                };
-                if *ul > 0.0 {
-                    *ql *= if *ul < 1.0 { 1.0 - *ul } else { 0.0 };
-                }
-                if *ql > sl.max_load {
-                    sl.max_load = *ql;
-                }
-                if (*ul > 0.0 || *al != 0.0) && *ql + *al > sl.defect_load {
-                    sl.defect_load = *ql + *al;
-                }
-                *fl -= (*ql + *al) * sin_t;
+            for (((((ql, ul), al), ml), dl), fl) in q
+                .iter_mut()
+                .zip(&unload)
+                .zip(&add)
+                .zip(max_load.iter_mut())
+                .zip(defect_load.iter_mut())
+                .zip(fy.iter_mut())
+            {
+                // Branch-free forms of the scalar step's conditionals (same values).
+                let keep = if *ul < 1.0 { 1.0 - *ul } else { 0.0 };
+                let qv = if *ul > 0.0 { *ql * keep } else { *ql };
+                *ml = if qv > *ml { qv } else { *ml };
+                let qa = qv + *al;
+                // `&`/`|` on the conditions (no short circuit): the scalar step's decision
+                // without branches.
+                let on = (*ul > 0.0) | (*al != 0.0);
+                *dl = if on & (qa > *dl) { qa } else { *dl };
+                *fl -= qa * sin_t;
             }
+        }
+        for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
+            s.max_load = m;
+            s.defect_load = d;
         }
         fy
     }
