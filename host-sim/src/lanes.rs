@@ -1,11 +1,13 @@
 //! Host side of the K-lane stepper ([`wearsim_core::model::LaneGroup`]): packed square
 //! roots (`sqrtpd`, which the `unsafe`-free core cannot issue) and, where the CPU has
-//! AVX2, the whole lane step compiled for it, chosen at run time. Both keep the scalar
+//! AVX2, the whole lane step compiled for it, chosen at run time; and [`run_accel`], which
+//! groups scenarios into lane groups (sweeps, the gap's fits). Both keep the scalar
 //! step's bits: IEEE-754 square roots are correctly rounded in every form, and AVX2 does
 //! not bring fused multiply-add (Rust never contracts `a*b + c` on its own).
 
+use crate::simulate::{self, RunError, Scenario, CAPACITY};
 use wearsim_core::model::{LaneGroup, SqrtLanes};
-use wearsim_core::Sample;
+use wearsim_core::{Model, Sample};
 
 /// [`SqrtLanes`] with SSE2's packed square root, two lanes per instruction.
 #[derive(Debug, Clone, Copy, Default)]
@@ -64,4 +66,108 @@ fn fill_avx2<const K: usize, const NB: usize>(
     out: &mut [[Sample; K]],
 ) -> usize {
     group.fill_with(out, &PackedSqrt)
+}
+
+/// Largest lane group [`run_accel`] forms (the bench's best per-core figure; see
+/// `docs/python.md`).
+pub const MAX_LANES: usize = 16;
+
+/// Whether scenario `b` can join a lane group led by `a`: the core accepts the two models
+/// together and the runs record and discard the same lengths.
+pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
+    wearsim_core::model::lanes::shareable(&a.model, &b.model, 1).is_ok()
+        && a.run.duration == b.run.duration
+        && a.run.settle == b.run.settle
+}
+
+/// Acceleration (m/s², settling time discarded) of every scenario in `scs`, in order,
+/// bit for bit what [`simulate::run`] gives: scenarios that can share a lane group run
+/// in groups of up to [`MAX_LANES`] (split into 16, 8, 4, 2), the rest alone. A lane that
+/// produces a non-finite sample is re-run alone, so its error is the scalar run's.
+pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, sc) in scs.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|g| g.len() < MAX_LANES && can_share(&scs[g[0]], sc))
+        {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    let mut out: Vec<Option<Result<Vec<f64>, RunError>>> = (0..scs.len()).map(|_| None).collect();
+    for g in groups {
+        let mut rest: &[usize] = &g;
+        while !rest.is_empty() {
+            let k = [16, 8, 4, 2, 1]
+                .into_iter()
+                .find(|&k| k <= rest.len())
+                .unwrap_or(1);
+            let (now, later) = rest.split_at(k);
+            let res = match k {
+                16 => run_group::<16>(scs, now),
+                8 => run_group::<8>(scs, now),
+                4 => run_group::<4>(scs, now),
+                2 => run_group::<2>(scs, now),
+                _ => now.iter().map(|&i| scalar_accel(&scs[i])).collect(),
+            };
+            for (&i, r) in now.iter().zip(res) {
+                out[i] = Some(r);
+            }
+            rest = later;
+        }
+    }
+    out.into_iter()
+        .map(|r| r.unwrap_or_else(|| Ok(Vec::new())))
+        .collect()
+}
+
+/// One scenario through the scalar step.
+fn scalar_accel(sc: &Scenario) -> Result<Vec<f64>, RunError> {
+    simulate::run(sc, |_, _| {}).map(|o| o.accel)
+}
+
+/// Scenarios `idx` of `scs` (K of them, shareable) as one lane group.
+fn run_group<const K: usize>(scs: &[Scenario], idx: &[usize]) -> Vec<Result<Vec<f64>, RunError>> {
+    let scalar = || idx.iter().map(|&i| scalar_accel(&scs[i])).collect();
+    if idx.len() != K {
+        return scalar();
+    }
+    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l]].model.clone());
+    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l]].run.seed);
+    let Ok(group) = LaneGroup::<K, CAPACITY>::new_checked(&models, &seeds) else {
+        return scalar();
+    };
+    let mut group = Box::new(group);
+    let sc0 = &scs[idx[0]];
+    let fs = sc0.fs();
+    let n = (sc0.run.duration * fs).round() as usize;
+    let settle = (sc0.run.settle * fs).round() as usize;
+    let mut chunk: Vec<[Sample; K]> = std::iter::repeat_n([Sample::default(); K], 1024).collect();
+    let mut left = settle;
+    while left > 0 {
+        let k = left.min(chunk.len());
+        fill(&mut group, &mut chunk[..k]);
+        left -= k;
+    }
+    let mut accel: Vec<Vec<f64>> = (0..K).map(|_| Vec::with_capacity(n)).collect();
+    let mut finite = [true; K];
+    let mut done = 0;
+    while done < n {
+        let k = (n - done).min(chunk.len());
+        fill(&mut group, &mut chunk[..k]);
+        for row in &chunk[..k] {
+            for ((a, s), ok) in accel.iter_mut().zip(row).zip(finite.iter_mut()) {
+                *ok &= s.accel.is_finite() && s.vel.is_finite() && s.disp.is_finite();
+                a.push(s.accel);
+            }
+        }
+        done += k;
+    }
+    accel
+        .into_iter()
+        .zip(finite)
+        .zip(idx)
+        .map(|((a, ok), &i)| if ok { Ok(a) } else { scalar_accel(&scs[i]) })
+        .collect()
 }

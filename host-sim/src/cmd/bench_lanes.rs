@@ -147,7 +147,7 @@ pub fn measure(a: &BenchArgs, k: usize) -> Result<Value, CliError> {
     let per_core_k = simulated / ck.max(1e-12);
     let m0 = &models[0];
     Ok(json!({
-        "preset": a.preset,
+        "preset": if a.config.is_some() { None } else { Some(&a.preset) },
         "config": a.config.as_ref().map(|p| p.display().to_string()),
         "fs": a.fs,
         "oversample": m0.oversample(),

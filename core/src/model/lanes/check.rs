@@ -49,53 +49,61 @@ pub(super) fn compatible(models: &[Model]) -> Result<(), LaneError> {
     let Some(m0) = models.first() else {
         return Err(LaneError::Empty);
     };
+    for (lane, m) in models.iter().enumerate() {
+        shareable(m0, m, lane)?;
+    }
+    Ok(())
+}
+
+/// Checks that `m` can run as lane `lane` of a group whose lane 0 runs `m0` (for a
+/// caller that groups models before building a [`super::LaneGroup`]); `Ok` means
+/// [`super::LaneGroup::new_checked`] accepts the two together.
+pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
     if m0.cfg.integrator == IntegratorKind::Rk4 {
         return Err(LaneError::Unsupported {
             field: "integrator",
             reason: "RK4 is not laned (exact-zoh and exact-foh are)",
         });
     }
-    for (lane, m) in models.iter().enumerate().skip(1) {
-        let a = &m0.cfg;
-        let b = &m.cfg;
-        let loc = |m: &Model| m.cfg.defect.map(|d| d.location);
-        let fields: [(&'static str, bool); 17] = [
-            ("bearing", a.bearing == b.bearing),
-            ("speed", a.speed == b.speed),
-            ("integrator", a.integrator == b.integrator),
-            ("output_rate", a.output_rate == b.output_rate),
-            ("oversample", m0.ratio == m.ratio),
-            ("step (h)", m0.h == m.h),
-            ("channels", a.channels == b.channels),
-            ("defect.location", loc(m0) == loc(m)),
-            ("waviness.order", m0.wave_order == m.wave_order),
-            (
-                "effects.speed_fluctuation",
-                a.effects.speed_fluctuation == b.effects.speed_fluctuation,
-            ),
-            ("slip", a.slip == b.slip),
-            (
-                "roughness (on/off)",
-                a.roughness.is_some() == b.roughness.is_some(),
-            ),
-            (
-                "contact limit (preload: sin_skip)",
-                m0.sin_skip == m.sin_skip,
-            ),
-            ("contact kind", m0.contact.kind == m.contact.kind),
-            ("speed (rotations)", m0.rot == m.rot),
-            (
-                "defect.location (phasor)",
-                m0.defect_offset_cs == m.defect_offset_cs,
-            ),
-            (
-                "defect.location (spin)",
-                m0.spin_order == m.spin_order && m0.slip_spin == m.slip_spin,
-            ),
-        ];
-        if let Some((field, _)) = fields.iter().find(|(_, same)| !same) {
-            return Err(LaneError::Differs { field, lane });
-        }
+    let a = &m0.cfg;
+    let b = &m.cfg;
+    let loc = |m: &Model| m.cfg.defect.map(|d| d.location);
+    let fields: [(&'static str, bool); 17] = [
+        ("bearing", a.bearing == b.bearing),
+        ("speed", a.speed == b.speed),
+        ("integrator", a.integrator == b.integrator),
+        ("output_rate", a.output_rate == b.output_rate),
+        ("oversample", m0.ratio == m.ratio),
+        ("step (h)", m0.h == m.h),
+        ("channels", a.channels == b.channels),
+        ("defect.location", loc(m0) == loc(m)),
+        ("waviness.order", m0.wave_order == m.wave_order),
+        (
+            "effects.speed_fluctuation",
+            a.effects.speed_fluctuation == b.effects.speed_fluctuation,
+        ),
+        ("slip", a.slip == b.slip),
+        (
+            "roughness (on/off)",
+            a.roughness.is_some() == b.roughness.is_some(),
+        ),
+        (
+            "contact limit (preload: sin_skip)",
+            m0.sin_skip == m.sin_skip,
+        ),
+        ("contact kind", m0.contact.kind == m.contact.kind),
+        ("speed (rotations)", m0.rot == m.rot),
+        (
+            "defect.location (phasor)",
+            m0.defect_offset_cs == m.defect_offset_cs,
+        ),
+        (
+            "defect.location (spin)",
+            m0.spin_order == m.spin_order && m0.slip_spin == m.slip_spin,
+        ),
+    ];
+    match fields.iter().find(|(_, same)| !same) {
+        Some((field, _)) => Err(LaneError::Differs { field, lane }),
+        None => Ok(()),
     }
-    Ok(())
 }

@@ -20,7 +20,7 @@
 mod check;
 mod step;
 
-pub use check::LaneError;
+pub use check::{shareable, LaneError};
 pub use step::{LibmSqrt, SqrtLanes};
 
 use super::{Model, Sample, State, StepStats};
