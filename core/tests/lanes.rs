@@ -87,8 +87,8 @@ fn thesis() -> ModelConfig {
     c
 }
 
-/// Lanes differing in load, defect size, structure, roughness, waviness amplitude and
-/// seed; outer-race five-step defect with slip; K = 4.
+/// Lanes differing in load, defect size, structure, roughness, waviness amplitude, slip
+/// and seed; outer-race five-step defect; K = 4.
 #[test]
 fn outer_race_lanes_equal_the_scalar_step() {
     let base = thesis();
@@ -108,6 +108,15 @@ fn outer_race_lanes_equal_the_scalar_step() {
         if let Some(w) = c.waviness.as_mut() {
             w.amplitude *= if i == 2 { 0.0 } else { f };
         }
+        // Slip per lane: larger, or off.
+        c.slip = match i {
+            1 => c.slip.map(|mut s| {
+                s.fraction *= 3.0;
+                s
+            }),
+            3 => None,
+            _ => c.slip,
+        };
         c
     });
     assert_lanes_match(cfgs, [1, 2, 3, 4], 1500);

@@ -133,16 +133,38 @@ fn run_group<const K: usize>(scs: &[Scenario], idx: &[usize]) -> Vec<Result<Vec<
     if idx.len() != K {
         return scalar();
     }
-    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l]].model.clone());
-    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l]].run.seed);
-    let Ok(group) = LaneGroup::<K, CAPACITY>::new_checked(&models, &seeds) else {
-        return scalar();
-    };
-    let mut group = Box::new(group);
     let sc0 = &scs[idx[0]];
     let fs = sc0.fs();
     let n = (sc0.run.duration * fs).round() as usize;
     let settle = (sc0.run.settle * fs).round() as usize;
+    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l]].model.clone());
+    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l]].run.seed);
+    let Some(lanes) = lane_accel(&models, &seeds, settle, n) else {
+        return scalar();
+    };
+    lanes
+        .into_iter()
+        .zip(idx)
+        .map(|(r, &i)| match r {
+            Ok(a) => Ok(a),
+            Err(_) => scalar_accel(&scs[i]),
+        })
+        .collect()
+}
+
+/// Runs `models` (seeds `seeds`) as one lane group: `settle` output samples discarded,
+/// then `n` kept; per lane its acceleration, or `Err(accel)` when a sample of any
+/// channel is non-finite (the caller reruns that lane alone for the scalar error).
+/// `None` when the core refuses the group.
+#[allow(clippy::type_complexity)]
+pub fn lane_accel<const K: usize>(
+    models: &[Model; K],
+    seeds: &[u64; K],
+    settle: usize,
+    n: usize,
+) -> Option<Vec<Result<Vec<f64>, Vec<f64>>>> {
+    let group = LaneGroup::<K, CAPACITY>::new_checked(models, seeds).ok()?;
+    let mut group = Box::new(group);
     let mut chunk: Vec<[Sample; K]> = std::iter::repeat_n([Sample::default(); K], 1024).collect();
     let mut left = settle;
     while left > 0 {
@@ -164,10 +186,11 @@ fn run_group<const K: usize>(scs: &[Scenario], idx: &[usize]) -> Vec<Result<Vec<
         }
         done += k;
     }
-    accel
-        .into_iter()
-        .zip(finite)
-        .zip(idx)
-        .map(|((a, ok), &i)| if ok { Ok(a) } else { scalar_accel(&scs[i]) })
-        .collect()
+    Some(
+        accel
+            .into_iter()
+            .zip(finite)
+            .map(|(a, ok)| if ok { Ok(a) } else { Err(a) })
+            .collect(),
+    )
 }

@@ -68,7 +68,7 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
     let a = &m0.cfg;
     let b = &m.cfg;
     let loc = |m: &Model| m.cfg.defect.map(|d| d.location);
-    let fields: [(&'static str, bool); 17] = [
+    let fields: [(&'static str, bool); 16] = [
         ("bearing", a.bearing == b.bearing),
         ("speed", a.speed == b.speed),
         ("integrator", a.integrator == b.integrator),
@@ -82,7 +82,6 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
             "effects.speed_fluctuation",
             a.effects.speed_fluctuation == b.effects.speed_fluctuation,
         ),
-        ("slip", a.slip == b.slip),
         (
             "roughness (on/off)",
             a.roughness.is_some() == b.roughness.is_some(),

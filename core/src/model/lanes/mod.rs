@@ -2,13 +2,13 @@
 //!
 //! Models that share what makes the kinematics common — bearing, speed profile (and its
 //! fluctuation), output rate, oversampling and step, integrator (exact ZOH/FOH), defect
-//! location, waviness order, slip, roughness on/off and the contact limit — move their
+//! location, waviness order, roughness on/off and the contact limit — move their
 //! shaft, cage and elements identically, so the kinematics and each element's `sin θ`,
 //! `cos θ` and defect phasor are computed once per step for all lanes. Everything that
 //! differs (motion, radial load, structure and its discretisation, contact stiffness and
 //! offset, roughness amplitude and generator, defect size/model/shape, waviness amplitude,
-//! imbalance, load zone, edge shape, running-in, transfer path, sensor, shaft harmonics,
-//! the anti-alias history) lives per lane in `[Real; K]` arrays, and the per-lane
+//! imbalance, slip (its offsets are per lane), load zone, edge shape, running-in,
+//! transfer path, sensor, shaft harmonics, the anti-alias history) lives per lane in `[Real; K]` arrays, and the per-lane
 //! arithmetic runs in tight loops over them that the compiler vectorises.
 //!
 //! Contract: lane `i`'s samples equal, bit for bit, [`Model::step`] of model `i` from

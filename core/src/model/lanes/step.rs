@@ -195,7 +195,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         for (st, s) in self.states.iter_mut().zip(stats) {
             st.stats = s;
         }
-        if m0.cfg.slip.is_some()
+        if models.iter().any(|m| m.cfg.slip.is_some())
             && m0.cfg.defect.is_some()
             && self.states.first()?.steps.is_multiple_of(SLIP_CHECK_EVERY)
         {
