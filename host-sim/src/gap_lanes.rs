@@ -12,7 +12,7 @@ use wearsim_core::Model;
 
 /// `m.simulate(fx)` for every `fx` in `fxs`, in order, with the same results (samples
 /// and errors); settings whose models can share the kinematics run in lane groups of up
-/// to [`MAX_LANES`] (16, 8, 4, 2), the others alone.
+/// to [`MAX_LANES`] (sizes from [`crate::lanes::group_size`]), the others alone.
 pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, String>> {
     let mut out: Vec<Option<Result<Vec<f64>, String>>> = (0..fxs.len()).map(|_| None).collect();
     let mut models: Vec<(usize, Model)> = Vec::new();
@@ -37,11 +37,8 @@ pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, Strin
     for g in groups {
         let mut rest: &[usize] = &g;
         while !rest.is_empty() {
-            let k = [16, 8, 4, 2, 1]
-                .into_iter()
-                .find(|&k| k <= rest.len())
-                .unwrap_or(1);
-            let (now, later) = rest.split_at(k);
+            let k = crate::lanes::group_size(rest.len());
+            let (now, later) = rest.split_at(k.min(rest.len()));
             let res = match k {
                 16 => group::<16>(m, &models, now),
                 8 => group::<8>(m, &models, now),
@@ -71,24 +68,28 @@ pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, Strin
         .collect()
 }
 
-/// Models `idx` of `models` as one lane group, the matched run's lengths and seed; a
-/// lane with a non-finite acceleration comes back as `Err(())` (rerun alone).
+/// Models `idx` of `models` (at most K; padded) as one lane group, the matched run's
+/// lengths and seed; a lane with a non-finite acceleration comes back as `Err(())`
+/// (rerun alone).
 #[allow(clippy::type_complexity)]
 fn group<const K: usize>(
     m: &Matched,
     models: &[(usize, Model)],
     idx: &[usize],
 ) -> Option<Vec<Result<Vec<f64>, ()>>> {
-    if idx.len() != K {
+    let last = idx.len().checked_sub(1)?;
+    if idx.len() > K {
         return None;
     }
-    let ms: [Model; K] = std::array::from_fn(|l| models[idx[l]].1.clone());
+    // Padding lanes (beyond `idx`) repeat the last setting; their output is dropped.
+    let ms: [Model; K] = std::array::from_fn(|l| models[idx[l.min(last)]].1.clone());
     let fs = ms[0].config().output_rate;
     let settle = ((SETTLE_S * fs) as usize).max(1);
     let lanes = lane_accel(&ms, &[m.seed; K], settle, m.samples)?;
     Some(
         lanes
             .into_iter()
+            .take(idx.len())
             .map(|r| match r {
                 Ok(a) if a.iter().all(|v| v.is_finite()) => Ok(a),
                 Ok(_) => Err(()),

@@ -36,23 +36,37 @@ impl<const K: usize> SqrtLanes<K> for PackedSqrt {
     }
 }
 
-/// Which code path [`fill`] takes on this CPU: `"avx2"` or `"sse2"`.
-pub fn simd_path() -> &'static str {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        return "avx2";
-    }
-    "sse2"
+/// Whether [`fill`] uses its AVX2 copy: the CPU has AVX2 and `WEARSIM_LANES_SSE2` is not
+/// set (that variable forces the SSE2 baseline, for measuring it).
+fn use_avx2() -> bool {
+    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVX2.get_or_init(|| {
+        #[cfg(target_arch = "x86_64")]
+        if std::env::var_os("WEARSIM_LANES_SSE2").is_none() {
+            return std::arch::is_x86_feature_detected!("avx2");
+        }
+        false
+    })
 }
 
-/// [`LaneGroup::fill`] with packed square roots, compiled for AVX2 when the CPU has it.
+/// Which code path [`fill`] takes on this machine: `"avx2"` or `"sse2"`.
+pub fn simd_path() -> &'static str {
+    if use_avx2() {
+        "avx2"
+    } else {
+        "sse2"
+    }
+}
+
+/// [`LaneGroup::fill`] with packed square roots, compiled for AVX2 when the CPU has it
+/// (see [`simd_path`]).
 pub fn fill<const K: usize, const NB: usize>(
     group: &mut LaneGroup<'_, K, NB>,
     out: &mut [[Sample; K]],
 ) -> usize {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above).
+    if use_avx2() {
+        // SAFETY: the CPU has AVX2 (`use_avx2` checked it).
         return unsafe { fill_avx2(group, out) };
     }
     group.fill_with(out, &PackedSqrt)
@@ -72,6 +86,22 @@ fn fill_avx2<const K: usize, const NB: usize>(
 /// `docs/python.md`).
 pub const MAX_LANES: usize = 16;
 
+/// Lanes of the next group for `n` shareable runs left: 16 for 16 or more, else the
+/// next power of two when at most 3/8 of it would be padding (a padded 16-lane group
+/// costs about 4 scalar runs, a 13-run split into 8 + 4 + 1 about 5.5: see
+/// `docs/python.md`), else the power of two below; 1 means the scalar step.
+pub fn group_size(n: usize) -> usize {
+    if n >= MAX_LANES {
+        return MAX_LANES;
+    }
+    let up = n.next_power_of_two();
+    if (up - n) * 8 <= up * 3 {
+        up
+    } else {
+        up / 2
+    }
+}
+
 /// Whether scenario `b` can join a lane group led by `a`: the core accepts the two models
 /// together and the runs record and discard the same lengths.
 pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
@@ -82,7 +112,7 @@ pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
 
 /// Acceleration (m/s², settling time discarded) of every scenario in `scs`, in order,
 /// bit for bit what [`simulate::run`] gives: scenarios that can share a lane group run
-/// in groups of up to [`MAX_LANES`] (split into 16, 8, 4, 2), the rest alone. A lane that
+/// in groups of up to [`MAX_LANES`] (sizes from [`group_size`], padded), the rest alone. A lane that
 /// produces a non-finite sample is re-run alone, so its error is the scalar run's.
 pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
@@ -99,11 +129,8 @@ pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
     for g in groups {
         let mut rest: &[usize] = &g;
         while !rest.is_empty() {
-            let k = [16, 8, 4, 2, 1]
-                .into_iter()
-                .find(|&k| k <= rest.len())
-                .unwrap_or(1);
-            let (now, later) = rest.split_at(k);
+            let k = group_size(rest.len());
+            let (now, later) = rest.split_at(k.min(rest.len()));
             let res = match k {
                 16 => run_group::<16>(scs, now),
                 8 => run_group::<8>(scs, now),
@@ -127,18 +154,22 @@ fn scalar_accel(sc: &Scenario) -> Result<Vec<f64>, RunError> {
     simulate::run(sc, |_, _| {}).map(|o| o.accel)
 }
 
-/// Scenarios `idx` of `scs` (K of them, shareable) as one lane group.
+/// Scenarios `idx` of `scs` (at most K, shareable) as one lane group; padding lanes
+/// repeat the last scenario and are dropped.
 fn run_group<const K: usize>(scs: &[Scenario], idx: &[usize]) -> Vec<Result<Vec<f64>, RunError>> {
     let scalar = || idx.iter().map(|&i| scalar_accel(&scs[i])).collect();
-    if idx.len() != K {
+    let Some(last) = idx.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    if idx.len() > K {
         return scalar();
     }
     let sc0 = &scs[idx[0]];
     let fs = sc0.fs();
     let n = (sc0.run.duration * fs).round() as usize;
     let settle = (sc0.run.settle * fs).round() as usize;
-    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l]].model.clone());
-    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l]].run.seed);
+    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l.min(last)]].model.clone());
+    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l.min(last)]].run.seed);
     let Some(lanes) = lane_accel(&models, &seeds, settle, n) else {
         return scalar();
     };
