@@ -100,7 +100,8 @@ struct LaneConsts<const K: usize> {
 }
 
 /// K models stepped together (see the module documentation). `NB` is the element
-/// capacity of each lane's [`State`]. About `K·(NB·40 + 12.8 KB) + 3·8 KB·K` bytes: hold
+/// capacity of each lane's [`State`]. About `K × (size_of::<State<NB>>() + 12 KB)` bytes
+/// (the lanes' own anti-alias histories: 3 channels × 512 samples × 8 B per lane): hold
 /// it in a `Box` on the host for large K.
 #[derive(Debug, Clone)]
 pub struct LaneGroup<'a, const K: usize, const NB: usize> {

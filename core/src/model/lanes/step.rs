@@ -97,13 +97,20 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         }
     }
 
-    /// Runs `f` on every lane's state with that lane's generator in `State::rng`
-    /// (summit and slip draws use the scalar code).
-    fn with_lane_rngs(&mut self, f: impl Fn(&super::super::Model, &mut super::State<NB>)) {
+    /// Runs `f` on the state of every lane whose model passes `want`, with that lane's
+    /// generator in `State::rng` (summit and slip draws use the scalar code).
+    fn with_lane_rngs(
+        &mut self,
+        want: impl Fn(&super::super::Model) -> bool,
+        f: impl Fn(&super::super::Model, &mut super::State<NB>),
+    ) {
         let models = self.models;
-        for l in 0..K {
+        for (l, m) in models.iter().enumerate() {
+            if !want(m) {
+                continue;
+            }
             let r = self.lane_rng(l);
-            let (Some(st), Some(m)) = (self.states.get_mut(l), models.get(l)) else {
+            let Some(st) = self.states.get_mut(l) else {
                 continue;
             };
             st.rng = r;
@@ -125,11 +132,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let models = self.models;
         let m0 = models.first()?;
         if models.iter().any(|m| m.summits) {
-            self.with_lane_rngs(|m, st| {
-                if m.summits {
-                    m.draw_summit(st)
-                }
-            });
+            self.with_lane_rngs(|m| m.summits, |m, st| m.draw_summit(st));
         }
         let st0 = self.states.first()?;
         let k0 = m0.kinematics(st0, 0);
@@ -199,7 +202,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             && m0.cfg.defect.is_some()
             && self.states.first()?.steps.is_multiple_of(SLIP_CHECK_EVERY)
         {
-            self.with_lane_rngs(|m, st| m.update_slip(st));
+            self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
         }
         self.advance_kinematics();
         self.y = y1;
