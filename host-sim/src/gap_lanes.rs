@@ -136,6 +136,7 @@ mod tests {
             samples: 1200,
             seed: 3,
             real: vec![],
+            memo: crate::gap::memo::Memo::new(crate::gap::matched::MEMO),
         };
         let setting = |name: &str, scale: f64| {
             let mut fx = Effects::NONE;
