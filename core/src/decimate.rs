@@ -75,6 +75,11 @@ impl AntiAlias {
         self.len == 0
     }
 
+    /// The coefficients, oldest-sample tap first (as [`AntiAlias::output`] applies them).
+    pub fn taps(&self) -> &[Real] {
+        self.taps.get(..self.len).unwrap_or(&[])
+    }
+
     /// Decimation ratio.
     pub fn ratio(&self) -> u32 {
         self.ratio

@@ -18,10 +18,12 @@
 
 pub mod config;
 mod defect_term;
+pub mod lanes;
 pub mod state;
 mod step;
 
 pub use config::{Channels, ModelConfig, Structure, MAX_OVERSAMPLE, OUTPUT_RATE_RANGE};
+pub use lanes::{LaneError, LaneGroup, LibmSqrt, SqrtLanes};
 pub use state::State;
 pub(crate) use state::StateParts;
 

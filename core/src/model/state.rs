@@ -37,7 +37,7 @@ macro_rules! state_fields {
 
         impl<const NB: usize> State<NB> {
             /// The initial value of every field.
-            fn $fresh($model: &Model, $seed: u64, $f0: Real) -> Self {
+            pub(super) fn $fresh($model: &Model, $seed: u64, $f0: Real) -> Self {
                 State { $( $f: $init, )* }
             }
         }

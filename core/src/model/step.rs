@@ -17,7 +17,7 @@ const SLIP_CHECK_EVERY: u64 = 8;
 impl Model {
     /// Kinematics at the state's current time, advanced by `frac·h` (0, ½ or 1).
     #[inline(always)]
-    fn kinematics<const NB: usize>(&self, st: &State<NB>, frac: u8) -> Kinematics {
+    pub(super) fn kinematics<const NB: usize>(&self, st: &State<NB>, frac: u8) -> Kinematics {
         let f0 = st.shaft_hz;
         let (shaft_hz, dshaft, rot) = match (frac, self.rot) {
             (0, _) => (f0, 0.0, None),
@@ -233,7 +233,7 @@ impl Model {
     /// the inner race at π; each of the `count` defects is evaluated against both contacts.
     /// Rolling speed over either contact: `BSF·ω_shaft·r_b`.
     #[inline(never)]
-    fn ball_defect<const NB: usize>(
+    pub(super) fn ball_defect<const NB: usize>(
         &self,
         st: &State<NB>,
         k: &Kinematics,
@@ -268,7 +268,7 @@ impl Model {
     /// step, and the two Newton steps from a < 5·10⁻³ start are exact to f32 rounding.
     /// Deterministic, so a host `f32` run and the target stay bit-identical.
     #[inline(always)]
-    fn hertz(&self, delta: Real, rsqrt: &core::cell::Cell<Real>) -> Real {
+    pub(super) fn hertz(&self, delta: Real, rsqrt: &core::cell::Cell<Real>) -> Real {
         if !crate::real::SINGLE_PRECISION {
             return self.contact.load(delta);
         }
@@ -461,7 +461,7 @@ impl Model {
     /// running-in summit contact of this step; out of line so that the baseline's force
     /// sum only pays for the check.
     #[inline(never)]
-    fn extra_force<const NB: usize>(&self, st: &State<NB>, k: &Kinematics) -> Real {
+    pub(super) fn extra_force<const NB: usize>(&self, st: &State<NB>, k: &Kinematics) -> Real {
         let harmonics = self
             .cfg
             .effects
@@ -478,7 +478,7 @@ impl Model {
     /// element forces are `−Σ Q_i sin θ_i`). Decided at the start of the step that uses it
     /// from the state's generator, so a checkpoint between steps loses nothing.
     #[inline(never)]
-    fn draw_summit<const NB: usize>(&self, st: &mut State<NB>) {
+    pub(super) fn draw_summit<const NB: usize>(&self, st: &mut State<NB>) {
         st.summit = 0.0;
         let Some(p) = self.cfg.effects.running_in else {
             return;
@@ -496,7 +496,7 @@ impl Model {
     /// `a0`; running-in counts revolutions and refreshes the roughness factor every 256
     /// internal steps (an exponential per step would cost more than the draw).
     #[inline(never)]
-    fn effects_step<const NB: usize>(&self, st: &mut State<NB>, a0: Real) -> Real {
+    pub(super) fn effects_step<const NB: usize>(&self, st: &mut State<NB>, a0: Real) -> Real {
         let a = match &self.transfer {
             Some(t) => t.filter(&mut st.path, a0),
             None => a0,
@@ -513,7 +513,7 @@ impl Model {
 
     /// Redraws an element's slip offset once per pass, while it is opposite the defect.
     #[inline(always)]
-    fn update_slip<const NB: usize>(&self, st: &mut State<NB>) {
+    pub(super) fn update_slip<const NB: usize>(&self, st: &mut State<NB>) {
         let (Some(slip), Some(d)) = (self.cfg.slip, self.cfg.defect) else {
             return;
         };
@@ -553,7 +553,7 @@ impl Model {
 
     /// Moves time, angles and phasors one step on.
     #[inline(always)]
-    fn advance_kinematics<const NB: usize>(&self, st: &mut State<NB>) {
+    pub(super) fn advance_kinematics<const NB: usize>(&self, st: &mut State<NB>) {
         let f0 = st.shaft_hz;
         st.time += self.h;
         let (f1, ds) = match self.rot {

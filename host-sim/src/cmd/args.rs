@@ -114,9 +114,13 @@ pub struct BenchArgs {
     /// Output sample rate (Hz).
     #[arg(long, default_value_t = 20_000.0)]
     pub fs: f64,
-    /// Throughput of K scenarios at once against one (simulated s per core-second).
+    /// Throughput of K parameter sets stepped together as K lanes against the scalar step
+    /// (simulated s per core-second; K in 1, 2, 4, 8, 16).
     #[arg(long, value_name = "K")]
     pub lanes: Option<usize>,
+    /// Scenario file for `--lanes` (instead of `--preset`).
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<std::path::PathBuf>,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,

@@ -1,0 +1,225 @@
+//! K models stepped together ([`LaneGroup`]): throughput for sweeps and fits (issue 15).
+//!
+//! Models that share what makes the kinematics common — bearing, speed profile (and its
+//! fluctuation), output rate, oversampling and step, integrator (exact ZOH/FOH), defect
+//! location, waviness order, roughness on/off and the contact limit — move their
+//! shaft, cage and elements identically, so the kinematics and each element's `sin θ`,
+//! `cos θ` and defect phasor are computed once per step for all lanes. Everything that
+//! differs (motion, radial load, structure and its discretisation, contact stiffness and
+//! offset, roughness amplitude and generator, defect size/model/shape, waviness amplitude,
+//! imbalance, slip (its offsets are per lane), load zone, edge shape, running-in,
+//! transfer path, sensor, shaft harmonics, the anti-alias history) lives per lane in `[Real; K]` arrays, and the per-lane
+//! arithmetic runs in tight loops over them that the compiler vectorises.
+//!
+//! Contract: lane `i`'s samples equal, bit for bit, [`Model::step`] of model `i` from
+//! `State::new(model_i, seed_i)`: every lane does exactly the arithmetic of the scalar
+//! step in the same order (Rust does not contract to FMA). A group the stepper cannot
+//! share is refused by [`LaneGroup::new_checked`] with the field that differs, and the
+//! caller falls back to the scalar step.
+
+mod check;
+mod step;
+
+pub use check::{shareable, LaneError};
+pub use step::{LibmSqrt, SqrtLanes};
+
+use super::{Model, Sample, State, StepStats};
+use crate::decimate::MAX_TAPS;
+use crate::real::Real;
+use crate::topography::Topography;
+
+/// SoA anti-alias history of one channel: sample `j` of every lane side by side, the
+/// buffer doubled like [`crate::decimate::DelayLine`] so the window is contiguous.
+#[derive(Debug, Clone)]
+struct LaneLine<const K: usize> {
+    buf: [[Real; K]; 2 * MAX_TAPS],
+    pos: usize,
+}
+
+impl<const K: usize> LaneLine<K> {
+    fn new() -> Self {
+        LaneLine {
+            buf: [[0.0; K]; 2 * MAX_TAPS],
+            pos: 0,
+        }
+    }
+
+    /// Appends one sample per lane.
+    #[inline(always)]
+    fn push(&mut self, x: &[Real; K]) {
+        if let Some(v) = self.buf.get_mut(self.pos) {
+            *v = *x;
+        }
+        if let Some(v) = self.buf.get_mut(self.pos + MAX_TAPS) {
+            *v = *x;
+        }
+        self.pos += 1;
+        if self.pos >= MAX_TAPS {
+            self.pos = 0;
+        }
+    }
+
+    /// `Σ taps[j]·x[j]` per lane over the last `taps.len()` samples, oldest first and
+    /// summed in that order (as [`crate::decimate::AntiAlias::output`]).
+    #[inline(always)]
+    fn output(&self, taps: &[Real]) -> [Real; K] {
+        let end = self.pos + MAX_TAPS;
+        let start = end.saturating_sub(taps.len());
+        let hist = self.buf.get(start..end).unwrap_or(&[]);
+        let mut acc = [0.0; K];
+        for (t, x) in taps.iter().zip(hist) {
+            for (a, xv) in acc.iter_mut().zip(x) {
+                *a += t * xv;
+            }
+        }
+        acc
+    }
+}
+
+/// Per-lane constants of the step, gathered from the models once.
+#[derive(Debug, Clone)]
+struct LaneConsts<const K: usize> {
+    radial_load: [Real; K],
+    gamma: [Real; K],
+    stiffness: [Real; K],
+    wave_amp: [Real; K],
+    k_c0: [Real; K],
+    inv_m: [Real; K],
+    kl_m: [Real; K],
+    c_m: [Real; K],
+    y0: [Real; K],
+    /// Discretisation `Φ`, `Γ₀`, `Γ₁` per lane.
+    p00: [Real; K],
+    p01: [Real; K],
+    p10: [Real; K],
+    p11: [Real; K],
+    g00: [Real; K],
+    g01: [Real; K],
+    g10: [Real; K],
+    g11: [Real; K],
+}
+
+/// K models stepped together (see the module documentation). `NB` is the element
+/// capacity of each lane's [`State`]. About `K × (size_of::<State<NB>>() + 12 KB)` bytes
+/// (the lanes' own anti-alias histories: 3 channels × 512 samples × 8 B per lane): hold
+/// it in a `Box` on the host for large K.
+#[derive(Debug, Clone)]
+pub struct LaneGroup<'a, const K: usize, const NB: usize> {
+    models: &'a [Model; K],
+    /// Per-lane state of everything the SoA arrays below do not hold (angles are kept
+    /// equal across lanes; motion, generator and filter history live in the arrays).
+    states: [State<NB>; K],
+    c: LaneConsts<K>,
+    y: [Real; K],
+    v: [Real; K],
+    g_prev: [Real; K],
+    has_prev: bool,
+    /// xoshiro128++ state words, word-major: `rng[w][lane]`.
+    rng: [[u32; K]; 4],
+    lines: [LaneLine<K>; 3],
+    phase: u32,
+}
+
+impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
+    /// Lane `i` runs `models[i]` from `State::new(&models[i], seeds[i])`. Refuses (with
+    /// the field) models that do not share their kinematics, an RK4 integrator, `K = 0`
+    /// and a capacity `NB` below the bearing's element count.
+    pub fn new_checked(models: &'a [Model; K], seeds: &[u64; K]) -> Result<Self, LaneError> {
+        check::compatible(models)?;
+        let Some(m0) = models.first() else {
+            return Err(LaneError::Empty);
+        };
+        // Placeholders (cannot fail), each replaced by its lane's checked initial state.
+        let mut states: [State<NB>; K] = core::array::from_fn(|_| State::fresh(m0, 0, 0.0));
+        for ((s, m), seed) in states.iter_mut().zip(models).zip(seeds) {
+            *s = State::new(m, *seed).map_err(LaneError::Config)?;
+        }
+        let c = LaneConsts {
+            radial_load: models.each_ref().map(|m| m.cfg.radial_load),
+            gamma: models.each_ref().map(|m| m.gamma),
+            stiffness: models.each_ref().map(|m| m.contact.stiffness),
+            wave_amp: models
+                .each_ref()
+                .map(|m| m.cfg.waviness.map(|w| w.amplitude).unwrap_or(0.0)),
+            k_c0: models.each_ref().map(|m| m.eq.contact_stiffness),
+            inv_m: models.each_ref().map(|m| m.inv_m),
+            kl_m: models.each_ref().map(|m| m.kl_m),
+            c_m: models.each_ref().map(|m| m.c_m),
+            y0: models.each_ref().map(|m| m.eq.y0),
+            p00: models.each_ref().map(|m| m.disc.phi[0][0]),
+            p01: models.each_ref().map(|m| m.disc.phi[0][1]),
+            p10: models.each_ref().map(|m| m.disc.phi[1][0]),
+            p11: models.each_ref().map(|m| m.disc.phi[1][1]),
+            g00: models.each_ref().map(|m| m.disc.gamma0[0]),
+            g01: models.each_ref().map(|m| m.disc.gamma0[1]),
+            g10: models.each_ref().map(|m| m.disc.gamma1[0]),
+            g11: models.each_ref().map(|m| m.disc.gamma1[1]),
+        };
+        let y = states.each_ref().map(|s| s.y);
+        let words = states.each_ref().map(|s| s.rng.state_words());
+        let rng = core::array::from_fn(|w| words.map(|s| s.get(w).copied().unwrap_or(0)));
+        Ok(LaneGroup {
+            models,
+            states,
+            c,
+            y,
+            v: [0.0; K],
+            g_prev: [0.0; K],
+            has_prev: false,
+            rng,
+            lines: [LaneLine::new(), LaneLine::new(), LaneLine::new()],
+            phase: 0,
+        })
+    }
+
+    /// The models, lane by lane.
+    pub fn models(&self) -> &'a [Model; K] {
+        self.models
+    }
+
+    /// Replaces lane `lane`'s defect topography (wear evolution); see
+    /// [`State::set_topography`]. A lane index out of range is an error naming `lane`.
+    pub fn set_topography(&mut self, lane: usize, t: Topography) -> Result<(), LaneError> {
+        let (Some(st), Some(m)) = (self.states.get_mut(lane), self.models.get(lane)) else {
+            return Err(LaneError::Config(crate::error::ConfigError::TooMany {
+                field: "lane",
+                count: lane,
+                max: K,
+            }));
+        };
+        st.set_topography(m, t).map_err(LaneError::Config)
+    }
+
+    /// Contact figures of the last step, per lane.
+    pub fn stats(&self) -> [StepStats; K] {
+        self.states.each_ref().map(|s| s.stats)
+    }
+
+    /// Internal steps taken (the same in every lane).
+    pub fn steps(&self) -> u64 {
+        self.states.first().map_or(0, |s| s.steps)
+    }
+
+    /// Fills `out` with output samples, lane by lane (`out[j][i]` is lane `i`'s sample `j`);
+    /// returns how many were written (all of them).
+    pub fn fill(&mut self, out: &mut [[Sample; K]]) -> usize {
+        self.fill_with(out, &LibmSqrt)
+    }
+
+    /// [`LaneGroup::fill`] with the square roots of the Hertz loads taken by `sqrt` (see
+    /// [`SqrtLanes`]).
+    #[inline(always)]
+    pub fn fill_with<S: SqrtLanes<K>>(&mut self, out: &mut [[Sample; K]], sqrt: &S) -> usize {
+        let mut written = 0;
+        for slot in out.iter_mut() {
+            loop {
+                if let Some(s) = self.step_with(sqrt) {
+                    *slot = s;
+                    break;
+                }
+            }
+            written += 1;
+        }
+        written
+    }
+}

@@ -1,0 +1,482 @@
+//! One internal step of all lanes: the scalar step's arithmetic (`super::super::step`),
+//! lane by lane in the same order, with the kinematics and the per-element geometry
+//! computed once.
+
+use super::super::defect_term::add_term;
+use super::super::{rotate, Channels, Sample, StepStats, ROUGH_DRAW_MARGIN};
+use super::LaneGroup;
+use crate::forces::defect::DefectLocation;
+use crate::forces::{ForceDiagram, Kinematics};
+use crate::integrate::IntegratorKind;
+use crate::real::{angle_diff, Real};
+use crate::rng::Xoshiro128pp;
+
+/// Steps between two checks of the slip bookkeeping (as the scalar step).
+const SLIP_CHECK_EVERY: u64 = 8;
+
+/// `x^{3/2}` per lane (`x·√x` for `x > 0`, else 0), as [`crate::real::pow_3_2`], with
+/// the square roots taken by `sqrt`.
+#[inline(always)]
+fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt: &S) -> [Real; K] {
+    let mut s = [0.0; K];
+    for (si, xi) in s.iter_mut().zip(x) {
+        *si = if *xi > 0.0 { *xi } else { 0.0 };
+    }
+    sqrt.sqrt_lanes(&mut s);
+    let mut out = [0.0; K];
+    for ((o, xi), si) in out.iter_mut().zip(x).zip(&s) {
+        *o = if *xi > 0.0 { *xi * *si } else { 0.0 };
+    }
+    out
+}
+
+/// Square roots of K lanes at once. Every implementation must return IEEE-754's
+/// correctly rounded `√x` of each lane (as libm's does), so that the lanes keep the
+/// scalar step's bits: a host may supply one that uses packed SIMD instructions
+/// (`sqrtpd`), which the core, free of `unsafe`, cannot call.
+pub trait SqrtLanes<const K: usize> {
+    /// Replaces every element of `x` (≥ 0) by its square root.
+    fn sqrt_lanes(&self, x: &mut [Real; K]);
+}
+
+/// [`SqrtLanes`] with libm's square root, one lane at a time.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LibmSqrt;
+
+impl<const K: usize> SqrtLanes<K> for LibmSqrt {
+    #[inline(always)]
+    fn sqrt_lanes(&self, x: &mut [Real; K]) {
+        for v in x.iter_mut() {
+            *v = crate::real::sqrt(*v);
+        }
+    }
+}
+
+/// xoshiro128++ on every lane (word-major state), then `uniform_pm1` of
+/// [`Xoshiro128pp`]: the same words, the same bits.
+#[inline(always)]
+fn uniform_pm1_lanes<const K: usize>(rng: &mut [[u32; K]; 4]) -> [Real; K] {
+    let [s0, s1, s2, s3] = rng;
+    let mut out = [0.0; K];
+    for (((((o, a0), a1), a2), a3), _) in out
+        .iter_mut()
+        .zip(s0.iter_mut())
+        .zip(s1.iter_mut())
+        .zip(s2.iter_mut())
+        .zip(s3.iter_mut())
+        .zip(0..K)
+    {
+        let (w0, w1, w2, w3) = (*a0, *a1, *a2, *a3);
+        let result = w0.wrapping_add(w3).rotate_left(7).wrapping_add(w0);
+        let t = w1 << 9;
+        let mut n2 = w2 ^ w0;
+        let mut n3 = w3 ^ w1;
+        let n1 = w1 ^ n2;
+        let n0 = w0 ^ n3;
+        n2 ^= t;
+        n3 = n3.rotate_left(11);
+        (*a0, *a1, *a2, *a3) = (n0, n1, n2, n3);
+        *o = ((result >> 8) as Real) * (2.0 / 16_777_216.0) - 1.0;
+    }
+    out
+}
+
+impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
+    /// Lane `l`'s generator as a scalar [`Xoshiro128pp`].
+    fn lane_rng(&self, l: usize) -> Xoshiro128pp {
+        let w = |i: usize| self.rng.get(i).and_then(|a| a.get(l)).copied().unwrap_or(0);
+        Xoshiro128pp::from_state_words([w(0), w(1), w(2), w(3)])
+    }
+
+    /// Stores `r` as lane `l`'s generator.
+    fn set_lane_rng(&mut self, l: usize, r: &Xoshiro128pp) {
+        for (w, v) in self.rng.iter_mut().zip(r.state_words()) {
+            if let Some(x) = w.get_mut(l) {
+                *x = v;
+            }
+        }
+    }
+
+    /// Runs `f` on the state of every lane whose model passes `want`, with that lane's
+    /// generator in `State::rng` (summit and slip draws use the scalar code).
+    fn with_lane_rngs(
+        &mut self,
+        want: impl Fn(&super::super::Model) -> bool,
+        f: impl Fn(&super::super::Model, &mut super::State<NB>),
+    ) {
+        let models = self.models;
+        for (l, m) in models.iter().enumerate() {
+            if !want(m) {
+                continue;
+            }
+            let r = self.lane_rng(l);
+            let Some(st) = self.states.get_mut(l) else {
+                continue;
+            };
+            st.rng = r;
+            f(m, st);
+            let r = st.rng.clone();
+            self.set_lane_rng(l, &r);
+        }
+    }
+
+    /// Advances every lane by one internal step; returns one sample per lane every
+    /// [`super::super::Model::oversample`] steps (lane `i`'s equals `Model::step`'s).
+    pub fn step(&mut self) -> Option<[Sample; K]> {
+        self.step_with(&LibmSqrt)
+    }
+
+    /// [`LaneGroup::step`] with the square roots of the Hertz loads taken by `sqrt`.
+    #[inline(always)]
+    pub fn step_with<S: SqrtLanes<K>>(&mut self, sqrt: &S) -> Option<[Sample; K]> {
+        let models = self.models;
+        let m0 = models.first()?;
+        if models.iter().any(|m| m.summits) {
+            self.with_lane_rngs(|m| m.summits, |m, st| m.draw_summit(st));
+        }
+        let st0 = self.states.first()?;
+        let k0 = m0.kinematics(st0, 0);
+        let (y, v) = (self.y, self.v);
+
+        // Forces outside the element loop (load, imbalance, effects), lane by lane.
+        let mut f = self.c.radial_load;
+        for (((fl, m), st), (yl, vl)) in f
+            .iter_mut()
+            .zip(models)
+            .zip(&self.states)
+            .zip(y.iter().zip(&v))
+        {
+            if let Some(imb) = &m.cfg.imbalance {
+                *fl += imb.force(&k0, *yl, *vl);
+            }
+            if m.extra_force {
+                *fl += m.extra_force(st, &k0);
+            }
+        }
+        let mut stats = [StepStats::default(); K];
+        let fe = self.element_forces(&k0, &mut stats, sqrt);
+
+        // Exact ZOH/FOH integrator, per lane.
+        let c = &self.c;
+        let mut g = [0.0; K];
+        for l in 0..K {
+            let (Some(gl), Some(fl), Some(fel), Some(kc), Some(yl), Some(im)) = (
+                g.get_mut(l),
+                f.get(l),
+                fe.get(l),
+                c.k_c0.get(l),
+                y.get(l),
+                c.inv_m.get(l),
+            ) else {
+                continue;
+            };
+            *gl = (*fl + *fel + *kc * *yl) * *im;
+        }
+        let foh = self.has_prev && m0.cfg.integrator == IntegratorKind::ExactFoh;
+        let mut slope = [0.0; K];
+        if foh {
+            for ((s, gl), gp) in slope.iter_mut().zip(&g).zip(&self.g_prev) {
+                *s = *gl - *gp;
+            }
+        }
+        self.g_prev = g;
+        self.has_prev = true;
+        let mut y1 = [0.0; K];
+        let mut v1 = [0.0; K];
+        let mut a0 = [0.0; K];
+        for l in 0..K {
+            let (Some(o_y), Some(o_v), Some(o_a)) = (y1.get_mut(l), v1.get_mut(l), a0.get_mut(l))
+            else {
+                continue;
+            };
+            let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
+            let (yl, vl, gl, sl) = (get(&y), get(&v), get(&g), get(&slope));
+            *o_y = get(&c.p00) * yl + get(&c.p01) * vl + get(&c.g00) * gl + get(&c.g10) * sl;
+            *o_v = get(&c.p10) * yl + get(&c.p11) * vl + get(&c.g01) * gl + get(&c.g11) * sl;
+            *o_a = -get(&c.kl_m) * yl - get(&c.c_m) * vl + gl;
+        }
+        for (st, s) in self.states.iter_mut().zip(stats) {
+            st.stats = s;
+        }
+        if models.iter().any(|m| m.cfg.slip.is_some())
+            && m0.cfg.defect.is_some()
+            && self.states.first()?.steps.is_multiple_of(SLIP_CHECK_EVERY)
+        {
+            self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
+        }
+        self.advance_kinematics();
+        self.y = y1;
+        self.v = v1;
+
+        for ((a, m), st) in a0.iter_mut().zip(models).zip(self.states.iter_mut()) {
+            if m.per_step_effects {
+                *a = m.effects_step(st, *a);
+            }
+        }
+        let [l_acc, l_vel, l_disp] = &mut self.lines;
+        l_acc.push(&a0);
+        let all = m0.cfg.channels == Channels::All;
+        if all {
+            l_vel.push(&v);
+            let mut d = [0.0; K];
+            for ((dl, yl), y0) in d.iter_mut().zip(&y).zip(&self.c.y0) {
+                *dl = *yl - *y0;
+            }
+            l_disp.push(&d);
+        }
+        self.phase += 1;
+        if self.phase < m0.ratio {
+            return None;
+        }
+        self.phase = 0;
+        let taps = m0.aa.taps();
+        let accel = l_acc.output(taps);
+        let (vel, disp) = if all {
+            (l_vel.output(taps), l_disp.output(taps))
+        } else {
+            ([0.0; K], [0.0; K])
+        };
+        let mut out = [Sample::default(); K];
+        for (l, o) in out.iter_mut().enumerate() {
+            let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
+            let mut acc = get(&accel);
+            if let (Some(m), Some(st)) = (models.get(l), self.states.get_mut(l)) {
+                if let Some(chain) = &m.sensor_chain {
+                    acc = chain.apply(&mut st.sensor, acc);
+                }
+            }
+            *o = Sample {
+                accel: acc,
+                vel: get(&vel),
+                disp: get(&disp),
+            };
+        }
+        Some(out)
+    }
+
+    /// Moves every lane's time, angles and phasors on (lane 0 advanced, the others
+    /// copied: shared kinematics evolve identically) and counts the step.
+    fn advance_kinematics(&mut self) {
+        let Some(m0) = self.models.first() else {
+            return;
+        };
+        let Some((first, rest)) = self.states.split_first_mut() else {
+            return;
+        };
+        m0.advance_kinematics(first);
+        first.steps += 1;
+        for st in rest {
+            st.time = first.time;
+            st.shaft_hz = first.shaft_hz;
+            st.shaft_angle = first.shaft_angle;
+            st.cage_angle = first.cage_angle;
+            st.wave_angle = first.wave_angle;
+            st.spin_angle = first.spin_angle;
+            st.shaft_cs = first.shaft_cs;
+            st.cage_cs = first.cage_cs;
+            st.wave_cs = first.wave_cs;
+            st.steps = first.steps;
+        }
+    }
+
+    /// Hertz element forces of every lane (N), as the scalar `element_forces` with the
+    /// roughness drawn in the loop: the geometry of each element once, the per-lane work
+    /// in loops over the lanes.
+    #[inline(always)]
+    fn element_forces<S: SqrtLanes<K>>(
+        &mut self,
+        k: &Kinematics,
+        stats: &mut [StepStats; K],
+        sqrt: &S,
+    ) -> [Real; K] {
+        let models = self.models;
+        let mut fy = [0.0; K];
+        let Some(m0) = models.first() else {
+            return fy;
+        };
+        let n = m0.cfg.bearing.elements as usize;
+        let sin_skip = m0.sin_skip;
+        let (cc, sc) = k.cage_cs;
+        let (cw, sw) = k.wave_cs;
+        let location = m0.cfg.defect.map(|d| d.location);
+        let (dc, ds) = match location {
+            Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, m0.defect_offset_cs),
+            Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, m0.defect_offset_cs),
+            _ => m0.defect_offset_cs,
+        };
+        let ball: [(Real, Real, Real); K] = match m0.cfg.defect {
+            Some(d) if d.location.is_ball() => {
+                core::array::from_fn(|l| match (models.get(l), self.states.get(l)) {
+                    (Some(m), Some(st)) => match m.cfg.defect {
+                        Some(dl) => m.ball_defect(st, k, dl),
+                        None => (0.0, 0.0, 0.0),
+                    },
+                    _ => (0.0, 0.0, 0.0),
+                })
+            }
+            _ => [(0.0, 0.0, 0.0); K],
+        };
+        let is_ball = location.is_some_and(|l| l.is_ball());
+        let rough_on = m0.cfg.roughness.is_some();
+        let mut sigma = [0.0; K];
+        if rough_on {
+            for ((s, m), st) in sigma.iter_mut().zip(models).zip(&self.states) {
+                *s = if m.rot.is_some() {
+                    st.rough_sigma
+                } else {
+                    m.rough_sigma(st.shaft_hz, st.topography) * st.run_in
+                };
+            }
+        }
+        let window_min = self
+            .states
+            .iter()
+            .map(|s| s.window_cos)
+            .fold(Real::INFINITY, |a, b| if b < a { b } else { a });
+        let fast_hertz =
+            !crate::real::SINGLE_PRECISION && m0.contact.kind == crate::bearing::ContactKind::Point;
+        let y = self.y;
+        let c = &self.c;
+        let mut max_load = [0.0; K];
+        let mut defect_load = [0.0; K];
+        let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
+        let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
+        let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
+        for (e, ((ecs, wcs), elem_angle)) in ecs_all.iter().zip(wcs_all).zip(ang_all).enumerate() {
+            let (ce, se) = *ecs;
+            let sin_t = sc * ce + cc * se;
+            let rough = if rough_on && sin_t > sin_skip - ROUGH_DRAW_MARGIN {
+                let u = uniform_pm1_lanes(&mut self.rng);
+                let mut r = [0.0; K];
+                for ((ri, s), ui) in r.iter_mut().zip(&sigma).zip(&u) {
+                    *ri = *s * *ui;
+                }
+                r
+            } else {
+                [0.0; K]
+            };
+            if sin_t <= sin_skip {
+                continue;
+            }
+            let (cwe, swe) = *wcs;
+            let wave = sw * cwe + cw * swe;
+            let mut delta = [0.0; K];
+            for ((((d, yl), g), r), wa) in delta
+                .iter_mut()
+                .zip(&y)
+                .zip(&c.gamma)
+                .zip(&rough)
+                .zip(&c.wave_amp)
+            {
+                let x = *yl * sin_t - *g - *r;
+                *d = if *wa != 0.0 { x - *wa * wave } else { x };
+            }
+            let mut unload = [0.0; K];
+            let mut add = [0.0; K];
+            if location.is_some() {
+                let cos_t = cc * ce - sc * se;
+                let cos_rel = cos_t * dc + sin_t * ds;
+                if cos_rel > window_min {
+                    for l in 0..K {
+                        let (Some(m), Some(st), Some(dl), Some(ul), Some(al), Some(bt)) = (
+                            models.get(l),
+                            self.states.get(l),
+                            delta.get_mut(l),
+                            unload.get_mut(l),
+                            add.get_mut(l),
+                            ball.get(l),
+                        ) else {
+                            continue;
+                        };
+                        if cos_rel <= st.window_cos {
+                            continue;
+                        }
+                        let Some(d) = m.cfg.defect else {
+                            continue;
+                        };
+                        let slip = st.slip.get(e).copied().unwrap_or(0.0);
+                        let theta = k.cage_angle + *elem_angle + slip;
+                        let mut dd = 0.0;
+                        let (mut u, mut a) = (0.0, 0.0);
+                        if is_ball {
+                            (u, dd, a) = *bt;
+                        } else {
+                            let shape = &st.shape;
+                            let base = match d.location {
+                                DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
+                                DefectLocation::OuterRace { angle } => angle,
+                                DefectLocation::Ball { .. } => 0.0,
+                            };
+                            let inner = matches!(d.location, DefectLocation::InnerRace { .. });
+                            let speed = || {
+                                let w_rel = if inner {
+                                    k.shaft_omega - k.cage_omega
+                                } else {
+                                    k.cage_omega
+                                };
+                                w_rel * shape.race_radius
+                            };
+                            let mut terms = (u, dd, a);
+                            for kd in 0..shape.count {
+                                let centre = base + kd as Real * shape.spacing_angle;
+                                let mut psi = angle_diff(theta, centre);
+                                if inner {
+                                    psi = -psi;
+                                }
+                                let xi = psi / shape.length_angle + 0.5;
+                                add_term(d.model, shape, xi, st.tail, theta, speed, &mut terms);
+                            }
+                            (u, dd, a) = terms;
+                        }
+                        if let Some(p) = &m.cfg.effects.load_zone {
+                            let gz = p.gain(sin_t);
+                            u *= gz;
+                            a *= gz;
+                            dd *= gz;
+                        }
+                        *dl += dd;
+                        *ul = u;
+                        *al = a;
+                    }
+                }
+            }
+            let mut q = [0.0; K];
+            if fast_hertz {
+                let p = pow_3_2_lanes(&delta, sqrt);
+                for ((qi, s), pi) in q.iter_mut().zip(&c.stiffness).zip(&p) {
+                    *qi = *s * *pi;
+                }
+            } else {
+                for (((qi, dl), m), st) in q.iter_mut().zip(&delta).zip(models).zip(&self.states) {
+                    if let Some(cell) = st.rsqrt.get(e) {
+                        *qi = m.hertz(*dl, cell);
+                    }
+                }
+            }
+            for (((((ql, ul), al), ml), dl), fl) in q
+                .iter_mut()
+                .zip(&unload)
+                .zip(&add)
+                .zip(max_load.iter_mut())
+                .zip(defect_load.iter_mut())
+                .zip(fy.iter_mut())
+            {
+                // Branch-free forms of the scalar step's conditionals (same values).
+                let keep = if *ul < 1.0 { 1.0 - *ul } else { 0.0 };
+                let qv = if *ul > 0.0 { *ql * keep } else { *ql };
+                *ml = if qv > *ml { qv } else { *ml };
+                let qa = qv + *al;
+                // `&`/`|` on the conditions (no short circuit): the scalar step's decision
+                // without branches.
+                let on = (*ul > 0.0) | (*al != 0.0);
+                *dl = if on & (qa > *dl) { qa } else { *dl };
+                *fl -= qa * sin_t;
+            }
+        }
+        for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
+            s.max_load = m;
+            s.defect_load = d;
+        }
+        fy
+    }
+}

@@ -1,0 +1,224 @@
+//! The K-lane stepper's contract: lane `i`'s samples equal, bit for bit, the scalar
+//! `Model::step` of model `i` with the same seed; a group that cannot share its
+//! kinematics is refused with the field that differs. Cheap (a few thousand steps).
+#![allow(clippy::unnecessary_cast)]
+
+use wearsim_core::effects::CATALOGUE;
+use wearsim_core::forces::defect::{DefectLocation, DefectModel};
+use wearsim_core::integrate::IntegratorKind;
+use wearsim_core::model::{LaneError, LaneGroup};
+use wearsim_core::speed::SpeedProfile;
+use wearsim_core::{presets, Channels, Model, ModelConfig, Real, Sample, State};
+
+/// Turns effect `name` on with its defaults, parameter `scale_param` scaled by `scale`.
+fn effect(cfg: &mut ModelConfig, name: &str, scale: Real) {
+    let spec = CATALOGUE.iter().find(|e| e.name == name).expect("effect");
+    let values: Vec<Real> = spec
+        .params
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let v = if p.name == "summits" {
+                2.0
+            } else {
+                p.default as Real
+            };
+            // Scale the first parameter, clamped into its bounds.
+            if i == 0 {
+                let s = v * scale;
+                s.clamp(p.min as Real, p.max as Real)
+            } else {
+                v
+            }
+        })
+        .collect();
+    cfg.effects.set_named(name, &values).expect("in bounds");
+}
+
+/// Runs the scalar step for every model and the lane stepper for all of them; asserts
+/// every lane's samples (all three channels) and contact figures are bit-identical.
+fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], samples: usize) {
+    let models: [Model; K] = cfgs.map(|c| Model::new_checked(c).expect("valid model"));
+    let mut group: LaneGroup<K, 16> = LaneGroup::new_checked(&models, &seeds).expect("lanes");
+    let mut lane_out = vec![[Sample::default(); K]; samples];
+    let mut lane_stats = Vec::new();
+    for slot in lane_out.iter_mut() {
+        loop {
+            if let Some(s) = group.step() {
+                *slot = s;
+                break;
+            }
+        }
+        lane_stats.push(group.stats());
+    }
+    for (i, m) in models.iter().enumerate() {
+        let mut st: State<16> = State::new(m, seeds[i]).expect("state");
+        let mut nonzero = 0;
+        for (j, lanes) in lane_out.iter().enumerate() {
+            let s = loop {
+                if let Some(s) = m.step(&mut st) {
+                    break s;
+                }
+            };
+            let l = lanes[i];
+            assert_eq!(
+                (s.accel.to_bits(), s.vel.to_bits(), s.disp.to_bits()),
+                (l.accel.to_bits(), l.vel.to_bits(), l.disp.to_bits()),
+                "lane {i} sample {j}: scalar {s:?} vs lane {l:?}"
+            );
+            assert_eq!(st.stats(), lane_stats[j][i], "lane {i} stats at sample {j}");
+            if s.accel != 0.0 {
+                nonzero += 1;
+            }
+        }
+        assert!(nonzero > samples / 2, "lane {i} is silent");
+    }
+    // The lanes differ (otherwise the test could not tell lanes apart).
+    let last = lane_out.last().expect("samples");
+    for i in 1..K {
+        assert_ne!(last[0].accel, last[i].accel, "lane {i} equals lane 0");
+    }
+}
+
+fn thesis() -> ModelConfig {
+    let mut c = presets::by_name("thesis-61810").expect("preset");
+    // All lanes share the ratio (the structure changes the default choice).
+    c.oversample = Some(Model::new_checked(c.clone()).expect("m").oversample());
+    c
+}
+
+/// Lanes differing in load, defect size, structure, roughness, waviness amplitude, slip
+/// and seed; outer-race five-step defect; K = 4.
+#[test]
+fn outer_race_lanes_equal_the_scalar_step() {
+    let base = thesis();
+    let cfgs: [ModelConfig; 4] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        let f = 1.0 + 0.2 * i as Real;
+        c.radial_load *= f;
+        c.structure.stiffness *= 1.0 + 0.05 * i as Real;
+        c.structure.damping *= f;
+        if let Some(d) = c.defect.as_mut() {
+            d.topography.length *= f;
+            d.topography.depth *= 1.0 + 0.1 * i as Real;
+        }
+        if let Some(r) = c.roughness.as_mut() {
+            r.rms *= f;
+        }
+        if let Some(w) = c.waviness.as_mut() {
+            w.amplitude *= if i == 2 { 0.0 } else { f };
+        }
+        // Slip per lane: larger, or off.
+        c.slip = match i {
+            1 => c.slip.map(|mut s| {
+                s.fraction *= 3.0;
+                s
+            }),
+            3 => None,
+            _ => c.slip,
+        };
+        c
+    });
+    assert_lanes_match(cfgs, [1, 2, 3, 4], 1500);
+}
+
+/// Inner-race defect on the CWRU bearing, K = 8, with a shared speed fluctuation and
+/// per-lane load zone, edge shape, sensor, transfer path, shaft harmonics, running-in;
+/// all three channels; two lanes with the Sassi and deflection formulations.
+#[test]
+fn inner_race_lanes_with_effects_equal_the_scalar_step() {
+    let mut base = presets::by_name("cwru-6205-de").expect("preset");
+    if let Some(d) = base.defect.as_mut() {
+        d.location = DefectLocation::InnerRace { angle: 0.3 };
+    }
+    base.channels = Channels::All;
+    base.speed = SpeedProfile::Constant(29.95);
+    effect(&mut base, "speed-fluctuation", 1.0);
+    base.oversample = Some(Model::new_checked(base.clone()).expect("m").oversample() + 1);
+    let cfgs: [ModelConfig; 8] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        let f = 1.0 + 0.15 * i as Real;
+        c.radial_load *= f;
+        if let Some(d) = c.defect.as_mut() {
+            d.topography.length *= f;
+            d.model = match i {
+                3 => DefectModel::Sassi,
+                5 => DefectModel::Deflection,
+                _ => DefectModel::FiveStep,
+            };
+        }
+        effect(&mut c, "load-zone", f);
+        effect(&mut c, "edge-shape", f);
+        effect(&mut c, "sensor", f);
+        if i % 2 == 0 {
+            effect(&mut c, "transfer-path", f);
+            effect(&mut c, "shaft-harmonics", f);
+        } else {
+            effect(&mut c, "running-in", f);
+        }
+        c
+    });
+    assert_lanes_match(cfgs, core::array::from_fn(|i| 100 + i as u64), 1200);
+}
+
+/// Ball defect, K = 4, lanes differing in seed, defect size and load; exact ZOH.
+#[test]
+fn ball_defect_lanes_equal_the_scalar_step() {
+    let mut base = thesis();
+    base.integrator = IntegratorKind::ExactZoh;
+    if let Some(d) = base.defect.as_mut() {
+        d.location = DefectLocation::Ball {
+            element: 3,
+            phase: 0.4,
+        };
+    }
+    let cfgs: [ModelConfig; 4] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        let f = 1.0 + 0.25 * i as Real;
+        c.radial_load *= f;
+        if let Some(d) = c.defect.as_mut() {
+            d.topography.length *= f;
+        }
+        c
+    });
+    assert_lanes_match(cfgs, [7, 8, 9, 10], 1500);
+}
+
+#[test]
+fn mismatched_groups_are_refused_with_the_field() {
+    let a = thesis();
+    let mut b = a.clone();
+    b.speed = SpeedProfile::Constant(20.0);
+    let models = [a.clone(), a.clone(), b].map(|c| Model::new_checked(c).expect("m"));
+    match LaneGroup::<3, 16>::new_checked(&models, &[1, 2, 3]) {
+        Err(LaneError::Differs { field, lane }) => assert_eq!((field, lane), ("speed", 2)),
+        other => panic!("expected a speed mismatch, got {other:?}"),
+    }
+    let mut c = a.clone();
+    if let Some(d) = c.defect.as_mut() {
+        d.location = DefectLocation::InnerRace { angle: 0.0 };
+    }
+    let models = [a.clone(), c].map(|c| Model::new_checked(c).expect("m"));
+    match LaneGroup::<2, 16>::new_checked(&models, &[1, 2]) {
+        Err(LaneError::Differs { field, lane }) => {
+            assert_eq!((field, lane), ("defect.location", 1))
+        }
+        other => panic!("expected a defect-location mismatch, got {other:?}"),
+    }
+    let mut r = a.clone();
+    r.integrator = IntegratorKind::Rk4;
+    let models = [r.clone(), r].map(|c| Model::new_checked(c).expect("m"));
+    assert!(matches!(
+        LaneGroup::<2, 16>::new_checked(&models, &[1, 2]),
+        Err(LaneError::Unsupported {
+            field: "integrator",
+            ..
+        })
+    ));
+    // Too small an element capacity for the bearing (14 elements).
+    let models = [a.clone(), a].map(|c| Model::new_checked(c).expect("m"));
+    assert!(matches!(
+        LaneGroup::<2, 8>::new_checked(&models, &[1, 2]),
+        Err(LaneError::Config(_))
+    ));
+}

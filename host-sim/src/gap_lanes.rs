@@ -1,0 +1,193 @@
+//! Several parameter sets of one matched record at once: the gap's fits evaluate many
+//! effect settings against the same baseline and seed, and those that leave the
+//! kinematics alone run as lanes of one [`wearsim_core::model::LaneGroup`]
+//! (see [`crate::lanes`]), bit for bit what [`Matched::simulate`] gives one at a time.
+//! Kept outside `gap/` so the attribution can adopt it with a one-line call.
+
+use crate::gap::matched::{merge, Matched, SETTLE_S};
+use crate::lanes::{lane_accel, MAX_LANES};
+use wearsim_core::effects::Effects;
+use wearsim_core::model::lanes::shareable;
+use wearsim_core::Model;
+
+/// `m.simulate(fx)` for every `fx` in `fxs`, in order, with the same results (samples
+/// and errors); settings whose models can share the kinematics run in lane groups of up
+/// to [`MAX_LANES`] (sizes from [`crate::lanes::group_size`]), the others alone.
+pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, String>> {
+    let mut out: Vec<Option<Result<Vec<f64>, String>>> = (0..fxs.len()).map(|_| None).collect();
+    let mut models: Vec<(usize, Model)> = Vec::new();
+    for (i, fx) in fxs.iter().enumerate() {
+        let mut cfg = m.base.clone();
+        merge(&mut cfg.effects, fx);
+        match Model::new_checked(cfg) {
+            Ok(model) => models.push((i, model)),
+            Err(e) => out[i] = Some(Err(e.to_string())),
+        }
+    }
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (j, (_, model)) in models.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|g| g.len() < MAX_LANES && shareable(&models[g[0]].1, model, 1).is_ok())
+        {
+            Some(g) => g.push(j),
+            None => groups.push(vec![j]),
+        }
+    }
+    for g in groups {
+        let mut rest: &[usize] = &g;
+        while !rest.is_empty() {
+            let k = crate::lanes::group_size(rest.len());
+            let (now, later) = rest.split_at(k.min(rest.len()));
+            let res = match k {
+                16 => group::<16>(m, &models, now),
+                8 => group::<8>(m, &models, now),
+                4 => group::<4>(m, &models, now),
+                2 => group::<2>(m, &models, now),
+                _ => None,
+            };
+            match res {
+                Some(r) => {
+                    for (&j, x) in now.iter().zip(r) {
+                        let i = models[j].0;
+                        out[i] = Some(x.or_else(|_| m.simulate(&fxs[i])));
+                    }
+                }
+                None => {
+                    for &j in now {
+                        let i = models[j].0;
+                        out[i] = Some(m.simulate(&fxs[i]));
+                    }
+                }
+            }
+            rest = later;
+        }
+    }
+    out.into_iter()
+        .map(|r| r.unwrap_or_else(|| Err("not simulated".into())))
+        .collect()
+}
+
+/// Models `idx` of `models` (at most K; padded) as one lane group, the matched run's
+/// lengths and seed; a lane with a non-finite acceleration comes back as `Err(())`
+/// (rerun alone).
+#[allow(clippy::type_complexity)]
+fn group<const K: usize>(
+    m: &Matched,
+    models: &[(usize, Model)],
+    idx: &[usize],
+) -> Option<Vec<Result<Vec<f64>, ()>>> {
+    let last = idx.len().checked_sub(1)?;
+    if idx.len() > K {
+        return None;
+    }
+    // Padding lanes (beyond `idx`) repeat the last setting; their output is dropped.
+    let ms: [Model; K] = std::array::from_fn(|l| models[idx[l.min(last)]].1.clone());
+    let fs = ms[0].config().output_rate;
+    let settle = ((SETTLE_S * fs) as usize).max(1);
+    let lanes = lane_accel(&ms, &[m.seed; K], settle, m.samples)?;
+    Some(
+        lanes
+            .into_iter()
+            .take(idx.len())
+            .map(|r| match r {
+                Ok(a) if a.iter().all(|v| v.is_finite()) => Ok(a),
+                Ok(_) => Err(()),
+                Err(a) if a.iter().all(|v| v.is_finite()) => Ok(a),
+                Err(_) => Err(()),
+            })
+            .collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::FaultFamily;
+    use crate::gap::cells::CellSpec;
+    use crate::gap::Reference;
+    use wearsim_core::forces::defect::DefectLocation;
+
+    /// Lanes give `Matched::simulate`'s samples for every setting: six settings that
+    /// share the kinematics (load zone, sensor, transfer path at different strengths:
+    /// groups of 4 and 2) and one that does not (speed fluctuation: alone).
+    #[test]
+    fn simulate_many_equals_simulate_one_at_a_time() {
+        let mut base = wearsim_core::presets::by_name("cwru-6205-de").expect("preset");
+        if let Some(d) = base.defect.as_mut() {
+            d.location = DefectLocation::InnerRace { angle: 0.0 };
+        }
+        let model = Model::new_checked(base.clone()).expect("model");
+        let spec = CellSpec {
+            fs: 12_000.0,
+            ff: model.frequencies_at(29.95),
+            family: FaultFamily::InnerRace,
+        };
+        let m = Matched {
+            label: "test".into(),
+            base,
+            reference: Reference {
+                names: vec![],
+                mean: vec![],
+                spread: vec![],
+                weight: vec![],
+                spec,
+            },
+            samples: 1200,
+            seed: 3,
+            real: vec![],
+            memo: crate::gap::memo::Memo::new(crate::gap::matched::MEMO),
+        };
+        let setting = |name: &str, scale: f64| {
+            let mut fx = Effects::NONE;
+            let spec = wearsim_core::effects::info(name).expect("effect");
+            let v: Vec<f64> = spec
+                .params
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let d = p.default;
+                    if i == 0 {
+                        (d * scale).clamp(p.min, p.max)
+                    } else {
+                        d
+                    }
+                })
+                .collect();
+            fx.set_named(name, &v).expect("in bounds");
+            fx
+        };
+        let fxs = vec![
+            setting("load-zone", 1.0),
+            setting("load-zone", 1.5),
+            setting("sensor", 1.0),
+            setting("speed-fluctuation", 1.0),
+            setting("transfer-path", 1.0),
+            setting("sensor", 2.0),
+            Effects::NONE,
+        ];
+        let many = simulate_many(&m, &fxs);
+        assert_eq!(many.len(), fxs.len());
+        for (i, (r, fx)) in many.iter().zip(&fxs).enumerate() {
+            let one = m.simulate(fx).expect("simulate");
+            let laned = r.as_ref().expect("laned");
+            assert_eq!(laned.len(), 1200);
+            assert!(
+                laned
+                    .iter()
+                    .zip(&one)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "setting {i} differs"
+            );
+        }
+        // The settings are told apart (sensor noise 1x vs 2x, and load zone vs none).
+        assert!(
+            many[2].as_ref().ok() != many[5].as_ref().ok(),
+            "sensor 1x = 2x"
+        );
+        assert!(
+            many[0].as_ref().ok() != many[6].as_ref().ok(),
+            "load zone = none"
+        );
+    }
+}

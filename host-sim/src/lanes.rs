@@ -1,0 +1,227 @@
+//! Host side of the K-lane stepper ([`wearsim_core::model::LaneGroup`]): packed square
+//! roots (`sqrtpd`, which the `unsafe`-free core cannot issue) and, where the CPU has
+//! AVX2, the whole lane step compiled for it, chosen at run time; and [`run_accel`], which
+//! groups scenarios into lane groups (sweeps, the gap's fits). Both keep the scalar
+//! step's bits: IEEE-754 square roots are correctly rounded in every form, and AVX2 does
+//! not bring fused multiply-add (Rust never contracts `a*b + c` on its own).
+
+use crate::simulate::{self, RunError, Scenario, CAPACITY};
+use wearsim_core::model::{LaneGroup, SqrtLanes};
+use wearsim_core::{Model, Sample};
+
+/// [`SqrtLanes`] with SSE2's packed square root, two lanes per instruction.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PackedSqrt;
+
+impl<const K: usize> SqrtLanes<K> for PackedSqrt {
+    #[inline(always)]
+    fn sqrt_lanes(&self, x: &mut [f64; K]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::x86_64::{_mm_loadu_pd, _mm_sqrt_pd, _mm_storeu_pd};
+            let mut pairs = x.chunks_exact_mut(2);
+            for p in &mut pairs {
+                // SAFETY: SSE2 is part of the x86_64 baseline; the pointer covers the two
+                // f64 of this chunk (unaligned load and store).
+                unsafe { _mm_storeu_pd(p.as_mut_ptr(), _mm_sqrt_pd(_mm_loadu_pd(p.as_ptr()))) };
+            }
+            for v in pairs.into_remainder() {
+                *v = v.sqrt();
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        for v in x.iter_mut() {
+            *v = v.sqrt();
+        }
+    }
+}
+
+/// Whether [`fill`] uses its AVX2 copy: the CPU has AVX2 and `WEARSIM_LANES_SSE2` is not
+/// set (that variable forces the SSE2 baseline, for measuring it).
+fn use_avx2() -> bool {
+    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVX2.get_or_init(|| {
+        #[cfg(target_arch = "x86_64")]
+        if std::env::var_os("WEARSIM_LANES_SSE2").is_none() {
+            return std::arch::is_x86_feature_detected!("avx2");
+        }
+        false
+    })
+}
+
+/// Which code path [`fill`] takes on this machine: `"avx2"` or `"sse2"`.
+pub fn simd_path() -> &'static str {
+    if use_avx2() {
+        "avx2"
+    } else {
+        "sse2"
+    }
+}
+
+/// [`LaneGroup::fill`] with packed square roots, compiled for AVX2 when the CPU has it
+/// (see [`simd_path`]).
+pub fn fill<const K: usize, const NB: usize>(
+    group: &mut LaneGroup<'_, K, NB>,
+    out: &mut [[Sample; K]],
+) -> usize {
+    #[cfg(target_arch = "x86_64")]
+    if use_avx2() {
+        // SAFETY: the CPU has AVX2 (`use_avx2` checked it).
+        return unsafe { fill_avx2(group, out) };
+    }
+    group.fill_with(out, &PackedSqrt)
+}
+
+/// The lane step inlined into a function compiled with AVX2 (wider vectors, no FMA).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn fill_avx2<const K: usize, const NB: usize>(
+    group: &mut LaneGroup<'_, K, NB>,
+    out: &mut [[Sample; K]],
+) -> usize {
+    group.fill_with(out, &PackedSqrt)
+}
+
+/// Largest lane group [`run_accel`] forms (the bench's best per-core figure; see
+/// `docs/python.md`).
+pub const MAX_LANES: usize = 16;
+
+/// Lanes of the next group for `n` shareable runs left: 16 for 16 or more, else the
+/// next power of two when at most 3/8 of it would be padding (a padded 16-lane group
+/// costs about 4 scalar runs, a 13-run split into 8 + 4 + 1 about 5.5: see
+/// `docs/python.md`), else the power of two below; 1 means the scalar step.
+pub fn group_size(n: usize) -> usize {
+    if n >= MAX_LANES {
+        return MAX_LANES;
+    }
+    let up = n.next_power_of_two();
+    if (up - n) * 8 <= up * 3 {
+        up
+    } else {
+        up / 2
+    }
+}
+
+/// Whether scenario `b` can join a lane group led by `a`: the core accepts the two models
+/// together and the runs record and discard the same lengths.
+pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
+    wearsim_core::model::lanes::shareable(&a.model, &b.model, 1).is_ok()
+        && a.run.duration == b.run.duration
+        && a.run.settle == b.run.settle
+}
+
+/// Acceleration (m/s², settling time discarded) of every scenario in `scs`, in order,
+/// bit for bit what [`simulate::run`] gives: scenarios that can share a lane group run
+/// in groups of up to [`MAX_LANES`] (sizes from [`group_size`], padded), the rest alone. A lane that
+/// produces a non-finite sample is re-run alone, so its error is the scalar run's.
+pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, sc) in scs.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|g| g.len() < MAX_LANES && can_share(&scs[g[0]], sc))
+        {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    let mut out: Vec<Option<Result<Vec<f64>, RunError>>> = (0..scs.len()).map(|_| None).collect();
+    for g in groups {
+        let mut rest: &[usize] = &g;
+        while !rest.is_empty() {
+            let k = group_size(rest.len());
+            let (now, later) = rest.split_at(k.min(rest.len()));
+            let res = match k {
+                16 => run_group::<16>(scs, now),
+                8 => run_group::<8>(scs, now),
+                4 => run_group::<4>(scs, now),
+                2 => run_group::<2>(scs, now),
+                _ => now.iter().map(|&i| scalar_accel(&scs[i])).collect(),
+            };
+            for (&i, r) in now.iter().zip(res) {
+                out[i] = Some(r);
+            }
+            rest = later;
+        }
+    }
+    out.into_iter()
+        .map(|r| r.unwrap_or_else(|| Ok(Vec::new())))
+        .collect()
+}
+
+/// One scenario through the scalar step.
+fn scalar_accel(sc: &Scenario) -> Result<Vec<f64>, RunError> {
+    simulate::run(sc, |_, _| {}).map(|o| o.accel)
+}
+
+/// Scenarios `idx` of `scs` (at most K, shareable) as one lane group; padding lanes
+/// repeat the last scenario and are dropped.
+fn run_group<const K: usize>(scs: &[Scenario], idx: &[usize]) -> Vec<Result<Vec<f64>, RunError>> {
+    let scalar = || idx.iter().map(|&i| scalar_accel(&scs[i])).collect();
+    let Some(last) = idx.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    if idx.len() > K {
+        return scalar();
+    }
+    let sc0 = &scs[idx[0]];
+    let fs = sc0.fs();
+    let n = (sc0.run.duration * fs).round() as usize;
+    let settle = (sc0.run.settle * fs).round() as usize;
+    let models: [Model; K] = std::array::from_fn(|l| scs[idx[l.min(last)]].model.clone());
+    let seeds: [u64; K] = std::array::from_fn(|l| scs[idx[l.min(last)]].run.seed);
+    let Some(lanes) = lane_accel(&models, &seeds, settle, n) else {
+        return scalar();
+    };
+    lanes
+        .into_iter()
+        .zip(idx)
+        .map(|(r, &i)| match r {
+            Ok(a) => Ok(a),
+            Err(_) => scalar_accel(&scs[i]),
+        })
+        .collect()
+}
+
+/// Runs `models` (seeds `seeds`) as one lane group: `settle` output samples discarded,
+/// then `n` kept; per lane its acceleration, or `Err(accel)` when a sample of any
+/// channel is non-finite (the caller reruns that lane alone for the scalar error).
+/// `None` when the core refuses the group.
+#[allow(clippy::type_complexity)]
+pub fn lane_accel<const K: usize>(
+    models: &[Model; K],
+    seeds: &[u64; K],
+    settle: usize,
+    n: usize,
+) -> Option<Vec<Result<Vec<f64>, Vec<f64>>>> {
+    let group = LaneGroup::<K, CAPACITY>::new_checked(models, seeds).ok()?;
+    let mut group = Box::new(group);
+    let mut chunk: Vec<[Sample; K]> = std::iter::repeat_n([Sample::default(); K], 1024).collect();
+    let mut left = settle;
+    while left > 0 {
+        let k = left.min(chunk.len());
+        fill(&mut group, &mut chunk[..k]);
+        left -= k;
+    }
+    let mut accel: Vec<Vec<f64>> = (0..K).map(|_| Vec::with_capacity(n)).collect();
+    let mut finite = [true; K];
+    let mut done = 0;
+    while done < n {
+        let k = (n - done).min(chunk.len());
+        fill(&mut group, &mut chunk[..k]);
+        for row in &chunk[..k] {
+            for ((a, s), ok) in accel.iter_mut().zip(row).zip(finite.iter_mut()) {
+                *ok &= s.accel.is_finite() && s.vel.is_finite() && s.disp.is_finite();
+                a.push(s.accel);
+            }
+        }
+        done += k;
+    }
+    Some(
+        accel
+            .into_iter()
+            .zip(finite)
+            .map(|(a, ok)| if ok { Ok(a) } else { Err(a) })
+            .collect(),
+    )
+}
