@@ -9,7 +9,6 @@ pub mod cwru_benchmark;
 pub mod effects;
 pub mod features;
 pub mod gap;
-pub mod gap_lanes;
 pub mod geometry;
 pub mod io;
 pub mod kinematics;

@@ -198,9 +198,18 @@ pub fn fit_from<T: Target>(
     budget: Budget,
 ) -> Fit {
     let p = space.fitted.len();
-    let objective = |u: &Vec<f64>| match with(space, base, u) {
-        Some(fx) => ev.total(train, &fx),
-        None => f64::INFINITY,
+    // The objective at many points at once (lanes): +∞ where the point is outside the
+    // model's accepted configurations.
+    let objective = |us: &[Vec<f64>]| -> Vec<f64> {
+        let fxs: Vec<Option<Effects>> = us.iter().map(|u| with(space, base, u)).collect();
+        let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
+        let mut totals = ev.totals(train, &ok).into_iter();
+        fxs.iter()
+            .map(|f| match f {
+                Some(_) => totals.next().unwrap_or(f64::INFINITY),
+                None => f64::INFINITY,
+            })
+            .collect()
     };
     // Coarse grid (or a sparser one around a hint).
     let pts = match hint.filter(|h| h.len() == p) {
@@ -211,7 +220,7 @@ pub fn fit_from<T: Target>(
         }
         None => grid(p, budget.axis),
     };
-    let vals = ev.map(&pts, objective);
+    let vals = objective(&pts);
     let mut evaluations = pts.len();
     let (mut best_u, mut best) = pts
         .iter()
@@ -242,7 +251,7 @@ pub fn fit_from<T: Target>(
                 })
             })
             .collect();
-        let v = ev.map(&polls, objective);
+        let v = objective(&polls);
         searched += polls.len();
         evaluations += polls.len();
         match polls
@@ -324,7 +333,6 @@ fn uncertainty<T: Target>(
         return none(0, Gaps::default(), vec![]);
     }
     let h = 0.02;
-    let res = |u: &Vec<f64>| with(space, base, u).and_then(|fx| ev.residuals(train, &fx).ok());
     let mut pts = vec![u.to_vec()];
     for i in 0..p {
         for s in [-h, h] {
@@ -335,7 +343,13 @@ fn uncertainty<T: Target>(
             pts.push(w);
         }
     }
-    let r = ev.map(&pts, res);
+    let fxs: Vec<Option<Effects>> = pts.iter().map(|u| with(space, base, u)).collect();
+    let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
+    let mut many = ev.residuals_many(train, &ok).into_iter();
+    let r: Vec<Option<Gaps>> = fxs
+        .iter()
+        .map(|f| f.and_then(|_| many.next().flatten()))
+        .collect();
     let n = pts.len();
     let Some(Some(r0)) = r.first() else {
         return none(n, Gaps::default(), vec![]);

@@ -9,12 +9,9 @@ use super::{CellSpec, Reference};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use wearsim_core::effects::{EffectKind, Effects};
-use wearsim_core::{Model, ModelConfig, Sample, State};
+use wearsim_core::ModelConfig;
 
-/// Settling time simulated and discarded before a matched record (s): the structure's
-/// transient and the effects' filters (transfer-path modes at 5 % damping decay by e⁻¹⁰
-/// within 0.1 s above 300 Hz) are gone.
-pub const SETTLE_S: f64 = 0.1;
+pub use super::run::SETTLE_S;
 
 /// One measured stretch and its matched baseline.
 #[derive(Debug, Clone)]
@@ -50,19 +47,7 @@ impl Matched {
 
     /// Simulates the matched record with effects `fx` added to the baseline's.
     pub fn simulate(&self, fx: &Effects) -> Result<Vec<f64>, String> {
-        let model = Model::new_checked(self.config(fx)).map_err(|e| e.to_string())?;
-        let fs = model.config().output_rate;
-        let mut st: State<{ crate::simulate::CAPACITY }> =
-            State::new(&model, self.seed).map_err(|e| e.to_string())?;
-        let mut buf = vec![Sample::default(); ((SETTLE_S * fs) as usize).max(1)];
-        model.fill(&mut st, &mut buf);
-        buf.resize(self.samples, Sample::default());
-        model.fill(&mut st, &mut buf);
-        let x: Vec<f64> = buf.iter().map(|s| s.accel).collect();
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err("the model produced a non-finite sample".into());
-        }
-        Ok(x)
+        super::run::simulate(&self.config(fx), self.seed, self.samples)
     }
 
     /// Mean simulated cell values with effects `fx`, from the memo when this
@@ -75,11 +60,53 @@ impl Matched {
         })
     }
 
+    /// [`Matched::sim_cells`] for several effect sets: those the memo lacks are simulated
+    /// together ([`super::run::simulate_many`]: lanes where the models allow it), each
+    /// distinct configuration once, and counted in `sims`.
+    pub fn sim_cells_many(
+        &self,
+        fxs: &[Effects],
+        sims: &AtomicUsize,
+    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
+        let keys: Vec<(ModelConfig, u64, usize)> = fxs
+            .iter()
+            .map(|fx| (self.config(fx), self.seed, self.samples))
+            .collect();
+        let mut todo: Vec<usize> = vec![];
+        for (i, k) in keys.iter().enumerate() {
+            if self.memo.get(k).is_none() && !todo.iter().any(|&j| keys[j] == *k) {
+                todo.push(i);
+            }
+        }
+        let cfgs: Vec<ModelConfig> = todo.iter().map(|&i| keys[i].0.clone()).collect();
+        let mut errors: Vec<(usize, String)> = vec![];
+        let runs = super::run::simulate_many(&cfgs, self.seed, self.samples);
+        for (&i, x) in todo.iter().zip(runs) {
+            sims.fetch_add(1, Ordering::Relaxed);
+            match x.and_then(|x| self.reference.sim_means(&x).map_err(|e| e.to_string())) {
+                Ok(c) => self.memo.insert(keys[i].clone(), Arc::new(c)),
+                Err(e) => errors.push((i, e)),
+            }
+        }
+        keys.iter()
+            .map(|k| match self.memo.get(k) {
+                Some(c) => Ok(c),
+                None => Err(errors
+                    .iter()
+                    .find(|(j, _)| keys[*j] == *k)
+                    .map_or_else(|| "not simulated".to_string(), |(_, e)| e.clone())),
+            })
+            .collect()
+    }
+
     /// The spec the cells use.
     pub fn spec(&self) -> &CellSpec {
         &self.reference.spec
     }
 }
+
+/// Normalised cell gaps and their weights, or why they could not be computed.
+pub type GapsResult = Result<(Vec<f64>, Vec<f64>), String>;
 
 /// A measured record that the attribution can hold simulations against: a stretch of a
 /// stationary record ([`Matched`]) or a whole measured life
@@ -90,12 +117,25 @@ pub trait Target: Sync {
     /// baseline, and each cell's weight in the record's total gap (Σ w² = 1). Every
     /// simulation actually run adds one to `sims`.
     fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String>;
+
+    /// [`Target::gaps`] for several effect sets, in order; a target that can simulate
+    /// several at once (lanes) overrides it.
+    fn gaps_many(&self, fxs: &[Effects], sims: &AtomicUsize) -> Vec<GapsResult> {
+        fxs.iter().map(|fx| self.gaps(fx, sims)).collect()
+    }
 }
 
 impl Target for Matched {
     fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
         let c = self.sim_cells(fx, sims)?;
         Ok((self.reference.residuals(&c), self.reference.weight.clone()))
+    }
+
+    fn gaps_many(&self, fxs: &[Effects], sims: &AtomicUsize) -> Vec<GapsResult> {
+        self.sim_cells_many(fxs, sims)
+            .into_iter()
+            .map(|c| c.map(|c| (self.reference.residuals(&c), self.reference.weight.clone())))
+            .collect()
     }
 }
 
@@ -186,6 +226,41 @@ impl Evaluator {
         self.residuals(set, fx)
             .map(|r| r.total())
             .unwrap_or(f64::INFINITY)
+    }
+
+    /// [`Evaluator::residuals`] of `set` for every effect set of `fxs` (`None` where a
+    /// simulation is rejected): the sets are split over up to `jobs` threads, and each
+    /// thread's share is simulated together per record ([`Target::gaps_many`]).
+    pub fn residuals_many<T: Target>(&self, set: &[T], fxs: &[Effects]) -> Vec<Option<Gaps>> {
+        let chunks: Vec<&[Effects]> = fxs.chunks(fxs.len().div_ceil(self.jobs).max(1)).collect();
+        self.map(&chunks, |chunk| {
+            let mut acc: Vec<Option<Gaps>> = vec![Some(Gaps::default()); chunk.len()];
+            for m in set {
+                for (a, r) in acc.iter_mut().zip(m.gaps_many(chunk, &self.sims)) {
+                    match (a.as_mut(), r) {
+                        (Some(g), Ok((gaps, w))) => {
+                            g.gaps.extend(gaps);
+                            g.weights.extend(w);
+                            g.records += 1;
+                        }
+                        _ => *a = None,
+                    }
+                }
+            }
+            acc
+        })
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+
+    /// [`Evaluator::total`] for every effect set of `fxs` (+∞ where a simulation is
+    /// rejected), through [`Evaluator::residuals_many`].
+    pub fn totals<T: Target>(&self, set: &[T], fxs: &[Effects]) -> Vec<f64> {
+        self.residuals_many(set, fxs)
+            .into_iter()
+            .map(|g| g.map_or(f64::INFINITY, |g| g.total()))
+            .collect()
     }
 
     /// `f` applied to every item, on up to `jobs` threads, results in input order.

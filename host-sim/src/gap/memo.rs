@@ -35,20 +35,33 @@ impl<K: PartialEq + Clone, V> Memo<K, V> {
         sims: &AtomicUsize,
         run: impl FnOnce() -> Result<V, String>,
     ) -> Result<Arc<V>, String> {
-        if let Ok(c) = self.entries.lock() {
-            if let Some((_, v)) = c.iter().find(|(k, _)| k == key) {
-                return Ok(v.clone());
-            }
+        if let Some(v) = self.get(key) {
+            return Ok(v);
         }
         sims.fetch_add(1, Ordering::Relaxed);
         let v = Arc::new(run()?);
+        self.insert(key.clone(), v.clone());
+        Ok(v)
+    }
+
+    /// The result for `key`, when the memo holds one.
+    pub fn get(&self, key: &K) -> Option<Arc<V>> {
+        let c = self.entries.lock().ok()?;
+        c.iter().find(|(k, _)| k == key).map(|(_, v)| v.clone())
+    }
+
+    /// Keeps `v` for `key` (the oldest entry goes when the memo is full); the caller ran
+    /// it and counts it.
+    pub fn insert(&self, key: K, v: Arc<V>) {
         if let Ok(mut c) = self.entries.lock() {
+            if c.iter().any(|(k, _)| *k == key) {
+                return;
+            }
             if c.len() >= self.capacity {
                 c.remove(0);
             }
-            c.push((key.clone(), v.clone()));
+            c.push((key, v));
         }
-        Ok(v)
     }
 
     /// Results held.

@@ -16,6 +16,7 @@ pub mod memo;
 pub mod protocol;
 pub mod records;
 pub mod report;
+pub mod run;
 pub mod signature;
 pub mod space;
 pub mod stationary;

@@ -1,29 +1,55 @@
-//! Several parameter sets of one matched record at once: the gap's fits evaluate many
-//! effect settings against the same baseline and seed, and those that leave the
-//! kinematics alone run as lanes of one [`wearsim_core::model::LaneGroup`]
-//! (see [`crate::lanes`]), bit for bit what [`Matched::simulate`] gives one at a time.
-//! Kept outside `gap/` so the attribution can adopt it with a one-line call.
+//! Matched simulations of the gap's fits: one configuration ([`simulate`]), or several of
+//! one matched record at once ([`simulate_many`]). The fits evaluate many effect settings
+//! against the same baseline and seed; those that leave the kinematics alone run as lanes
+//! of one [`wearsim_core::model::LaneGroup`] (see [`crate::lanes`]), bit for bit what
+//! [`simulate`] gives one at a time.
 
-use crate::gap::matched::{merge, Matched, SETTLE_S};
 use crate::lanes::{lane_accel, MAX_LANES};
-use wearsim_core::effects::Effects;
 use wearsim_core::model::lanes::shareable;
-use wearsim_core::Model;
+use wearsim_core::{Model, ModelConfig, Sample, State};
 
-/// `m.simulate(fx)` for every `fx` in `fxs`, in order, with the same results (samples
-/// and errors); settings whose models can share the kinematics run in lane groups of up
-/// to [`MAX_LANES`] (sizes from [`crate::lanes::group_size`]), the others alone.
-pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, String>> {
-    let mut out: Vec<Option<Result<Vec<f64>, String>>> = (0..fxs.len()).map(|_| None).collect();
+/// Settling time simulated and discarded before a matched record (s): the structure's
+/// transient and the effects' filters (transfer-path modes at 5 % damping decay by e⁻¹⁰
+/// within 0.1 s above 300 Hz) are gone.
+pub const SETTLE_S: f64 = 0.1;
+
+/// `samples` accelerations (m/s²) of `cfg` with generator seed `seed`, after
+/// [`SETTLE_S`]; an error when the model refuses the configuration or a sample is not
+/// finite.
+pub fn simulate(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>, String> {
+    let model = Model::new_checked(cfg.clone()).map_err(|e| e.to_string())?;
+    let fs = model.config().output_rate;
+    let mut st: State<{ crate::simulate::CAPACITY }> =
+        State::new(&model, seed).map_err(|e| e.to_string())?;
+    let mut buf = vec![Sample::default(); ((SETTLE_S * fs) as usize).max(1)];
+    model.fill(&mut st, &mut buf);
+    buf.resize(samples, Sample::default());
+    model.fill(&mut st, &mut buf);
+    let x: Vec<f64> = buf.iter().map(|s| s.accel).collect();
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err("the model produced a non-finite sample".into());
+    }
+    Ok(x)
+}
+
+/// [`simulate`] of every configuration in `cfgs` (same seed and length), in order, with
+/// the same results (samples and errors); configurations whose models can share the
+/// kinematics run in lane groups of up to [`MAX_LANES`] (sizes from
+/// [`crate::lanes::group_size`]), the others alone.
+pub fn simulate_many(
+    cfgs: &[ModelConfig],
+    seed: u64,
+    samples: usize,
+) -> Vec<Result<Vec<f64>, String>> {
+    let mut out: Vec<Option<Result<Vec<f64>, String>>> = (0..cfgs.len()).map(|_| None).collect();
     let mut models: Vec<(usize, Model)> = Vec::new();
-    for (i, fx) in fxs.iter().enumerate() {
-        let mut cfg = m.base.clone();
-        merge(&mut cfg.effects, fx);
-        match Model::new_checked(cfg) {
+    for (i, cfg) in cfgs.iter().enumerate() {
+        match Model::new_checked(cfg.clone()) {
             Ok(model) => models.push((i, model)),
             Err(e) => out[i] = Some(Err(e.to_string())),
         }
     }
+    let alone = |i: usize| simulate(&cfgs[i], seed, samples);
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for (j, (_, model)) in models.iter().enumerate() {
         match groups
@@ -40,23 +66,23 @@ pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, Strin
             let k = crate::lanes::group_size(rest.len());
             let (now, later) = rest.split_at(k.min(rest.len()));
             let res = match k {
-                16 => group::<16>(m, &models, now),
-                8 => group::<8>(m, &models, now),
-                4 => group::<4>(m, &models, now),
-                2 => group::<2>(m, &models, now),
+                16 => group::<16>(&models, now, seed, samples),
+                8 => group::<8>(&models, now, seed, samples),
+                4 => group::<4>(&models, now, seed, samples),
+                2 => group::<2>(&models, now, seed, samples),
                 _ => None,
             };
             match res {
                 Some(r) => {
                     for (&j, x) in now.iter().zip(r) {
                         let i = models[j].0;
-                        out[i] = Some(x.or_else(|_| m.simulate(&fxs[i])));
+                        out[i] = Some(x.or_else(|_| alone(i)));
                     }
                 }
                 None => {
                     for &j in now {
                         let i = models[j].0;
-                        out[i] = Some(m.simulate(&fxs[i]));
+                        out[i] = Some(alone(i));
                     }
                 }
             }
@@ -68,14 +94,15 @@ pub fn simulate_many(m: &Matched, fxs: &[Effects]) -> Vec<Result<Vec<f64>, Strin
         .collect()
 }
 
-/// Models `idx` of `models` (at most K; padded) as one lane group, the matched run's
-/// lengths and seed; a lane with a non-finite acceleration comes back as `Err(())`
+/// Models `idx` of `models` (at most K; padded) as one lane group with seed `seed`,
+/// [`SETTLE_S`] and then `samples`; a lane with a non-finite acceleration comes back as `Err(())`
 /// (rerun alone).
 #[allow(clippy::type_complexity)]
 fn group<const K: usize>(
-    m: &Matched,
     models: &[(usize, Model)],
     idx: &[usize],
+    seed: u64,
+    samples: usize,
 ) -> Option<Vec<Result<Vec<f64>, ()>>> {
     let last = idx.len().checked_sub(1)?;
     if idx.len() > K {
@@ -85,7 +112,7 @@ fn group<const K: usize>(
     let ms: [Model; K] = std::array::from_fn(|l| models[idx[l.min(last)]].1.clone());
     let fs = ms[0].config().output_rate;
     let settle = ((SETTLE_S * fs) as usize).max(1);
-    let lanes = lane_accel(&ms, &[m.seed; K], settle, m.samples)?;
+    let lanes = lane_accel(&ms, &[seed; K], settle, samples)?;
     Some(
         lanes
             .into_iter()
@@ -103,12 +130,11 @@ fn group<const K: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::FaultFamily;
-    use crate::gap::cells::CellSpec;
-    use crate::gap::Reference;
+    use crate::gap::matched::merge;
+    use wearsim_core::effects::Effects;
     use wearsim_core::forces::defect::DefectLocation;
 
-    /// Lanes give `Matched::simulate`'s samples for every setting: six settings that
+    /// Lanes give [`simulate`]'s samples for every setting: six settings that
     /// share the kinematics (load zone, sensor, transfer path at different strengths:
     /// groups of 4 and 2) and one that does not (speed fluctuation: alone).
     #[test]
@@ -117,27 +143,6 @@ mod tests {
         if let Some(d) = base.defect.as_mut() {
             d.location = DefectLocation::InnerRace { angle: 0.0 };
         }
-        let model = Model::new_checked(base.clone()).expect("model");
-        let spec = CellSpec {
-            fs: 12_000.0,
-            ff: model.frequencies_at(29.95),
-            family: FaultFamily::InnerRace,
-        };
-        let m = Matched {
-            label: "test".into(),
-            base,
-            reference: Reference {
-                names: vec![],
-                mean: vec![],
-                spread: vec![],
-                weight: vec![],
-                spec,
-            },
-            samples: 1200,
-            seed: 3,
-            real: vec![],
-            memo: crate::gap::memo::Memo::new(crate::gap::matched::MEMO),
-        };
         let setting = |name: &str, scale: f64| {
             let mut fx = Effects::NONE;
             let spec = wearsim_core::effects::info(name).expect("effect");
@@ -157,7 +162,7 @@ mod tests {
             fx.set_named(name, &v).expect("in bounds");
             fx
         };
-        let fxs = vec![
+        let fxs = [
             setting("load-zone", 1.0),
             setting("load-zone", 1.5),
             setting("sensor", 1.0),
@@ -166,10 +171,18 @@ mod tests {
             setting("sensor", 2.0),
             Effects::NONE,
         ];
-        let many = simulate_many(&m, &fxs);
+        let cfgs: Vec<ModelConfig> = fxs
+            .iter()
+            .map(|fx| {
+                let mut c = base.clone();
+                merge(&mut c.effects, fx);
+                c
+            })
+            .collect();
+        let many = simulate_many(&cfgs, 3, 1200);
         assert_eq!(many.len(), fxs.len());
-        for (i, (r, fx)) in many.iter().zip(&fxs).enumerate() {
-            let one = m.simulate(fx).expect("simulate");
+        for (i, (r, cfg)) in many.iter().zip(&cfgs).enumerate() {
+            let one = simulate(cfg, 3, 1200).expect("simulate");
             let laned = r.as_ref().expect("laned");
             assert_eq!(laned.len(), 1200);
             assert!(
