@@ -115,7 +115,13 @@ pub struct Trial {
     /// The final model closes the gap: its held-out total is within [`DETECTABLE`] × the
     /// noise-only gap.
     pub closed: bool,
+    /// Draws before this one that the model refused (a configuration outside what it
+    /// can integrate at the scenario's rate); such draws are drawn again.
+    pub refused: usize,
 }
+
+/// Refused twin draws allowed per trial.
+pub const MAX_REFUSED: usize = 20;
 
 /// A withheld effect counts as detectable when its strength ([`Trial::strength`]) is at
 /// least this multiple of the noise-only gap
@@ -457,21 +463,34 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                max_effects: usize|
      -> Result<Trial, String> {
         let sims0 = ev.sims();
-        let (cfg, mismatch) = opt.mismatch.apply(&base, rng);
-        let out = outside.then(|| Outside::draw(rng));
-        let mut fx = Effects::NONE;
-        let mut params: Vec<Vec<(String, f64)>> = vec![];
-        for s in withheld {
-            let u = draw(s, rng);
-            s.apply(&mut fx, &u)?;
-            params.push(
-                s.named(&u)
-                    .into_iter()
-                    .map(|(n, v)| (n.to_string(), v))
-                    .collect(),
-            );
-        }
-        let r = setup.runs(&cfg, &fx, out.as_ref(), seed)?;
+        // A draw the model refuses (a stiffer, more loaded twin can need a finer internal
+        // step than the scenario's) is drawn again and counted; nothing else is redrawn.
+        let mut refused = 0;
+        let (mismatch, out, fx, params, r) = loop {
+            let (cfg, mismatch) = opt.mismatch.apply(&base, rng);
+            let out = outside.then(|| Outside::draw(rng));
+            let mut fx = Effects::NONE;
+            let mut params: Vec<Vec<(String, f64)>> = vec![];
+            for s in withheld {
+                let u = draw(s, rng);
+                s.apply(&mut fx, &u)?;
+                params.push(
+                    s.named(&u)
+                        .into_iter()
+                        .map(|(n, v)| (n.to_string(), v))
+                        .collect(),
+                );
+            }
+            match setup.runs(&cfg, &fx, out.as_ref(), seed) {
+                Ok(r) => break (mismatch, out, fx, params, r),
+                Err(e) if refused >= MAX_REFUSED => {
+                    return Err(format!(
+                        "{MAX_REFUSED} twin draws refused by the model, the last: {e}"
+                    ))
+                }
+                Err(_) => refused += 1,
+            }
+        };
         let strength = ev.total(std::slice::from_ref(&r.strength), &setup.floor) / noise_gap;
         let mut truth = setup.floor;
         merge(&mut truth, &fx);
@@ -515,6 +534,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             kept: a.kept.clone(),
             final_gap: a.final_holdout,
             closed: a.final_holdout <= DETECTABLE * noise_gap,
+            refused,
         })
     };
     for (i, s) in chosen.iter().enumerate() {
