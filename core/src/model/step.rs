@@ -2,7 +2,7 @@
 //! (imbalance, Hertz element loads with waviness, roughness and the defect, the effects'
 //! extra forces), the integrator, the effects' per-step work and the decimation.
 
-use super::defect_term::add_term;
+use super::defect_term::{add_term, race_terms};
 use super::{renorm, rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
 use crate::forces::defect::{DefectConfig, DefectLocation};
 use crate::forces::{ForceDiagram, Kinematics};
@@ -163,40 +163,13 @@ impl Model {
                 let cos_rel = cos_t * dc + sin_t * ds;
                 if cos_rel > st.window_cos {
                     let theta = k.cage_angle + *elem_angle + *slip;
-                    let mut dd = 0.0;
-                    if let Some(terms) = ball {
-                        // Only the defective element is in the window (half an element pitch
-                        // wide).
-                        (unload, dd, add) = terms;
-                    } else {
-                        let base = match d.location {
-                            DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
-                            DefectLocation::OuterRace { angle } => angle,
-                            DefectLocation::Ball { .. } => 0.0,
-                        };
-                        let inner = matches!(d.location, DefectLocation::InnerRace { .. });
-                        // Rolling speed over the race: relative to the inner race for an
-                        // inner-race defect, the cage's for an outer-race one.
-                        let speed = || {
-                            let w_rel = if inner {
-                                k.shaft_omega - k.cage_omega
-                            } else {
-                                k.cage_omega
-                            };
-                            w_rel * shape.race_radius
-                        };
-                        let mut terms = (unload, dd, add);
-                        for kd in 0..shape.count {
-                            let centre = base + kd as Real * shape.spacing_angle;
-                            let mut psi = angle_diff(theta, centre);
-                            if inner {
-                                psi = -psi;
-                            }
-                            let xi = psi / shape.length_angle + 0.5;
-                            add_term(d.model, shape, xi, st.tail, theta, speed, &mut terms);
-                        }
-                        (unload, dd, add) = terms;
-                    }
+                    // Only the defective element of a ball defect is in the window (half
+                    // an element pitch wide).
+                    let mut dd;
+                    (unload, dd, add) = match ball {
+                        Some(terms) => terms,
+                        None => race_terms(d, shape, st.tail, k, theta),
+                    };
                     // Load-zone effect: the element's angle from the load-zone centre (π/2)
                     // has cos ψ = sin θ; the defect's whole force term is scaled (for a ball
                     // defect the element orbits with the cage: modulation at FTF).

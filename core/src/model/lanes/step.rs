@@ -2,13 +2,13 @@
 //! lane by lane in the same order, with the kinematics and the per-element geometry
 //! computed once.
 
-use super::super::defect_term::add_term;
+use super::super::defect_term::race_terms;
 use super::super::{rotate, Channels, Sample, StepStats, ROUGH_DRAW_MARGIN};
 use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::IntegratorKind;
-use crate::real::{angle_diff, Real};
+use crate::real::Real;
 use crate::rng::Xoshiro128pp;
 
 /// Steps between two checks of the slip bookkeeping (as the scalar step).
@@ -396,38 +396,11 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                         };
                         let slip = st.slip.get(e).copied().unwrap_or(0.0);
                         let theta = k.cage_angle + *elem_angle + slip;
-                        let mut dd = 0.0;
-                        let (mut u, mut a) = (0.0, 0.0);
-                        if is_ball {
-                            (u, dd, a) = *bt;
+                        let (mut u, mut dd, mut a) = if is_ball {
+                            *bt
                         } else {
-                            let shape = &st.shape;
-                            let base = match d.location {
-                                DefectLocation::InnerRace { angle } => k.shaft_angle + angle,
-                                DefectLocation::OuterRace { angle } => angle,
-                                DefectLocation::Ball { .. } => 0.0,
-                            };
-                            let inner = matches!(d.location, DefectLocation::InnerRace { .. });
-                            let speed = || {
-                                let w_rel = if inner {
-                                    k.shaft_omega - k.cage_omega
-                                } else {
-                                    k.cage_omega
-                                };
-                                w_rel * shape.race_radius
-                            };
-                            let mut terms = (u, dd, a);
-                            for kd in 0..shape.count {
-                                let centre = base + kd as Real * shape.spacing_angle;
-                                let mut psi = angle_diff(theta, centre);
-                                if inner {
-                                    psi = -psi;
-                                }
-                                let xi = psi / shape.length_angle + 0.5;
-                                add_term(d.model, shape, xi, st.tail, theta, speed, &mut terms);
-                            }
-                            (u, dd, a) = terms;
-                        }
+                            race_terms(d, &st.shape, st.tail, k, theta)
+                        };
                         if let Some(p) = &m.cfg.effects.load_zone {
                             let gz = p.gain(sin_t);
                             u *= gz;
