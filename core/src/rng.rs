@@ -7,6 +7,29 @@
 use crate::real::Real;
 use rand_core::{RngCore, SeedableRng};
 
+/// One xoshiro128++ step: the next state and the output word. The one definition of the
+/// algorithm, for [`Xoshiro128pp`] and for the lanes' word-major generators.
+#[inline(always)]
+pub(crate) fn next_state(s: [u32; 4]) -> ([u32; 4], u32) {
+    let [s0, s1, s2, s3] = s;
+    let result = s0.wrapping_add(s3).rotate_left(7).wrapping_add(s0);
+    let t = s1 << 9;
+    let mut n2 = s2 ^ s0;
+    let mut n3 = s3 ^ s1;
+    let n1 = s1 ^ n2;
+    let n0 = s0 ^ n3;
+    n2 ^= t;
+    n3 = n3.rotate_left(11);
+    ([n0, n1, n2, n3], result)
+}
+
+/// Uniform number in `[−1, 1)` from the top 24 bits of `word`, exactly representable and
+/// identical in `f32` and `f64`.
+#[inline(always)]
+pub(crate) fn to_pm1(word: u32) -> Real {
+    ((word >> 8) as Real) * (2.0 / 16_777_216.0) - 1.0
+}
+
 /// xoshiro128++ generator (period 2¹²⁸ − 1).
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -37,16 +60,8 @@ impl Xoshiro128pp {
 
     #[inline(always)]
     fn step(&mut self) -> u32 {
-        let [s0, s1, s2, s3] = self.s;
-        let result = s0.wrapping_add(s3).rotate_left(7).wrapping_add(s0);
-        let t = s1 << 9;
-        let mut n2 = s2 ^ s0;
-        let mut n3 = s3 ^ s1;
-        let n1 = s1 ^ n2;
-        let n0 = s0 ^ n3;
-        n2 ^= t;
-        n3 = n3.rotate_left(11);
-        self.s = [n0, n1, n2, n3];
+        let (next, result) = next_state(self.s);
+        self.s = next;
         result
     }
 
@@ -67,7 +82,7 @@ impl Xoshiro128pp {
     /// representable and identical in `f32` and `f64`.
     #[inline(always)]
     pub fn uniform_pm1(&mut self) -> Real {
-        ((self.step() >> 8) as Real) * (2.0 / 16_777_216.0) - 1.0
+        to_pm1(self.step())
     }
 
     /// Zero-mean, unit-variance approximately Gaussian number (Irwin–Hall sum of four

@@ -9,7 +9,7 @@ use crate::forces::defect::DefectLocation;
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::IntegratorKind;
 use crate::real::Real;
-use crate::rng::Xoshiro128pp;
+use crate::rng::{next_state, to_pm1, Xoshiro128pp};
 
 /// Steps between two checks of the slip bookkeeping (as the scalar step).
 const SLIP_CHECK_EVERY: u64 = 8;
@@ -66,17 +66,9 @@ fn uniform_pm1_lanes<const K: usize>(rng: &mut [[u32; K]; 4]) -> [Real; K] {
         .zip(s3.iter_mut())
         .zip(0..K)
     {
-        let (w0, w1, w2, w3) = (*a0, *a1, *a2, *a3);
-        let result = w0.wrapping_add(w3).rotate_left(7).wrapping_add(w0);
-        let t = w1 << 9;
-        let mut n2 = w2 ^ w0;
-        let mut n3 = w3 ^ w1;
-        let n1 = w1 ^ n2;
-        let n0 = w0 ^ n3;
-        n2 ^= t;
-        n3 = n3.rotate_left(11);
+        let ([n0, n1, n2, n3], result) = next_state([*a0, *a1, *a2, *a3]);
         (*a0, *a1, *a2, *a3) = (n0, n1, n2, n3);
-        *o = ((result >> 8) as Real) * (2.0 / 16_777_216.0) - 1.0;
+        *o = to_pm1(result);
     }
     out
 }
