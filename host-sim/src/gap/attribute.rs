@@ -5,7 +5,7 @@
 //! [`Options::min_shrink`]. Every conclusion that the numbers do not support is reported
 //! as a finding instead of a ranking with false confidence.
 
-use super::fit::{fit_from, Budget, Fit, FittedParam};
+use super::fit::{fit_many, Budget, Fit, FittedParam, Job};
 use super::matched::{without, Evaluator, Gaps, Target};
 use super::space::FitSpace;
 use super::total_gap;
@@ -217,10 +217,25 @@ pub fn attribute<T: Target>(
     // Each effect alone.
     let mut ranking = vec![];
     let mut fits: Vec<(Fit, &FitSpace)> = vec![];
-    for s in spaces {
-        let f = fit_from(s, base, train, ev, None, opt.budget);
-        let fx = f.effects(s, base);
-        let r = ev.residuals(holdout, &fx).unwrap_or_default();
+    // Every effect's fit in lock step (one batch of simulations per round), then every
+    // fitted model on the held-out records in one batch.
+    let jobs: Vec<Job> = spaces
+        .iter()
+        .map(|space| Job {
+            space,
+            base,
+            hint: None,
+        })
+        .collect();
+    let alone = fit_many(&jobs, train, ev, opt.budget);
+    let fxs: Vec<Effects> = alone
+        .iter()
+        .zip(spaces)
+        .map(|(f, s)| f.effects(s, base))
+        .collect();
+    let held = ev.residuals_many(holdout, &fxs);
+    for (((f, s), fx), r) in alone.into_iter().zip(spaces).zip(fxs).zip(held) {
+        let r = r.unwrap_or_default();
         let g = if r.records == 0 {
             f64::INFINITY
         } else {
@@ -341,14 +356,26 @@ pub fn attribute<T: Target>(
             .filter_map(|r| spaces.iter().find(|s| s.effect == r.effect))
             .collect();
         let mut best_step: Option<(Fit, &FitSpace, f64, Effects, Gaps)> = None;
-        for s in cands {
-            let hint = fits
-                .iter()
-                .find(|(f, _)| f.effect == s.effect)
-                .map(|(f, _)| f.coords.as_slice());
-            let f = fit_from(s, &current, train, ev, hint, opt.budget);
-            let fx = f.effects(s, &current);
-            let Ok(r) = ev.residuals(holdout, &fx) else {
+        let jobs: Vec<Job> = cands
+            .iter()
+            .map(|s| Job {
+                space: s,
+                base: &current,
+                hint: fits
+                    .iter()
+                    .find(|(f, _)| f.effect == s.effect)
+                    .map(|(f, _)| f.coords.as_slice()),
+            })
+            .collect();
+        let refits = fit_many(&jobs, train, ev, opt.budget);
+        let fxs: Vec<Effects> = refits
+            .iter()
+            .zip(&cands)
+            .map(|(f, s)| f.effects(s, &current))
+            .collect();
+        let held = ev.residuals_many(holdout, &fxs);
+        for (((f, s), fx), r) in refits.into_iter().zip(cands).zip(fxs).zip(held) {
+            let Some(r) = r else {
                 continue;
             };
             let g = r.total();

@@ -197,11 +197,97 @@ pub fn fit_from<T: Target>(
     hint: Option<&[f64]>,
     budget: Budget,
 ) -> Fit {
-    let p = space.fitted.len();
-    // The objective at many points at once (lanes): +∞ where the point is outside the
-    // model's accepted configurations.
-    let objective = |us: &[Vec<f64>]| -> Vec<f64> {
-        let fxs: Vec<Option<Effects>> = us.iter().map(|u| with(space, base, u)).collect();
+    let mut fits = fit_many(&[Job { space, base, hint }], train, ev, budget);
+    fits.pop().unwrap_or_else(|| Fit {
+        effect: space.effect.to_string(),
+        params: vec![],
+        coords: vec![],
+        train_gap: f64::INFINITY,
+        converged: false,
+        evaluations: 0,
+        train_gaps: Gaps::default(),
+        jacobian: vec![],
+    })
+}
+
+/// One fit of [`fit_many`]: the effect's space, the effects already switched on beneath
+/// it, and an optional start ([`fit_from`]'s `hint`).
+#[derive(Clone, Copy)]
+pub struct Job<'a> {
+    /// The effect's fit space.
+    pub space: &'a FitSpace,
+    /// Effects already on.
+    pub base: &'a Effects,
+    /// Known optimum to start from (normalised coordinates).
+    pub hint: Option<&'a [f64]>,
+}
+
+/// A pattern search in progress ([`fit_many`]).
+struct Search {
+    best_u: Vec<f64>,
+    best: f64,
+    step: f64,
+    searched: usize,
+    evaluations: usize,
+}
+
+impl Search {
+    fn active(&self, p: usize, budget: &Budget) -> bool {
+        p > 0 && self.step >= budget.step_tol && self.searched < budget.max_search
+    }
+
+    /// Poll ±step along every axis that stays inside [0, 1].
+    fn polls(&self) -> Vec<Vec<f64>> {
+        let p = self.best_u.len();
+        let mut out = vec![];
+        for i in 0..p {
+            for s in [-1.0, 1.0] {
+                let mut u = self.best_u.clone();
+                let x = u.get(i).copied().unwrap_or(0.5) + s * self.step;
+                if !(0.0..=1.0).contains(&x) {
+                    continue;
+                }
+                if let Some(c) = u.get_mut(i) {
+                    *c = x;
+                }
+                out.push(u);
+            }
+        }
+        out
+    }
+
+    /// Moves to the best improving poll, or halves the step when none improves.
+    fn update(&mut self, polls: &[Vec<f64>], v: &[f64]) {
+        self.searched += polls.len();
+        self.evaluations += polls.len();
+        match polls
+            .iter()
+            .zip(v)
+            .filter(|(_, v)| **v < self.best - 1e-9)
+            .min_by(|a, b| a.1.total_cmp(b.1))
+        {
+            Some((u, v)) => {
+                self.best_u = u.clone();
+                self.best = *v;
+            }
+            None => self.step *= 0.5,
+        }
+    }
+}
+
+/// Several independent fits ([`fit_from`] each) run in lock step, so that every round's
+/// evaluations of all of them — the grids, then each pattern-search poll, then the
+/// finite differences — are simulated together ([`Evaluator::totals`], lanes where the
+/// models allow it). Each fit's result is exactly what it gives alone: the fits do not
+/// share any decision, only the batches.
+pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Budget) -> Vec<Fit> {
+    // The objective at many (job, point) pairs at once: +∞ where the point is outside
+    // the model's accepted configurations.
+    let objective = |pts: &[(usize, Vec<f64>)]| -> Vec<f64> {
+        let fxs: Vec<Option<Effects>> = pts
+            .iter()
+            .map(|(j, u)| jobs.get(*j).and_then(|job| with(job.space, job.base, u)))
+            .collect();
         let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
         let mut totals = ev.totals(train, &ok).into_iter();
         fxs.iter()
@@ -211,94 +297,150 @@ pub fn fit_from<T: Target>(
             })
             .collect()
     };
-    // Coarse grid (or a sparser one around a hint).
-    let pts = match hint.filter(|h| h.len() == p) {
-        Some(h) => {
-            let mut v = grid_k(p, 3);
-            v.push(h.to_vec());
-            v
-        }
-        None => grid(p, budget.axis),
-    };
-    let vals = objective(&pts);
-    let mut evaluations = pts.len();
-    let (mut best_u, mut best) = pts
+    // Coarse grids (or sparser ones around hints).
+    let grids: Vec<Vec<Vec<f64>>> = jobs
         .iter()
-        .zip(&vals)
-        .min_by(|a, b| a.1.total_cmp(b.1))
-        .map(|(u, v)| (u.clone(), *v))
-        .unwrap_or((vec![0.5; p], f64::INFINITY));
-    // Pattern search: poll ±step along every axis (in parallel), move to the best
-    // improvement, halve the step when none improves.
-    let mut step = if p == 1 { 1.0 / 16.0 } else { 1.0 / 8.0 };
-    let mut searched = 0;
-    while p > 0 && step >= budget.step_tol && searched < budget.max_search {
-        let polls: Vec<Vec<f64>> = (0..p)
-            .flat_map(|i| {
-                [-1.0, 1.0].into_iter().filter_map({
-                    let best_u = best_u.clone();
-                    move |s| {
-                        let mut u = best_u.clone();
-                        let x = u.get(i).copied().unwrap_or(0.5) + s * step;
-                        if !(0.0..=1.0).contains(&x) {
-                            return None;
-                        }
-                        if let Some(c) = u.get_mut(i) {
-                            *c = x;
-                        }
-                        Some(u)
-                    }
-                })
-            })
-            .collect();
-        let v = objective(&polls);
-        searched += polls.len();
-        evaluations += polls.len();
-        match polls
-            .iter()
-            .zip(&v)
-            .filter(|(_, v)| **v < best - 1e-9)
-            .min_by(|a, b| a.1.total_cmp(b.1))
-        {
-            Some((u, v)) => {
-                best_u = u.clone();
-                best = *v;
+        .map(|job| {
+            let p = job.space.fitted.len();
+            match job.hint.filter(|h| h.len() == p) {
+                Some(h) => {
+                    let mut v = grid_k(p, 3);
+                    v.push(h.to_vec());
+                    v
+                }
+                None => grid(p, budget.axis),
             }
-            None => step *= 0.5,
-        }
-    }
-    let converged = p == 0 || (step < budget.step_tol && best.is_finite());
-    let Local {
-        stds,
-        evaluations: extra,
-        gaps: train_gaps,
-        jacobian,
-    } = uncertainty(space, base, train, ev, &best_u);
-    evaluations += extra;
-    let info = wearsim_core::effects::info(space.effect);
-    let params = space
-        .fitted
-        .iter()
-        .zip(&best_u)
-        .zip(&stds)
-        .map(|((f, u), s)| {
-            let unit = info
-                .and_then(|i| i.params.iter().find(|q| q.name == f.name))
-                .map(|q| q.unit.to_string())
-                .unwrap_or_default();
-            FittedParam::new(f, *u, *s, unit)
         })
         .collect();
-    Fit {
-        effect: space.effect.to_string(),
-        params,
-        coords: best_u,
-        train_gap: best,
-        converged,
-        evaluations,
-        train_gaps,
-        jacobian,
+    let flat: Vec<(usize, Vec<f64>)> = grids
+        .iter()
+        .enumerate()
+        .flat_map(|(j, g)| g.iter().map(move |u| (j, u.clone())))
+        .collect();
+    let mut vals = objective(&flat).into_iter();
+    let mut searches: Vec<Search> = jobs
+        .iter()
+        .zip(&grids)
+        .map(|(job, pts)| {
+            let p = job.space.fitted.len();
+            let v: Vec<f64> = vals.by_ref().take(pts.len()).collect();
+            let (best_u, best) = pts
+                .iter()
+                .zip(&v)
+                .min_by(|a, b| a.1.total_cmp(b.1))
+                .map(|(u, v)| (u.clone(), *v))
+                .unwrap_or((vec![0.5; p], f64::INFINITY));
+            Search {
+                best_u,
+                best,
+                step: if p == 1 { 1.0 / 16.0 } else { 1.0 / 8.0 },
+                searched: 0,
+                evaluations: pts.len(),
+            }
+        })
+        .collect();
+    // Pattern searches: every active fit's polls in one batch per round.
+    loop {
+        let rounds: Vec<(usize, Vec<Vec<f64>>)> = searches
+            .iter()
+            .enumerate()
+            .filter(|(j, s)| {
+                jobs.get(*j)
+                    .is_some_and(|job| s.active(job.space.fitted.len(), &budget))
+            })
+            .map(|(j, s)| (j, s.polls()))
+            .collect();
+        if rounds.is_empty() {
+            break;
+        }
+        let flat: Vec<(usize, Vec<f64>)> = rounds
+            .iter()
+            .flat_map(|(j, polls)| polls.iter().map(move |u| (*j, u.clone())))
+            .collect();
+        let mut v = objective(&flat).into_iter();
+        for (j, polls) in &rounds {
+            let vj: Vec<f64> = v.by_ref().take(polls.len()).collect();
+            if let Some(s) = searches.get_mut(*j) {
+                s.update(polls, &vj);
+            }
+        }
     }
+    // Local analyses at the optima, all finite differences in one batch.
+    let pts: Vec<Vec<Vec<f64>>> = searches.iter().map(|s| local_points(&s.best_u)).collect();
+    let fxs: Vec<Option<Effects>> = jobs
+        .iter()
+        .zip(&pts)
+        .flat_map(|(job, ps)| ps.iter().map(move |u| with(job.space, job.base, u)))
+        .collect();
+    let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
+    let mut many = ev.residuals_many(train, &ok).into_iter();
+    let mut r = fxs
+        .iter()
+        .map(|f| f.and_then(|_| many.next().flatten()))
+        .collect::<Vec<Option<Gaps>>>()
+        .into_iter();
+    jobs.iter()
+        .zip(searches)
+        .zip(&pts)
+        .map(|((job, s), ps)| {
+            let space = job.space;
+            let p = space.fitted.len();
+            let rj: Vec<Option<Gaps>> = r.by_ref().take(ps.len()).collect();
+            let converged = p == 0 || (s.step < budget.step_tol && s.best.is_finite());
+            let Local {
+                stds,
+                evaluations: extra,
+                gaps: train_gaps,
+                jacobian,
+            } = uncertainty(&s.best_u, ps, &rj);
+            let info = wearsim_core::effects::info(space.effect);
+            let params = space
+                .fitted
+                .iter()
+                .zip(&s.best_u)
+                .zip(&stds)
+                .map(|((f, u), sd)| {
+                    let unit = info
+                        .and_then(|i| i.params.iter().find(|q| q.name == f.name))
+                        .map(|q| q.unit.to_string())
+                        .unwrap_or_default();
+                    FittedParam::new(f, *u, *sd, unit)
+                })
+                .collect();
+            Fit {
+                effect: space.effect.to_string(),
+                params,
+                coords: s.best_u,
+                train_gap: s.best,
+                converged,
+                evaluations: s.evaluations + extra,
+                train_gaps,
+                jacobian,
+            }
+        })
+        .collect()
+}
+
+/// Finite-difference step of the local analysis (normalised coordinates).
+const FD_STEP: f64 = 0.02;
+
+/// The points of the local analysis at `u`: `u` itself, then `u ∓ FD_STEP` along each
+/// axis (clamped to [0, 1]); none when nothing is fitted.
+fn local_points(u: &[f64]) -> Vec<Vec<f64>> {
+    if u.is_empty() {
+        return vec![];
+    }
+    let mut pts = vec![u.to_vec()];
+    for i in 0..u.len() {
+        for s in [-FD_STEP, FD_STEP] {
+            let mut w = u.to_vec();
+            if let Some(c) = w.get_mut(i) {
+                *c = (*c + s).clamp(0.0, 1.0);
+            }
+            pts.push(w);
+        }
+    }
+    pts
 }
 
 /// The local analysis at an optimum.
@@ -314,14 +456,9 @@ struct Local {
 }
 
 /// Standard deviation of each normalised coordinate at `u` (None: unconstrained), the
-/// evaluations spent, the cell gaps at `u` and the Jacobian.
-fn uncertainty<T: Target>(
-    space: &FitSpace,
-    base: &Effects,
-    train: &[T],
-    ev: &Evaluator,
-    u: &[f64],
-) -> Local {
+/// evaluations spent, the cell gaps at `u` and the Jacobian, from the cell gaps `r` at
+/// the points `pts` of [`local_points`] (`None` where a simulation was refused).
+fn uncertainty(u: &[f64], pts: &[Vec<f64>], r: &[Option<Gaps>]) -> Local {
     let p = u.len();
     let none = |n: usize, gaps: Gaps, jacobian: Vec<Vec<f64>>| Local {
         stds: vec![None; p],
@@ -332,24 +469,6 @@ fn uncertainty<T: Target>(
     if p == 0 {
         return none(0, Gaps::default(), vec![]);
     }
-    let h = 0.02;
-    let mut pts = vec![u.to_vec()];
-    for i in 0..p {
-        for s in [-h, h] {
-            let mut w = u.to_vec();
-            if let Some(c) = w.get_mut(i) {
-                *c = (*c + s).clamp(0.0, 1.0);
-            }
-            pts.push(w);
-        }
-    }
-    let fxs: Vec<Option<Effects>> = pts.iter().map(|u| with(space, base, u)).collect();
-    let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
-    let mut many = ev.residuals_many(train, &ok).into_iter();
-    let r: Vec<Option<Gaps>> = fxs
-        .iter()
-        .map(|f| f.and_then(|_| many.next().flatten()))
-        .collect();
     let n = pts.len();
     let Some(Some(r0)) = r.first() else {
         return none(n, Gaps::default(), vec![]);
