@@ -18,7 +18,21 @@ impl Model {
     /// Kinematics at the state's current time, advanced by `frac·h` (0, ½ or 1).
     #[inline(always)]
     pub(super) fn kinematics<const NB: usize>(&self, st: &State<NB>, frac: u8) -> Kinematics {
+        self.kinematics_next(st, frac).0
+    }
+
+    /// [`Model::kinematics`], with the shaft rate at the end of the step (Hz) when the
+    /// speed profile had to be evaluated there (a varying speed), for
+    /// [`Model::advance_kinematics_to`]: the profile (a speed fluctuation is nine `sin`)
+    /// is evaluated once per time instead of up to three times, with the same bits.
+    #[inline(always)]
+    pub(super) fn kinematics_next<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        frac: u8,
+    ) -> (Kinematics, Option<Real>) {
         let f0 = st.shaft_hz;
+        let mut f_end = None;
         let (shaft_hz, dshaft, rot) = match (frac, self.rot) {
             (0, _) => (f0, 0.0, None),
             (1, Some(r)) => (f0, 0.0, Some((r.shaft_half, r.cage_half, r.wave_half))),
@@ -26,6 +40,9 @@ impl Model {
             (fr, None) => {
                 let dt = if fr == 1 { 0.5 * self.h } else { self.h };
                 let f1 = self.speed_hz(st.time + dt);
+                if fr != 1 {
+                    f_end = Some(f1);
+                }
                 (f1, PI * (f0 + f1) * dt, None)
             }
         };
@@ -33,7 +50,11 @@ impl Model {
         let alpha = match self.rot {
             Some(_) => 0.0,
             None => {
-                let f2 = self.speed_hz(st.time + self.h);
+                let f2 = match f_end {
+                    Some(f) => f,
+                    None => self.speed_hz(st.time + self.h),
+                };
+                f_end = Some(f2);
                 TAU * (f2 - f0) / self.h
             }
         };
@@ -64,7 +85,7 @@ impl Model {
             let wa = wrap_angle(k.cage_angle * self.wave_order as Real);
             k.wave_cs = (cos(wa), sin(wa));
         }
-        k
+        (k, f_end)
     }
 
     /// Sum of all force diagrams (N) at kinematics `k`, displacement `y`, velocity `v`.
@@ -279,11 +300,13 @@ impl Model {
         let c_m = self.c_m;
         let k_c0 = self.eq.contact_stiffness;
         let inv_m = self.inv_m;
+        let f_end: Option<Real>;
         let (y1, v1, a0) = match self.cfg.integrator {
             IntegratorKind::Rk4 => {
                 let k0 = self.kinematics(st, 0);
                 let kh = self.kinematics(st, 1);
-                let k1 = self.kinematics(st, 2);
+                let (k1, f) = self.kinematics_next(st, 2);
+                f_end = f;
                 let mut first = true;
                 let stref: &State<NB> = st;
                 rk4::step(y, v, self.h, |stage, yy, vv| {
@@ -303,7 +326,8 @@ impl Model {
                 })
             }
             kind => {
-                let k0 = self.kinematics(st, 0);
+                let (k0, f) = self.kinematics_next(st, 0);
+                f_end = f;
                 let mut rng = st.rng.clone();
                 let draw = self.cfg.roughness.map(|_| {
                     let sigma = if self.rot.is_some() {
@@ -328,7 +352,7 @@ impl Model {
         };
         st.stats = stats;
         self.update_slip(st);
-        self.advance_kinematics(st);
+        self.advance_kinematics_to(st, f_end);
         st.y = y1;
         st.v = v1;
         st.steps += 1;
@@ -527,12 +551,27 @@ impl Model {
     /// Moves time, angles and phasors one step on.
     #[inline(always)]
     pub(super) fn advance_kinematics<const NB: usize>(&self, st: &mut State<NB>) {
+        self.advance_kinematics_to(st, None);
+    }
+
+    /// [`Model::advance_kinematics`] with the shaft rate at the new time (Hz) when it is
+    /// already known ([`Model::kinematics_next`] evaluated the profile at the same
+    /// `time + h`).
+    #[inline(always)]
+    pub(super) fn advance_kinematics_to<const NB: usize>(
+        &self,
+        st: &mut State<NB>,
+        f_end: Option<Real>,
+    ) {
         let f0 = st.shaft_hz;
         st.time += self.h;
         let (f1, ds) = match self.rot {
             Some(_) => (f0, TAU * f0 * self.h),
             None => {
-                let f1 = self.speed_hz(st.time);
+                let f1 = match f_end {
+                    Some(f) => f,
+                    None => self.speed_hz(st.time),
+                };
                 (f1, PI * (f0 + f1) * self.h)
             }
         };
