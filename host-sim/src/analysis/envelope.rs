@@ -27,7 +27,7 @@ pub fn bandpass_analytic_envelope(
     let spec = rfft(x, 0.0);
     Ok(band_envelope(&spec, n, k0, k1, n)
         .iter()
-        .map(|c| c.norm())
+        .map(|c| super::fft::magnitude(*c))
         .collect())
 }
 

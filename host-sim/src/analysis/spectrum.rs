@@ -153,7 +153,7 @@ pub(crate) fn amplitude_spectrum_unchecked(x: &[f64], fs: f64, window: Window) -
         .enumerate()
         .map(|(k, c)| {
             let one_sided = one_sided_factor(k, n);
-            one_sided * c.norm() / gain
+            one_sided * super::fft::magnitude(*c) / gain
         })
         .collect();
     Spectrum {
