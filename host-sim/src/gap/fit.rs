@@ -613,6 +613,86 @@ fn invert(a: &mut [Vec<f64>]) -> Option<Vec<Vec<f64>>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gap::space::{spaces, Context};
+    use std::sync::atomic::AtomicUsize;
+
+    /// A target whose cells are a smooth bowl in every fitted coordinate of `spaces`
+    /// (minimum at `0.3 + 0.1 i` for the i-th, with a cross term), so that fits need no
+    /// simulation.
+    struct Bowl(Vec<FitSpace>);
+
+    impl Target for Bowl {
+        fn gaps(&self, fx: &Effects, _: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
+            let mut g = vec![];
+            for s in &self.0 {
+                let Some(vals) = fx.get(s.kind) else {
+                    continue;
+                };
+                let spec = s.kind.spec();
+                let us: Vec<f64> = s
+                    .fitted
+                    .iter()
+                    .map(|f| {
+                        let i = spec
+                            .params
+                            .iter()
+                            .position(|q| q.name == f.name)
+                            .unwrap_or(0);
+                        f.coord(vals[i])
+                    })
+                    .collect();
+                for (i, u) in us.iter().enumerate() {
+                    g.push(3.0 * (u - 0.3 - 0.1 * i as f64) + us.iter().sum::<f64>().powi(2));
+                }
+            }
+            g.push(0.5);
+            let w = vec![1.0 / (g.len() as f64).sqrt(); g.len()];
+            Ok((g, w))
+        }
+    }
+
+    /// Fits in lock step give each fit's result alone: coordinates, objective,
+    /// evaluations, standard deviations (a batch split off by one value fails this).
+    #[test]
+    fn fits_in_lock_step_equal_fits_alone() {
+        let ctx = Context {
+            fs: 12_000.0,
+            shaft_hz: 29.95,
+            rms: 1.0,
+            mains_hz: 60.0,
+        };
+        let all: Vec<FitSpace> = spaces(&ctx)
+            .into_iter()
+            .filter(|s| !s.fitted.is_empty())
+            .take(4)
+            .collect();
+        assert!(all.len() >= 3 && all.iter().any(|s| s.fitted.len() >= 2));
+        let train = [Bowl(all.clone())];
+        let ev = Evaluator::new(1);
+        let base = Effects::NONE;
+        let hint = [0.9, 0.1, 0.5];
+        let jobs: Vec<Job> = all
+            .iter()
+            .enumerate()
+            .map(|(i, space)| Job {
+                space,
+                base: &base,
+                hint: (i == 1).then(|| &hint[..space.fitted.len().min(3)]),
+            })
+            .collect();
+        let together = fit_many(&jobs, &train, &ev, Budget::DEFAULT);
+        assert_eq!(together.len(), jobs.len());
+        for (job, t) in jobs.iter().zip(&together) {
+            let alone = fit_from(job.space, job.base, &train, &ev, job.hint, Budget::DEFAULT);
+            assert_eq!(t.coords, alone.coords, "{}", t.effect);
+            assert_eq!(t.train_gap, alone.train_gap);
+            assert_eq!(t.evaluations, alone.evaluations);
+            assert_eq!(t.converged, alone.converged);
+            let sd = |f: &Fit| f.params.iter().map(|p| p.std).collect::<Vec<_>>();
+            assert_eq!(sd(t), sd(&alone));
+            assert!(t.converged && t.train_gap.is_finite(), "{}", t.effect);
+        }
+    }
 
     /// Issue 13: load-zone `epsilon` fitted to 1.0 on [0.2, 1] with std 34 was reported
     /// `at_bound: false` because the edge flag also required a constrained parameter.
