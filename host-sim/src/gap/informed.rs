@@ -65,18 +65,26 @@ pub fn split<T: Target>(
     names: &[String],
 ) -> Result<(Vec<FitSpace>, Vec<Uninformed>), String> {
     let b = ev.residuals(train, base)?;
+    // Both ends of every space, simulated in one batch (lanes).
+    let mut ends = Vec::with_capacity(2 * spaces.len());
+    for s in &spaces {
+        for u in [0.0, 1.0] {
+            let mut fx = *base;
+            s.apply(&mut fx, &vec![u; s.fitted.len()])?;
+            ends.push(fx);
+        }
+    }
+    let mut gaps = ev.residuals_many(train, &ends).into_iter();
     let mut keep = vec![];
     let mut left = vec![];
     for s in spaces {
         let mut most = (0.0_f64, None);
-        for u in [0.0, 1.0] {
-            let mut fx = *base;
-            s.apply(&mut fx, &vec![u; s.fitted.len()])?;
+        for g in gaps.by_ref().take(2) {
             // An end the model cannot run (a stiffness beyond the internal rate, say)
             // changes it beyond any doubt: not a reason to call the effect uninformed.
-            let Ok(g) = ev.residuals(train, &fx) else {
+            let Some(g) = g else {
                 most = (f64::INFINITY, None);
-                break;
+                continue;
             };
             let m = largest_move(&b.gaps, &b.weights, &g.gaps);
             if m.0 > most.0 {
