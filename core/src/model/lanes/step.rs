@@ -229,12 +229,18 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             ([0.0; K], [0.0; K])
         };
         let mut out = [Sample::default(); K];
+        let mut mains = crate::effects::sensor::MainsMemo::default();
         for (l, o) in out.iter_mut().enumerate() {
             let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
             let mut acc = get(&accel);
             if let (Some(m), Some(st)) = (models.get(l), self.states.get_mut(l)) {
                 if let Some(chain) = &m.sensor_chain {
-                    acc = chain.apply(&mut st.sensor, acc);
+                    let sc = if chain.has_hum() {
+                        mains.phasor(st.sensor.phase())
+                    } else {
+                        (0.0, 1.0)
+                    };
+                    acc = chain.apply_phasor(&mut st.sensor, acc, sc);
                 }
             }
             *o = Sample {
