@@ -306,8 +306,10 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             Some(d) if d.location.is_ball() => {
                 core::array::from_fn(|l| match (models.get(l), self.states.get(l)) {
                     (Some(m), Some(st)) => match m.cfg.defect {
-                        Some(dl) => m.ball_defect(st, k, dl),
-                        None => (0.0, 0.0, 0.0),
+                        Some(dl) if m.ball_in_use(st, k, dl, (dc, ds), sin_skip) => {
+                            m.ball_defect(st, k, dl)
+                        }
+                        _ => (0.0, 0.0, 0.0),
                     },
                     _ => (0.0, 0.0, 0.0),
                 })
