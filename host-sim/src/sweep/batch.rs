@@ -15,14 +15,18 @@ use std::path::Path;
 /// as many shards as fit, at least one.
 pub const BATCH_SAMPLES: usize = 1 << 22;
 
-/// Shards per batch for `shards` shards on `threads` threads: as many as fit in
-/// [`BATCH_SAMPLES`], but no more than an even share per thread (so that every thread has
-/// work), at least one.
+/// Most shards in one batch: a batch's shards are written together at its end, so this
+/// bounds what an interruption loses (per thread) and how far progress lags.
+pub const MAX_BATCH_SHARDS: usize = 4;
+
+/// Shards per batch for `shards` shards on `threads` threads: [`MAX_BATCH_SHARDS`], but no
+/// more than fit in [`BATCH_SAMPLES`] or than an even share per thread (so that every
+/// thread has work), at least one.
 pub fn batch_len(spec: &SweepSpec, shards: usize, threads: usize) -> usize {
     let shard_samples = (spec.per_shard() as usize)
         .saturating_mul(spec.samples())
         .max(1);
-    let fit = (BATCH_SAMPLES / shard_samples).max(1);
+    let fit = (BATCH_SAMPLES / shard_samples).clamp(1, MAX_BATCH_SHARDS);
     shards.div_ceil(threads.max(1)).clamp(1, fit)
 }
 
@@ -170,12 +174,14 @@ params = { noise = { uniform = [0.01, 0.2] }, hum = { uniform = [0.0, 0.05] } }
         assert!(shard::is_done(dir.path(), 2));
     }
 
-    /// Batches: an even share of the shards per thread, capped by the memory budget.
+    /// Batches: an even share of the shards per thread, capped by the memory budget and
+    /// the shard count.
     #[test]
     fn batch_length_follows_threads_and_budget() {
         let spec = spec(); // 4 records of 600 samples per shard
         assert_eq!(batch_len(&spec, 3, 1), 3);
         assert_eq!(batch_len(&spec, 10, 3), 4);
+        assert_eq!(batch_len(&spec, 40, 1), MAX_BATCH_SHARDS);
         assert_eq!(batch_len(&spec, 0, 2), 1);
         let big = SweepSpec {
             duration: 100.0,
