@@ -3,6 +3,7 @@
 //! Hertz contacts carry the radial load `W`:
 //! `K y + Σ_j K_h (y sin θ_j − γ)^p sin θ_j = W`.
 
+use crate::bearing::MAX_ELEMENTS;
 use crate::contact::ElementContact;
 use crate::forces::defect::StaticReference;
 use crate::real::{sin, Real, TAU};
@@ -27,10 +28,20 @@ pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Rea
     let mut q_max: Real = 0.0;
     for offset in [0.0, 0.5] {
         let angle = |j: u8| (j as Real + offset) * TAU / n as Real;
+        // The elements' sines once per cage position, not once per bisection step (the
+        // same values; beyond the table, as for an unvalidated `n`, computed in place).
+        let mut sines = [0.0; MAX_ELEMENTS];
+        for (j, s) in (0..n).zip(sines.iter_mut()) {
+            *s = sin(angle(j));
+        }
+        let sine = |j: u8| match sines.get(j as usize) {
+            Some(s) => *s,
+            None => sin(angle(j)),
+        };
         let net = |y: Real| -> Real {
             let mut f = k * y;
             for j in 0..n {
-                let s = sin(angle(j));
+                let s = sine(j);
                 // Without preload (γ ≥ 0) only the lower half can touch; with it (γ < 0)
                 // every element whose deflection is positive carries load.
                 if s > 0.0 || gamma < 0.0 {
@@ -47,6 +58,11 @@ pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Rea
         }
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
+            // Once `lo` and `hi` are adjacent (or infinite) the midpoint is one of them
+            // and no further step changes either: stop (the same result as all 200).
+            if mid <= lo || mid >= hi {
+                break;
+            }
             if net(mid) < 0.0 {
                 lo = mid;
             } else {
@@ -56,8 +72,7 @@ pub fn equilibrium(contact: &ElementContact, n: u8, w: Real, k: Real, gamma: Rea
         let y = 0.5 * (lo + hi);
         y_sum += y;
         for j in 0..n {
-            let a = angle(j);
-            let s = sin(a);
+            let s = sine(j);
             if s > 0.0 || gamma < 0.0 {
                 let d = y * s - gamma;
                 k_sum += contact.tangent_stiffness(d) * s * s;

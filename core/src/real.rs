@@ -82,6 +82,24 @@ math_fns! {
     floor(x) => libm::floor, libm::floorf, libm::floorf;
 }
 
+/// Sine and cosine of `x` (rad) from one argument reduction (libm's `sincos`; with
+/// `fast-math` the two `micromath` functions).
+#[inline(always)]
+pub fn sin_cos(x: Real) -> (Real, Real) {
+    #[cfg(not(wearsim_f32))]
+    {
+        libm::sincos(x)
+    }
+    #[cfg(all(wearsim_f32, not(feature = "fast-math")))]
+    {
+        libm::sincosf(x)
+    }
+    #[cfg(all(wearsim_f32, feature = "fast-math"))]
+    {
+        (fast::sin(x), fast::cos(x))
+    }
+}
+
 /// `x^{3/2}` for `x ≥ 0` as `x·√x` (Hertz point contact), 0 for `x ≤ 0`.
 #[inline(always)]
 pub fn pow_3_2(x: Real) -> Real {

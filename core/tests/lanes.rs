@@ -161,6 +161,26 @@ fn inner_race_lanes_with_effects_equal_the_scalar_step() {
     assert_lanes_match(cfgs, core::array::from_fn(|i| 100 + i as u64), 1200);
 }
 
+/// Mains hum on the outer-race CWRU bearing, K = 8: lanes at 50 and 60 Hz interleaved,
+/// one lane without hum and one without the sensor, so lanes share the hum's phasor
+/// only where their phases are equal.
+#[test]
+fn mains_hum_lanes_equal_the_scalar_step() {
+    let base = presets::by_name("cwru-6205-de").expect("preset");
+    let cfgs: [ModelConfig; 8] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        if i != 7 {
+            let hum = if i == 6 { 0.0 } else { 0.01 * (1 + i) as Real };
+            let hz = if i % 2 == 0 { 50.0 } else { 60.0 };
+            c.effects
+                .set_named("sensor", &[0.02, 0.0, hum, hz, 0.3])
+                .expect("in bounds");
+        }
+        c
+    });
+    assert_lanes_match(cfgs, core::array::from_fn(|i| 40 + i as u64), 1200);
+}
+
 /// Ball defect, K = 4, lanes differing in seed, defect size and load; exact ZOH.
 #[test]
 fn ball_defect_lanes_equal_the_scalar_step() {

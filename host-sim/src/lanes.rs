@@ -86,6 +86,14 @@ fn fill_avx2<const K: usize, const NB: usize>(
 /// `docs/python.md`).
 pub const MAX_LANES: usize = 16;
 
+/// Whether [`run_accel`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
+/// variable forces the scalar step for every run, to measure the lanes' gain; the output
+/// is the same bits either way).
+fn lanes_on() -> bool {
+    static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ON.get_or_init(|| std::env::var_os("WEARSIM_LANES_OFF").is_none())
+}
+
 /// Lanes of the next group for `n` shareable runs left: 16 for 16 or more, else the
 /// next power of two when at most 3/8 of it would be padding (a padded 16-lane group
 /// costs about 4 scalar runs, a 13-run split into 8 + 4 + 1 about 5.5: see
@@ -129,7 +137,11 @@ pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
     for g in groups {
         let mut rest: &[usize] = &g;
         while !rest.is_empty() {
-            let k = group_size(rest.len());
+            let k = if lanes_on() {
+                group_size(rest.len())
+            } else {
+                1
+            };
             let (now, later) = rest.split_at(k.min(rest.len()));
             let res = match k {
                 16 => run_group::<16>(scs, now),

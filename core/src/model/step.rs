@@ -138,9 +138,16 @@ impl Model {
             _ => self.defect_offset_cs,
         };
         // A ball defect's terms are computed out of line before the loop (a call inside it
-        // would cost the race defects' path registers).
+        // would cost the race defects' path registers), and only on steps where the loop
+        // will use them.
         let ball = match defect {
-            Some(d) if d.location.is_ball() => Some(self.ball_defect(st, k, d)),
+            Some(d) if d.location.is_ball() => {
+                Some(if self.ball_in_use(st, k, d, (dc, ds), sin_skip) {
+                    self.ball_defect(st, k, d)
+                } else {
+                    (0.0, 0.0, 0.0)
+                })
+            }
             _ => None,
         };
         let mut fy = 0.0;
@@ -216,6 +223,32 @@ impl Model {
             fy -= (q + add) * sin_t;
         }
         fy
+    }
+
+    /// Whether the element loop applies ball defect `d`'s terms this step: its element is
+    /// loaded (`sin θ > sin_skip`) and inside the window about the defect phasor `dcs`,
+    /// by the loop's own expressions. Only that element can be in the window (half a
+    /// pitch wide), so on other steps [`Model::ball_defect`] need not be evaluated.
+    #[inline(always)]
+    pub(super) fn ball_in_use<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        k: &Kinematics,
+        d: DefectConfig,
+        dcs: (Real, Real),
+        sin_skip: Real,
+    ) -> bool {
+        let e = match d.location {
+            DefectLocation::Ball { element, .. } => element as usize,
+            _ => 0,
+        };
+        let Some((ce, se)) = self.elem_cs.get(e).copied() else {
+            return true;
+        };
+        let (cc, sc) = k.cage_cs;
+        let sin_t = sc * ce + cc * se;
+        let cos_t = cc * ce - sc * se;
+        sin_t > sin_skip && cos_t * dcs.0 + sin_t * dcs.1 > st.window_cos
     }
 
     /// Terms `(unload, extra deflection (m), additive force (N))` of ball defect `d` on the

@@ -9,6 +9,7 @@
 //! `index.parquet` and `manifest.json` (`"complete": true`). A data set without
 //! `manifest.json` is not complete.
 
+pub mod batch;
 pub mod index;
 pub mod record;
 pub mod shard;
@@ -136,6 +137,7 @@ pub fn run(
     let generated = AtomicU64::new(0);
     let written = AtomicU64::new(0);
     let threads = threads.clamp(1, shards.len().max(1));
+    let per_batch = batch::batch_len(spec, shards.len(), threads);
     let first_err: std::sync::Mutex<Option<SweepError>> = std::sync::Mutex::new(None);
     std::thread::scope(|sc| {
         for _ in 0..threads {
@@ -143,24 +145,25 @@ pub fn run(
                 if first_err.lock().map(|e| e.is_some()).unwrap_or(true) {
                     return;
                 }
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(&s) = shards.get(k) else { return };
-                match shard::run_shard(spec, dir, s) {
-                    Ok(n) => {
-                        generated.fetch_add(n, Ordering::Relaxed);
-                        if n > 0 {
-                            written.fetch_add(1, Ordering::Relaxed);
-                        }
+                // A few shards at a time, their records pooled into lane groups.
+                let k = next.fetch_add(per_batch, Ordering::Relaxed);
+                let Some(b) = shards.get(k..(k + per_batch).min(shards.len())) else {
+                    return;
+                };
+                let r = batch::run_batch(spec, dir, b, |_, n| {
+                    generated.fetch_add(n, Ordering::Relaxed);
+                    if n > 0 {
+                        written.fetch_add(1, Ordering::Relaxed);
                     }
-                    Err(e) => {
-                        if let Ok(mut g) = first_err.lock() {
-                            g.get_or_insert(e);
-                        }
-                        return;
+                    let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    progress(d, shards.len());
+                });
+                if let Err(e) = r {
+                    if let Ok(mut g) = first_err.lock() {
+                        g.get_or_insert(e);
                     }
+                    return;
                 }
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                progress(d, shards.len());
             });
         }
     });

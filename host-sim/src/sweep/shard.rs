@@ -112,7 +112,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
 
 /// Removes temporary files of shard `s` left by an interrupted run (only this shard's:
 /// the process generating a shard owns its temporaries).
-fn remove_stale_temps(dir: &Path, s: u64) {
+pub(super) fn remove_stale_temps(dir: &Path, s: u64) {
     let prefixes = [
         format!(".{}.tmp-", npy_name(s)),
         format!(".{}.tmp-", done_name(s)),
@@ -130,6 +130,18 @@ fn remove_stale_temps(dir: &Path, s: u64) {
 /// Generates shard `s` of `spec` into `dir/shards/` unless it is already complete;
 /// returns the number of records generated (0 when skipped).
 pub fn run_shard(spec: &SweepSpec, dir: &Path, s: u64) -> Result<u64, SweepError> {
+    check_exists(spec, s)?;
+    if is_done(dir, s) {
+        return Ok(0);
+    }
+    remove_stale_temps(dir, s);
+    let cells = cells(spec);
+    let (first, end) = range(spec, s);
+    write_shard(spec, dir, s, simulate_records(spec, &cells, first, end)?)
+}
+
+/// An error naming the sweep's shards unless shard `s` is one of them.
+pub(super) fn check_exists(spec: &SweepSpec, s: u64) -> Result<(), SweepError> {
     if s >= spec.shards() {
         return Err(SweepError::Input(format!(
             "shard {s} does not exist: the sweep has {} shards (0..={})",
@@ -137,15 +149,29 @@ pub fn run_shard(spec: &SweepSpec, dir: &Path, s: u64) -> Result<u64, SweepError
             spec.shards() - 1
         )));
     }
-    if is_done(dir, s) {
-        return Ok(0);
-    }
-    remove_stale_temps(dir, s);
-    let cells = cells(spec);
+    Ok(())
+}
+
+/// Writes shard `s` from its records' signals `records` (in record order): the signals
+/// and then the marker, each through a temporary file and a rename; returns the number of
+/// records written.
+pub(super) fn write_shard(
+    spec: &SweepSpec,
+    dir: &Path,
+    s: u64,
+    records: Vec<Vec<f32>>,
+) -> Result<u64, SweepError> {
     let (first, end) = range(spec, s);
     let n = spec.samples();
+    if records.len() as u64 != end - first {
+        return Err(SweepError::Run(format!(
+            "shard {s}: {} records, expected {}",
+            records.len(),
+            end - first
+        )));
+    }
     let mut data: Vec<f32> = Vec::with_capacity((end - first) as usize * n);
-    for (i, x) in (first..end).zip(simulate_records(spec, &cells, first, end)?) {
+    for (i, x) in (first..end).zip(records) {
         if x.len() != n {
             return Err(SweepError::Run(format!(
                 "record {i}: {} samples, expected {n}",

@@ -118,6 +118,10 @@ pub struct LaneGroup<'a, const K: usize, const NB: usize> {
     rng: [[u32; K]; 4],
     lines: [LaneLine<K>; 3],
     phase: u32,
+    /// Lanes 1.. have not yet been given lane 0's latest time, angles and phasors (they
+    /// are copied only before code that reads a lane's own state: see
+    /// `step::sync_kinematics`).
+    stale: bool,
 }
 
 impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
@@ -169,6 +173,7 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
             rng,
             lines: [LaneLine::new(), LaneLine::new(), LaneLine::new()],
             phase: 0,
+            stale: false,
         })
     }
 
@@ -180,6 +185,7 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
     /// Replaces lane `lane`'s defect topography (wear evolution); see
     /// [`State::set_topography`]. A lane index out of range is an error naming `lane`.
     pub fn set_topography(&mut self, lane: usize, t: Topography) -> Result<(), LaneError> {
+        self.sync_kinematics();
         let (Some(st), Some(m)) = (self.states.get_mut(lane), self.models.get(lane)) else {
             return Err(LaneError::Config(crate::error::ConfigError::TooMany {
                 field: "lane",

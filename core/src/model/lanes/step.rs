@@ -96,6 +96,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         want: impl Fn(&super::super::Model) -> bool,
         f: impl Fn(&super::super::Model, &mut super::State<NB>),
     ) {
+        self.sync_kinematics();
         let models = self.models;
         for (l, m) in models.iter().enumerate() {
             if !want(m) {
@@ -131,6 +132,9 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let (y, v) = (self.y, self.v);
 
         // Forces outside the element loop (load, imbalance, effects), lane by lane.
+        if models.iter().any(|m| m.extra_force) {
+            self.sync_kinematics();
+        }
         let mut f = self.c.radial_load;
         for (((fl, m), st), (yl, vl)) in f
             .iter_mut()
@@ -200,6 +204,9 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         self.y = y1;
         self.v = v1;
 
+        if models.iter().any(|m| m.per_step_effects) {
+            self.sync_kinematics();
+        }
         for ((a, m), st) in a0.iter_mut().zip(models).zip(self.states.iter_mut()) {
             if m.per_step_effects {
                 *a = m.effects_step(st, *a);
@@ -229,12 +236,18 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             ([0.0; K], [0.0; K])
         };
         let mut out = [Sample::default(); K];
+        let mut mains = crate::effects::sensor::MainsMemo::default();
         for (l, o) in out.iter_mut().enumerate() {
             let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
             let mut acc = get(&accel);
             if let (Some(m), Some(st)) = (models.get(l), self.states.get_mut(l)) {
                 if let Some(chain) = &m.sensor_chain {
-                    acc = chain.apply(&mut st.sensor, acc);
+                    let sc = if chain.has_hum() {
+                        mains.phasor(st.sensor.phase())
+                    } else {
+                        (0.0, 1.0)
+                    };
+                    acc = chain.apply_phasor(&mut st.sensor, acc, sc);
                 }
             }
             *o = Sample {
@@ -246,17 +259,35 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         Some(out)
     }
 
-    /// Moves every lane's time, angles and phasors on (lane 0 advanced, the others
-    /// copied: shared kinematics evolve identically) and counts the step.
+    /// Moves lane 0's time, angles and phasors on and counts the step; the other lanes
+    /// get them from [`LaneGroup::sync_kinematics`] (shared kinematics evolve
+    /// identically).
     fn advance_kinematics(&mut self) {
         let Some(m0) = self.models.first() else {
             return;
         };
-        let Some((first, rest)) = self.states.split_first_mut() else {
+        let Some(first) = self.states.first_mut() else {
             return;
         };
         m0.advance_kinematics(first);
         first.steps += 1;
+        self.stale = true;
+    }
+
+    /// Copies lane 0's time, angles, phasors and step count to the other lanes if they
+    /// are behind: called before any code that reads a lane's own state (summit and slip
+    /// draws, effect forces and per-step effects, a ball defect's terms, the roughness
+    /// level at a varying speed, a topography change), so that every such read sees
+    /// what copying after each step would have given, without the copies on steps where
+    /// nothing reads them.
+    pub(super) fn sync_kinematics(&mut self) {
+        if !self.stale {
+            return;
+        }
+        self.stale = false;
+        let Some((first, rest)) = self.states.split_first_mut() else {
+            return;
+        };
         for st in rest {
             st.time = first.time;
             st.shaft_hz = first.shaft_hz;
@@ -296,12 +327,24 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, m0.defect_offset_cs),
             _ => m0.defect_offset_cs,
         };
+        let ball_used = m0.cfg.defect.is_some_and(|d| d.location.is_ball())
+            && models.iter().zip(&self.states).any(|(m, st)| {
+                m.cfg
+                    .defect
+                    .is_some_and(|dl| m.ball_in_use(st, k, dl, (dc, ds), sin_skip))
+            });
+        let rough_on = m0.cfg.roughness.is_some();
+        if ball_used || (rough_on && models.iter().any(|m| m.rot.is_none())) {
+            self.sync_kinematics();
+        }
         let ball: [(Real, Real, Real); K] = match m0.cfg.defect {
-            Some(d) if d.location.is_ball() => {
+            Some(d) if ball_used && d.location.is_ball() => {
                 core::array::from_fn(|l| match (models.get(l), self.states.get(l)) {
                     (Some(m), Some(st)) => match m.cfg.defect {
-                        Some(dl) => m.ball_defect(st, k, dl),
-                        None => (0.0, 0.0, 0.0),
+                        Some(dl) if m.ball_in_use(st, k, dl, (dc, ds), sin_skip) => {
+                            m.ball_defect(st, k, dl)
+                        }
+                        _ => (0.0, 0.0, 0.0),
                     },
                     _ => (0.0, 0.0, 0.0),
                 })
@@ -309,7 +352,6 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             _ => [(0.0, 0.0, 0.0); K],
         };
         let is_ball = location.is_some_and(|l| l.is_ball());
-        let rough_on = m0.cfg.roughness.is_some();
         let mut sigma = [0.0; K];
         if rough_on {
             for ((s, m), st) in sigma.iter_mut().zip(models).zip(&self.states) {
