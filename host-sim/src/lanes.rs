@@ -86,7 +86,7 @@ fn fill_avx2<const K: usize, const NB: usize>(
 /// `docs/python.md`).
 pub const MAX_LANES: usize = 16;
 
-/// Whether [`run_accel`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
+/// Whether [`plan`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
 /// variable forces the scalar step for every run, to measure the lanes' gain; the output
 /// is the same bits either way).
 fn lanes_on() -> bool {
@@ -123,17 +123,42 @@ pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
 /// in groups of up to [`MAX_LANES`] (sizes from [`group_size`], padded), the rest alone. A lane that
 /// produces a non-finite sample is re-run alone, so its error is the scalar run's.
 pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
+    let mut out: Vec<Option<Result<Vec<f64>, RunError>>> = (0..scs.len()).map(|_| None).collect();
+    for (k, now) in plan(scs.len(), |a, b| can_share(&scs[a], &scs[b])) {
+        let res = match k {
+            16 => run_group::<16>(scs, &now),
+            8 => run_group::<8>(scs, &now),
+            4 => run_group::<4>(scs, &now),
+            2 => run_group::<2>(scs, &now),
+            _ => now.iter().map(|&i| scalar_accel(&scs[i])).collect(),
+        };
+        for (&i, r) in now.iter().zip(res) {
+            out[i] = Some(r);
+        }
+    }
+    out.into_iter()
+        .map(|r| r.unwrap_or_else(|| Ok(Vec::new())))
+        .collect()
+}
+
+/// The lane groups of items `0..n`, each as its lane count K (16, 8, 4, 2; 1 = every
+/// item alone) and its items in order: items join the first open group whose leader they
+/// `share` with (`share(leader, item)`), groups hold up to [`MAX_LANES`], and each is cut
+/// into runs of [`group_size`] lanes (padded by the caller). With `WEARSIM_LANES_OFF` set,
+/// every item is alone. Shared by [`run_accel`] (sweeps) and the gap's matched
+/// simulations.
+pub fn plan(n: usize, share: impl Fn(usize, usize) -> bool) -> Vec<(usize, Vec<usize>)> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
-    for (i, sc) in scs.iter().enumerate() {
+    for i in 0..n {
         match groups
             .iter_mut()
-            .find(|g| g.len() < MAX_LANES && can_share(&scs[g[0]], sc))
+            .find(|g| g.len() < MAX_LANES && g.first().is_some_and(|&l| share(l, i)))
         {
             Some(g) => g.push(i),
             None => groups.push(vec![i]),
         }
     }
-    let mut out: Vec<Option<Result<Vec<f64>, RunError>>> = (0..scs.len()).map(|_| None).collect();
+    let mut out = vec![];
     for g in groups {
         let mut rest: &[usize] = &g;
         while !rest.is_empty() {
@@ -143,22 +168,11 @@ pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
                 1
             };
             let (now, later) = rest.split_at(k.min(rest.len()));
-            let res = match k {
-                16 => run_group::<16>(scs, now),
-                8 => run_group::<8>(scs, now),
-                4 => run_group::<4>(scs, now),
-                2 => run_group::<2>(scs, now),
-                _ => now.iter().map(|&i| scalar_accel(&scs[i])).collect(),
-            };
-            for (&i, r) in now.iter().zip(res) {
-                out[i] = Some(r);
-            }
+            out.push((k, now.to_vec()));
             rest = later;
         }
     }
-    out.into_iter()
-        .map(|r| r.unwrap_or_else(|| Ok(Vec::new())))
-        .collect()
+    out
 }
 
 /// One scenario through the scalar step.

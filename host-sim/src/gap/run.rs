@@ -4,7 +4,7 @@
 //! of one [`wearsim_core::model::LaneGroup`] (see [`crate::lanes`]), bit for bit what
 //! [`simulate`] gives one at a time.
 
-use crate::lanes::{lane_accel, MAX_LANES};
+use crate::lanes::lane_accel;
 use wearsim_core::model::lanes::shareable;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
@@ -34,7 +34,7 @@ pub fn simulate(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>
 
 /// [`simulate`] of every configuration in `cfgs` (same seed and length), in order, with
 /// the same results (samples and errors); configurations whose models can share the
-/// kinematics run in lane groups of up to [`MAX_LANES`] (sizes from
+/// kinematics run in lane groups of up to [`crate::lanes::MAX_LANES`] (sizes from
 /// [`crate::lanes::group_size`]), the others alone.
 pub fn simulate_many(
     cfgs: &[ModelConfig],
@@ -50,43 +50,30 @@ pub fn simulate_many(
         }
     }
     let alone = |i: usize| simulate(&cfgs[i], seed, samples);
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    for (j, (_, model)) in models.iter().enumerate() {
-        match groups
-            .iter_mut()
-            .find(|g| g.len() < MAX_LANES && shareable(&models[g[0]].1, model, 1).is_ok())
-        {
-            Some(g) => g.push(j),
-            None => groups.push(vec![j]),
-        }
-    }
-    for g in groups {
-        let mut rest: &[usize] = &g;
-        while !rest.is_empty() {
-            let k = crate::lanes::group_size(rest.len());
-            let (now, later) = rest.split_at(k.min(rest.len()));
-            let res = match k {
-                16 => group::<16>(&models, now, seed, samples),
-                8 => group::<8>(&models, now, seed, samples),
-                4 => group::<4>(&models, now, seed, samples),
-                2 => group::<2>(&models, now, seed, samples),
-                _ => None,
-            };
-            match res {
-                Some(r) => {
-                    for (&j, x) in now.iter().zip(r) {
-                        let i = models[j].0;
-                        out[i] = Some(x.or_else(|_| alone(i)));
-                    }
-                }
-                None => {
-                    for &j in now {
-                        let i = models[j].0;
-                        out[i] = Some(alone(i));
-                    }
+    let plan = crate::lanes::plan(models.len(), |a, b| {
+        shareable(&models[a].1, &models[b].1, 1).is_ok()
+    });
+    for (k, now) in plan {
+        let res = match k {
+            16 => group::<16>(&models, &now, seed, samples),
+            8 => group::<8>(&models, &now, seed, samples),
+            4 => group::<4>(&models, &now, seed, samples),
+            2 => group::<2>(&models, &now, seed, samples),
+            _ => None,
+        };
+        match res {
+            Some(r) => {
+                for (&j, x) in now.iter().zip(r) {
+                    let i = models[j].0;
+                    out[i] = Some(x.or_else(|_| alone(i)));
                 }
             }
-            rest = later;
+            None => {
+                for &j in &now {
+                    let i = models[j].0;
+                    out[i] = Some(alone(i));
+                }
+            }
         }
     }
     out.into_iter()
