@@ -88,12 +88,17 @@ impl ZoneBands {
 /// RMS in `band` (Hz, edges inclusive) from a one-sided PSD:
 /// `sqrt(Σ PSD_k · df)` over the bins whose centre lies in the band.
 pub fn band_rms(psd: &Spectrum, band: (f64, f64)) -> f64 {
-    let power: f64 = psd
-        .values
+    // Only the bins near the band are tested (the nearest bin to each edge, widened by one),
+    // with the same test and in the same order as a scan of the whole spectrum: the same
+    // sum, without visiting every bin for every band.
+    let lo = psd.bin_of(band.0).saturating_sub(1);
+    let hi = psd.bin_of(band.1).saturating_add(1).min(psd.values.len());
+    let near = psd.values.get(lo..hi).unwrap_or(&[]);
+    let power: f64 = near
         .iter()
         .enumerate()
-        .filter(|(k, _)| {
-            let f = psd.freq(*k);
+        .filter(|(j, _)| {
+            let f = psd.freq(lo + *j);
             f >= band.0 && f <= band.1
         })
         .map(|(_, v)| v * psd.df)
@@ -118,6 +123,50 @@ mod tests {
     use super::*;
     use crate::analysis::spectrum::{welch_psd, WelchParams};
     use crate::analysis::synth::sine;
+
+    /// The windowed sum equals the scan of every bin, bit for bit, for bands whose edges
+    /// fall on, between and beyond the bins (including empty, reversed and unbounded ones).
+    #[test]
+    fn band_rms_equals_the_scan_of_every_bin() {
+        let psd = Spectrum {
+            values: (0..1000)
+                .map(|k| 1.0 + ((k * 7919) % 97) as f64 / 13.0)
+                .collect(),
+            df: 2.5,
+            kind: crate::analysis::spectrum::SpectrumKind::Psd,
+        };
+        let scan = |band: (f64, f64)| -> f64 {
+            let power: f64 = psd
+                .values
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| {
+                    let f = psd.freq(*k);
+                    f >= band.0 && f <= band.1
+                })
+                .map(|(_, v)| v * psd.df)
+                .sum();
+            power.max(0.0).sqrt()
+        };
+        let edges = [
+            0.0, 1.0, 2.5, 3.74, 3.75, 3.76, 100.0, 101.25, 999.0, 2497.5, 2500.0, 3000.0,
+        ];
+        for &a in &edges {
+            for &b in &edges {
+                assert_eq!(
+                    band_rms(&psd, (a, b)).to_bits(),
+                    scan((a, b)).to_bits(),
+                    "{a}..{b}"
+                );
+            }
+        }
+        let whole = (0.0, f64::INFINITY);
+        assert_eq!(band_rms(&psd, whole).to_bits(), scan(whole).to_bits());
+        assert_eq!(
+            band_rms(&psd, (f64::NAN, 10.0)).to_bits(),
+            scan((f64::NAN, 10.0)).to_bits()
+        );
+    }
 
     fn ff() -> FaultFrequencies {
         FaultFrequencies {
