@@ -1,6 +1,7 @@
 //! The K-lane stepper's contract: lane `i`'s samples equal, bit for bit, the scalar
-//! `Model::step` of model `i` with the same seed; a group that cannot share its
-//! kinematics is refused with the field that differs. Cheap (a few thousand steps).
+//! `Model::step` of model `i` with the same seed, whether the lanes share the kinematics or
+//! move at their own speeds; a group that cannot share a step is refused with the field
+//! that differs. Cheap (a few thousand steps).
 #![allow(clippy::unnecessary_cast)]
 
 use wearsim_core::effects::CATALOGUE;
@@ -204,15 +205,90 @@ fn ball_defect_lanes_equal_the_scalar_step() {
     assert_lanes_match(cfgs, [7, 8, 9, 10], 1500);
 }
 
+/// Lanes at their own speed (`lanes/own.rs`), K = 4: constant speeds of 20–35 Hz, one
+/// ramp, on the roughened, wavy thesis bearing (so the roughness draws, the contact and the
+/// defect window are decided lane by lane), with per-lane load and slip as well.
+#[test]
+fn lanes_at_their_own_speed_equal_the_scalar_step() {
+    let base = thesis();
+    let cfgs: [ModelConfig; 4] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        c.speed = match i {
+            2 => SpeedProfile::Ramp {
+                from_hz: 22.0,
+                to_hz: 34.0,
+                duration: 0.05,
+            },
+            _ => SpeedProfile::Constant(20.0 + 7.5 * i as Real),
+        };
+        c.radial_load *= 1.0 + 0.1 * i as Real;
+        if i == 3 {
+            c.slip = c.slip.map(|mut s| {
+                s.fraction *= 2.0;
+                s
+            });
+        }
+        c
+    });
+    assert_lanes_match(cfgs, [11, 12, 13, 14], 1500);
+}
+
+/// Inner-race CWRU lanes, K = 8, each with its own speed fluctuation (the fits of that
+/// effect) or none, and per-lane load zone, running-in (summit draws), transfer path and
+/// sensor; all three channels. Then a ball defect at three speeds, K = 4.
+#[test]
+fn lanes_with_their_own_speed_fluctuation_equal_the_scalar_step() {
+    let mut base = presets::by_name("cwru-6205-de").expect("preset");
+    if let Some(d) = base.defect.as_mut() {
+        d.location = DefectLocation::InnerRace { angle: 0.3 };
+    }
+    base.channels = Channels::All;
+    base.speed = SpeedProfile::Constant(29.95);
+    base.oversample = Some(Model::new_checked(base.clone()).expect("m").oversample() + 1);
+    let cfgs: [ModelConfig; 8] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        let f = 1.0 + 0.15 * i as Real;
+        c.radial_load *= f;
+        if i != 5 {
+            effect(&mut c, "speed-fluctuation", 0.5 + 0.3 * i as Real);
+        }
+        effect(&mut c, "load-zone", f);
+        effect(&mut c, "sensor", f);
+        if i % 2 == 0 {
+            effect(&mut c, "transfer-path", f);
+        } else {
+            effect(&mut c, "running-in", f);
+        }
+        c
+    });
+    assert_lanes_match(cfgs, core::array::from_fn(|i| 200 + i as u64), 1200);
+
+    let mut ball = thesis();
+    ball.integrator = IntegratorKind::ExactZoh;
+    if let Some(d) = ball.defect.as_mut() {
+        d.location = DefectLocation::Ball {
+            element: 3,
+            phase: 0.4,
+        };
+    }
+    let cfgs: [ModelConfig; 4] = core::array::from_fn(|i| {
+        let mut c = ball.clone();
+        c.speed = SpeedProfile::Constant(if i == 3 { 25.0 } else { 18.0 + 6.0 * i as Real });
+        c.radial_load *= 1.0 + 0.2 * i as Real;
+        c
+    });
+    assert_lanes_match(cfgs, [7, 8, 9, 10], 1500);
+}
+
 #[test]
 fn mismatched_groups_are_refused_with_the_field() {
     let a = thesis();
     let mut b = a.clone();
-    b.speed = SpeedProfile::Constant(20.0);
+    b.output_rate *= 2.0;
     let models = [a.clone(), a.clone(), b].map(|c| Model::new_checked(c).expect("m"));
     match LaneGroup::<3, 16>::new_checked(&models, &[1, 2, 3]) {
-        Err(LaneError::Differs { field, lane }) => assert_eq!((field, lane), ("speed", 2)),
-        other => panic!("expected a speed mismatch, got {other:?}"),
+        Err(LaneError::Differs { field, lane }) => assert_eq!((field, lane), ("output_rate", 2)),
+        other => panic!("expected an output-rate mismatch, got {other:?}"),
     }
     let mut c = a.clone();
     if let Some(d) = c.defect.as_mut() {

@@ -167,6 +167,12 @@ impl Model {
     pub fn step_size(&self) -> Real {
         self.h
     }
+    /// Whether the shaft turns at a constant rate (no speed profile change, no speed
+    /// fluctuation): its angles then advance by fixed rotations per step, without a sine
+    /// or cosine (the cheap kinematics that lanes at their own speed can afford).
+    pub fn constant_speed(&self) -> bool {
+        self.rot.is_some()
+    }
     /// Internal steps per output sample.
     pub fn oversample(&self) -> u32 {
         self.ratio

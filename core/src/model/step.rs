@@ -581,15 +581,9 @@ impl Model {
         st.armed = armed;
     }
 
-    /// Moves time, angles and phasors one step on.
-    #[inline(always)]
-    pub(super) fn advance_kinematics<const NB: usize>(&self, st: &mut State<NB>) {
-        self.advance_kinematics_to(st, None);
-    }
-
-    /// [`Model::advance_kinematics`] with the shaft rate at the new time (Hz) when it is
-    /// already known ([`Model::kinematics_next`] evaluated the profile at the same
-    /// `time + h`).
+    /// Moves time, angles and phasors one step on; `f_end` is the shaft rate at the new
+    /// time (Hz) when it is already known ([`Model::kinematics_next`] evaluated the
+    /// profile at the same `time + h`), else (`None`) the profile is evaluated here.
     #[inline(always)]
     pub(super) fn advance_kinematics_to<const NB: usize>(
         &self,

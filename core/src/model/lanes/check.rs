@@ -1,5 +1,7 @@
-//! Which models can share a lane group: the fields that set the kinematics (and the
-//! order of the random draws) must be equal in every lane; the rest may differ.
+//! Which models can share a lane group: the step, the element geometry and the order of
+//! the random draws must be equal in every lane; the speed (its profile and fluctuation)
+//! may differ — lanes with their own speed take their own kinematics
+//! ([`same_kinematics`] decides which stepping a group uses) — and so may the rest.
 
 use super::super::Model;
 use crate::error::ConfigError;
@@ -68,9 +70,8 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
     let a = &m0.cfg;
     let b = &m.cfg;
     let loc = |m: &Model| m.cfg.defect.map(|d| d.location);
-    let fields: [(&'static str, bool); 16] = [
+    let fields: [(&'static str, bool); 13] = [
         ("bearing", a.bearing == b.bearing),
-        ("speed", a.speed == b.speed),
         ("integrator", a.integrator == b.integrator),
         ("output_rate", a.output_rate == b.output_rate),
         ("oversample", m0.ratio == m.ratio),
@@ -78,10 +79,6 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
         ("channels", a.channels == b.channels),
         ("defect.location", loc(m0) == loc(m)),
         ("waviness.order", m0.wave_order == m.wave_order),
-        (
-            "effects.speed_fluctuation",
-            a.effects.speed_fluctuation == b.effects.speed_fluctuation,
-        ),
         (
             "roughness (on/off)",
             a.roughness.is_some() == b.roughness.is_some(),
@@ -91,7 +88,6 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
             m0.sin_skip == m.sin_skip,
         ),
         ("contact kind", m0.contact.kind == m.contact.kind),
-        ("speed (rotations)", m0.rot == m.rot),
         (
             "defect.location (phasor)",
             m0.defect_offset_cs == m.defect_offset_cs,
@@ -105,4 +101,13 @@ pub fn shareable(m0: &Model, m: &Model, lane: usize) -> Result<(), LaneError> {
         Some((field, _)) => Err(LaneError::Differs { field, lane }),
         None => Ok(()),
     }
+}
+
+/// Whether `m` moves its shaft, cage and elements exactly as `m0` does (the same speed
+/// profile, fluctuation and per-step rotations): a group whose lanes all do computes the
+/// kinematics once for all lanes; otherwise every lane computes its own.
+pub fn same_kinematics(m0: &Model, m: &Model) -> bool {
+    m0.cfg.speed == m.cfg.speed
+        && m0.cfg.effects.speed_fluctuation == m.cfg.effects.speed_fluctuation
+        && m0.rot == m.rot
 }

@@ -18,9 +18,10 @@
 //! caller falls back to the scalar step.
 
 mod check;
+mod own;
 mod step;
 
-pub use check::{shareable, LaneError};
+pub use check::{same_kinematics, shareable, LaneError};
 pub use step::{LibmSqrt, SqrtLanes};
 
 use super::{Model, Sample, State, StepStats};
@@ -118,6 +119,9 @@ pub struct LaneGroup<'a, const K: usize, const NB: usize> {
     rng: [[u32; K]; 4],
     lines: [LaneLine<K>; 3],
     phase: u32,
+    /// Every lane moves as lane 0 ([`check::same_kinematics`]): the kinematics are computed
+    /// once for all lanes; otherwise each lane computes its own (`own`).
+    shared: bool,
     /// Lanes 1.. have not yet been given lane 0's latest time, angles and phasors (they
     /// are copied only before code that reads a lane's own state: see
     /// `step::sync_kinematics`).
@@ -173,6 +177,7 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
             rng,
             lines: [LaneLine::new(), LaneLine::new(), LaneLine::new()],
             phase: 0,
+            shared: models.iter().all(|m| check::same_kinematics(m0, m)),
             stale: false,
         })
     }
@@ -216,10 +221,25 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
     /// [`SqrtLanes`]).
     #[inline(always)]
     pub fn fill_with<S: SqrtLanes<K>>(&mut self, out: &mut [[Sample; K]], sqrt: &S) -> usize {
+        if self.shared {
+            self.fill_as::<S, false>(out, sqrt)
+        } else {
+            self.fill_as::<S, true>(out, sqrt)
+        }
+    }
+
+    /// [`LaneGroup::fill_with`] through one of the two copies of the step (see
+    /// `step::step_as`).
+    #[inline(always)]
+    fn fill_as<S: SqrtLanes<K>, const OWN: bool>(
+        &mut self,
+        out: &mut [[Sample; K]],
+        sqrt: &S,
+    ) -> usize {
         let mut written = 0;
         for slot in out.iter_mut() {
             loop {
-                if let Some(s) = self.step_with(sqrt) {
+                if let Some(s) = self.step_as::<S, OWN>(sqrt) {
                     *slot = s;
                     break;
                 }

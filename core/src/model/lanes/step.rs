@@ -3,7 +3,7 @@
 //! computed once.
 
 use super::super::defect_term::race_terms;
-use super::super::{rotate, Channels, Sample, StepStats, ROUGH_DRAW_MARGIN};
+use super::super::{rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
 use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
 use crate::forces::{ForceDiagram, Kinematics};
@@ -17,7 +17,7 @@ const SLIP_CHECK_EVERY: u64 = 8;
 /// `x^{3/2}` per lane (`x·√x` for `x > 0`, else 0), as [`crate::real::pow_3_2`], with
 /// the square roots taken by `sqrt`.
 #[inline(always)]
-fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt: &S) -> [Real; K] {
+pub(super) fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt: &S) -> [Real; K] {
     let mut s = [0.0; K];
     for (si, xi) in s.iter_mut().zip(x) {
         *si = if *xi > 0.0 { *xi } else { 0.0 };
@@ -73,6 +73,66 @@ fn uniform_pm1_lanes<const K: usize>(rng: &mut [[u32; K]; 4]) -> [Real; K] {
     out
 }
 
+/// The defect's terms `(unload, extra deflection (m), additive force (N))` on element `e`
+/// (at `elem_angle`, `sin θ = sin_t`) of a lane running `m` with state `st` and kinematics
+/// `k`, scaled by the load-zone effect: the scalar step's defect block (`ball`: the ball
+/// defect's terms when `is_ball`). `None` without a defect.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(super) fn defect_terms<const NB: usize>(
+    m: &Model,
+    st: &State<NB>,
+    k: &Kinematics,
+    e: usize,
+    elem_angle: Real,
+    sin_t: Real,
+    is_ball: bool,
+    ball: (Real, Real, Real),
+) -> Option<(Real, Real, Real)> {
+    let d = m.cfg.defect?;
+    let slip = st.slip.get(e).copied().unwrap_or(0.0);
+    let theta = k.cage_angle + elem_angle + slip;
+    let (mut u, mut dd, mut a) = if is_ball {
+        ball
+    } else {
+        race_terms(d, &st.shape, st.tail, k, theta)
+    };
+    if let Some(p) = &m.cfg.effects.load_zone {
+        let gz = p.gain(sin_t);
+        u *= gz;
+        a *= gz;
+        dd *= gz;
+    }
+    Some((u, dd, a))
+}
+
+/// An element's Hertz load `q` (N) after the defect's unloading `unload` and additive force
+/// `add`, with the step's largest load `max_load` and defect load `defect_load` updated:
+/// the scalar step's conditionals in branch-free form (same values). Returns the load that
+/// pushes the shaft (`q·(1 − unload) + add`).
+#[inline(always)]
+pub(super) fn settle_load(
+    q: Real,
+    unload: Real,
+    add: Real,
+    max_load: &mut Real,
+    defect_load: &mut Real,
+) -> Real {
+    let keep = if unload < 1.0 { 1.0 - unload } else { 0.0 };
+    let qv = if unload > 0.0 { q * keep } else { q };
+    *max_load = if qv > *max_load { qv } else { *max_load };
+    let qa = qv + add;
+    // `&`/`|` on the conditions (no short circuit): the scalar step's decision without
+    // branches.
+    let on = (unload > 0.0) | (add != 0.0);
+    *defect_load = if on & (qa > *defect_load) {
+        qa
+    } else {
+        *defect_load
+    };
+    qa
+}
+
 impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
     /// Lane `l`'s generator as a scalar [`Xoshiro128pp`].
     fn lane_rng(&self, l: usize) -> Xoshiro128pp {
@@ -122,13 +182,30 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
     /// [`LaneGroup::step`] with the square roots of the Hertz loads taken by `sqrt`.
     #[inline(always)]
     pub fn step_with<S: SqrtLanes<K>>(&mut self, sqrt: &S) -> Option<[Sample; K]> {
+        if self.shared {
+            self.step_as::<S, false>(sqrt)
+        } else {
+            self.step_as::<S, true>(sqrt)
+        }
+    }
+
+    /// One step with the kinematics computed once for all lanes (`OWN = false`) or by every
+    /// lane for itself (`OWN = true`, `super::own`): two copies of the step, so that the
+    /// shared one carries none of the other's code.
+    #[inline(always)]
+    pub(super) fn step_as<S: SqrtLanes<K>, const OWN: bool>(
+        &mut self,
+        sqrt: &S,
+    ) -> Option<[Sample; K]> {
         let models = self.models;
         let m0 = models.first()?;
         if models.iter().any(|m| m.summits) {
             self.with_lane_rngs(|m| m.summits, |m, st| m.draw_summit(st));
         }
         let st0 = self.states.first()?;
-        let k0 = m0.kinematics(st0, 0);
+        let (k0, f_end0) = m0.kinematics_next(st0, 0);
+        // Lanes at their own speed take their own kinematics (`super::own`).
+        let own = OWN.then(|| self.own_kinematics((k0, f_end0)));
         let (y, v) = (self.y, self.v);
 
         // Forces outside the element loop (load, imbalance, effects), lane by lane.
@@ -136,21 +213,26 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             self.sync_kinematics();
         }
         let mut f = self.c.radial_load;
-        for (((fl, m), st), (yl, vl)) in f
+        for (l, (((fl, m), st), (yl, vl))) in f
             .iter_mut()
             .zip(models)
             .zip(&self.states)
             .zip(y.iter().zip(&v))
+            .enumerate()
         {
+            let k = own.as_ref().and_then(|o| o.get(l)).map_or(&k0, |(k, _)| k);
             if let Some(imb) = &m.cfg.imbalance {
-                *fl += imb.force(&k0, *yl, *vl);
+                *fl += imb.force(k, *yl, *vl);
             }
             if m.extra_force {
-                *fl += m.extra_force(st, &k0);
+                *fl += m.extra_force(st, k);
             }
         }
         let mut stats = [StepStats::default(); K];
-        let fe = self.element_forces(&k0, &mut stats, sqrt);
+        let fe = match &own {
+            None => self.element_forces(&k0, &mut stats, sqrt),
+            Some(o) => self.element_forces_own(o, &mut stats, sqrt),
+        };
 
         // Exact ZOH/FOH integrator, per lane.
         let c = &self.c;
@@ -200,7 +282,10 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         {
             self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
         }
-        self.advance_kinematics();
+        match &own {
+            None => self.advance_kinematics(f_end0),
+            Some(o) => self.advance_own_kinematics(o),
+        }
         self.y = y1;
         self.v = v1;
 
@@ -259,17 +344,18 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         Some(out)
     }
 
-    /// Moves lane 0's time, angles and phasors on and counts the step; the other lanes
-    /// get them from [`LaneGroup::sync_kinematics`] (shared kinematics evolve
+    /// Moves lane 0's time, angles and phasors on (`f_end`: its shaft rate at the end of
+    /// the step, when `Model::kinematics_next` evaluated it) and counts the step; the
+    /// other lanes get them from [`LaneGroup::sync_kinematics`] (shared kinematics evolve
     /// identically).
-    fn advance_kinematics(&mut self) {
+    fn advance_kinematics(&mut self, f_end: Option<Real>) {
         let Some(m0) = self.models.first() else {
             return;
         };
         let Some(first) = self.states.first_mut() else {
             return;
         };
-        m0.advance_kinematics(first);
+        m0.advance_kinematics_to(first, f_end);
         first.steps += 1;
         self.stale = true;
     }
@@ -300,6 +386,20 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             st.wave_cs = first.wave_cs;
             st.steps = first.steps;
         }
+    }
+
+    /// Every lane's roughness amplitude of this step (m): the state's at a constant speed,
+    /// else from the lane's shaft rate and topography, scaled by running-in.
+    pub(super) fn rough_sigmas(&self) -> [Real; K] {
+        let mut sigma = [0.0; K];
+        for ((s, m), st) in sigma.iter_mut().zip(self.models).zip(&self.states) {
+            *s = if m.rot.is_some() {
+                st.rough_sigma
+            } else {
+                m.rough_sigma(st.shaft_hz, st.topography) * st.run_in
+            };
+        }
+        sigma
     }
 
     /// Hertz element forces of every lane (N), as the scalar `element_forces` with the
@@ -352,16 +452,11 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             _ => [(0.0, 0.0, 0.0); K],
         };
         let is_ball = location.is_some_and(|l| l.is_ball());
-        let mut sigma = [0.0; K];
-        if rough_on {
-            for ((s, m), st) in sigma.iter_mut().zip(models).zip(&self.states) {
-                *s = if m.rot.is_some() {
-                    st.rough_sigma
-                } else {
-                    m.rough_sigma(st.shaft_hz, st.topography) * st.run_in
-                };
-            }
-        }
+        let sigma = if rough_on {
+            self.rough_sigmas()
+        } else {
+            [0.0; K]
+        };
         let window_min = self
             .states
             .iter()
@@ -425,22 +520,11 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                         if cos_rel <= st.window_cos {
                             continue;
                         }
-                        let Some(d) = m.cfg.defect else {
+                        let Some((u, dd, a)) =
+                            defect_terms(m, st, k, e, *elem_angle, sin_t, is_ball, *bt)
+                        else {
                             continue;
                         };
-                        let slip = st.slip.get(e).copied().unwrap_or(0.0);
-                        let theta = k.cage_angle + *elem_angle + slip;
-                        let (mut u, mut dd, mut a) = if is_ball {
-                            *bt
-                        } else {
-                            race_terms(d, &st.shape, st.tail, k, theta)
-                        };
-                        if let Some(p) = &m.cfg.effects.load_zone {
-                            let gz = p.gain(sin_t);
-                            u *= gz;
-                            a *= gz;
-                            dd *= gz;
-                        }
                         *dl += dd;
                         *ul = u;
                         *al = a;
@@ -468,16 +552,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                 .zip(defect_load.iter_mut())
                 .zip(fy.iter_mut())
             {
-                // Branch-free forms of the scalar step's conditionals (same values).
-                let keep = if *ul < 1.0 { 1.0 - *ul } else { 0.0 };
-                let qv = if *ul > 0.0 { *ql * keep } else { *ql };
-                *ml = if qv > *ml { qv } else { *ml };
-                let qa = qv + *al;
-                // `&`/`|` on the conditions (no short circuit): the scalar step's decision
-                // without branches.
-                let on = (*ul > 0.0) | (*al != 0.0);
-                *dl = if on & (qa > *dl) { qa } else { *dl };
-                *fl -= qa * sin_t;
+                *fl -= settle_load(*ql, *ul, *al, ml, dl) * sin_t;
             }
         }
         for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
