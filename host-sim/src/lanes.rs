@@ -110,12 +110,51 @@ pub fn group_size(n: usize) -> usize {
     }
 }
 
-/// Whether scenario `b` can join a lane group led by `a`: the core accepts the two models
-/// together and the runs record and discard the same lengths.
-pub fn can_share(a: &Scenario, b: &Scenario) -> bool {
-    wearsim_core::model::lanes::shareable(&a.model, &b.model, 1).is_ok()
-        && a.run.duration == b.run.duration
-        && a.run.settle == b.run.settle
+/// Lanes of the next group of `n` runs left that each move at their own speed: 16 or 8
+/// without padding, else 1 (alone). Measured with `wearsim bench --lanes K --own-speed`
+/// (`docs/python.md`): such groups gain 1.6× at K = 16 and 1.3× at 8, nothing at 4 and
+/// lose at 2, so a padded or small group would be slower than running alone.
+pub fn own_group_size(n: usize) -> usize {
+    match n {
+        16.. => 16,
+        8.. => 8,
+        _ => 1,
+    }
+}
+
+/// How two runs can share a lane group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Sharing {
+    /// Not at all: each runs in another group, or alone.
+    No,
+    /// As lanes that each move at their own speed (the core's slower own-kinematics path).
+    OwnSpeed,
+    /// As lanes that share the kinematics (computed once for the group).
+    Kinematics,
+}
+
+/// How the models `a` and `b` can share a lane group (see [`Sharing`]). Lanes at their own
+/// speed pay off only at constant speeds: with a varying speed each lane's kinematics
+/// cost libm sines and cosines every step, as much as the scalar step's, and such lanes
+/// measured no faster than running alone (`docs/python.md`), so they run alone.
+pub fn sharing(a: &Model, b: &Model) -> Sharing {
+    use wearsim_core::model::lanes::{same_kinematics, shareable};
+    let constant = a.constant_speed() && b.constant_speed();
+    match (shareable(a, b, 1).is_ok(), same_kinematics(a, b), constant) {
+        (false, _, _) | (true, false, false) => Sharing::No,
+        (true, false, true) => Sharing::OwnSpeed,
+        (true, true, _) => Sharing::Kinematics,
+    }
+}
+
+/// How scenario `b` can share a lane group led by `a`: the models' [`sharing`], provided
+/// the runs record and discard the same lengths.
+pub fn can_share(a: &Scenario, b: &Scenario) -> Sharing {
+    if a.run.duration == b.run.duration && a.run.settle == b.run.settle {
+        sharing(&a.model, &b.model)
+    } else {
+        Sharing::No
+    }
 }
 
 /// Acceleration (m/s², settling time discarded) of every scenario in `scs`, in order,
@@ -142,30 +181,50 @@ pub fn run_accel(scs: &[Scenario]) -> Vec<Result<Vec<f64>, RunError>> {
 }
 
 /// The lane groups of items `0..n`, each as its lane count K (16, 8, 4, 2; 1 = every
-/// item alone) and its items in order: items join the first open group whose leader they
-/// `share` with (`share(leader, item)`), groups hold up to [`MAX_LANES`], and each is cut
-/// into runs of [`group_size`] lanes (padded by the caller). With `WEARSIM_LANES_OFF` set,
-/// every item is alone. Shared by [`run_accel`] (sweeps) and the gap's matched
-/// simulations.
-pub fn plan(n: usize, share: impl Fn(usize, usize) -> bool) -> Vec<(usize, Vec<usize>)> {
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    for i in 0..n {
+/// item alone) and its items in order. Items first join the first open group whose leader
+/// they share the kinematics with (`share(leader, item)` is [`Sharing::Kinematics`]);
+/// the items that this leaves alone then join the first open group of such items whose
+/// leader they can share a group with at their own speed ([`Sharing::OwnSpeed`]), so a
+/// lane at its own speed never slows a group that could share its kinematics. Groups
+/// hold up to [`MAX_LANES`] and each is cut into runs of [`group_size`] lanes (padded by
+/// the caller), or of [`own_group_size`] for lanes at their own speed. With `WEARSIM_LANES_OFF` set, every item is alone. Shared by
+/// [`run_accel`] (sweeps) and the gap's matched simulations.
+pub fn plan(n: usize, share: impl Fn(usize, usize) -> Sharing) -> Vec<(usize, Vec<usize>)> {
+    let join = |groups: &mut Vec<Vec<usize>>, i: usize, at_least: Sharing| {
+        let fits = |l: usize| {
+            matches!(
+                (share(l, i), at_least),
+                (Sharing::Kinematics, _) | (Sharing::OwnSpeed, Sharing::OwnSpeed)
+            )
+        };
         match groups
             .iter_mut()
-            .find(|g| g.len() < MAX_LANES && g.first().is_some_and(|&l| share(l, i)))
+            .find(|g| g.len() < MAX_LANES && g.first().is_some_and(|&l| fits(l)))
         {
             Some(g) => g.push(i),
             None => groups.push(vec![i]),
         }
+    };
+    let mut same: Vec<Vec<usize>> = Vec::new();
+    for i in 0..n {
+        join(&mut same, i, Sharing::Kinematics);
     }
+    let (alone, mut groups): (Vec<Vec<usize>>, Vec<Vec<usize>>) =
+        same.into_iter().partition(|g| g.len() == 1);
+    let mut own: Vec<Vec<usize>> = Vec::new();
+    for i in alone.into_iter().flatten() {
+        join(&mut own, i, Sharing::OwnSpeed);
+    }
+    let shared = groups.len();
+    groups.extend(own);
     let mut out = vec![];
-    for g in groups {
-        let mut rest: &[usize] = &g;
+    for (j, g) in groups.iter().enumerate() {
+        let mut rest: &[usize] = g;
         while !rest.is_empty() {
-            let k = if lanes_on() {
-                group_size(rest.len())
-            } else {
-                1
+            let k = match (lanes_on(), j < shared) {
+                (false, _) => 1,
+                (true, true) => group_size(rest.len()),
+                (true, false) => own_group_size(rest.len()),
             };
             let (now, later) = rest.split_at(k.min(rest.len()));
             out.push((k, now.to_vec()));
@@ -250,4 +309,50 @@ pub fn lane_accel<const K: usize>(
             .map(|(a, ok)| if ok { Ok(a) } else { Err(a) })
             .collect(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Items keyed by (kind, speed): the same key shares the kinematics, the same kind at
+    /// another speed shares a group at its own speed, another kind shares nothing.
+    fn relation(keys: &[(u8, u8)]) -> impl Fn(usize, usize) -> Sharing + '_ {
+        move |a, b| match (keys[a], keys[b]) {
+            (x, y) if x == y => Sharing::Kinematics,
+            ((ka, _), (kb, _)) if ka == kb => Sharing::OwnSpeed,
+            _ => Sharing::No,
+        }
+    }
+
+    /// Every item is planned exactly once; groups that share the kinematics form first and
+    /// are cut by `group_size`; only the items they leave alone pool at their own speed, in
+    /// runs of 16 or 8, and fewer than 8 such items run alone.
+    #[test]
+    fn plan_shares_kinematics_first_and_pools_the_rest_at_their_own_speed() {
+        // Kind 0: 20 items at speed 0, then 11 items each at its own speed.
+        // Kind 1: 3 items at speed 0, 5 items each at its own speed.
+        let mut keys: Vec<(u8, u8)> = vec![(0, 0); 20];
+        keys.extend((1..=11).map(|s| (0, s)));
+        keys.extend([(1, 0); 3]);
+        keys.extend((1..=5).map(|s| (1, s)));
+        let plan = plan(keys.len(), relation(&keys));
+        let mut seen: Vec<usize> = plan.iter().flat_map(|(_, g)| g.clone()).collect();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..keys.len()).collect::<Vec<_>>());
+        let sizes: Vec<(usize, usize)> = plan.iter().map(|(k, g)| (*k, g.len())).collect();
+        // 20 shared: 16 + 4; 3 shared: one 4-lane group (1 padding lane); kind 0's 11 own
+        // speeds: 8 together, 3 alone; kind 1's 5 own speeds: alone.
+        let shared: Vec<(usize, usize)> = sizes.iter().copied().filter(|(k, _)| *k > 1).collect();
+        assert_eq!(shared, vec![(16, 16), (4, 4), (4, 3), (8, 8)]);
+        assert_eq!(sizes.iter().filter(|(k, _)| *k == 1).count(), 3 + 5);
+        for (k, g) in &plan {
+            if *k > 1 {
+                let lead = keys[g[0]];
+                let own = g.iter().any(|&i| keys[i] != lead);
+                assert!(g.iter().all(|&i| keys[i].0 == lead.0), "kinds mix in {g:?}");
+                assert!(!own || *k >= 8, "a small group at own speeds: {g:?}");
+            }
+        }
+    }
 }

@@ -5,7 +5,6 @@
 //! [`simulate`] gives one at a time.
 
 use crate::lanes::lane_accel;
-use wearsim_core::model::lanes::shareable;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Settling time simulated and discarded before a matched record (s): the structure's
@@ -51,7 +50,7 @@ pub fn simulate_many(
     }
     let alone = |i: usize| simulate(&cfgs[i], seed, samples);
     let plan = crate::lanes::plan(models.len(), |a, b| {
-        shareable(&models[a].1, &models[b].1, 1).is_ok()
+        crate::lanes::sharing(&models[a].1, &models[b].1)
     });
     for (k, now) in plan {
         let res = match k {

@@ -247,7 +247,7 @@ params = { noise = { uniform = [0.01, 0.2] } }
         let a = scenario(&spec, &cells, 0).expect("record 0");
         let b = scenario(&spec, &cells, 2).expect("record 2");
         assert!(
-            crate::lanes::can_share(&a, &b),
+            crate::lanes::can_share(&a, &b) != crate::lanes::Sharing::No,
             "records 0 and 2 should share lanes: {:?}",
             wearsim_core::model::lanes::shareable(&a.model, &b.model, 1)
         );
