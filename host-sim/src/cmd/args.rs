@@ -121,6 +121,10 @@ pub struct BenchArgs {
     /// Scenario file for `--lanes` (instead of `--preset`).
     #[arg(long, value_name = "FILE")]
     pub config: Option<std::path::PathBuf>,
+    /// With `--lanes`: lane `i` at its own constant speed, `1 + 0.01 i` times the
+    /// scenario's (the lanes' own-kinematics path that sweeps over speeds take).
+    #[arg(long, requires = "lanes")]
+    pub own_speed: bool,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,

@@ -5,7 +5,9 @@
 //! configured one — run once one after the other through the scalar `Model::step`, and
 //! once together through the K-lane structure-of-arrays stepper
 //! (`wearsim_core::model::LaneGroup`). Both runs simulate the same K × `--seconds`; the
-//! report checks that the lanes' samples equal the scalar ones bit for bit.
+//! report checks that the lanes' samples equal the scalar ones bit for bit. With
+//! `--own-speed` every lane turns at its own constant speed (1 % apart), which the lane
+//! group steps with per-lane kinematics.
 
 use crate::cmd::args::{BenchArgs, CliError};
 use crate::config::ScenarioFile;
@@ -31,7 +33,8 @@ fn thread_cpu_s() -> f64 {
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
-/// The K models of the bench: the scenario with the defect length scaled per lane.
+/// The K models of the bench: the scenario with the defect length scaled per lane (and,
+/// with `--own-speed`, its constant speed).
 fn models(a: &BenchArgs, k: usize) -> Result<Vec<Model>, CliError> {
     let mut file = match &a.config {
         Some(p) => ScenarioFile::load(p).map_err(CliError::input)?,
@@ -48,6 +51,16 @@ fn models(a: &BenchArgs, k: usize) -> Result<Vec<Model>, CliError> {
             let mut c = cfg.clone();
             if let Some(d) = c.defect.as_mut() {
                 d.topography.length *= 1.0 + 0.02 * i as f64;
+            }
+            if a.own_speed {
+                match &mut c.speed {
+                    wearsim_core::speed::SpeedProfile::Constant(f) => *f *= 1.0 + 0.01 * i as f64,
+                    _ => {
+                        return Err(CliError::input(
+                            "--own-speed: the scenario's speed must be constant (speed.shaft_hz)",
+                        ))
+                    }
+                }
             }
             Model::new_checked(c).map_err(CliError::input)
         })
@@ -160,6 +173,7 @@ pub fn measure(a: &BenchArgs, k: usize) -> Result<Value, CliError> {
             .collect::<Vec<_>>(),
         "seconds_per_lane": a.seconds,
         "lanes": k,
+        "own_speed": a.own_speed,
         "one_lane": {"simulated_s": simulated, "cpu_s": c1, "sim_s_per_core_s": per_core_1},
         "k_lanes": {"simulated_s": simulated, "cpu_s": ck, "sim_s_per_core_s": per_core_k},
         "per_core_speedup": per_core_k / per_core_1.max(1e-12),
