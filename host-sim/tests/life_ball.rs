@@ -105,7 +105,7 @@ fn wearsim_life_runs_a_ball_defect_life_to_failure() {
 /// sidebands are 11.9 Hz away); and the line at 2·BSF exceeds the lines at BSF, BPFO and
 /// BPFI (read at one bin, so that the neighbouring comb lines 2BSF − 6FTF = 69.6,
 /// 2BSF − 3FTF = 105.4 and 2BSF + 2FTF = 165.0 Hz stay out) by a factor 10 in every window
-/// (measured: 21–80; no local maximum at all at BSF).
+/// (measured: 33–47; no local maximum at all at BSF).
 #[test]
 fn late_ball_life_shows_its_envelope_line_at_twice_bsf() {
     let c = presets::by_name("cwru-6205-de").unwrap();
