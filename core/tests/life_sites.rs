@@ -409,9 +409,12 @@ fn ball_life_counts_two_bsf_and_uses_the_inner_contact() {
 
     let mut st = life.initial_state(7);
     let l = loads(q);
-    while st.stage < Stage::DamageGrowth {
+    let mut guard = 0;
+    while st.stage < Stage::DamageGrowth && guard < 100_000 {
+        guard += 1;
         life.advance(&mut st, 1e7, &l);
     }
+    assert_eq!(st.stage, Stage::DamageGrowth, "{:?}", st);
     let model = Model::new_checked(life.model_config(&base, &st)).unwrap();
     let mut meter = PassMeter::new(life.site(), &b);
     let mut ds: State<16> = State::new(&model, 4).unwrap();
