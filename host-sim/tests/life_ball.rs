@@ -61,6 +61,19 @@ fn wearsim_life_runs_a_ball_defect_life_to_failure() {
     let hz = s["pass_frequency_hz"].as_f64().unwrap();
     assert!((hz / (2.0 * orders.bsf * model.speed.shaft_hz(0.0)) - 1.0).abs() < 1e-9);
     assert_eq!(v["complete"], true);
+    // Ring ratings: an element has none of its own (ISO rates the rings); the bearing's
+    // rating is the one the fatigue sum uses.
+    let r = &s["ratings"];
+    assert!(r["site"].is_null(), "{r}");
+    let c = wearsim_core::wear::rating::dynamic_load_rating(&b);
+    assert!(
+        (r["bearing"].as_f64().unwrap() / c - 1.0).abs() < 1e-12,
+        "{r}"
+    );
+    assert!(
+        r["inner"].as_f64().unwrap() < r["outer"].as_f64().unwrap(),
+        "{r}"
+    );
 
     let events = v["events"].as_array().unwrap();
     let stages: Vec<&str> = events
