@@ -464,15 +464,21 @@ fn every_formulation_and_checkpoints() {
     }
 }
 
-/// The wear life models race defects: a base model with a ball defect is rejected with a
-/// typed error naming `defect.location`; race defects and healthy bases pass.
+/// The wear life carries a ball defect (its topographies are fitted to the ball,
+/// `Life::completed_length`): `check_base` accepts a ball defect as it accepts race defects
+/// and healthy bases (before issue 14's ball lives it refused it with `defect.location`),
+/// and still refuses a ball the bearing does not have, naming `defect.element` and its range.
 #[test]
-fn wear_life_rejects_a_ball_defect() {
+fn wear_life_carries_a_ball_defect() {
     use wearsim_core::wear::Life;
-    match Life::check_base(&ball(0, 0.0)) {
-        Err(e @ ConfigError::Unsupported { field, .. }) => {
-            assert_eq!(field, "defect.location");
-            assert!(e.to_string().contains("ball"), "{e}");
+    assert_eq!(Life::check_base(&ball(0, 0.0)), Ok(()));
+    assert_eq!(Life::check_base(&ball(8, 1.0)), Ok(()));
+    match Life::check_base(&ball(9, 0.0)) {
+        Err(ConfigError::OutOfRange {
+            field, min, max, ..
+        }) => {
+            assert_eq!(field, "defect.element");
+            assert_eq!((min, max), (0.0, 8.0));
         }
         other => panic!("{other:?}"),
     }

@@ -82,6 +82,11 @@ fn life_names_its_site_and_measures_its_own_defect_loads() {
         assert_eq!(s["name"], name);
         assert_eq!(s["pass_frequency"], freq);
         assert_eq!(s["contact"], contact);
+        // The site's own ring rating (reported; the fatigue sum uses the bearing's).
+        let r = &s["ratings"];
+        assert_eq!(r["site"], r[contact]);
+        assert_eq!(r["fatigue_uses"], "bearing");
+        assert!(r["inner"].as_f64().unwrap() < r["outer"].as_f64().unwrap());
         let n = s["passes_per_rev"].as_f64().unwrap();
         assert!((n / order - 1.0).abs() < 1e-9, "{name}: {n} vs {order}");
         let hz = s["pass_frequency_hz"].as_f64().unwrap();

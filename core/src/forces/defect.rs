@@ -123,11 +123,29 @@ impl DefectLocation {
                 0.0,
                 n.saturating_sub(1) as Real,
             )?;
-            let spread = 1.0 + 1.5 * t.count.saturating_sub(1) as Real;
-            let max = PI * 0.5 * bearing.element_diameter / spread;
+            let max = ball_defect_max_length(bearing.element_diameter, t.count);
             check_range("defect.length", t.length, 1e-7, max)?;
         }
         Ok(())
+    }
+
+    /// `t` fitted to the location on `bearing`: on a ball, the length is cut to
+    /// [`ball_defect_max_length`] for its count (so that [`DefectLocation::check_fit`]
+    /// accepts it); on a race, `t` unchanged. A guard for topographies not grown by the wear
+    /// life, whose own growth rule already stays within the limit
+    /// (`crate::wear::Life::completed_length`).
+    pub fn fit(&self, bearing: &BearingGeometry, t: Topography) -> Topography {
+        match self {
+            DefectLocation::Ball { .. } => {
+                let max = ball_defect_max_length(bearing.element_diameter, t.count);
+                if t.length > max {
+                    Topography { length: max, ..t }
+                } else {
+                    t
+                }
+            }
+            DefectLocation::OuterRace { .. } | DefectLocation::InnerRace { .. } => t,
+        }
     }
 
     /// Whether the defect is on a rolling element.
@@ -135,6 +153,17 @@ impl DefectLocation {
     pub fn is_ball(&self) -> bool {
         matches!(self, DefectLocation::Ball { .. })
     }
+}
+
+/// Longest defect (m) that fits on a rolling element of diameter `element_diameter` (m) as
+/// `count` equal defects at the pitch of [`DefectShape`] (1.5 lengths): their extent along
+/// the ball, `L (1 + 1.5 (count − 1))`, at most half the ball's circumference `π r_b`, i.e.
+/// `π r_b / (1 + 1.5 (count − 1))`. A longer pattern would be under both races at once,
+/// which is no longer a localized defect. The one definition of the limit, used by
+/// [`DefectLocation::check_fit`], [`DefectLocation::fit`] and the wear life.
+pub fn ball_defect_max_length(element_diameter: Real, count: u8) -> Real {
+    let spread = 1.0 + 1.5 * count.saturating_sub(1) as Real;
+    PI * 0.5 * element_diameter / spread
 }
 
 /// Static reference of the loaded bearing, used to size the defect's effect.

@@ -12,6 +12,7 @@ use super::stages::Stage;
 use crate::bearing::{BearingGeometry, ContactKind};
 use crate::contact::{ElementContact, HertzContact};
 use crate::error::{check_range, ConfigError};
+use crate::forces::defect::ball_defect_max_length;
 use crate::kinematics::FaultOrders;
 use crate::real::{ln, pow, sqrt, Real, PI};
 use crate::rng::Xoshiro128pp;
@@ -134,6 +135,8 @@ pub struct Life {
     reference_load: Real,
     kind: ContactKind,
     site: Site,
+    max_length: Real,
+    completed_length: Real,
 }
 
 /// Weibull slope of rolling-bearing lives (ISO 281: e = 1.11 for ball bearings).
@@ -176,6 +179,14 @@ impl Life {
             ContactKind::Point => 3.0,
             ContactKind::Line => 10.0 / 3.0,
         };
+        // The element's topographies are fitted to the ball (see `Life::completed_length`);
+        // a race has no such limit (min with +∞ keeps its completed length's bits).
+        let max_length = match site {
+            Site::Element => {
+                ball_defect_max_length(bearing.element_diameter, material.failure_defects)
+            }
+            Site::OuterRace | Site::InnerRace => Real::INFINITY,
+        };
         Ok(Life {
             cfg: LifeConfig { material, ..cfg },
             rating: dynamic_load_rating(bearing),
@@ -189,6 +200,8 @@ impl Life {
             reference_load: static_load,
             kind: bearing.contact,
             site,
+            max_length,
+            completed_length: material.completed_length.min(max_length),
         })
     }
 
@@ -315,7 +328,12 @@ impl Life {
             let kt = self.kt(h, b);
             let sigma0 = p_edge * kt;
             let excess = h - st.asperity_floor;
-            let h_rate = if excess > 0.0 {
+            // An excess within 64 ulp of `h` is the floor: the step below removes 2 % of
+            // the excess, which under ~50 ulp rounds away, so the edge would never reach
+            // its floor and every step would stay too short to advance `cycles` (seen in
+            // f32 on a 2.7 µm ball-spall edge floor: the life stalled). In f64 the
+            // threshold (~10⁻²⁰ m) is far below any excess a step leaves.
+            let h_rate = if excess > 64.0 * Real::EPSILON * h {
                 let w_a = sigma0;
                 let omega = 1.12 * sqrt(w_a * p_mean) / m.youngs_modulus; // eq. 24 (relative)
                 let abr = if h > self.film() {
@@ -431,7 +449,7 @@ impl Life {
                 if st.crack >= m.spall_depth {
                     let grown = st.topography.map(|t| t.length).unwrap_or(0.0)
                         + m.breakout_ratio * m.spall_depth;
-                    if grown >= m.completed_length {
+                    if grown >= self.completed_length {
                         return Some(Stage::DefectSmoothing);
                     }
                     // Growth within the stage: handled in `enter` via a self-transition.
@@ -463,7 +481,10 @@ impl Life {
         let logged = next != st.stage;
         match next {
             Stage::Dent => {
-                st.topography = Some(topography::REAL_DENT);
+                st.topography = Some(Topography {
+                    length: self.fit_length(topography::REAL_DENT.length),
+                    ..topography::REAL_DENT
+                });
                 st.dent_asperity = topography::REAL_DENT.asperity_height;
                 st.asperity_floor = topography::SMOOTHED_DENT.asperity_height;
             }
@@ -476,9 +497,9 @@ impl Life {
                 let completed = next == Stage::DefectSmoothing;
                 let length = match (st.stage, st.topography) {
                     (Stage::DefectCompletion, Some(t)) => {
-                        (t.length + breakout).min(m.completed_length)
+                        (t.length + breakout).min(self.completed_length)
                     }
-                    _ => breakout,
+                    _ => self.fit_length(breakout),
                 };
                 // Table 1 landmarks: fresh edges of 20 µm up to medium size, 30 µm for
                 // large defects.
@@ -524,22 +545,39 @@ impl Life {
         }
     }
 
-    /// Checks that the dynamic model `base` of a life run can carry the wear history. Pass
-    /// counting and contact follow the [`Site`] of the defect (element included), but the
-    /// stage machine grows the defect along thesis Table 1's race topographies up to a
-    /// 3 mm spall and several defects, which do not fit as a localized defect on a ball
-    /// (`DefectLocation::check_fit`: at most `π r_b / (1 + 1.5 (count − 1))`, 2.3 mm for
-    /// the CWRU ball at four defects). So a dynamic life with a ball defect is rejected:
-    /// `ConfigError::Unsupported` naming `defect.location`. Race defects and no defect pass.
+    /// Checks that the dynamic model `base` of a life run can carry the wear history: its
+    /// defect location, if any, must exist on the bearing — a ball defect's `element` in
+    /// `0 ..= elements − 1` ([`DefectLocation::check_fit`](crate::forces::defect::DefectLocation::check_fit),
+    /// `defect.element`), checked here because the life builds the model of the first
+    /// defect only at the dent. Race, ball and no defect are all carried: the topographies
+    /// grown on a ball are fitted to it ([`Life::completed_length`]).
     pub fn check_base(base: &crate::model::ModelConfig) -> Result<(), ConfigError> {
         match base.defect {
-            Some(d) if d.location.is_ball() => Err(ConfigError::Unsupported {
-                field: "defect.location",
-                what: "a rolling-element (ball) defect in a wear-life run (the wear stages \
-                       grow race topographies that do not fit on a ball)",
-            }),
-            _ => Ok(()),
+            Some(d) => d.location.check_fit(&base.bearing, &topography::REAL_DENT),
+            None => Ok(()),
         }
+    }
+
+    /// `length` (m) fitted to the site: at most the ball's limit at the failure count on an
+    /// element (see [`Life::completed_length`]), unchanged on a race.
+    fn fit_length(&self, length: Real) -> Real {
+        length.min(self.max_length)
+    }
+
+    /// Completed defect length of the site (m), where breakouts stop lengthening the defect
+    /// and it enters defect smoothing. On a race, `material.completed_length` (Table 1's
+    /// 3 mm large defect). On a rolling element, the smaller of that and
+    /// [`ball_defect_max_length`] at `material.failure_defects`: the longest defect whose
+    /// whole failure pattern (`failure_defects` defects at a pitch of 1.5 lengths) still
+    /// spans at most half the ball's circumference `π r_b`, beyond which it would be under
+    /// both races at once and no longer a localized defect
+    /// ([`DefectLocation::check_fit`](crate::forces::defect::DefectLocation::check_fit)).
+    /// Growth of a ball's spall saturates there (2.27 mm on the CWRU 6205's 7.94 mm ball,
+    /// 1.13 mm on the 61810's 3.97 mm ball, with 4 failure defects); further damage shows
+    /// as spawned defects, edge asperities and debris, never as length, so no topography
+    /// the life simulates is refused by `check_fit` at any count up to failure.
+    pub fn completed_length(&self) -> Real {
+        self.completed_length
     }
 
     /// The dynamic-model configuration for wear state `st`: `base` with the state's defect
@@ -554,7 +592,12 @@ impl Life {
         let inputs = self.dynamic_inputs(st);
         let mut cfg = base.clone();
         cfg.defect = match (cfg.defect, inputs.topography) {
-            (Some(d), Some(t)) => Some(crate::forces::defect::DefectConfig { topography: t, ..d }),
+            // `fit` leaves the life's own topographies unchanged (they are grown within the
+            // limit); it guards states built by hand against `check_fit`.
+            (Some(d), Some(t)) => Some(crate::forces::defect::DefectConfig {
+                topography: d.location.fit(&cfg.bearing, t),
+                ..d
+            }),
             (None, Some(t)) => Some(crate::presets::outer_race_defect(t)),
             (_, None) => None,
         };

@@ -38,5 +38,6 @@ pub use events::{Event, EventLog, MAX_EVENTS};
 pub use life::{Life, LifeConfig, LifeState, PassLoads};
 pub use material::Material;
 pub use pass_meter::PassMeter;
+pub use rating::RingRatings;
 pub use site::Site;
 pub use stages::Stage;

@@ -536,7 +536,7 @@ mod life {
         /// Wear of `base` (its defect is replaced by the wear state) at output `rate`.
         pub fn new(base: &ModelConfig, rate: Real, seed: u64) -> Self {
             if Life::check_base(base).is_err() {
-                fatal("life: the wear stages model race defects, not a ball defect")
+                fatal("life: the base model's defect location is not on its bearing")
             }
             let Ok(probe) = Model::new_checked(ModelConfig {
                 defect: None,

@@ -1,13 +1,18 @@
 //! The wear site of a life run as output names it: which surface, its pass frequency
 //! (name, order and Hz) and the Hertz contact its pressures come from
-//! (`wearsim_core::wear::Site`; README "Wear life", docs/life-sites.md).
+//! (`wearsim_core::wear::Site`; README "Wear life", docs/life-sites.md), with the ring
+//! ratings of the bearing's two raceway contacts (`wearsim_core::wear::RingRatings`).
 
 use super::LifeRun;
 use serde_json::json;
 use wearsim_core::contact::ElementContact;
+use wearsim_core::wear::RingRatings;
 
-/// `{"name", "pass_frequency", "passes_per_rev", "pass_frequency_hz", "contact"}` of
-/// `run`'s wear site at its shaft speed.
+/// `{"name", "pass_frequency", "passes_per_rev", "pass_frequency_hz", "contact",
+/// "ratings"}` of `run`'s wear site at its shaft speed. `ratings` (N): the bearing's ISO 281
+/// rating `bearing` (the one the fatigue sum uses, for every site), the ring ratings
+/// `inner` (`Q_ci`) and `outer` (`Q_ce`), and `site`, the site's own ring's (null for an
+/// element); docs/life-sites.md "Ring ratings".
 pub fn site_json(run: &LifeRun) -> serde_json::Value {
     let site = run.life.site();
     let bearing = &run.spec.model.bearing;
@@ -18,11 +23,19 @@ pub fn site_json(run: &LifeRun) -> serde_json::Value {
     } else {
         "inner"
     };
+    let rings = RingRatings::of(bearing, run.life.rating());
     json!({
         "name": site.name(),
         "pass_frequency": site.pass_frequency_name(),
         "passes_per_rev": run.life.passes_per_rev(),
         "pass_frequency_hz": run.life.passes_per_rev() * run.shaft_hz,
         "contact": name,
+        "ratings": {
+            "bearing": run.life.rating(),
+            "inner": rings.inner,
+            "outer": rings.outer,
+            "site": rings.of_site(site),
+            "fatigue_uses": "bearing",
+        },
     })
 }
