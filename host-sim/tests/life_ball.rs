@@ -8,7 +8,7 @@
 //! Randall & Antoni 2011 §2.1). Before issue 14's ball lives such a run was refused with
 //! `defect.location`.
 
-use std::process::Command;
+mod support;
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
 use wearsim_core::kinematics::FaultOrders;
 use wearsim_core::topography::Topography;
@@ -24,30 +24,8 @@ use wearsim_host::life::{LifeRun, LifeSpec};
 #[test]
 fn wearsim_life_runs_a_ball_defect_life_to_failure() {
     let dir = tempfile::tempdir().unwrap();
-    let cfg = dir.path().join("ball.toml");
-    std::fs::write(
-        &cfg,
-        "preset = \"thesis-61810\"\n[defect]\nlocation = \"ball\"\nelement = 3\n",
-    )
-    .unwrap();
-    let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args(["life", "--config", cfg.to_str().unwrap()])
-        .args([
-            "--seed",
-            "4",
-            "--snapshot-every",
-            "500000",
-            "--window",
-            "0.05",
-        ])
-        .args(["--cycles", "1e9", "--out", out.to_str().unwrap(), "--json"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let summary: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("life-summary.json")).unwrap()).unwrap();
+    let (v, summary, _out) =
+        support::thesis_life(dir.path(), "ball", "location = \"ball\"\nelement = 3");
     let model = presets::by_name("thesis-61810").unwrap();
     let b = model.bearing;
     let orders = FaultOrders::of(&b);

@@ -6,36 +6,14 @@
 //! isolates those at equal loads), and the inner life is not necessarily the shorter one.
 
 use std::path::Path;
-use std::process::Command;
+mod support;
 use wearsim_core::kinematics::FaultOrders;
 
 /// Runs a life with the defect at `location`; returns stdout JSON, the summary and the
 /// mean defect-edge load (N) of the dent-smoothing snapshots.
 fn life(dir: &Path, location: &str) -> (serde_json::Value, serde_json::Value, f64) {
-    let cfg = dir.join(format!("{location}.toml"));
-    std::fs::write(
-        &cfg,
-        format!("preset = \"thesis-61810\"\n[defect]\nlocation = \"{location}\"\n"),
-    )
-    .unwrap();
-    let out = dir.join(location);
-    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args(["life", "--config", cfg.to_str().unwrap()])
-        .args([
-            "--seed",
-            "4",
-            "--snapshot-every",
-            "500000",
-            "--window",
-            "0.05",
-        ])
-        .args(["--cycles", "1e9", "--out", out.to_str().unwrap(), "--json"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let stdout: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let summary: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("life-summary.json")).unwrap()).unwrap();
+    let (stdout, summary, out) =
+        support::thesis_life(dir, location, &format!("location = \"{location}\""));
     let text = std::fs::read_to_string(out.join("life-features.csv")).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();

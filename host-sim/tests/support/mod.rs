@@ -1,4 +1,5 @@
-//! Helpers shared by the command-line integration tests.
+//! Helpers shared by the command-line integration tests (each test crate uses a subset).
+#![allow(dead_code)]
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -29,4 +30,44 @@ pub fn refused(o: &Output, needles: &[&str]) {
     for n in needles {
         assert!(msg.contains(n), "message lacks {n:?}: {msg}");
     }
+}
+
+/// Runs `wearsim life --json` on `thesis-61810` with the TOML `defect` table body
+/// (`location = "…"`, …) written to `dir/NAME.toml`: seed 4, a snapshot every 5·10⁵
+/// revolutions, 0.05 s windows, at most 10⁹ cycles, output in `dir/NAME`. Asserts success;
+/// returns the JSON on stdout, `life-summary.json` and the output directory.
+pub fn thesis_life(
+    dir: &Path,
+    name: &str,
+    defect: &str,
+) -> (serde_json::Value, serde_json::Value, std::path::PathBuf) {
+    let cfg = dir.join(format!("{name}.toml"));
+    std::fs::write(
+        &cfg,
+        format!("preset = \"thesis-61810\"\n[defect]\n{defect}\n"),
+    )
+    .expect("scenario written");
+    let out = dir.join(name);
+    let o = wearsim(&[
+        "life",
+        "--config",
+        s(&cfg),
+        "--seed",
+        "4",
+        "--snapshot-every",
+        "500000",
+        "--window",
+        "0.05",
+        "--cycles",
+        "1e9",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+    let summary =
+        serde_json::from_slice(&std::fs::read(out.join("life-summary.json")).expect("summary"))
+            .expect("summary JSON");
+    (stdout, summary, out)
 }
