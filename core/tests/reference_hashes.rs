@@ -68,8 +68,8 @@ fn core_samples_match_the_recorded_hashes() {
             "thesis-61810",
             true,
             4000,
-            0x9dabd3dc3d5ee337,
-            0x6d2b535b127b54bd,
+            0x5774f62c44bb688a,
+            0xf3abe99acf1702e7,
         ),
         (
             "thesis-as-printed",

@@ -7,7 +7,9 @@ use super::{renorm, rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRA
 use crate::forces::defect::{DefectConfig, DefectLocation};
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::{rk4, IntegratorKind};
-use crate::real::{advance_angle, angle_diff, cos, sin, wrap_angle, Real, PI, TAU};
+use crate::real::{
+    advance_angle, angle_diff, cos, sin, small_angle_cos_sin, wrap_angle, Real, PI, TAU,
+};
 use crate::rng::Xoshiro128pp;
 use crate::topography::Topography;
 
@@ -606,15 +608,26 @@ impl Model {
         let dc = ds * self.orders.ftf;
         st.shaft_angle = advance_angle(st.shaft_angle, ds);
         st.cage_angle = advance_angle(st.cage_angle, dc);
-        st.wave_angle = advance_angle(st.wave_angle, wrap_angle(dc * self.wave_order as Real));
+        let dw = wrap_angle(dc * self.wave_order as Real);
+        st.wave_angle = advance_angle(st.wave_angle, dw);
         if self.spin_order != 0.0 {
             st.spin_angle = advance_angle(st.spin_angle, ds * self.spin_order);
         }
+        // The phasors follow the angles by rotations (renormalised), and are taken afresh
+        // from the angles every 1024 steps so that rounding cannot accumulate: at a
+        // constant speed by the precomputed rotations, at a varying speed by this step's
+        // advances (small angles: `small_angle_cos_sin`'s polynomials, not libm).
+        let fresh = st.steps.is_multiple_of(1024);
         match self.rot {
-            Some(r) if !st.steps.is_multiple_of(1024) => {
+            Some(r) if !fresh => {
                 st.shaft_cs = renorm(rotate(st.shaft_cs, r.shaft));
                 st.cage_cs = renorm(rotate(st.cage_cs, r.cage));
                 st.wave_cs = renorm(rotate(st.wave_cs, r.wave));
+            }
+            None if !fresh => {
+                st.shaft_cs = renorm(rotate(st.shaft_cs, small_angle_cos_sin(ds)));
+                st.cage_cs = renorm(rotate(st.cage_cs, small_angle_cos_sin(dc)));
+                st.wave_cs = renorm(rotate(st.wave_cs, small_angle_cos_sin(dw)));
             }
             _ => {
                 st.shaft_cs = (cos(st.shaft_angle), sin(st.shaft_angle));
@@ -622,5 +635,55 @@ impl Model {
                 st.wave_cs = (cos(st.wave_angle), sin(st.wave_angle));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::effects::speed_fluctuation::Params;
+    use crate::real::{cos, sin, Real};
+    use crate::speed::SpeedProfile;
+    use crate::{presets, Model, State};
+
+    /// At a varying speed (a ramp with a strong speed fluctuation) the phasors that the
+    /// step rotates by its small-angle advances stay on the angles they stand for: within
+    /// 1e-13 of `(cos θ, sin θ)` over 5 000 steps, i.e. across several fresh restarts every
+    /// 1024 steps. In f32 up to 1024 roundings accumulate between restarts, as at a
+    /// constant speed: within 1e-4 (3·10⁻⁵ measured, an angle error of 30 µrad).
+    #[test]
+    fn phasors_follow_the_angles_at_a_varying_speed() {
+        let mut cfg = presets::by_name("thesis-61810").expect("preset");
+        cfg.speed = SpeedProfile::Ramp {
+            from_hz: 10.0,
+            to_hz: 40.0,
+            duration: 0.05,
+        };
+        cfg.effects.speed_fluctuation = Some(Params {
+            amplitude: 0.05,
+            freq_hz: 30.0,
+            jitter: 0.05,
+            jitter_hz: 40.0,
+        });
+        let model = Model::new_checked(cfg).expect("model");
+        assert!(!model.constant_speed());
+        let mut st: State<16> = State::new(&model, 3).expect("state");
+        let tol: Real = if core::mem::size_of::<Real>() == 4 {
+            1e-4
+        } else {
+            1e-13
+        };
+        let mut worst: Real = 0.0;
+        for _ in 0..5000 {
+            model.step(&mut st);
+            for (a, cs) in [
+                (st.shaft_angle, st.shaft_cs),
+                (st.cage_angle, st.cage_cs),
+                (st.wave_angle, st.wave_cs),
+            ] {
+                worst = worst.max((cs.0 - cos(a)).abs()).max((cs.1 - sin(a)).abs());
+            }
+        }
+        assert!(worst < tol, "largest phasor error {worst}");
+        assert!(st.steps > 4096);
     }
 }
