@@ -638,7 +638,9 @@ impl Model {
     }
 }
 
+// A failing test may panic; the crate's no-panic lints are for the library code.
 #[cfg(test)]
+#[allow(clippy::expect_used)]
 mod tests {
     use crate::effects::speed_fluctuation::Params;
     use crate::real::{cos, sin, Real};
