@@ -134,9 +134,10 @@ pub enum Sharing {
 }
 
 /// How the models `a` and `b` can share a lane group (see [`Sharing`]). Lanes at their own
-/// speed pay off only at constant speeds: with a varying speed each lane's kinematics
-/// cost libm sines and cosines every step, as much as the scalar step's, and such lanes
-/// measured no faster than running alone (`docs/python.md`), so they run alone.
+/// speed pool only at constant speeds: with a varying speed each lane evaluates its own
+/// speed profile every step (a speed fluctuation's multisine takes libm calls), as the
+/// scalar step does, and such lanes measured no faster than running alone
+/// (`docs/python.md`), so they run alone.
 pub fn sharing(a: &Model, b: &Model) -> Sharing {
     use wearsim_core::model::lanes::{same_kinematics, shareable};
     let constant = a.constant_speed() && b.constant_speed();
