@@ -1,10 +1,12 @@
 //! K models stepped together ([`LaneGroup`]): throughput for sweeps and fits (issue 15).
 //!
-//! Models that share what makes the kinematics common — bearing, speed profile (and its
-//! fluctuation), output rate, oversampling and step, integrator (exact ZOH/FOH), defect
-//! location, waviness order, roughness on/off and the contact limit — move their
-//! shaft, cage and elements identically, so the kinematics and each element's `sin θ`,
-//! `cos θ` and defect phasor are computed once per step for all lanes. Everything that
+//! Models that share the step and the element geometry — bearing, output rate,
+//! oversampling and step, integrator (exact ZOH/FOH), defect location, waviness order,
+//! roughness on/off and the contact limit — can be lanes of one group. When they also
+//! share the speed profile (and its fluctuation) they move their shaft, cage and elements
+//! identically, so the kinematics and each element's `sin θ`, `cos θ` and defect phasor
+//! are computed once per step for all lanes; otherwise each lane computes its own
+//! (`own.rs`, a slower path: see [`same_kinematics`]). Everything that
 //! differs (motion, radial load, structure and its discretisation, contact stiffness and
 //! offset, roughness amplitude and generator, defect size/model/shape, waviness amplitude,
 //! imbalance, slip (its offsets are per lane), load zone, edge shape, running-in,
