@@ -638,11 +638,10 @@ impl Model {
     }
 }
 
-// A failing test may panic; the crate's no-panic lints are for the library code.
 #[cfg(test)]
-#[allow(clippy::expect_used)]
 mod tests {
     use crate::effects::speed_fluctuation::Params;
+    use crate::error::ConfigError;
     use crate::real::{cos, sin, Real};
     use crate::speed::SpeedProfile;
     use crate::{presets, Model, State};
@@ -653,8 +652,13 @@ mod tests {
     /// 1024 steps. In f32 up to 1024 roundings accumulate between restarts, as at a
     /// constant speed: within 1e-4 (3·10⁻⁵ measured, an angle error of 30 µrad).
     #[test]
-    fn phasors_follow_the_angles_at_a_varying_speed() {
-        let mut cfg = presets::by_name("thesis-61810").expect("preset");
+    fn phasors_follow_the_angles_at_a_varying_speed() -> Result<(), ConfigError> {
+        let Some(mut cfg) = presets::by_name("thesis-61810") else {
+            return Err(ConfigError::Inconsistent {
+                field: "preset",
+                reason: "thesis-61810 is missing",
+            });
+        };
         cfg.speed = SpeedProfile::Ramp {
             from_hz: 10.0,
             to_hz: 40.0,
@@ -666,9 +670,9 @@ mod tests {
             jitter: 0.05,
             jitter_hz: 40.0,
         });
-        let model = Model::new_checked(cfg).expect("model");
+        let model = Model::new_checked(cfg)?;
         assert!(!model.constant_speed());
-        let mut st: State<16> = State::new(&model, 3).expect("state");
+        let mut st: State<16> = State::new(&model, 3)?;
         let tol: Real = if core::mem::size_of::<Real>() == 4 {
             1e-4
         } else {
@@ -687,5 +691,6 @@ mod tests {
         }
         assert!(worst < tol, "largest phasor error {worst}");
         assert!(st.steps > 4096);
+        Ok(())
     }
 }
