@@ -50,6 +50,8 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         jobs: None,
         out: PathBuf::from("unused"),
         leave_one_out: false,
+        no_calibration: false,
+        stability: false,
         life_search: None,
         json: false,
         life: false,
@@ -61,9 +63,9 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     };
     let a = args(&data.join("cwru"), family);
-    let p = prepare(&a).map_err(|e| e.to_string())?;
+    let mut p = prepare(&a).map_err(|e| e.to_string())?;
     assert_eq!((p.train.len(), p.valid.len(), p.test.len()), (1, 1, 2));
-    let (at, spaces, ev) = diagnose(&a, &p).map_err(|e| e.to_string())?;
+    let (at, spaces, ev) = diagnose(&a, &mut p).map_err(|e| e.to_string())?;
     let test = at.test.ok_or("no test totals")?;
     println!(
         "{family}: validation total gap {:.2} -> {:.2} ({:.0} % smaller); test {:.2} -> {:.2} ({:.0} % smaller); {} simulations, {:.1} s",

@@ -7,7 +7,7 @@ use crate::gap::attribute::{self, Options, Totals};
 use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
-use crate::gap::stationary::{diagnose, prepare, where_cells, GapArgs, GapOutput};
+use crate::gap::stationary::{diagnose, prepare, stability, where_cells, GapArgs, GapOutput};
 use crate::io::feature_table::is_feature_table;
 
 /// `wearsim gap`: `--life` selects the lifetime diagnosis. A lifetime table given without
@@ -34,8 +34,13 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
 
 /// `wearsim gap` on records of seconds.
 fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
-    let parts = prepare(a)?;
-    let (at, spaces, ev) = diagnose(a, &parts)?;
+    let mut parts = prepare(a)?;
+    let (mut at, spaces, ev) = diagnose(a, &mut parts)?;
+    let stability = if a.stability {
+        Some(stability(&parts, &mut at, &spaces, &ev)?)
+    } else {
+        None
+    };
     let loo = if a.leave_one_out {
         let added = at.kept.clone();
         Some(
@@ -78,6 +83,8 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         tied_with: at.tied_with.clone(),
         findings,
         leave_one_out: loo,
+        calibration: parts.calibration.clone(),
+        stability,
         simulations: ev.sims(),
         seconds: at.seconds,
         files: vec![],

@@ -1,6 +1,7 @@
 //! `wearsim gap-validate`: arguments, the run, and the printed confusion matrix.
 
 use crate::cmd::args::{CliError, Progress};
+use crate::gap::nuisance::Tolerances;
 use crate::gap::twin::Mismatch;
 use crate::gap::validate::{validate, TwinOptions, TwinReport};
 use clap::Args;
@@ -32,6 +33,11 @@ pub struct GapValidateArgs {
     /// realistic random amounts the diagnosis does not know.
     #[arg(long)]
     pub no_mismatch: bool,
+    /// Do not calibrate the rig (resonance, damping, defect size, load, speed within their
+    /// tolerances) on the training run before ranking effects: the diagnosis as it was
+    /// before the calibration, for comparison.
+    #[arg(long)]
+    pub no_calibration: bool,
     /// Seed of the parameter draws and realisations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -107,7 +113,12 @@ impl GapValidateArgs {
             mismatch: if self.no_mismatch {
                 Mismatch::NONE
             } else {
-                Mismatch::REALISTIC
+                Mismatch::RIG
+            },
+            calibrate: if self.no_calibration {
+                Tolerances::NONE
+            } else {
+                Tolerances::RIG
             },
             null_trials: self.null,
             seed: self.seed,

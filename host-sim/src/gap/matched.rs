@@ -68,9 +68,21 @@ impl Matched {
         fxs: &[Effects],
         sims: &AtomicUsize,
     ) -> Vec<Result<Arc<Vec<f64>>, String>> {
-        let keys: Vec<(ModelConfig, u64, usize)> = fxs
+        let cfgs: Vec<ModelConfig> = fxs.iter().map(|fx| self.config(fx)).collect();
+        self.sim_cells_configs(&cfgs, sims)
+    }
+
+    /// Mean simulated cell values of this record's stretch for whole configurations
+    /// `cfgs` (another baseline, as the rig's calibration tries: `gap::nuisance`), through
+    /// the same memo and lanes as [`Matched::sim_cells_many`].
+    pub fn sim_cells_configs(
+        &self,
+        cfgs: &[ModelConfig],
+        sims: &AtomicUsize,
+    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
+        let keys: Vec<(ModelConfig, u64, usize)> = cfgs
             .iter()
-            .map(|fx| (self.config(fx), self.seed, self.samples))
+            .map(|c| (c.clone(), self.seed, self.samples))
             .collect();
         let mut todo: Vec<usize> = vec![];
         for (i, k) in keys.iter().enumerate() {
@@ -78,9 +90,9 @@ impl Matched {
                 todo.push(i);
             }
         }
-        let cfgs: Vec<ModelConfig> = todo.iter().map(|&i| keys[i].0.clone()).collect();
+        let run: Vec<ModelConfig> = todo.iter().map(|&i| keys[i].0.clone()).collect();
         let mut errors: Vec<(usize, String)> = vec![];
-        let runs = super::run::simulate_many(&cfgs, self.seed, self.samples);
+        let runs = super::run::simulate_many(&run, self.seed, self.samples);
         for (&i, x) in todo.iter().zip(runs) {
             sims.fetch_add(1, Ordering::Relaxed);
             match x.and_then(|x| self.reference.sim_means(&x).map_err(|e| e.to_string())) {

@@ -58,6 +58,25 @@ pub fn markdown(o: &GapOutput) -> String {
             r.role, r.part, r.meta.rpm, r.meta.rpm_source, r.meta.bearing, d
         );
     }
+    if let Some(c) = &o.calibration {
+        let _ = writeln!(
+            s,
+            "\n## The rig, calibrated on the training part before any effect was ranked\n\nTraining gap {:.2} → {:.2} ({} simulations); factors on the nominal rig, each within its tolerance:\n",
+            c.train_before, c.train_after, c.simulations
+        );
+        let _ = writeln!(s, "| nuisance | factor | tolerance | at bound |");
+        let _ = writeln!(s, "|---|---:|---:|---|");
+        for f in &c.fitted {
+            let _ = writeln!(
+                s,
+                "| {} | {:.3} | ±{:.1} % | {} |",
+                f.name,
+                f.factor,
+                100.0 * f.tolerance,
+                if f.at_bound { "**yes**" } else { "no" }
+            );
+        }
+    }
     let _ = writeln!(
         s,
         "\n## Where: cells by baseline gap (held-out)\n\nGap = (simulated − measured) / measured segment-to-segment spread; |gap| < 1 is within the measurement's own variability.\n"
@@ -183,6 +202,37 @@ pub fn markdown(o: &GapOutput) -> String {
     }
     if let Some(loo) = &o.leave_one_out {
         leave_one_out_section(&mut s, loo);
+    }
+    if let Some(rows) = &o.stability {
+        let _ = writeln!(
+            s,
+            "\n## Stability: the kept effects refitted on each record separately\n\nAgree = every pair of records that constrains the parameter lies within {} combined standard deviations.\n",
+            crate::gap::stability::Z_LIMIT
+        );
+        let _ = writeln!(
+            s,
+            "| effect | parameter | per record (value ± std) | worst z | agree |"
+        );
+        let _ = writeln!(s, "|---|---|---|---:|---|");
+        for r in rows {
+            let per: Vec<String> = r
+                .per_record
+                .iter()
+                .map(|p| match p.std {
+                    Some(sd) => format!("{} {:.4} ± {:.4}", p.record, p.value, sd),
+                    None => format!("{} {:.4} (free)", p.record, p.value),
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} |",
+                r.effect,
+                r.param,
+                per.join("; "),
+                r.worst_z.map_or("–".to_string(), |z| format!("{z:.1}")),
+                if r.agree { "yes" } else { "**no**" }
+            );
+        }
     }
     findings_section(&mut s, &o.findings);
     let _ = writeln!(s, "\n{} simulations in {:.1} s.", o.simulations, o.seconds);

@@ -7,6 +7,7 @@ use super::error::GapError;
 use super::identify;
 use super::informed;
 use super::matched::{Evaluator, Matched};
+use super::nuisance::{self, Calibration, Tolerances};
 use super::protocol::judge;
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
 use super::space;
@@ -79,6 +80,18 @@ pub struct GapArgs {
     /// diagnosis names it (costs one attribution per added effect).
     #[arg(long)]
     pub leave_one_out: bool,
+    /// Do not calibrate the rig's nuisances (housing resonance and damping, defect size,
+    /// load, speed, within their tolerances: `gap::nuisance`) on the training part before
+    /// ranking effects; the diagnosis as it was before the calibration, for comparison.
+    /// Records of seconds only: a lifetime diagnosis (--life) fits no rig nuisances.
+    #[arg(long)]
+    pub no_calibration: bool,
+    /// Also refit every effect of the chosen model on each record (part) separately and
+    /// compare its parameters between records (`gap::stability`): a disagreement beyond
+    /// two combined standard deviations is reported as a finding. Costs one lock-step fit
+    /// of the kept effects per record.
+    #[arg(long)]
+    pub stability: bool,
     /// With --life: most pattern-search lives of each fit after its grid (default 48):
     /// bounds the diagnosis's work, e.g. for a quick check of a new rig's tables.
     #[arg(long, value_parser = clap::value_parser!(u16).range(0..=1000))]
@@ -141,6 +154,12 @@ pub struct GapOutput {
     pub findings: Vec<String>,
     /// Leave-one-out checks (with `--leave-one-out`).
     pub leave_one_out: Option<Vec<super::attribute::LeaveOneOut>>,
+    /// The rig's nuisances as calibrated on the training part before any effect was
+    /// ranked (`null` with `--no-calibration`).
+    pub calibration: Option<Calibration>,
+    /// The kept effects' parameters refitted on each record separately (`--stability`;
+    /// `null` without it).
+    pub stability: Option<Vec<super::stability::ParamStability>>,
     /// Simulations run.
     pub simulations: usize,
     /// Wall-clock time of the attribution (s).
@@ -232,6 +251,9 @@ pub struct Parts {
     pub valid: Vec<Matched>,
     /// Test parts: the reported shrink is measured on these only.
     pub test: Vec<Matched>,
+    /// The rig's calibration on the training part, once [`diagnose`] has applied it to
+    /// every part's baseline (`None` before, or with `--no-calibration`).
+    pub calibration: Option<Calibration>,
 }
 
 /// Loads the records and builds the disjoint training, validation and test parts.
@@ -259,6 +281,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         train: vec![],
         valid: vec![],
         test: vec![],
+        calibration: None,
     };
     let push = |p: &mut Parts, r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str| {
         let m = records::part(r, start, len, seed, tag).map_err(GapError::input)?;
@@ -357,12 +380,14 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
     Ok(p)
 }
 
-/// Runs the attribution on prepared parts (fit on training, choice on validation) and
-/// judges it on the test part; returns it with the fit spaces and the evaluator (for
-/// further checks on the same records).
+/// Runs the attribution on prepared parts (the rig calibrated and every parameter fitted
+/// on training, the model chosen on validation) and judges it on the test part; returns it
+/// with the fit spaces and the evaluator (for further checks on the same records). Unless
+/// `--no-calibration`, every part's baseline is replaced by the rig calibrated on the
+/// training part ([`nuisance::calibrate`], recorded in `p.calibration`).
 pub fn diagnose(
     a: &GapArgs,
-    p: &Parts,
+    p: &mut Parts,
 ) -> Result<(Attribution, Vec<space::FitSpace>, Evaluator), GapError> {
     let first = p
         .train
@@ -392,6 +417,13 @@ pub fn diagnose(
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
     let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
+    if !a.no_calibration && p.calibration.is_none() {
+        let cal = nuisance::calibrate(&p.train, &Effects::NONE, &Tolerances::RIG, &ev);
+        p.train = cal.applied(&p.train);
+        p.valid = cal.applied(&p.valid);
+        p.test = cal.applied(&p.test);
+        p.calibration = Some(cal);
+    }
     let (spaces, uninformed) =
         informed::split(spaces, &Effects::NONE, &p.train, &ev, &names).map_err(GapError::run)?;
     if spaces.is_empty() {
@@ -408,6 +440,14 @@ pub fn diagnose(
     let mut at =
         attribute(&spaces, &Effects::NONE, &p.train, &p.valid, &ev, &opt).map_err(GapError::run)?;
     at.findings.extend(uninformed.iter().map(informed::finding));
+    if let Some(c) = &p.calibration {
+        at.findings.extend(c.fitted.iter().filter(|f| f.at_bound).map(|f| {
+            format!(
+                "the rig's {} calibrated to the end of its tolerance (factor {:.3}, allowed 1 ± {}): the rig differs from its description by more than that, or an unmodelled mechanism acts through it; effects that act on the same cells may be fitted to make up the rest",
+                f.name, f.factor, f.tolerance
+            )
+        }));
+    }
     at.uninformed = uninformed;
     identify::confounded(&mut at, opt.min_shrink);
     if let Some(v) = p.valid.first() {
@@ -421,6 +461,51 @@ pub fn diagnose(
     }
     judge(&mut at, &Effects::NONE, &p.test, &ev, opt.significant_gap).map_err(GapError::run)?;
     Ok((at, spaces, ev))
+}
+
+/// The chosen model's effects refitted on every record of every part separately
+/// ([`super::stability::stability`]), each started from its value in the chosen model;
+/// disagreements are added to the attribution's findings.
+pub fn stability(
+    p: &Parts,
+    at: &mut Attribution,
+    spaces: &[space::FitSpace],
+    ev: &Evaluator,
+) -> Result<Vec<super::stability::ParamStability>, GapError> {
+    let kept: Vec<(String, Vec<f64>)> = at
+        .kept
+        .iter()
+        .filter_map(|name| {
+            let space = spaces.iter().find(|s| s.effect == name)?;
+            let step = at.greedy.iter().rev().find(|s| &s.effect == name)?;
+            let hint = space
+                .fitted
+                .iter()
+                .map(|f| {
+                    step.params
+                        .iter()
+                        .find(|q| q.name == f.name)
+                        .map_or(0.5, |q| f.coord(q.value))
+                })
+                .collect();
+            Some((name.clone(), hint))
+        })
+        .collect();
+    let records: Vec<Matched> = p
+        .train
+        .iter()
+        .chain(&p.valid)
+        .chain(&p.test)
+        .cloned()
+        .collect();
+    let rows = super::stability::stability(spaces, &at.final_effects, &kept, &records, ev)
+        .map_err(GapError::run)?;
+    at.findings.extend(
+        rows.iter()
+            .filter(|r| !r.agree)
+            .map(super::stability::finding),
+    );
+    Ok(rows)
 }
 
 /// "Where", aggregated over the validation records (where the model was chosen).

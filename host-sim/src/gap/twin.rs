@@ -4,13 +4,8 @@
 //!
 //! * **Mismatch** ([`Mismatch`]): the twin's structure (resonance, damping), defect size,
 //!   load and speed differ from the baseline by random amounts the diagnosis does not know.
-//!   The realistic amounts: the housing resonance ±10 % and its damping ±30 % (a rig's
-//!   structure is known to about that from an impact test; Randall 2011, *Vibration-based
-//!   Condition Monitoring*, §3.6), the seeded defect's length and width ±15 % (the CWRU EDM
-//!   faults are specified to 0.001 in on 0.007 in; Smith & Randall 2015), the radial load
-//!   ±20 % (a motor load in hp does not give the bearing load better than that) and the
-//!   speed ±0.5 % (CWRU records 1797 rpm nominal against 1796 measured at 0 hp and slip
-//!   of a few per mille under load).
+//!   The realistic amounts are the rig's tolerances, [`Tolerances::RIG`] (sources in
+//!   `gap::nuisance`), which the diagnosis may calibrate the rig within.
 //! * **Independent records**: the training and held-out records are two runs of the same
 //!   twin bearing (one mismatch draw: one physical bearing) with independent seeds, not
 //!   halves of one run.
@@ -19,85 +14,39 @@
 //!   gearbox on the same housing), at 20–100 % of the record's RMS. The library should
 //!   leave such a gap open, and the report should say it is not closed.
 
+use super::nuisance::{self, Tolerances, NAMES};
 use crate::analysis::stats::rms;
 use wearsim_core::rng::Xoshiro128pp;
-use wearsim_core::speed::SpeedProfile;
-use wearsim_core::{ModelConfig, Real};
+use wearsim_core::ModelConfig;
 
-/// Relative half-ranges of the twin's random differences from the baseline: each factor
-/// is drawn uniformly in `1 ± range`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Mismatch {
-    /// Resonance frequency of the structure (the structural stiffness scales with its
-    /// square).
-    pub resonance: f64,
-    /// Structural damping.
-    pub damping: f64,
-    /// Defect length and width.
-    pub defect_size: f64,
-    /// Radial load.
-    pub load: f64,
-    /// Shaft speed.
-    pub speed: f64,
-}
+/// Relative half-ranges of the twin's random differences from the baseline: the rig's
+/// tolerances ([`Tolerances`], the one definition, shared with the diagnosis's calibration
+/// of the rig, `gap::nuisance`); each factor is drawn uniformly in `1 ± range`.
+pub type Mismatch = Tolerances;
 
-impl Mismatch {
-    /// The twin is the baseline (the best case of the first twin experiments).
-    pub const NONE: Mismatch = Mismatch {
-        resonance: 0.0,
-        damping: 0.0,
-        defect_size: 0.0,
-        load: 0.0,
-        speed: 0.0,
-    };
-    /// Realistic amounts (module documentation).
-    pub const REALISTIC: Mismatch = Mismatch {
-        resonance: 0.10,
-        damping: 0.30,
-        defect_size: 0.15,
-        load: 0.20,
-        speed: 0.005,
-    };
-
-    /// Whether every range is zero.
-    pub fn is_none(&self) -> bool {
-        *self == Mismatch::NONE
-    }
-
-    /// `base` with factors drawn from `rng`; returns the twin's configuration and the
-    /// factors (name, factor) for the report. With [`Mismatch::NONE`] the generator is not
-    /// touched and `base` is returned unchanged.
-    pub fn apply(
+impl Tolerances {
+    /// `base` with factors drawn from `rng` within these tolerances; returns the twin's
+    /// configuration and the factors (name, factor) for the report. With
+    /// [`Tolerances::NONE`] the generator is not touched and `base` is returned unchanged.
+    pub fn draw(
         &self,
         base: &ModelConfig,
         rng: &mut Xoshiro128pp,
     ) -> (ModelConfig, Vec<(String, f64)>) {
-        let mut cfg = base.clone();
         if self.is_none() {
-            return (cfg, vec![]);
+            return (base.clone(), vec![]);
         }
         #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
-        let mut factor = |range: f64| 1.0 + range * rng.uniform_pm1() as f64;
-        let f = [
-            ("resonance", factor(self.resonance)),
-            ("damping", factor(self.damping)),
-            ("defect_size", factor(self.defect_size)),
-            ("load", factor(self.load)),
-            ("speed", factor(self.speed)),
-        ];
-        let [(_, res), (_, damp), (_, size), (_, load), (_, speed)] = f;
-        cfg.structure.stiffness *= (res * res) as Real;
-        cfg.structure.damping *= damp as Real;
-        if let Some(d) = cfg.defect.as_mut() {
-            d.topography.length *= size as Real;
-            d.topography.width *= size as Real;
-        }
-        cfg.radial_load *= load as Real;
-        cfg.speed = match cfg.speed {
-            SpeedProfile::Constant(hz) => SpeedProfile::Constant(hz * speed as Real),
-            other => other,
-        };
-        (cfg, f.iter().map(|(n, v)| (n.to_string(), *v)).collect())
+        let u: [f64; 5] = std::array::from_fn(|_| rng.uniform_pm1() as f64);
+        let f = self.factors(&u);
+        (
+            nuisance::apply(base, &f),
+            NAMES
+                .iter()
+                .zip(f)
+                .map(|(n, v)| (n.to_string(), v))
+                .collect(),
+        )
     }
 }
 
@@ -159,11 +108,11 @@ mod tests {
     fn no_mismatch_is_the_baseline_and_a_realistic_one_stays_in_its_ranges() {
         let base = crate::gap::validate::scenario().expect("preset");
         let mut rng = Xoshiro128pp::from_u64(3);
-        let (same, f) = Mismatch::NONE.apply(&base, &mut rng);
+        let (same, f) = Mismatch::NONE.draw(&base, &mut rng);
         assert_eq!(same, base);
         assert!(f.is_empty());
         for _ in 0..50 {
-            let (cfg, f) = Mismatch::REALISTIC.apply(&base, &mut rng);
+            let (cfg, f) = Mismatch::RIG.draw(&base, &mut rng);
             let k = cfg.structure.stiffness / base.structure.stiffness;
             assert!((0.9f64.powi(2)..=1.1f64.powi(2)).contains(&k), "{k}");
             for (name, v) in &f {

@@ -17,6 +17,7 @@ pub use super::attribute::{same_class, INDISTINGUISHABLE};
 use super::attribute::{attribute, Options};
 use super::matched::{merge, Evaluator, Matched, MEMO};
 use super::memo::Memo;
+use super::nuisance::{calibrate, Calibration, Tolerances};
 use super::space::{self, FitSpace};
 use super::twin::{Mismatch, Outside};
 use super::{CellSpec, Reference};
@@ -45,6 +46,9 @@ pub struct TwinOptions {
     pub outside_trials: usize,
     /// How the twins differ from the baseline beyond the withheld effects.
     pub mismatch: Mismatch,
+    /// The tolerances within which the diagnosis calibrates the rig on the training run
+    /// before ranking effects ([`super::nuisance`]; [`Tolerances::NONE`]: no calibration).
+    pub calibrate: Tolerances,
     /// Also diagnose this many twins with no effect withheld (noise floor only): the
     /// false-attribution rate.
     pub null_trials: usize,
@@ -66,7 +70,8 @@ impl Default for TwinOptions {
             pair_trials: 0,
             triple_trials: 0,
             outside_trials: 0,
-            mismatch: Mismatch::REALISTIC,
+            mismatch: Mismatch::RIG,
+            calibrate: Tolerances::RIG,
             null_trials: 0,
             seed: 1,
             half_s: 1.0,
@@ -101,6 +106,9 @@ pub struct Trial {
     pub simulations: usize,
     /// The twin's mismatch factors (name, factor; empty without mismatch).
     pub mismatch: Vec<(String, f64)>,
+    /// The rig as the diagnosis calibrated it on the training run (compare with
+    /// `mismatch`); `null` without calibration.
+    pub calibration: Option<Calibration>,
     /// The out-of-library mechanism's parameters, when the twin has one.
     pub outside: Option<Vec<(String, f64)>>,
     /// Strength of what was withheld: the total gap between a third, independent run of
@@ -467,7 +475,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         // step than the scenario's) is drawn again and counted; nothing else is redrawn.
         let mut refused = 0;
         let (mismatch, out, fx, params, r) = loop {
-            let (cfg, mismatch) = opt.mismatch.apply(&base, rng);
+            let (cfg, mismatch) = opt.mismatch.draw(&base, rng);
             let out = outside.then(|| Outside::draw(rng));
             let mut fx = Effects::NONE;
             let mut params: Vec<Vec<(String, f64)>> = vec![];
@@ -495,11 +503,24 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         let mut truth = setup.floor;
         merge(&mut truth, &fx);
         let oracle = ev.total(std::slice::from_ref(&r.truth), &truth);
+        let (calibration, train, holdout) = if opt.calibrate.is_none() {
+            (None, vec![r.train], vec![r.holdout])
+        } else {
+            let cal = calibrate(
+                std::slice::from_ref(&r.train),
+                &setup.floor,
+                &opt.calibrate,
+                &ev,
+            );
+            let train = cal.applied(std::slice::from_ref(&r.train));
+            let holdout = cal.applied(std::slice::from_ref(&r.holdout));
+            (Some(cal), train, holdout)
+        };
         let mut a = attribute(
             &all,
             &setup.floor,
-            &[r.train],
-            std::slice::from_ref(&r.holdout),
+            &train,
+            &holdout,
             &ev,
             &Options {
                 max_effects,
@@ -529,6 +550,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             oracle,
             simulations: ev.sims() - sims0,
             mismatch,
+            calibration,
             outside: out.map(|o| o.named()),
             strength,
             kept: a.kept.clone(),
