@@ -172,8 +172,9 @@ fn twins_name_the_withheld_effect() {
 /// a random rig mismatch within the documented tolerances (no effect withheld, seeds not
 /// used elsewhere): it must bring the training gap down to the level of another
 /// realisation, and recover the nuisances the cells identify — the structural damping
-/// (resonance width and level), the defect size (impulse energy) and the speed (fault
-/// frequencies) — to within a third of their tolerance. The resonance and the load trade
+/// (resonance width and level) and the defect size (impulse energy) — to within a third of
+/// their tolerance. The speed is not calibrated (confounded with slip), so the twins here
+/// turn at the nominal speed. The resonance and the load trade
 /// off against each other through the contact stiffness in series with the structure and
 /// are not asserted (measured on seed 21: errors up to 0.07 and 0.04 against tolerances
 /// 0.1 and 0.2).
@@ -184,7 +185,6 @@ fn calibration_recovers_a_rig_mismatch() {
     use wearsim_host::gap::matched::{Evaluator, Matched, MEMO};
     use wearsim_host::gap::memo::Memo;
     use wearsim_host::gap::nuisance::{calibrate, Tolerances};
-    use wearsim_host::gap::twin::Mismatch;
     use wearsim_host::gap::validate::{record, scenario, spec_of};
     use wearsim_host::gap::Reference;
 
@@ -194,7 +194,7 @@ fn calibration_recovers_a_rig_mismatch() {
     let ev = Evaluator::new(2);
     let mut rng = Xoshiro128pp::from_u64(31);
     for trial in 0..3u64 {
-        let (twin, truth) = Mismatch::RIG.draw(&base, &mut rng);
+        let (twin, truth) = Tolerances::CALIBRATE.draw(&base, &mut rng);
         let matched = |seed: u64| -> Matched {
             let x = record(&twin, seed, n).expect("twin record");
             Matched {
@@ -211,7 +211,7 @@ fn calibration_recovers_a_rig_mismatch() {
         let cal = calibrate(
             std::slice::from_ref(&train),
             &Effects::NONE,
-            &Tolerances::RIG,
+            &Tolerances::CALIBRATE,
             &ev,
         );
         // The same twin's own configuration against its training run: what remains from
@@ -237,12 +237,8 @@ fn calibration_recovers_a_rig_mismatch() {
             cal.train_after,
             cal.train_before
         );
-        let tol = Tolerances::RIG;
-        for (name, range) in [
-            ("damping", tol.damping),
-            ("defect_size", tol.defect_size),
-            ("speed", tol.speed),
-        ] {
+        let tol = Tolerances::CALIBRATE;
+        for (name, range) in [("damping", tol.damping), ("defect_size", tol.defect_size)] {
             let want = truth
                 .iter()
                 .find(|(n, _)| n == name)

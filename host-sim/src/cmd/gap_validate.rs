@@ -118,7 +118,7 @@ impl GapValidateArgs {
             calibrate: if self.no_calibration {
                 Tolerances::NONE
             } else {
-                Tolerances::RIG
+                Tolerances::CALIBRATE
             },
             null_trials: self.null,
             seed: self.seed,

@@ -418,7 +418,7 @@ pub fn diagnose(
     );
     let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
     if !a.no_calibration && p.calibration.is_none() {
-        let cal = nuisance::calibrate(&p.train, &Effects::NONE, &Tolerances::RIG, &ev);
+        let cal = nuisance::calibrate(&p.train, &Effects::NONE, &Tolerances::CALIBRATE, &ev);
         p.train = cal.applied(&p.train);
         p.valid = cal.applied(&p.valid);
         p.test = cal.applied(&p.test);

@@ -71,7 +71,7 @@ impl Default for TwinOptions {
             triple_trials: 0,
             outside_trials: 0,
             mismatch: Mismatch::RIG,
-            calibrate: Tolerances::RIG,
+            calibrate: Tolerances::CALIBRATE,
             null_trials: 0,
             seed: 1,
             half_s: 1.0,
