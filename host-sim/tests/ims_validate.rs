@@ -138,6 +138,9 @@ fn medians_are_symmetric_in_the_end_factor() {
         end_ratio_measured: 1.0,
         end_ratio_simulated: e,
         end_ratio_factor: e,
+        end_level_measured: 1.0,
+        end_level_simulated: e,
+        floor: 0.0,
         life_ratio: 1.0,
         steady_measured: 1.0,
         steady_simulated: 1.0,
@@ -171,4 +174,42 @@ fn the_floor_for_an_end_ratio_follows_from_power_addition() {
     let floored = |r: f64| (r * r + n * n).sqrt();
     assert!((floored(130.0) / floored(1.0) - 6.26).abs() < 1e-9, "{n}");
     assert_eq!(floor_for_end_ratio(&s, 200.0), 0.0);
+}
+
+/// A measured background: the record's steady level in m/s² less, in power, the bearing's
+/// own; a mean-|x| level is converted by √(π/2) (Gaussian). 0.077 V of a 100 mV/g sensor
+/// is 7.551 m/s²; with a bearing of 1 m/s² the background is √(7.551² − 1).
+#[test]
+fn the_measured_floor_is_the_steady_level_less_the_bearing() {
+    use wearsim_host::life::ims_validate::{measured_floor, MeasuredRecord, SimLife};
+    let bare = SimLife {
+        revs: vec![0.0, 1.0, 2.0],
+        rms: vec![1.0, 1.0, 50.0],
+        mean_abs: vec![0.8, 0.8, 40.0],
+        life: 2.0,
+        stages: vec![],
+        fixed: 0.0,
+    };
+    let m = |i: usize| MeasuredRecord {
+        record: RECORDS[i],
+        curve: Curve {
+            t: vec![0.0, 1.0],
+            rms: vec![1.0, 6.0],
+        },
+        running_h: 1.0,
+        clock_h: 1.0,
+        gaps: 0,
+        dropped: 0,
+        steady: 0.077,
+    };
+    let v_per_ms2: f64 = 0.1 / 9.80665;
+    let level = 0.077 / v_per_ms2;
+    assert!((level - 7.5515).abs() < 1e-3);
+    let f = measured_floor(&m(0), &bare, v_per_ms2);
+    assert!((f - (level * level - 1.0).sqrt()).abs() < 1e-9, "{f}");
+    let l3 = level * (std::f64::consts::PI / 2.0).sqrt();
+    let f3 = measured_floor(&m(3), &bare, v_per_ms2);
+    assert!((f3 - (l3 * l3 - 1.0).sqrt()).abs() < 1e-9, "{f3}");
+    // Read in g the level is 0.755 m/s², below the bearing's own: no background.
+    assert_eq!(measured_floor(&m(0), &bare, 1.0 / 9.80665), 0.0);
 }

@@ -512,8 +512,13 @@ pub struct ImsValidateArgs {
     pub primary_only: bool,
     /// Also calibrate a white measurement floor (the `sensor` effect's noise, m/s² RMS) on
     /// the calibration life's end ratio; without it the sensor reads the bearing alone.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "measured_floor")]
     pub floor: bool,
+    /// Instead, give each life its own background from its measured steady level read with
+    /// this many record units per m/s² (IMS states no unit: 0.1019716 if g, 0.01019716 if
+    /// volts of a 100 mV/g sensor).
+    #[arg(long, value_name = "UNITS_PER_MS2")]
+    pub measured_floor: Option<f64>,
     /// Output directory for `ims-validation.json` and `ims-validation.md`.
     #[arg(long, default_value = "wearsim-ims-validation")]
     pub out: PathBuf,
@@ -552,14 +557,14 @@ pub fn ims_validation_markdown(v: &crate::life::ims_validate::Validation, cmd: &
         let _ = write!(
             md,
             "\n## Calibrated on {} (`life_factor` = {:.3e}, measurement floor {:.3e} m/s² RMS)\n\n\
-| life | role | onset meas. | onset sim. | \\|error\\| | onset→failure h meas. | sim. | distance dB RMS | end meas. | end sim. | end sim./meas. | life sim./meas. | steady meas. (unit?) | steady sim. m/s² |\n\
-|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+| life | role | onset meas. | onset sim. | \\|error\\| | onset→failure h meas. | sim. | distance dB RMS | end meas. | end sim. | end sim./meas. | end level (last 5 %) meas. | sim. | life sim./meas. | steady meas. (unit?) | steady sim. m/s² | floor m/s² |\n\
+|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
             f.calibrated_on, f.life_factor, f.floor
         );
         for l in std::iter::once(&f.calibration).chain(&f.held_out) {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} | {:.3} |",
+                "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.3} | {:.3} | {:.3} | {:.3} |",
                 l.id,
                 l.role,
                 fig(l.onset_measured, 3),
@@ -571,9 +576,12 @@ pub fn ims_validation_markdown(v: &crate::life::ims_validate::Validation, cmd: &
                 l.end_ratio_measured,
                 l.end_ratio_simulated,
                 l.end_ratio_factor,
+                l.end_level_measured,
+                l.end_level_simulated,
                 l.life_ratio,
                 l.steady_measured,
-                l.steady_simulated
+                l.steady_simulated,
+                l.floor
             );
         }
         let m = &f.median;
@@ -604,7 +612,17 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     // Bad records stop the run before anything is written.
     let recs = ims_validate::read_records(&data).map_err(CliError::input)?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
-    let v = ims_validate::validate_records(&recs, a.seed, !a.primary_only, a.floor)
+    let mode = match (a.floor, a.measured_floor) {
+        (_, Some(u)) if !(u.is_finite() && u > 0.0) => {
+            return Err(CliError::input(format!(
+                "--measured-floor {u}: record units per m/s² must be finite and > 0"
+            )))
+        }
+        (_, Some(units_per_ms2)) => ims_validate::FloorMode::Measured { units_per_ms2 },
+        (true, None) => ims_validate::FloorMode::Calibrated,
+        (false, None) => ims_validate::FloorMode::None,
+    };
+    let v = ims_validate::validate_records(&recs, a.seed, !a.primary_only, mode)
         .map_err(CliError::run)?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;

@@ -52,6 +52,8 @@ use wearsim_core::wear::{LifeConfig, LifeState, Material, Site, Stage};
 pub const GAP_FACTOR: f64 = 2.0;
 /// Simulated snapshots per life (windows rendered at the snapshot interval).
 pub const SIM_SNAPSHOTS: f64 = 300.0;
+/// Share of life at the end whose median is the end level (–).
+pub const END_SHARE: f64 = 0.05;
 /// Points of the common fraction-of-life grid of the trajectory distance.
 pub const GRID: usize = 201;
 
@@ -361,6 +363,11 @@ pub struct LifeFigures {
     pub end_ratio_simulated: f64,
     /// Simulated over measured end ratio.
     pub end_ratio_factor: f64,
+    /// Median over the last [`END_SHARE`] of life of the normalised curve, measured (a
+    /// figure that does not hang on the one last window; reported, not judged).
+    pub end_level_measured: f64,
+    /// The same, simulated.
+    pub end_level_simulated: f64,
     /// Simulated revolutions over measured running revolutions.
     pub life_ratio: f64,
     /// Measured steady level: median of the first half (record unit, not stated by IMS:
@@ -370,6 +377,8 @@ pub struct LifeFigures {
     pub steady_simulated: f64,
     /// Simulated end level at the sensor (m/s²).
     pub end_simulated_abs: f64,
+    /// Measurement floor of the simulated life (m/s² RMS, white).
+    pub floor: f64,
     /// Simulated stage onsets (fraction of life).
     pub stages: Vec<(String, f64)>,
 }
@@ -403,6 +412,17 @@ pub fn distance_db(sim: &Curve, meas: &Curve) -> f64 {
     (s / GRID as f64).sqrt()
 }
 
+/// Median of a normalised curve over its last [`END_SHARE`] of life.
+pub fn end_level(c: &Curve) -> f64 {
+    median(
+        c.t.iter()
+            .zip(&c.rms)
+            .filter(|(t, _)| **t >= 1.0 - END_SHARE)
+            .map(|(_, v)| *v)
+            .collect(),
+    )
+}
+
 /// The figures of simulated life `s` against measured `m`.
 pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str) -> LifeFigures {
     let sc = s.curve(m.record.feature);
@@ -425,10 +445,13 @@ pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str) -> LifeFigures {
         end_ratio_measured: em,
         end_ratio_simulated: es,
         end_ratio_factor: es / em,
+        end_level_measured: end_level(&m.curve),
+        end_level_simulated: end_level(&sc),
         life_ratio: s.life / (m.running_h * revs_per_hour()),
         steady_measured: m.steady,
         steady_simulated: sc_raw.last().copied().unwrap_or(0.0) / es.max(1e-300),
         end_simulated_abs: sc_raw.last().copied().unwrap_or(0.0),
+        floor: 0.0,
         stages: s.stages.clone(),
     }
 }
@@ -497,8 +520,8 @@ pub fn medians(h: &[LifeFigures]) -> Medians {
 pub struct Validation {
     /// Seed of every simulated life.
     pub seed: u64,
-    /// Whether the measurement floor was calibrated (else bearing-only vibration).
-    pub floor_calibrated: bool,
+    /// How the measurement floor was set.
+    pub floor_mode: FloorMode,
     /// The measured lives.
     pub records: Vec<MeasuredRecordSummary>,
     /// One fold per calibration life; the first (test 2 bearing 1) is the primary protocol,
@@ -531,13 +554,8 @@ pub fn read_records(data: &Path) -> Result<Vec<MeasuredRecord>, String> {
 }
 
 /// Reads every record, then validates ([`validate_records`]).
-pub fn validate(
-    data: &Path,
-    seed: u64,
-    all: bool,
-    calibrate_floor: bool,
-) -> Result<Validation, String> {
-    validate_records(&read_records(data)?, seed, all, calibrate_floor)
+pub fn validate(data: &Path, seed: u64, all: bool, mode: FloorMode) -> Result<Validation, String> {
+    validate_records(&read_records(data)?, seed, all, mode)
 }
 
 /// The measurement floor (m/s²) that gives the simulated life `s` the end ratio
@@ -553,7 +571,7 @@ pub fn floor_for_end_ratio(s: &SimLife, target: f64) -> f64 {
         return 0.0;
     };
     let ratio = c.rms.last().copied().unwrap_or(1.0);
-    if !(target > 1.0) || ratio <= target || ratio <= 0.0 {
+    if target.is_nan() || target <= 1.0 || ratio <= target || ratio <= 0.0 {
         return 0.0;
     }
     let m = end / ratio;
@@ -561,15 +579,47 @@ pub fn floor_for_end_ratio(s: &SimLife, target: f64) -> f64 {
     ((end * end - e2 * m * m) / (e2 - 1.0)).max(0.0).sqrt()
 }
 
+/// How the simulated sensor reading gets its background.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FloorMode {
+    /// The bearing's own vibration only (the model on main).
+    None,
+    /// A white floor calibrated on the calibration life's end ratio
+    /// ([`floor_for_end_ratio`]) and carried to the held-out lives.
+    Calibrated,
+    /// Each life's own background from its measured steady level read in physical units
+    /// ([`measured_floor`]): nothing fitted, but it rests on the unit of the record.
+    Measured {
+        /// Record units per m/s² (IMS does not state its unit: 1/9.80665 if g,
+        /// 0.1/9.80665 if volts of the 100 mV/g PCB 353B33).
+        units_per_ms2: f64,
+    },
+}
+
+/// The background (m/s² RMS) a life's sensor reads besides the bearing: the measured
+/// steady level in m/s² (RMS; a mean-|x| record's level times √(π/2), the Gaussian ratio)
+/// minus, in power, the simulated bearing's own steady RMS `bare`; 0 when the bearing alone
+/// is already as loud.
+pub fn measured_floor(m: &MeasuredRecord, bare: &SimLife, units_per_ms2: f64) -> f64 {
+    let level = m.steady / units_per_ms2
+        * match m.record.feature {
+            Feature::Rms => 1.0,
+            Feature::MeanAbs => (std::f64::consts::PI / 2.0).sqrt(),
+        };
+    let c = bare.curve(Feature::Rms);
+    let own = bare.rms.last().copied().unwrap_or(0.0) / c.rms.last().copied().unwrap_or(1.0);
+    (level * level - own * own).max(0.0).sqrt()
+}
+
 /// For each calibration life (all of them when `all`, else only the first, test 2
-/// bearing 1) calibrates `life_factor` on its running revolutions and, when
-/// `calibrate_floor`, the measurement floor on its end ratio ([`floor_for_end_ratio`]),
-/// then judges the others with both.
+/// bearing 1) calibrates `life_factor` on its running revolutions and sets the floor by
+/// `mode`, then judges the others.
 pub fn validate_records(
     recs: &[MeasuredRecord],
     seed: u64,
     all: bool,
-    calibrate_floor: bool,
+    mode: FloorMode,
 ) -> Result<Validation, String> {
     let mut folds = vec![];
     let n_cal = if all { recs.len() } else { 1 };
@@ -586,25 +636,39 @@ pub fn validate_records(
             let s = simulate(site, a, seed, target, 0.0)?;
             Ok::<_, String>((s.life, s))
         })?;
-        let floor = if calibrate_floor {
-            floor_for_end_ratio(&c.last, cal.curve.rms.last().copied().unwrap_or(1.0))
-        } else {
-            0.0
+        let floor = match mode {
+            FloorMode::Calibrated => {
+                floor_for_end_ratio(&c.last, cal.curve.rms.last().copied().unwrap_or(1.0))
+            }
+            FloorMode::None | FloorMode::Measured { .. } => 0.0,
         };
-        let own = if floor > 0.0 {
-            simulate(site, c.factor, seed, target, floor)?
-        } else {
-            c.last.clone()
+        // The life `m` with the fold's factor and its floor: the fold's floor, or with
+        // `Measured` the record's own background.
+        let run = |m: &MeasuredRecord| -> Result<(SimLife, f64), String> {
+            let bare = if m.record.site == site {
+                c.last.clone()
+            } else {
+                simulate(m.record.site, c.factor, seed, c.last.life, 0.0)?
+            };
+            let f = match mode {
+                FloorMode::Measured { units_per_ms2 } => measured_floor(m, &bare, units_per_ms2),
+                _ => floor,
+            };
+            if f > 0.0 {
+                Ok((simulate(m.record.site, c.factor, seed, c.last.life, f)?, f))
+            } else {
+                Ok((bare, 0.0))
+            }
         };
-        let calibration = figures(cal, &own, "calibration");
+        let (own, f) = run(cal)?;
+        let mut calibration = figures(cal, &own, "calibration");
+        calibration.floor = f;
         let mut held_out = vec![];
         for m in recs.iter().filter(|m| m.record.id != cal.record.id) {
-            let s = if m.record.site == site {
-                own.clone()
-            } else {
-                simulate(m.record.site, c.factor, seed, own.life, floor)?
-            };
-            held_out.push(figures(m, &s, "held-out"));
+            let (s, f) = run(m)?;
+            let mut fig = figures(m, &s, "held-out");
+            fig.floor = f;
+            held_out.push(fig);
         }
         folds.push(Fold {
             calibrated_on: cal.record.id.into(),
@@ -618,7 +682,7 @@ pub fn validate_records(
     let all_held: Vec<LifeFigures> = folds.iter().flat_map(|f| f.held_out.clone()).collect();
     Ok(Validation {
         seed,
-        floor_calibrated: calibrate_floor,
+        floor_mode: mode,
         records: recs
             .iter()
             .map(|m| MeasuredRecordSummary {
