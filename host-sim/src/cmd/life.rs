@@ -556,7 +556,7 @@ pub fn ims_validation_markdown(v: &crate::life::ims_validate::Validation, cmd: &
     for f in &v.folds {
         let _ = write!(
             md,
-            "\n## Calibrated on {} (`life_factor` = {:.3e}, measurement floor {:.3e} m/s² RMS)\n\n\
+            "\n## Calibrated on {} (`life_factor` = {:.3e}, calibrated floor {:.3e} m/s² RMS; the floor each life ran with is the last column)\n\n\
 | life | role | onset meas. | onset sim. | \\|error\\| | onset→failure h meas. | sim. | distance dB RMS | end meas. | end sim. | end sim./meas. | end level (last 5 %) meas. | sim. | life sim./meas. | steady meas. (unit?) | steady sim. m/s² | floor m/s² |\n\
 |---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
             f.calibrated_on, f.life_factor, f.floor
@@ -627,14 +627,17 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let cmd = format!(
-        "wearsim ims-validate --seed {}{}{}",
+        "wearsim ims-validate --seed {}{}{}{}",
         a.seed,
         if a.primary_only {
             " --primary-only"
         } else {
             ""
         },
-        if a.floor { " --floor" } else { "" }
+        if a.floor { " --floor" } else { "" },
+        a.measured_floor
+            .map(|u| format!(" --measured-floor {u}"))
+            .unwrap_or_default()
     );
     let md = ims_validation_markdown(&v, &cmd);
     let mdp = a.out.join("ims-validation.md");
