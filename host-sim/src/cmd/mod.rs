@@ -47,6 +47,9 @@ pub enum Command {
     Life(life::LifeArgs),
     /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
     ImsCompare(life::ImsCompareArgs),
+    /// Hold simulated lives against every failed IMS bearing: calibrate on one life, judge
+    /// on the others, leave-one-life-out.
+    ImsValidate(life::ImsValidateArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(crate::cmd::args::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
@@ -86,6 +89,7 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Capture(a) => capture::run(a).map_err(CliError::from),
         Command::Life(a) => life::life_cmd(&a),
         Command::ImsCompare(a) => life::ims_compare_cmd(&a),
+        Command::ImsValidate(a) => life::ims_validate_cmd(&a),
         Command::Presets { json } => presets::run(json),
         Command::Gap(a) => gap::run(&a),
         Command::GapValidate(a) => gap_validate::run(&a),

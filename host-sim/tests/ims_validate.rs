@@ -1,0 +1,215 @@
+//! `wearsim ims-validate`: the failed IMS bearing lives read on their running-time line
+//! (data-backed: skips without the data folder, fails without it when CI=true), and bad
+//! feature tables refused with exit 2, the field named and nothing written.
+
+mod support;
+use support::{refused, s, wearsim};
+use wearsim_host::io::data_dir;
+use wearsim_host::life::ims::Curve;
+use wearsim_host::life::ims_validate::{
+    distance_db, medians, read_record, read_records, LifeFigures, RECORDS,
+};
+
+#[test]
+fn the_four_failed_lives_are_read_on_running_time() {
+    let Some(data) = data_dir().expect("data folder required when CI=true") else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return;
+    };
+    let r = read_records(&data).unwrap();
+    let by = |id: &str| r.iter().find(|m| m.record.id == id).unwrap();
+    // Test 2 runs without stops: 2004-02-12 10:32:39 to 02-19 06:02:39 (two dead final
+    // snapshots dropped, IMS README quirk) = 163.5 h at 10-min intervals.
+    let t2 = by("t2b1");
+    assert_eq!((t2.gaps, t2.dropped), (0, 2));
+    assert!((t2.running_h - 163.5).abs() < 0.05, "{}", t2.running_h);
+    // Test 1: 827.6 clock hours of which 486 h are 24 stops of the rig; what ran is
+    // about 349 h (capped intervals of the median 10 min).
+    let t1 = by("t1b3");
+    assert!((t1.clock_h - 827.56).abs() < 0.05, "{}", t1.clock_h);
+    assert_eq!(t1.gaps, 24);
+    assert!((330.0..360.0).contains(&t1.running_h), "{}", t1.running_h);
+    assert_eq!(by("t1b4").running_h, t1.running_h);
+    // Test 3 (6,324 files, last one dead): 1073 clock hours, a few weekend stops.
+    let t3 = by("t3b3");
+    assert_eq!(t3.dropped, 1);
+    assert!((1030.0..1073.3).contains(&t3.running_h), "{}", t3.running_h);
+    // Normalised curves: first-half median 1, time from 0 to 1.
+    for m in &r {
+        let c = &m.curve;
+        assert_eq!((c.t[0], *c.t.last().unwrap()), (0.0, 1.0));
+        assert!(c.t.windows(2).all(|w| w[1] > w[0]), "{}", m.record.id);
+    }
+    // Measured end ratios: "5–20× above their steady level" (issue 14) for the outer
+    // races, test 1 bearing 3 lower (about 3.7 on channel x).
+    for (id, lo, hi) in [("t2b1", 5.0, 8.0), ("t3b3", 5.0, 15.0), ("t1b3", 2.0, 6.0)] {
+        let e = *by(id).curve.rms.last().unwrap();
+        assert!((lo..hi).contains(&e), "{id}: end ratio {e}");
+    }
+}
+
+fn table(dir: &std::path::Path, rows: &[&str]) {
+    let d = dir.join("ims/features_chocho66");
+    std::fs::create_dir_all(&d).unwrap();
+    let mut text = String::from(",Bearing 1,Bearing 2,Bearing 3,Bearing 4\n");
+    for r in rows {
+        text.push_str(r);
+        text.push('\n');
+    }
+    std::fs::write(d.join("DatasetBearingTest_3.csv"), text).unwrap();
+}
+
+#[test]
+fn a_table_without_the_column_or_with_time_going_back_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let t3 = &RECORDS[3];
+    let rows: Vec<String> = (0..20)
+        .map(|i| format!("2004-03-04 09:{:02}:00,0.1,0.1,0.1,0.1", i * 2))
+        .collect();
+    let rows: Vec<&str> = rows.iter().map(String::as_str).collect();
+    table(dir.path(), &rows);
+    assert!(read_record(dir.path(), t3).is_ok());
+    // Time going back at row 6 (the fifth data row).
+    let mut back = rows.clone();
+    back[4] = "2004-03-04 09:01:00,0.1,0.1,0.1,0.1";
+    table(dir.path(), &back);
+    let e = read_record(dir.path(), t3).unwrap_err();
+    assert!(e.contains("row 6") && e.contains("time"), "{e}");
+    // No bearing 3 column.
+    let d = dir
+        .path()
+        .join("ims/features_chocho66/DatasetBearingTest_3.csv");
+    std::fs::write(
+        &d,
+        ",Bearing 1,Bearing 2\n2004-03-04 09:00:00,0.1,0.1\n2004-03-04 09:10:00,0.1,0.1\n",
+    )
+    .unwrap();
+    let e = read_record(dir.path(), t3).unwrap_err();
+    assert!(e.contains("B3_mean_abs"), "{e}");
+}
+
+#[test]
+fn the_command_refuses_a_bad_table_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    // The data folder lacks the test 2 table: exit 2 naming the file.
+    let o = wearsim(&[
+        "ims-validate",
+        "--data",
+        s(dir.path()),
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    refused(&o, &["test2_timefeatures.csv"]);
+    assert!(!out.exists(), "nothing may be written");
+}
+
+fn curve(v: &[f64]) -> Curve {
+    let n = v.len() as f64 - 1.0;
+    Curve {
+        t: (0..v.len()).map(|i| i as f64 / n).collect(),
+        rms: v.to_vec(),
+    }
+}
+
+/// A curve twice the other everywhere is 6.02 dB away; identical curves 0 dB.
+#[test]
+fn distance_of_a_constant_factor_is_its_decibels() {
+    let a = curve(&[1.0, 1.0, 2.0, 4.0]);
+    let b = curve(&[2.0, 2.0, 4.0, 8.0]);
+    assert!((distance_db(&b, &a) - 20.0 * 2f64.log10()).abs() < 1e-9);
+    assert!(distance_db(&a, &a).abs() < 1e-12);
+}
+
+/// Medians: an end factor of ×4 and ×1/4 both count as 4; no onset counts as an
+/// error of 1.
+#[test]
+fn medians_are_symmetric_in_the_end_factor() {
+    let f = |e: f64, o: Option<f64>| LifeFigures {
+        id: "x".into(),
+        role: "held-out".into(),
+        onset_measured: Some(0.5),
+        onset_simulated: o,
+        onset_error: o.map(|o| (o - 0.5).abs()),
+        onset_to_failure_h_measured: None,
+        onset_to_failure_h_simulated: None,
+        distance_db_rms: 2.0,
+        end_ratio_measured: 1.0,
+        end_ratio_simulated: e,
+        end_ratio_factor: e,
+        end_level_measured: 1.0,
+        end_level_simulated: e,
+        floor: 0.0,
+        life_ratio: 1.0,
+        steady_measured: 1.0,
+        steady_simulated: 1.0,
+        end_simulated_abs: 1.0,
+        stages: vec![],
+    };
+    let m = medians(&[f(4.0, Some(0.55)), f(0.25, None), f(4.0, Some(0.6))]);
+    assert!((m.end_ratio_factor - 4.0).abs() < 1e-9);
+    assert!((m.onset_error - 0.1).abs() < 1e-9);
+    assert_eq!(m.accepted, [true, false, true]);
+}
+
+/// The floor that brings a simulated life to a target end ratio: noise adds in power, so
+/// a bearing going from 1 to 130 m/s² reads 6.26 × its floored steady level with
+/// `N² = (130² − 6.26²·1²)/(6.26² − 1)`; a floor cannot raise a ratio (0 when the bearing
+/// alone ends below the target).
+#[test]
+fn the_floor_for_an_end_ratio_follows_from_power_addition() {
+    use wearsim_host::life::ims_validate::{floor_for_end_ratio, SimLife};
+    let mut rms = vec![1.0; 10];
+    rms.push(130.0);
+    let s = SimLife {
+        revs: (0..11).map(|i| i as f64).collect(),
+        mean_abs: rms.clone(),
+        rms,
+        life: 10.0,
+        stages: vec![],
+        fixed: 0.0,
+    };
+    let n = floor_for_end_ratio(&s, 6.26);
+    let floored = |r: f64| (r * r + n * n).sqrt();
+    assert!((floored(130.0) / floored(1.0) - 6.26).abs() < 1e-9, "{n}");
+    assert_eq!(floor_for_end_ratio(&s, 200.0), 0.0);
+}
+
+/// A measured background: the record's steady level in m/s² less, in power, the bearing's
+/// own; a mean-|x| level is converted by √(π/2) (Gaussian). 0.077 V of a 100 mV/g sensor
+/// is 7.551 m/s²; with a bearing of 1 m/s² the background is √(7.551² − 1).
+#[test]
+fn the_measured_floor_is_the_steady_level_less_the_bearing() {
+    use wearsim_host::life::ims_validate::{measured_floor, MeasuredRecord, SimLife};
+    let bare = SimLife {
+        revs: vec![0.0, 1.0, 2.0],
+        rms: vec![1.0, 1.0, 50.0],
+        mean_abs: vec![0.8, 0.8, 40.0],
+        life: 2.0,
+        stages: vec![],
+        fixed: 0.0,
+    };
+    let m = |i: usize| MeasuredRecord {
+        record: RECORDS[i],
+        curve: Curve {
+            t: vec![0.0, 1.0],
+            rms: vec![1.0, 6.0],
+        },
+        running_h: 1.0,
+        clock_h: 1.0,
+        gaps: 0,
+        dropped: 0,
+        steady: 0.077,
+    };
+    let v_per_ms2: f64 = 0.1 / 9.80665;
+    let level = 0.077 / v_per_ms2;
+    assert!((level - 7.5515).abs() < 1e-3);
+    let f = measured_floor(&m(0), &bare, v_per_ms2);
+    assert!((f - (level * level - 1.0).sqrt()).abs() < 1e-9, "{f}");
+    let l3 = level * (std::f64::consts::PI / 2.0).sqrt();
+    let f3 = measured_floor(&m(3), &bare, v_per_ms2);
+    assert!((f3 - (l3 * l3 - 1.0).sqrt()).abs() < 1e-9, "{f3}");
+    // Read in g the level is 0.755 m/s², below the bearing's own: no background.
+    assert_eq!(measured_floor(&m(0), &bare, 1.0 / 9.80665), 0.0);
+}
