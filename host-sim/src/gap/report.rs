@@ -218,10 +218,7 @@ pub fn markdown(o: &GapOutput) -> String {
             let per: Vec<String> = r
                 .per_record
                 .iter()
-                .map(|p| match p.std {
-                    Some(sd) => format!("{} {:.4} ± {:.4}", p.record, p.value, sd),
-                    None => format!("{} {:.4} (free)", p.record, p.value),
-                })
+                .map(crate::gap::stability::PerRecord::describe)
                 .collect();
             let _ = writeln!(
                 s,

@@ -33,6 +33,16 @@ pub struct PerRecord {
     pub std: Option<f64>,
 }
 
+impl PerRecord {
+    /// `record value ± std`, or `record value (not constrained)`.
+    pub fn describe(&self) -> String {
+        match self.std {
+            Some(s) => format!("{} {:.4} ± {:.4}", self.record, self.value, s),
+            None => format!("{} {:.4} (not constrained)", self.record, self.value),
+        }
+    }
+}
+
 /// One parameter of a kept effect, fitted on each record separately.
 #[derive(Debug, Clone, Serialize)]
 pub struct ParamStability {
@@ -138,14 +148,7 @@ pub fn worst_z(fits: &[PerRecord]) -> Option<f64> {
 
 /// The report's sentence for a parameter whose records disagree.
 pub fn finding(r: &ParamStability) -> String {
-    let fits: Vec<String> = r
-        .per_record
-        .iter()
-        .map(|p| match p.std {
-            Some(s) => format!("{} {:.4} ± {:.4}", p.record, p.value, s),
-            None => format!("{} {:.4} (not constrained)", p.record, p.value),
-        })
-        .collect();
+    let fits: Vec<String> = r.per_record.iter().map(PerRecord::describe).collect();
     format!(
         "{}.{} fitted on each record separately disagrees beyond {Z_LIMIT} combined standard deviations (worst z = {:.1}): {}; the parameter follows the operating point (load, defect size) or the effect absorbs a mechanism that does",
         r.effect,

@@ -11,6 +11,24 @@
 //! uncalibrated life. A step ratio is clamped to 1e-9..=1e6 so that a degenerate life
 //! cannot drive the factor to 0 or infinity.
 
+/// Most revolutions a calibrated life may run (far beyond any rating life: the cap only
+/// stops a life that would never fail).
+pub const CALIBRATED_CAP: f64 = 1e13;
+
+/// The life configuration of bearing steel with its fatigue scaled by `life_factor` (the
+/// one parameter the callers calibrate), the default tribology, and [`CALIBRATED_CAP`].
+pub fn steel_life(life_factor: f64) -> wearsim_core::wear::LifeConfig {
+    use wearsim_core::wear::{LifeConfig, Material};
+    LifeConfig {
+        material: Material {
+            life_factor: life_factor as wearsim_core::Real,
+            ..Material::BEARING_STEEL
+        },
+        cycle_cap: CALIBRATED_CAP as wearsim_core::Real,
+        ..LifeConfig::DEFAULT
+    }
+}
+
 /// Relative tolerance on the life: calibration stops within 1 % of the target.
 pub const TOLERANCE: f64 = 0.01;
 

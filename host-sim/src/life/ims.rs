@@ -19,7 +19,6 @@ use crate::io::ims::read_ims_features;
 use crate::io::ims_life::live_snapshots;
 use serde::Serialize;
 use std::path::Path;
-use wearsim_core::wear::{LifeConfig, Material};
 
 /// Snapshots above the band in a row that make an onset.
 pub const PERSIST: usize = 3;
@@ -155,17 +154,9 @@ fn simulate(
     expected: f64,
 ) -> Result<(super::LifeResult, LifeRun), String> {
     let model = wearsim_core::presets::by_name("ims-za2115").ok_or("preset ims-za2115 missing")?;
-    let material = Material {
-        life_factor,
-        ..Material::BEARING_STEEL
-    };
     let spec = LifeSpec {
         model,
-        life: LifeConfig {
-            material,
-            cycle_cap: 1e13,
-            ..LifeConfig::DEFAULT
-        },
+        life: super::calibrate::steel_life(life_factor),
         seed,
         snapshot_every: (expected * every_fraction).max(1000.0),
         window: 0.25,

@@ -45,7 +45,7 @@ use crate::io::ims_life::live_snapshots;
 use serde::Serialize;
 use std::path::Path;
 use wearsim_core::forces::defect::DefectLocation;
-use wearsim_core::wear::{LifeConfig, LifeState, Material, Site, Stage};
+use wearsim_core::wear::{LifeState, Site, Stage};
 
 /// An interval longer than this many median intervals is a stop of the rig (counted as
 /// one median interval of running time).
@@ -279,14 +279,7 @@ pub fn simulate(
     }
     let spec = LifeSpec {
         model,
-        life: LifeConfig {
-            material: Material {
-                life_factor,
-                ..Material::BEARING_STEEL
-            },
-            cycle_cap: 1e13,
-            ..LifeConfig::DEFAULT
-        },
+        life: crate::life::calibrate::steel_life(life_factor),
         seed,
         snapshot_every: (expected / SIM_SNAPSHOTS).max(1000.0),
         window: 0.25,

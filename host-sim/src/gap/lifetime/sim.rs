@@ -13,7 +13,7 @@ use crate::life::{LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
 use wearsim_core::effects::Effects;
-use wearsim_core::wear::{LifeConfig, Material};
+use wearsim_core::wear::LifeConfig;
 
 /// Window schedule of a simulated life, as fractions of the expected life: blocks of
 /// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
@@ -62,14 +62,7 @@ impl LifeSim {
         Ok(LifeSim {
             model,
             window_samples: rig.window_samples,
-            life: LifeConfig {
-                material: Material {
-                    life_factor,
-                    ..Material::BEARING_STEEL
-                },
-                cycle_cap: 1e13,
-                ..LifeConfig::DEFAULT
-            },
+            life: crate::life::calibrate::steel_life(life_factor),
             seed,
             expected_revs,
             memo: Memo::new(CACHE),
