@@ -43,6 +43,18 @@ pub struct CwruBenchmarkArgs {
     /// times faster).
     #[arg(long)]
     pub no_variants: bool,
+    /// Experiment: run the method with the squared envelope ([`Method::squared_envelope`])
+    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    #[arg(long)]
+    pub squared_envelope: bool,
+    /// Experiment: choose the band by the evidence margin ([`crate::analyze::BandRule::Evidence`])
+    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    #[arg(long)]
+    pub evidence_band: bool,
+    /// Experiment: choose the band by the protrugram
+    /// ([`crate::analyze::BandRule::Protrugram`]) instead of the default.
+    #[arg(long, conflicts_with = "evidence_band")]
+    pub protrugram_band: bool,
 }
 
 /// Part of the CWRU data a record belongs to (see [`part_of`]).

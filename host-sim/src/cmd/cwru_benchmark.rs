@@ -1,7 +1,7 @@
 //! `wearsim cwru-benchmark`: diagnose every CWRU 12 kHz drive-end record, print the
 //! confusion matrix (or `--json`), write Markdown.
 
-use crate::analyze::Method;
+use crate::analyze::{BandRule, Method};
 use crate::cmd::args::CliError;
 use crate::cwru_benchmark::{print_report, run_benchmark, to_markdown, CwruBenchmarkArgs};
 
@@ -20,8 +20,15 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
             }
         },
     };
-    let report =
-        run_benchmark(&dir, &Method::default(), !args.no_variants).map_err(CliError::input)?;
+    let mut method = Method::default();
+    method.squared_envelope |= args.squared_envelope;
+    if args.evidence_band {
+        method.band_rule = BandRule::Evidence;
+    }
+    if args.protrugram_band {
+        method.band_rule = BandRule::Protrugram;
+    }
+    let report = run_benchmark(&dir, &method, !args.no_variants).map_err(CliError::input)?;
     if let Some(md) = &args.markdown {
         std::fs::write(md, to_markdown(&report))
             .map_err(|e| CliError::run(format!("{}: cannot write: {e}", md.display())))?;
