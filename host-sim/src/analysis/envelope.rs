@@ -143,7 +143,9 @@ mod tests {
         let band = (1500.0, 2500.0);
         let spec = rfft(&x, 0.0);
         let plain = envelope_spectrum_of_spectrum(&spec, n, fs, band, false).unwrap();
-        assert_eq!(plain, envelope_spectrum(&x, fs, Some(band)).unwrap());
+        let direct = envelope_spectrum(&x, fs, Some(band)).unwrap();
+        assert_eq!(plain.df, direct.df);
+        assert_eq!(plain.values, direct.values);
         let sq = envelope_spectrum_of_spectrum(&spec, n, fs, band, true).unwrap();
         let e2: Vec<f64> = env.iter().map(|v| v * v).collect();
         let m = e2.iter().sum::<f64>() / n as f64;
