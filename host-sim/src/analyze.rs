@@ -113,10 +113,12 @@ pub struct Method {
     /// Demodulate in the band chosen by the kurtogram (default true); false: in the whole
     /// admissible band above the fault zone (`top`..fs/2), as a plain envelope analysis.
     pub kurtogram_band: bool,
-    /// Deepest fast-kurtogram level (default 6). The level actually used is the shallowest
-    /// whose narrowest band is at most `min_band_factor × top` Hz wide (so the admissible
-    /// bands are the same in Hz at every sample rate), and never deeper than this or than
-    /// the record supports.
+    /// Bounds the candidate-band grid (default 6): at most `2 × max_level` band widths, the
+    /// narrowest kept. The grid is fixed in Hz
+    /// ([`analysis::kurtogram::hz_grid_kurtogram`]: widths 1000 or 1500 Hz × 2^k, cells at
+    /// multiples of the width), its widths at least `min_band_factor × top` Hz and wide
+    /// enough for 32 envelope samples, so the same record sees the same candidate bands at
+    /// every sample rate.
     pub max_level: usize,
     /// Narrowest admissible demodulation band, as a multiple of the highest fault harmonic
     /// searched (`top = harmonics × max(BPFI, 2×BSF)`), so that the envelope can hold every
@@ -197,6 +199,10 @@ pub struct KurtogramSummary {
     pub max_level: usize,
     /// Narrowest admissible band width, Hz (see [`Method::min_band_factor`]).
     pub min_band_hz: f64,
+    /// Upper limit of the candidate bands, Hz: the lowest of the record's content edge
+    /// (`analysis::kurtogram::content_edge_hz`), its Nyquist frequency and
+    /// `analysis::kurtogram::MAX_BAND_HZ` (20 kHz).
+    pub span_hz: f64,
     /// Chosen demodulation band `(lo, hi)`, Hz: the admissible band of largest kurtosis.
     pub band_hz: (f64, f64),
     /// Kurtosis of the complex envelope in that band (0 for Gaussian noise).
@@ -339,8 +345,7 @@ fn prewhiten_spectrum(mut spec: Vec<Complex<f64>>, n: usize) -> Vec<f64> {
 
 /// Band edges `(lo, hi)` Hz of cell `i` of kurtogram row `r`.
 pub fn kurtogram_band(kg: &Kurtogram, r: usize, i: usize) -> (f64, f64) {
-    let nb = kg.grid.get(r).map_or(1, Vec::len).max(1);
-    let w = kg.fs / 2.0 / nb as f64;
+    let w = kg.row_width_hz.get(r).copied().unwrap_or(kg.fs / 2.0);
     (i as f64 * w, (i + 1) as f64 * w)
 }
 
@@ -363,38 +368,38 @@ pub fn analyze_signal(
     };
     let x = normalised.as_slice();
     let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
-    let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
-    // Shallowest level whose narrowest band is no wider than the narrowest admissible band
-    // (a physical width in Hz, the same at every sample rate), capped by `max_level` and by
-    // what the record supports (32 envelope samples in the narrowest band).
-    let mut level = 1usize;
-    while level < method.max_level.clamp(1, 16) && fs / 2.0 / (1u64 << level) as f64 > min_band_hz {
-        level += 1;
-    }
-    while level > 1 && (32usize << (level + 1)) > x.len() {
-        level -= 1;
-    }
-    // Spectral kurtosis of the raw record says where the impulses dominate (Antoni 2007).
-    let (kg, spec) = analysis::kurtogram::fast_kurtogram_and_spectrum(x, fs, level)?;
-    // Cepstral pre-whitening from the same spectrum of the mean-removed record (the
-    // kurtogram has checked the record: finite, not constant, long enough).
-    let white;
-    let y: &[f64] = if method.prewhiten {
-        white = prewhiten_spectrum(spec, x.len());
-        &white
-    } else {
-        x
-    };
+    analysis::error::check_signal(x, 128, "kurtogram")?;
+    analysis::kurtogram::check_not_constant(x)?;
+    let spec = analysis::fft::rfft(x, analysis::stats::mean(x));
+    // Candidate bands on a grid fixed in Hz (issue 12: cells in fractions of fs/2 moved with
+    // the sample rate and so changed the call of a record resampled with no new content),
+    // up to where the record holds content, its Nyquist frequency and `MAX_BAND_HZ`.
+    let span = analysis::kurtogram::content_edge_hz(&spec, x.len(), fs)
+        .min(fs / 2.0)
+        .min(analysis::kurtogram::MAX_BAND_HZ);
+    let min_band_hz = (method.min_band_factor * top).min(span);
+    // The narrowest cells need 32 envelope samples (32 / duration Hz wide).
+    let min_width = min_band_hz.max(32.0 * fs / x.len() as f64);
+    let kg = analysis::kurtogram::hz_grid_kurtogram(
+        &spec,
+        x.len(),
+        fs,
+        min_width,
+        span,
+        2 * method.max_level.clamp(1, 16),
+    )?;
+    let level = kg.levels;
+    let lowest = top.min(span - min_band_hz).max(0.0);
     let mut admissible: Vec<(f64, usize, usize)> = Vec::new();
     let mut best: Option<(f64, usize, usize)> = None;
     for (r, row) in kg.grid.iter().enumerate() {
-        let width = fs / 2.0 / row.len().max(1) as f64;
+        let width = kg.row_width_hz[r];
         if width + 1e-9 < min_band_hz {
             continue;
         }
         for (i, &k) in row.iter().enumerate() {
             // The carrier band must lie above the fault harmonics it is to reveal.
-            if (i as f64) * width + 1e-9 < top.min(fs / 2.0 - min_band_hz) {
+            if (i as f64) * width + 1e-9 < lowest {
                 continue;
             }
             admissible.push((k, r, i));
@@ -403,7 +408,23 @@ pub fn analyze_signal(
             }
         }
     }
-    let (mut kurtosis, mut r, mut i) = best.unwrap_or((kg.grid[0][0], 0, 0));
+    // No grid cell fits above the fault zone: the band (lowest, span), as without the kurtogram.
+    let fallback = best.is_none();
+    let fallback_kurtosis = if fallback {
+        analysis::kurtogram::band_kurtosis(&spec, x.len(), fs, (lowest, span))
+    } else {
+        0.0
+    };
+    // Cepstral pre-whitening from the same spectrum of the mean-removed record (the
+    // record has been checked: finite, not constant, long enough).
+    let white;
+    let y: &[f64] = if method.prewhiten {
+        white = prewhiten_spectrum(spec, x.len());
+        &white
+    } else {
+        x
+    };
+    let (mut kurtosis, mut r, mut i) = best.unwrap_or((0.0, 0, 0));
     // One forward FFT of the record to be demodulated, shared by every band tried.
     let yspec = analysis::fft::rfft(y, 0.0);
     let env_of = |band: (f64, f64)| {
@@ -443,17 +464,25 @@ pub fn analyze_signal(
             (kurtosis, r, i) = (k, rr, ii);
         }
     }
-    let band = if method.kurtogram_band {
+    let band = if method.kurtogram_band && !fallback {
         kurtogram_band(&kg, r, i)
     } else {
-        (top.min(fs / 2.0 - min_band_hz), fs / 2.0)
+        (lowest, span)
     };
+    if fallback {
+        kurtosis = fallback_kurtosis;
+    }
     let summary = KurtogramSummary {
         max_level: level,
         min_band_hz,
         band_hz: band,
         kurtosis,
-        level: kg.level_values.get(r).copied().unwrap_or(0.0),
+        level: if fallback {
+            (fs / 2.0 / (band.1 - band.0).max(1e-9)).log2()
+        } else {
+            kg.level_values.get(r).copied().unwrap_or(0.0)
+        },
+        span_hz: span,
         unrestricted_band_hz: kg.best_band,
         unrestricted_kurtosis: kg.best_kurtosis,
     };
