@@ -156,7 +156,7 @@ const CONTENT_FLOOR: f64 = 1e-8;
 /// where the content ends; otherwise `fs/2`. `spec`: one-sided spectrum of `n` samples.
 pub fn content_edge_hz(spec: &[Complex<f64>], n: usize, fs: f64) -> f64 {
     let nyquist = fs / 2.0;
-    if n < 2 || spec.is_empty() || !(fs > 0.0) {
+    if n < 2 || spec.is_empty() || fs.is_nan() || fs <= 0.0 {
         return nyquist.max(0.0);
     }
     let df = fs / n as f64;
@@ -177,7 +177,7 @@ pub fn content_edge_hz(spec: &[Complex<f64>], n: usize, fs: f64) -> f64 {
         .copied()
         .filter(|v| v.is_finite())
         .fold(0.0, f64::max);
-    if !(peak > 0.0) {
+    if peak <= 0.0 {
         return nyquist;
     }
     match mean.iter().rposition(|&m| m >= CONTENT_FLOOR * peak) {
@@ -528,6 +528,77 @@ mod tests {
         assert!(spectral_kurtosis(&x, 1000.0, 2).is_err());
         assert!(spectral_kurtosis(&x[..100], 1000.0, 256).is_err());
         assert!(spectral_kurtosis(&[0.0; 500], 1000.0, 64).is_err());
+    }
+
+    #[test]
+    fn hz_grid_at_12_khz_is_the_fast_kurtograms_grid() -> Result<(), AnalysisError> {
+        let fs = 12_000.0;
+        let x = impulsive(fs, 48_000);
+        let old = fast_kurtogram(&x, fs, 3)?;
+        let spec = rfft(&x, mean(&x));
+        let kg = hz_grid_kurtogram(&spec, x.len(), fs, 1000.0, 6000.0, 12)?;
+        // The 4000 Hz row has one cell, (0, 4000), which is never admissible (it starts in
+        // the fault zone); every other row is a row of the fast kurtogram.
+        assert_eq!(
+            kg.row_width_hz,
+            [6000.0, 4000.0, 3000.0, 2000.0, 1500.0, 1000.0]
+        );
+        assert_eq!(kg.grid[1].len(), 1);
+        let mut compared = 0;
+        for (row, w) in kg.grid.iter().zip(&kg.row_width_hz) {
+            let Some(r) = old.row_width_hz.iter().position(|v| (v - w).abs() < 1e-9) else {
+                continue;
+            };
+            assert_eq!(row.len(), old.grid[r].len());
+            for (a, b) in row.iter().zip(&old.grid[r]) {
+                assert!((a - b).abs() < 1e-12, "{w} Hz: {a} {b}");
+            }
+            compared += 1;
+        }
+        assert_eq!(compared, 5);
+        Ok(())
+    }
+
+    #[test]
+    fn hz_grid_and_content_edge_do_not_move_with_the_rate() -> Result<(), AnalysisError> {
+        let fs = 12_000.0;
+        let x = impulsive(fs, 48_000);
+        let spec = rfft(&x, mean(&x));
+        assert_eq!(content_edge_hz(&spec, x.len(), fs), 6000.0);
+        let kg = hz_grid_kurtogram(&spec, x.len(), fs, 1000.0, 6000.0, 12)?;
+        for rate in [25_600.0, 48_000.0, 97_656.25] {
+            let m = (x.len() as f64 * rate / fs).round() as usize;
+            let y = crate::cwru_benchmark::resample_fft(&x, m);
+            let sy = rfft(&y, mean(&y));
+            // Nothing above 6 kHz: the content ends where the 12 kHz record's Nyquist was.
+            let edge = content_edge_hz(&sy, m, rate);
+            assert_eq!(edge, 6000.0, "at {rate} Hz");
+            let ky = hz_grid_kurtogram(&sy, m, rate, 1000.0, edge, 12)?;
+            assert_eq!(ky.row_width_hz, kg.row_width_hz, "at {rate} Hz");
+            assert_eq!(ky.best_band, kg.best_band, "at {rate} Hz");
+            for (r, (ra, rb)) in ky.grid.iter().zip(&kg.grid).enumerate() {
+                let w = kg.row_width_hz[r];
+                for (i, (a, b)) in ra.iter().zip(rb).enumerate() {
+                    // Cells ending at 6 kHz lose the 12 kHz record's Nyquist bin, which the
+                    // resampling drops (measured: up to 0.055 on kurtoses of 0.1-2.5).
+                    let tol = if ((i + 1) as f64 * w - 6000.0).abs() < 1e-9 {
+                        0.1
+                    } else {
+                        1e-9 * (1.0 + b.abs())
+                    };
+                    assert!(
+                        (a - b).abs() < tol,
+                        "at {rate} Hz, {w} Hz cell {i}: {a} {b}"
+                    );
+                }
+            }
+        }
+        // No width fits: an empty grid, not an error; bad spectra are errors.
+        let empty = hz_grid_kurtogram(&spec, x.len(), fs, 5000.0, 5500.0, 12)?;
+        assert!(empty.grid.is_empty() && empty.best_kurtosis == 0.0);
+        assert!(hz_grid_kurtogram(&spec[1..], x.len(), fs, 1000.0, 6000.0, 12).is_err());
+        assert!(hz_grid_kurtogram(&spec, x.len(), fs, f64::NAN, 6000.0, 12).is_err());
+        Ok(())
     }
 
     proptest! {
