@@ -195,7 +195,8 @@ impl Default for Method {
 /// Summary of the fast kurtogram.
 #[derive(Debug, Clone, Serialize)]
 pub struct KurtogramSummary {
-    /// Deepest level computed.
+    /// Depth of the grid: `ceil(log2(fs/2 / narrowest cell width))` (a label; the cells
+    /// are fixed in Hz, see [`analysis::kurtogram::hz_grid_kurtogram`]).
     pub max_level: usize,
     /// Narrowest admissible band width, Hz (see [`Method::min_band_factor`]).
     pub min_band_hz: f64,
@@ -207,7 +208,7 @@ pub struct KurtogramSummary {
     pub band_hz: (f64, f64),
     /// Kurtosis of the complex envelope in that band (0 for Gaussian noise).
     pub kurtosis: f64,
-    /// Level of the chosen band (log2 of the number of bands in its row).
+    /// Level of the chosen band, `log2(fs/2 / its width)` (a label, as `max_level`).
     pub level: f64,
     /// Band of largest kurtosis over the whole kurtogram (admissible or not), Hz.
     pub unrestricted_band_hz: (f64, f64),
