@@ -20,9 +20,8 @@
 //! One parameter set ([`Method::default`]) serves every record: nothing depends on a label.
 
 use crate::analysis::{
-    self, detect_fault, envelope_spectrum, welch_psd, zone_levels, DetectParams, FaultDiagnosis,
-    FaultFamily, FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window, ZoneBands,
-    ZoneLevels,
+    self, detect_fault, welch_psd, zone_levels, DetectParams, FaultDiagnosis, FaultFamily,
+    FaultFrequencies, Kurtogram, Spectrum, Stats, WelchParams, Window, ZoneBands, ZoneLevels,
 };
 use crate::io::{self, ReadOptions, Record};
 use crate::kinematics;
@@ -114,10 +113,12 @@ pub struct Method {
     /// Demodulate in the band chosen by the kurtogram (default true); false: in the whole
     /// admissible band above the fault zone (`top`..fs/2), as a plain envelope analysis.
     pub kurtogram_band: bool,
-    /// Deepest fast-kurtogram level (default 6). The level actually used is the shallowest
-    /// whose narrowest band is at most `min_band_factor × top` Hz wide (so the admissible
-    /// bands are the same in Hz at every sample rate), and never deeper than this or than
-    /// the record supports.
+    /// Bounds the candidate-band grid (default 6): at most `2 × max_level` band widths, the
+    /// narrowest kept. The grid is fixed in Hz
+    /// ([`analysis::kurtogram::hz_grid_kurtogram`]: widths 1000 or 1500 Hz × 2^k, cells at
+    /// multiples of the width), its widths at least `min_band_factor × top` Hz and wide
+    /// enough for 32 envelope samples, so the same record sees the same candidate bands at
+    /// every sample rate.
     pub max_level: usize,
     /// Narrowest admissible demodulation band, as a multiple of the highest fault harmonic
     /// searched (`top = harmonics × max(BPFI, 2×BSF)`), so that the envelope can hold every
@@ -125,8 +126,56 @@ pub struct Method {
     /// above `top` (the carrier lies above the fault-frequency zone it modulates), unless the
     /// record's bandwidth leaves no room for that.
     pub min_band_factor: f64,
+    /// Envelope of the demodulated band: `false` (default) the envelope `|analytic signal|`,
+    /// `true` the squared envelope (Randall & Antoni 2011, section 3.2).
+    pub squared_envelope: bool,
+    /// How the demodulation band is chosen among the admissible kurtogram cells (default
+    /// [`BandRule::Kurtosis`]).
+    pub band_rule: BandRule,
     /// Detector thresholds ([`DetectParams::default`]).
     pub detect: DetectParams,
+}
+
+/// Rule choosing the demodulation band among the admissible cells of the fast kurtogram
+/// (the same cells, in Hz, at every sample rate; see [`Method::min_band_factor`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum BandRule {
+    /// The cell of largest spectral kurtosis (Antoni 2007, fast kurtogram).
+    Kurtosis,
+    /// The cell whose envelope spectrum gives the leading fault family the largest evidence
+    /// margin (the target-frequency band selection of the envelope-spectrum "gram" methods:
+    /// Barszcz & Jabłoński 2011, protrugram, MSSP 25; Smith, Borghesani, Ni, Wang & Peng 2019,
+    /// "Optimal demodulation-band selection for envelope-based diagnostics", MSSP 134);
+    /// the kurtosis cell when no cell has a leading family.
+    Evidence,
+    /// The cell whose envelope spectrum is the most peaky over the searched fault-frequency
+    /// range `(0, top × (1 + slip)]` Hz: the largest kurtosis of the envelope-spectrum
+    /// amplitudes there (the protrugram, Barszcz & Jabłoński 2011, MSSP 25), which favours
+    /// bands with discrete envelope lines without looking at which family they belong to.
+    Protrugram,
+}
+
+/// Pearson kurtosis (Gaussian 3) of the envelope-spectrum amplitudes of `env` in
+/// `(0, hi]` Hz; 0 with fewer than 4 values or a constant spectrum.
+fn spectrum_kurtosis(env: &analysis::Spectrum, hi: f64) -> f64 {
+    if env.df <= 0.0 || !hi.is_finite() {
+        return 0.0;
+    }
+    let k1 = ((hi / env.df).floor() as usize).min(env.values.len().saturating_sub(1));
+    let v = env.values.get(1..=k1).unwrap_or(&[]);
+    if v.len() < 4 {
+        return 0.0;
+    }
+    let (m, sd) = analysis::stats::mean_std(v);
+    if sd.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return 0.0;
+    }
+    let k = v.iter().map(|x| ((x - m) / sd).powi(4)).sum::<f64>() / v.len() as f64;
+    if k.is_finite() {
+        k
+    } else {
+        0.0
+    }
 }
 
 impl Default for Method {
@@ -136,6 +185,8 @@ impl Default for Method {
             kurtogram_band: true,
             max_level: 6,
             min_band_factor: 1.2,
+            squared_envelope: false,
+            band_rule: BandRule::Kurtosis,
             detect: DetectParams::default(),
         }
     }
@@ -144,15 +195,20 @@ impl Default for Method {
 /// Summary of the fast kurtogram.
 #[derive(Debug, Clone, Serialize)]
 pub struct KurtogramSummary {
-    /// Deepest level computed.
+    /// Depth of the grid: `ceil(log2(fs/2 / narrowest cell width))` (a label; the cells
+    /// are fixed in Hz, see [`analysis::kurtogram::hz_grid_kurtogram`]).
     pub max_level: usize,
     /// Narrowest admissible band width, Hz (see [`Method::min_band_factor`]).
     pub min_band_hz: f64,
+    /// Upper limit of the candidate bands, Hz: the lowest of the record's content edge
+    /// (`analysis::kurtogram::content_edge_hz`), its Nyquist frequency and
+    /// `analysis::kurtogram::MAX_BAND_HZ` (20 kHz).
+    pub span_hz: f64,
     /// Chosen demodulation band `(lo, hi)`, Hz: the admissible band of largest kurtosis.
     pub band_hz: (f64, f64),
     /// Kurtosis of the complex envelope in that band (0 for Gaussian noise).
     pub kurtosis: f64,
-    /// Level of the chosen band (log2 of the number of bands in its row).
+    /// Level of the chosen band, `log2(fs/2 / its width)` (a label, as `max_level`).
     pub level: f64,
     /// Band of largest kurtosis over the whole kurtogram (admissible or not), Hz.
     pub unrestricted_band_hz: (f64, f64),
@@ -290,8 +346,7 @@ fn prewhiten_spectrum(mut spec: Vec<Complex<f64>>, n: usize) -> Vec<f64> {
 
 /// Band edges `(lo, hi)` Hz of cell `i` of kurtogram row `r`.
 pub fn kurtogram_band(kg: &Kurtogram, r: usize, i: usize) -> (f64, f64) {
-    let nb = kg.grid.get(r).map_or(1, Vec::len).max(1);
-    let w = kg.fs / 2.0 / nb as f64;
+    let w = kg.row_width_hz.get(r).copied().unwrap_or(kg.fs / 2.0);
     (i as f64 * w, (i + 1) as f64 * w)
 }
 
@@ -314,21 +369,55 @@ pub fn analyze_signal(
     };
     let x = normalised.as_slice();
     let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
-    let min_band_hz = (method.min_band_factor * top).min(fs / 2.0);
-    // Shallowest level whose narrowest band is no wider than the narrowest admissible band
-    // (a physical width in Hz, the same at every sample rate), capped by `max_level` and by
-    // what the record supports (32 envelope samples in the narrowest band).
-    let mut level = 1usize;
-    while level < method.max_level.clamp(1, 16) && fs / 2.0 / (1u64 << level) as f64 > min_band_hz {
-        level += 1;
+    analysis::error::check_signal(x, 128, "kurtogram")?;
+    analysis::kurtogram::check_not_constant(x)?;
+    let spec = analysis::fft::rfft(x, analysis::stats::mean(x));
+    // Candidate bands on a grid fixed in Hz (issue 12: cells in fractions of fs/2 moved with
+    // the sample rate and so changed the call of a record resampled with no new content),
+    // up to where the record holds content, its Nyquist frequency and `MAX_BAND_HZ`.
+    let span = analysis::kurtogram::content_edge_hz(&spec, x.len(), fs)
+        .min(fs / 2.0)
+        .min(analysis::kurtogram::MAX_BAND_HZ);
+    let min_band_hz = (method.min_band_factor * top).min(span);
+    // The narrowest cells need 32 envelope samples (32 / duration Hz wide).
+    let min_width = min_band_hz.max(32.0 * fs / x.len() as f64);
+    let kg = analysis::kurtogram::hz_grid_kurtogram(
+        &spec,
+        x.len(),
+        fs,
+        min_width,
+        span,
+        2 * method.max_level.clamp(1, 16),
+    )?;
+    let level = kg.levels;
+    let lowest = top.min(span - min_band_hz).max(0.0);
+    let mut admissible: Vec<(f64, usize, usize)> = Vec::new();
+    let mut best: Option<(f64, usize, usize)> = None;
+    for (r, row) in kg.grid.iter().enumerate() {
+        let width = kg.row_width_hz[r];
+        if width + 1e-9 < min_band_hz {
+            continue;
+        }
+        for (i, &k) in row.iter().enumerate() {
+            // The carrier band must lie above the fault harmonics it is to reveal.
+            if (i as f64) * width + 1e-9 < lowest {
+                continue;
+            }
+            admissible.push((k, r, i));
+            if best.is_none_or(|b| k > b.0) {
+                best = Some((k, r, i));
+            }
+        }
     }
-    while level > 1 && (32usize << (level + 1)) > x.len() {
-        level -= 1;
-    }
-    // Spectral kurtosis of the raw record says where the impulses dominate (Antoni 2007).
-    let (kg, spec) = analysis::kurtogram::fast_kurtogram_and_spectrum(x, fs, level)?;
+    // No grid cell fits above the fault zone: the band (lowest, span), as without the kurtogram.
+    let fallback = best.is_none();
+    let fallback_kurtosis = if fallback {
+        analysis::kurtogram::band_kurtosis(&spec, x.len(), fs, (lowest, span))
+    } else {
+        0.0
+    };
     // Cepstral pre-whitening from the same spectrum of the mean-removed record (the
-    // kurtogram has checked the record: finite, not constant, long enough).
+    // record has been checked: finite, not constant, long enough).
     let white;
     let y: &[f64] = if method.prewhiten {
         white = prewhiten_spectrum(spec, x.len());
@@ -336,38 +425,69 @@ pub fn analyze_signal(
     } else {
         x
     };
-    let mut best: Option<(f64, usize, usize)> = None;
-    for (r, row) in kg.grid.iter().enumerate() {
-        let width = fs / 2.0 / row.len().max(1) as f64;
-        if width + 1e-9 < min_band_hz {
-            continue;
+    let (mut kurtosis, mut r, mut i) = best.unwrap_or((0.0, 0, 0));
+    // One forward FFT of the record to be demodulated, shared by every band tried.
+    let yspec = analysis::fft::rfft(y, 0.0);
+    let env_of = |band: (f64, f64)| {
+        analysis::envelope::envelope_spectrum_of_spectrum(
+            &yspec,
+            y.len(),
+            fs,
+            band,
+            method.squared_envelope,
+        )
+    };
+    if method.kurtogram_band && method.band_rule == BandRule::Evidence {
+        // The cell whose envelope spectrum gives the leading family the largest margin.
+        let mut lead: Option<(f64, f64, usize, usize)> = None;
+        for &(k, rr, ii) in &admissible {
+            let d = detect_fault(&env_of(kurtogram_band(&kg, rr, ii))?, kin, &method.detect);
+            if d.candidate != FaultFamily::None
+                && lead.is_none_or(|l| d.margin_db > l.0 || (d.margin_db == l.0 && k > l.1))
+            {
+                lead = Some((d.margin_db, k, rr, ii));
+            }
         }
-        for (i, &k) in row.iter().enumerate() {
-            // The carrier band must lie above the fault harmonics it is to reveal.
-            if (i as f64) * width + 1e-9 < top.min(fs / 2.0 - min_band_hz) {
-                continue;
-            }
-            if best.is_none_or(|b| k > b.0) {
-                best = Some((k, r, i));
-            }
+        if let Some((_, k, rr, ii)) = lead {
+            (kurtosis, r, i) = (k, rr, ii);
         }
     }
-    let (kurtosis, r, i) = best.unwrap_or((kg.grid[0][0], 0, 0));
-    let band = if method.kurtogram_band {
+    if method.kurtogram_band && method.band_rule == BandRule::Protrugram {
+        let hi = top * (1.0 + method.detect.slip);
+        let mut peaky: Option<(f64, f64, usize, usize)> = None;
+        for &(k, rr, ii) in &admissible {
+            let p = spectrum_kurtosis(&env_of(kurtogram_band(&kg, rr, ii))?, hi);
+            if peaky.is_none_or(|l| p > l.0 || (p == l.0 && k > l.1)) {
+                peaky = Some((p, k, rr, ii));
+            }
+        }
+        if let Some((_, k, rr, ii)) = peaky {
+            (kurtosis, r, i) = (k, rr, ii);
+        }
+    }
+    let band = if method.kurtogram_band && !fallback {
         kurtogram_band(&kg, r, i)
     } else {
-        (top.min(fs / 2.0 - min_band_hz), fs / 2.0)
+        (lowest, span)
     };
+    if fallback {
+        kurtosis = fallback_kurtosis;
+    }
     let summary = KurtogramSummary {
         max_level: level,
         min_band_hz,
         band_hz: band,
         kurtosis,
-        level: kg.level_values.get(r).copied().unwrap_or(0.0),
+        level: if fallback {
+            (fs / 2.0 / (band.1 - band.0).max(1e-9)).log2()
+        } else {
+            kg.level_values.get(r).copied().unwrap_or(0.0)
+        },
+        span_hz: span,
         unrestricted_band_hz: kg.best_band,
         unrestricted_kurtosis: kg.best_kurtosis,
     };
-    let env = envelope_spectrum(y, fs, Some(band))?;
+    let env = env_of(band)?;
     let diagnosis = detect_fault(&env, kin, &method.detect);
     let spectrum = analysis::amplitude_spectrum(raw, fs, Window::Hann)?;
     let zones = zones(raw, fs, kin);
@@ -747,4 +867,106 @@ pub fn short_name(path: &Path) -> String {
     path.file_name()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| path.display().to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::synth::gaussian_noise;
+    use std::f64::consts::PI;
+
+    const FS: f64 = 12_000.0;
+
+    /// CWRU drive-end bearing (SKF 6205) at 1797 rpm, Hz.
+    fn cwru() -> FaultFrequencies {
+        FaultFrequencies {
+            shaft_hz: 29.95,
+            ftf: 11.93,
+            bpfo: 107.36,
+            bpfi: 162.19,
+            bsf: 70.58,
+            natural_hz: 3000.0,
+        }
+    }
+
+    /// Outer-race fault record: impulses at BPFO with 1 % random slip between impacts
+    /// (uniform, Randall & Antoni 2011 report 1-2 %; a jitter-free train would be a purely
+    /// periodic signal, which cepstral pre-whitening flattens away with the machine lines),
+    /// each ringing a 3.5 kHz resonance (damping 0.05), in white noise of sigma 0.3.
+    fn outer_race_record(n: usize) -> Vec<f64> {
+        let mut x = gaussian_noise(n, 0.3, 7);
+        let (wn, zeta) = (2.0 * PI * 3500.0, 0.05);
+        let ring = ((9.2 / (zeta * wn)) * FS).ceil() as usize + 1;
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut t = 0.0;
+        while t * FS < n as f64 {
+            let first = (t * FS).ceil() as usize;
+            for (i, xi) in x.iter_mut().enumerate().skip(first).take(ring) {
+                let dt = i as f64 / FS - t;
+                *xi += (-zeta * wn * dt).exp() * (wn * dt).sin();
+            }
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let u = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            t += (1.0 + 0.02 * u) / cwru().bpfo;
+        }
+        x
+    }
+
+    #[test]
+    fn every_band_rule_keeps_to_admissible_cells() -> Result<(), analysis::AnalysisError> {
+        let ff = cwru();
+        let x = outer_race_record(48_000);
+        let base = Method::default();
+        let top = base.detect.harmonics as f64 * ff.bpfi.max(2.0 * ff.bsf);
+        let mut margins = Vec::new();
+        for rule in [BandRule::Kurtosis, BandRule::Evidence, BandRule::Protrugram] {
+            let a = analyze_signal(
+                &x,
+                FS,
+                &ff,
+                &Method {
+                    band_rule: rule,
+                    ..base
+                },
+            )?;
+            let (lo, hi) = a.kurtogram.band_hz;
+            // Above the searched fault zone and at least the narrowest admissible width.
+            assert!(
+                lo + 1e-9 >= top,
+                "{rule:?}: band {lo}-{hi} starts below {top} Hz"
+            );
+            assert!(
+                hi - lo + 1e-9 >= a.kurtogram.min_band_hz,
+                "{rule:?}: {lo}-{hi}"
+            );
+            assert_eq!(a.diagnosis.family, FaultFamily::OuterRace, "{rule:?}");
+            margins.push(a.diagnosis.margin_db);
+        }
+        // The evidence rule maximises the margin over the same cells the kurtosis rule
+        // chooses from, so it can never give less.
+        assert!(margins[1] + 1e-9 >= margins[0], "{margins:?}");
+        Ok(())
+    }
+    #[test]
+    fn noise_is_healthy_under_every_band_rule() -> Result<(), analysis::AnalysisError> {
+        let ff = cwru();
+        for seed in [11, 12] {
+            let x = gaussian_noise(48_000, 1.0, seed);
+            for rule in [BandRule::Kurtosis, BandRule::Evidence, BandRule::Protrugram] {
+                for squared_envelope in [false, true] {
+                    let m = Method {
+                        band_rule: rule,
+                        squared_envelope,
+                        ..Method::default()
+                    };
+                    let d = analyze_signal(&x, FS, &ff, &m)?.diagnosis;
+                    assert_eq!(d.family, FaultFamily::None, "seed {seed} {m:?}: {d:?}");
+                    assert!(d.confidence.is_finite() && d.margin_db.is_finite());
+                }
+            }
+        }
+        Ok(())
+    }
 }

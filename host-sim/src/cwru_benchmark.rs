@@ -43,6 +43,24 @@ pub struct CwruBenchmarkArgs {
     /// times faster).
     #[arg(long)]
     pub no_variants: bool,
+    /// Experiment: run the method with the squared envelope ([`Method::squared_envelope`])
+    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    #[arg(long)]
+    pub squared_envelope: bool,
+    /// Experiment: choose the band by the evidence margin ([`crate::analyze::BandRule::Evidence`])
+    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    #[arg(long)]
+    pub evidence_band: bool,
+    /// Experiment: choose the band by the protrugram
+    /// ([`crate::analyze::BandRule::Protrugram`]) instead of the default.
+    #[arg(long, conflicts_with = "evidence_band")]
+    pub protrugram_band: bool,
+    /// Experiment (issue 12, sample-rate invariance): resample every record, after its
+    /// decimation to 12 kHz, band-limited to this rate (Hz, 1000..=1e6; [`resample_fft`]:
+    /// nothing is added above 6 kHz) before the analysis; the call of each record should not
+    /// change.
+    #[arg(long, value_name = "HZ")]
+    pub resample: Option<f64>,
 }
 
 /// Part of the CWRU data a record belongs to (see [`part_of`]).
@@ -275,6 +293,36 @@ pub fn decimate_fft(x: &[f64], factor: usize) -> Vec<f64> {
     out
 }
 
+/// Band-limited resampling of `x` to `m` samples (ideal FFT interpolation or decimation:
+/// the spectrum is zero-padded or truncated, so nothing is added above the lower of the two
+/// Nyquist frequencies; the Nyquist bin of the lower rate is dropped), amplitude kept.
+/// Empty if `x` or `m` has fewer than 2 samples.
+pub fn resample_fft(x: &[f64], m: usize) -> Vec<f64> {
+    let n = x.len();
+    if n < 2 || m < 2 {
+        return Vec::new();
+    }
+    let mut planner = RealFftPlanner::<f64>::new();
+    let fwd = planner.plan_fft_forward(n);
+    let inv = planner.plan_fft_inverse(m);
+    let mut input = x.to_vec();
+    let mut spec = fwd.make_output_vec();
+    if fwd.process(&mut input, &mut spec).is_err() {
+        return Vec::new();
+    }
+    let mut big = inv.make_input_vec();
+    let keep = spec.len().min(big.len()) - 1;
+    big[..keep].copy_from_slice(&spec[..keep]);
+    big[0].im = 0.0;
+    let mut out = inv.make_output_vec();
+    if inv.process(&mut big, &mut out).is_err() {
+        return Vec::new();
+    }
+    let scale = 1.0 / n as f64;
+    out.iter_mut().for_each(|v| *v *= scale);
+    out
+}
+
 /// The CWRU folder of a data folder: `dir/cwru` if it exists, else `dir`.
 pub fn cwru_dir(dir: &Path) -> PathBuf {
     let sub = dir.join("cwru");
@@ -291,6 +339,7 @@ fn analyse_file(
     label: &CwruLabel,
     method: &Method,
     variants: bool,
+    resample: Option<f64>,
 ) -> Result<FileResult, String> {
     let name = crate::analyze::short_name(path);
     let part = part_of(label);
@@ -309,6 +358,14 @@ fn analyse_file(
         (decimate_fft(&rec.samples, factor), ANALYSIS_FS)
     } else {
         (rec.samples.clone(), rec.fs)
+    };
+    let (x, fs) = match resample {
+        Some(rate) if rate.is_finite() && (1e3..=1e6).contains(&rate) => {
+            let m = (x.len() as f64 * rate / fs).round() as usize;
+            (resample_fft(&x, m), rate)
+        }
+        Some(rate) => return Err(format!("{name}: resample rate {rate} Hz not in 1000..=1e6")),
+        None => (x, fs),
     };
     let a = analyze_signal(&x, fs, &kin, method).map_err(|e| format!("{name}: {e}"))?;
     let d = &a.diagnosis;
@@ -388,6 +445,18 @@ pub fn run_benchmark(
     method: &Method,
     variants: bool,
 ) -> Result<BenchmarkReport, String> {
+    run_benchmark_resampled(dir, method, variants, None)
+}
+
+/// [`run_benchmark`] with every record resampled band-limited to `resample` Hz (after its
+/// decimation to 12 kHz; [`resample_fft`]) before the analysis, when given: the
+/// sample-rate invariance experiment of issue 12.
+pub fn run_benchmark_resampled(
+    dir: &Path,
+    method: &Method,
+    variants: bool,
+    resample: Option<f64>,
+) -> Result<BenchmarkReport, String> {
     let cwru = cwru_dir(dir);
     let entries = std::fs::read_dir(&cwru)
         .map_err(|e| format!("{}: cannot list the folder: {e}", cwru.display()))?;
@@ -424,7 +493,7 @@ pub fn run_benchmark(
     let rows: Vec<FileResult> = files
         .iter()
         .map(|(p, label)| {
-            analyse_file(p, label, method, variants).unwrap_or_else(|error| FileResult {
+            analyse_file(p, label, method, variants, resample).unwrap_or_else(|error| FileResult {
                 file: crate::analyze::short_name(p),
                 record: label.record,
                 truth: truth(label),

@@ -84,3 +84,146 @@ fn cwru_held_out_figures_hold() -> Result<(), Box<dyn std::error::Error>> {
     );
     Ok(())
 }
+
+/// Why the OR014@6 drive-end bearing is missed (issue 12; development records 197 and 198,
+/// 0 and 1 hp, the only records of that bearing the method may be studied on): none of the
+/// file's three accelerometers (DE, FE, BA) shows an outer-race harmonic family. With the
+/// method's own chain and the 6205 geometry, at most one of the five BPFO harmonics clears
+/// the detector's threshold on any channel, no channel supports any call, and the raw record
+/// is not impulsive (kurtosis below 3.5, where a Gaussian record has 3 and the clearly
+/// diagnosed CWRU drive-end faults have 5 to 22). Fusing channels or demodulating elsewhere therefore cannot
+/// call these records outer race from evidence; if this test starts to fail, a change has
+/// made the detector find a family where there was none, or the data changed.
+#[test]
+fn or014_at_6_development_records_hold_no_outer_race_family_on_any_channel(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(dir) = wearsim_host::io::data_dir()? else {
+        eprintln!("skipping: CWRU data not found (set WEARSIM_DATA)");
+        return Ok(());
+    };
+    let cwru = dir.join("cwru");
+    if !cwru.is_dir() {
+        if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
+            return Err(format!("{} is missing", cwru.display()).into());
+        }
+        eprintln!("skipping: {} not found", cwru.display());
+        return Ok(());
+    }
+    for file in [
+        "12k_Drive_End_OR014@6_0_197.mat",
+        "12k_Drive_End_OR014@6_1_198.mat",
+    ] {
+        for channel in ["DE", "FE", "BA"] {
+            let rec = wearsim_host::io::read_cwru(cwru.join(file), channel, None)?;
+            let rpm = rec.rpm.ok_or("no rpm")?;
+            let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", rpm)?;
+            let a = wearsim_host::analyze::analyze_signal(
+                &rec.samples,
+                rec.fs,
+                &kin,
+                &Method::default(),
+            )?;
+            let outer = a
+                .diagnosis
+                .evidence
+                .iter()
+                .find(|e| e.family == FaultFamily::OuterRace)
+                .ok_or("no outer-race evidence")?;
+            assert!(
+                outer.found <= 1,
+                "{file} {channel}: {} BPFO harmonics found",
+                outer.found
+            );
+            assert_eq!(
+                a.diagnosis.family,
+                FaultFamily::None,
+                "{file} {channel}: a call without evidence"
+            );
+            assert!(
+                a.stats.kurtosis < 3.5,
+                "{file} {channel}: kurtosis {}",
+                a.stats.kurtosis
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Sample-rate invariance on measured records (issue 12): every development inner/outer-race
+/// record (drive end, 0-1 hp) and the normal baseline (48 kHz, decimated to 12 kHz as in the
+/// benchmark), resampled band-limited from 12 kHz to 25.6, 48 and 97.656 kHz (rates of the
+/// owner's other rigs; `cwru_benchmark::resample_fft`, nothing added above 6 kHz), keep the
+/// family they get at 12 kHz with a confidence within 0.05 of it. The simulated invariance
+/// test cannot show this: here the record's content stays below 6 kHz while the rate moves.
+/// With demodulation bands cut in fractions of fs/2 (before the grid fixed in Hz), evaluation
+/// record 200 (OR014@6, 3 hp) was called inner race at 25.6 and 97.656 kHz though `None` at
+/// 12 kHz; the evaluation records are judged with `wearsim cwru-benchmark --resample HZ`
+/// (docs/cwru-detector.md), not here.
+#[test]
+fn development_race_calls_survive_resampling() -> Result<(), Box<dyn std::error::Error>> {
+    let Some(dir) = wearsim_host::io::data_dir()? else {
+        eprintln!("skipping: CWRU data not found (set WEARSIM_DATA)");
+        return Ok(());
+    };
+    let cwru = dir.join("cwru");
+    if !cwru.is_dir() {
+        if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
+            return Err(format!("{} is missing", cwru.display()).into());
+        }
+        eprintln!("skipping: {} not found", cwru.display());
+        return Ok(());
+    }
+    let (mut checked, mut baselines) = (0, 0);
+    let mut worst = 0.0f64;
+    for entry in std::fs::read_dir(&cwru)? {
+        let path = entry?.path();
+        let name = wearsim_host::analyze::short_name(&path);
+        let Some(label) = wearsim_host::io::parse_cwru_name(&name) else {
+            continue;
+        };
+        let race = matches!(
+            label.fault,
+            wearsim_host::io::mat::CwruFault::InnerRace
+                | wearsim_host::io::mat::CwruFault::OuterRace { .. }
+        );
+        let part = wearsim_host::cwru_benchmark::part_of(&label);
+        let baseline = part == Part::Baseline;
+        if !(baseline || race && part == Part::Development) {
+            continue;
+        }
+        let rec = wearsim_host::io::read_cwru(&path, "DE", None)?;
+        let factor = (rec.fs / 12_000.0).round() as usize;
+        let samples = wearsim_host::cwru_benchmark::decimate_fft(&rec.samples, factor);
+        let fs0 = rec.fs / factor as f64;
+        let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", rec.rpm.ok_or("no rpm")?)?;
+        let call = |x: &[f64], fs: f64| -> Result<(FaultFamily, f64), Box<dyn std::error::Error>> {
+            let d =
+                wearsim_host::analyze::analyze_signal(x, fs, &kin, &Method::default())?.diagnosis;
+            Ok((d.family, d.confidence))
+        };
+        let (reference, confidence) = call(&samples, fs0)?;
+        if baseline {
+            assert_eq!(reference, FaultFamily::None, "{name} at {fs0} Hz");
+        }
+        for fs in [25_600.0, 48_000.0, 97_656.25] {
+            let m = (samples.len() as f64 * fs / fs0).round() as usize;
+            let x = wearsim_host::cwru_benchmark::resample_fft(&samples, m);
+            let (got, c) = call(&x, fs)?;
+            assert_eq!(got, reference, "{name} at {fs} Hz");
+            assert!(
+                (c - confidence).abs() <= 0.05,
+                "{name} at {fs} Hz: confidence {c} against {confidence} at {fs0} Hz"
+            );
+            worst = worst.max((c - confidence).abs());
+        }
+        if baseline {
+            baselines += 1;
+        } else {
+            checked += 1;
+        }
+    }
+    eprintln!("largest confidence change over the rates: {worst:.4}");
+    assert_eq!(checked, 20, "expected the 20 development IR/OR records");
+    assert_eq!(baselines, 1, "expected the normal baseline");
+    Ok(())
+}

@@ -34,7 +34,7 @@ fn complex_kurtosis(c: &[Complex<f64>]) -> f64 {
 }
 
 /// Error unless `x` has at least two distinct values.
-fn check_not_constant(x: &[f64]) -> Result<(), AnalysisError> {
+pub(crate) fn check_not_constant(x: &[f64]) -> Result<(), AnalysisError> {
     if x.iter().all(|v| *v == x[0]) {
         Err(AnalysisError::Constant {
             value: x[0],
@@ -116,10 +116,170 @@ pub struct Kurtogram {
     /// (see `level_values`); row `r` splits (0, fs/2) into `grid[r].len()`
     /// equal bands, lowest frequency first.
     pub grid: Vec<Vec<f64>>,
-    /// Level of each row: 0, 1, log2 3 ≈ 1.6, 2, log2 6 ≈ 2.6, 3, ... `levels`.
+    /// Level of each row: 0, 1, log2 3 ≈ 1.6, 2, log2 6 ≈ 2.6, 3, ... `levels`
+    /// (`log2(fs/2 / row width)`; for [`hz_grid_kurtogram`] a label only).
     pub level_values: Vec<f64>,
+    /// Width of the cells of each row, Hz: cell `i` of row `r` is
+    /// `(i · row_width_hz[r], (i + 1) · row_width_hz[r])`.
+    pub row_width_hz: Vec<f64>,
+    /// Upper limit of the grid, Hz (`fs/2` for [`fast_kurtogram`]; see
+    /// [`hz_grid_kurtogram`]): no cell ends above it.
+    pub span_hz: f64,
     /// Sampling frequency, Hz.
     pub fs: f64,
+}
+
+/// Cell widths of the rate-independent grid are `GRID_BASE_HZ[j] · 2^k` Hz (any integer
+/// `k`): the 1/3-binary widths of Antoni's (2007) tree on (0, 6 kHz), i.e. the fast
+/// kurtogram of a 12 kHz record, on which the detector was fixed (and also that of 24, 48
+/// and 96 kHz records), but fixed in Hz instead of in fractions of `fs/2`.
+pub const GRID_BASE_HZ: [f64; 2] = [1000.0, 1500.0];
+
+/// Highest frequency a demodulation band may reach, Hz. General-purpose accelerometers
+/// are specified flat (±3 dB) up to about 10-20 kHz, with the mounted resonance and the
+/// acquisition's anti-alias roll-off above; the bearing resonances used in envelope
+/// analysis lie in the kHz range below that (Randall & Antoni 2011, MSSP 25, section 3).
+/// A record's cells next to its Nyquist frequency (e.g. 23-24 kHz at 48 kHz, where the
+/// CWRU baseline's FE channel shows a band kurtosis of 1484, an artefact) are so excluded.
+pub const MAX_BAND_HZ: f64 = 20_000.0;
+
+/// Width of the chunks in which [`content_edge_hz`] measures the spectrum, Hz.
+const CONTENT_CHUNK_HZ: f64 = 100.0;
+/// A chunk whose mean power is below this fraction of the largest chunk's (-80 dB) holds
+/// no content (e.g. above the original Nyquist frequency of a resampled record).
+const CONTENT_FLOOR: f64 = 1e-8;
+
+/// Upper edge, Hz, of the record's spectral content: the upper edge of the highest
+/// 100 Hz chunk (chunks aligned at 0 Hz, so the same edges at every sample rate) whose mean
+/// power `|X|²` is at least 1e-8 of the largest chunk's, capped at `fs/2`. For a record
+/// band-limited below `fs/2` (upsampled, or behind a steep anti-alias filter) this is
+/// where the content ends; otherwise `fs/2`. `spec`: one-sided spectrum of `n` samples.
+pub fn content_edge_hz(spec: &[Complex<f64>], n: usize, fs: f64) -> f64 {
+    let nyquist = fs / 2.0;
+    if n < 2 || spec.is_empty() || fs.is_nan() || fs <= 0.0 {
+        return nyquist.max(0.0);
+    }
+    let df = fs / n as f64;
+    let chunks = (nyquist / CONTENT_CHUNK_HZ).ceil().max(1.0) as usize;
+    let (mut sum, mut count) = (vec![0.0f64; chunks], vec![0usize; chunks]);
+    for (k, c) in spec.iter().enumerate().skip(1) {
+        let i = ((k as f64 * df / CONTENT_CHUNK_HZ) as usize).min(chunks - 1);
+        sum[i] += c.norm_sqr();
+        count[i] += 1;
+    }
+    let mean: Vec<f64> = sum
+        .iter()
+        .zip(&count)
+        .map(|(s, &c)| if c > 0 { s / c as f64 } else { 0.0 })
+        .collect();
+    let peak = mean
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    if peak <= 0.0 {
+        return nyquist;
+    }
+    match mean.iter().rposition(|&m| m >= CONTENT_FLOOR * peak) {
+        Some(i) => ((i + 1) as f64 * CONTENT_CHUNK_HZ).min(nyquist),
+        None => nyquist,
+    }
+}
+
+/// Kurtogram on a band grid fixed in Hz (issue 12: the same record at any sample rate
+/// sees the same candidate bands). Rows are the widths `w = GRID_BASE_HZ[j] · 2^k` with
+/// `min_width_hz <= w <= span_hz`, narrowest `max_rows` kept, in decreasing order of width
+/// (as the fast kurtogram's levels); row `r` holds the cells `(i·w, (i+1)·w)` that end at or
+/// below `span_hz` Hz. Each cell's kurtosis is that of its complex envelope, computed
+/// exactly as in [`fast_kurtogram`] (ideal FFT-domain band, decimated envelope) from
+/// `spec`, the one-sided spectrum of the mean-removed record of `n` samples at `fs` Hz.
+/// Cells with no FFT bin get kurtosis 0. `level_values[r] = log2(fs/2 / w)`.
+/// No width in `[min_width_hz, span_hz]` gives an empty grid (best band `(0, span)`,
+/// kurtosis 0). Errors: bad `fs`, `n < 2`, a `spec` of other than `n/2 + 1` bins,
+/// non-positive or non-finite `min_width_hz` or `span_hz`.
+pub fn hz_grid_kurtogram(
+    spec: &[Complex<f64>],
+    n: usize,
+    fs: f64,
+    min_width_hz: f64,
+    span_hz: f64,
+    max_rows: usize,
+) -> Result<Kurtogram, AnalysisError> {
+    check_fs(fs)?;
+    if n < 2 || spec.len() != n / 2 + 1 {
+        return Err(bad(
+            "spectrum length",
+            "n/2 + 1 bins of n >= 2 samples",
+            spec.len(),
+        ));
+    }
+    let nyquist = fs / 2.0;
+    let span = span_hz.min(nyquist);
+    if !(min_width_hz > 0.0 && min_width_hz.is_finite() && span > 0.0 && span.is_finite()) {
+        return Err(bad(
+            "band widths, Hz",
+            "0 < min width, span finite",
+            min_width_hz,
+        ));
+    }
+    // Every grid width in [min_width_hz, span], narrowest first.
+    let mut widths = Vec::new();
+    for base in GRID_BASE_HZ {
+        let mut w = base;
+        while w / 2.0 >= min_width_hz - 1e-9 {
+            w /= 2.0;
+        }
+        while w < min_width_hz - 1e-9 {
+            w *= 2.0;
+        }
+        while w <= span + 1e-9 {
+            widths.push(w);
+            w *= 2.0;
+        }
+    }
+    widths.sort_by(f64::total_cmp);
+    widths.truncate(max_rows.max(1));
+    widths.reverse();
+    let mut grid = Vec::with_capacity(widths.len());
+    let mut best = (f64::NEG_INFINITY, 0usize, 0usize);
+    for (r, &w) in widths.iter().enumerate() {
+        let cells = ((span + 1e-9) / w).floor() as usize;
+        let row: Vec<f64> = (0..cells)
+            .map(
+                |i| match band_bins((i as f64 * w, (i + 1) as f64 * w), fs, n) {
+                    Ok((k0, k1)) => {
+                        let m = k1 - k0 + 1;
+                        complex_kurtosis(&band_envelope(spec, n, k0, k1, fast_len(m)))
+                    }
+                    Err(_) => 0.0,
+                },
+            )
+            .collect();
+        for (i, &k) in row.iter().enumerate() {
+            if k > best.0 {
+                best = (k, r, i);
+            }
+        }
+        grid.push(row);
+    }
+    let (best_kurtosis, r, i) = best;
+    let w = widths.get(r).copied().unwrap_or(span);
+    let narrowest = widths.last().copied().unwrap_or(span);
+    Ok(Kurtogram {
+        levels: (nyquist / narrowest).log2().ceil().max(0.0) as usize,
+        best_band: (i as f64 * w, (i + 1) as f64 * w),
+        best_kurtosis: if best_kurtosis.is_finite() {
+            best_kurtosis
+        } else {
+            0.0
+        },
+        best_level: (nyquist / w).log2(),
+        level_values: widths.iter().map(|w| (nyquist / w).log2()).collect(),
+        row_width_hz: widths,
+        span_hz: span,
+        grid,
+        fs,
+    })
 }
 
 /// Fast kurtogram (Antoni 2007, "Fast computation of the kurtogram for the
@@ -199,9 +359,27 @@ pub(crate) fn fast_kurtogram_and_spectrum(
         best_level: (row_bands[r] as f64).log2(),
         grid,
         level_values: row_bands.iter().map(|&b| (b as f64).log2()).collect(),
+        row_width_hz: row_bands.iter().map(|&b| nyquist / b as f64).collect(),
+        span_hz: nyquist,
         fs,
     };
     Ok((kg, spec))
+}
+
+/// Kurtosis of the complex envelope of `band` (Hz) cut from `spec`, the one-sided spectrum
+/// of `n` samples at `fs` Hz, as in the kurtogram's cells; 0 if the band holds no bin.
+pub(crate) fn band_kurtosis(spec: &[Complex<f64>], n: usize, fs: f64, band: (f64, f64)) -> f64 {
+    match band_bins(band, fs, n) {
+        Ok((k0, k1)) if k1 < spec.len() => {
+            let k = complex_kurtosis(&band_envelope(spec, n, k0, k1, fast_len(k1 - k0 + 1)));
+            if k.is_finite() {
+                k
+            } else {
+                0.0
+            }
+        }
+        _ => 0.0,
+    }
 }
 
 /// Smallest `2^a 3^b 5^c >= m` (a length rustfft transforms quickly).
@@ -350,6 +528,77 @@ mod tests {
         assert!(spectral_kurtosis(&x, 1000.0, 2).is_err());
         assert!(spectral_kurtosis(&x[..100], 1000.0, 256).is_err());
         assert!(spectral_kurtosis(&[0.0; 500], 1000.0, 64).is_err());
+    }
+
+    #[test]
+    fn hz_grid_at_12_khz_is_the_fast_kurtograms_grid() -> Result<(), AnalysisError> {
+        let fs = 12_000.0;
+        let x = impulsive(fs, 48_000);
+        let old = fast_kurtogram(&x, fs, 3)?;
+        let spec = rfft(&x, mean(&x));
+        let kg = hz_grid_kurtogram(&spec, x.len(), fs, 1000.0, 6000.0, 12)?;
+        // The 4000 Hz row has one cell, (0, 4000), which is never admissible (it starts in
+        // the fault zone); every other row is a row of the fast kurtogram.
+        assert_eq!(
+            kg.row_width_hz,
+            [6000.0, 4000.0, 3000.0, 2000.0, 1500.0, 1000.0]
+        );
+        assert_eq!(kg.grid[1].len(), 1);
+        let mut compared = 0;
+        for (row, w) in kg.grid.iter().zip(&kg.row_width_hz) {
+            let Some(r) = old.row_width_hz.iter().position(|v| (v - w).abs() < 1e-9) else {
+                continue;
+            };
+            assert_eq!(row.len(), old.grid[r].len());
+            for (a, b) in row.iter().zip(&old.grid[r]) {
+                assert!((a - b).abs() < 1e-12, "{w} Hz: {a} {b}");
+            }
+            compared += 1;
+        }
+        assert_eq!(compared, 5);
+        Ok(())
+    }
+
+    #[test]
+    fn hz_grid_and_content_edge_do_not_move_with_the_rate() -> Result<(), AnalysisError> {
+        let fs = 12_000.0;
+        let x = impulsive(fs, 48_000);
+        let spec = rfft(&x, mean(&x));
+        assert_eq!(content_edge_hz(&spec, x.len(), fs), 6000.0);
+        let kg = hz_grid_kurtogram(&spec, x.len(), fs, 1000.0, 6000.0, 12)?;
+        for rate in [25_600.0, 48_000.0, 97_656.25] {
+            let m = (x.len() as f64 * rate / fs).round() as usize;
+            let y = crate::cwru_benchmark::resample_fft(&x, m);
+            let sy = rfft(&y, mean(&y));
+            // Nothing above 6 kHz: the content ends where the 12 kHz record's Nyquist was.
+            let edge = content_edge_hz(&sy, m, rate);
+            assert_eq!(edge, 6000.0, "at {rate} Hz");
+            let ky = hz_grid_kurtogram(&sy, m, rate, 1000.0, edge, 12)?;
+            assert_eq!(ky.row_width_hz, kg.row_width_hz, "at {rate} Hz");
+            assert_eq!(ky.best_band, kg.best_band, "at {rate} Hz");
+            for (r, (ra, rb)) in ky.grid.iter().zip(&kg.grid).enumerate() {
+                let w = kg.row_width_hz[r];
+                for (i, (a, b)) in ra.iter().zip(rb).enumerate() {
+                    // Cells ending at 6 kHz lose the 12 kHz record's Nyquist bin, which the
+                    // resampling drops (measured: up to 0.055 on kurtoses of 0.1-2.5).
+                    let tol = if ((i + 1) as f64 * w - 6000.0).abs() < 1e-9 {
+                        0.1
+                    } else {
+                        1e-9 * (1.0 + b.abs())
+                    };
+                    assert!(
+                        (a - b).abs() < tol,
+                        "at {rate} Hz, {w} Hz cell {i}: {a} {b}"
+                    );
+                }
+            }
+        }
+        // No width fits: an empty grid, not an error; bad spectra are errors.
+        let empty = hz_grid_kurtogram(&spec, x.len(), fs, 5000.0, 5500.0, 12)?;
+        assert!(empty.grid.is_empty() && empty.best_kurtosis == 0.0);
+        assert!(hz_grid_kurtogram(&spec[1..], x.len(), fs, 1000.0, 6000.0, 12).is_err());
+        assert!(hz_grid_kurtogram(&spec, x.len(), fs, f64::NAN, 6000.0, 12).is_err());
+        Ok(())
     }
 
     proptest! {

@@ -1,9 +1,11 @@
 //! `wearsim cwru-benchmark`: diagnose every CWRU 12 kHz drive-end record, print the
 //! confusion matrix (or `--json`), write Markdown.
 
-use crate::analyze::Method;
+use crate::analyze::{BandRule, Method};
 use crate::cmd::args::CliError;
-use crate::cwru_benchmark::{print_report, run_benchmark, to_markdown, CwruBenchmarkArgs};
+use crate::cwru_benchmark::{
+    print_report, run_benchmark_resampled, to_markdown, CwruBenchmarkArgs,
+};
 
 /// `wearsim cwru-benchmark`: locate the data, run, print (or `--json`), write Markdown.
 pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
@@ -20,8 +22,16 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
             }
         },
     };
-    let report =
-        run_benchmark(&dir, &Method::default(), !args.no_variants).map_err(CliError::input)?;
+    let mut method = Method::default();
+    method.squared_envelope |= args.squared_envelope;
+    if args.evidence_band {
+        method.band_rule = BandRule::Evidence;
+    }
+    if args.protrugram_band {
+        method.band_rule = BandRule::Protrugram;
+    }
+    let report = run_benchmark_resampled(&dir, &method, !args.no_variants, args.resample)
+        .map_err(CliError::input)?;
     if let Some(md) = &args.markdown {
         std::fs::write(md, to_markdown(&report))
             .map_err(|e| CliError::run(format!("{}: cannot write: {e}", md.display())))?;

@@ -415,7 +415,11 @@ fn draw_kurtogram<DB: DrawingBackend>(
         .draw())?;
     for (r, row) in kg.grid.iter().enumerate() {
         let y1 = (rows - r) as f64;
-        let w = nyq / row.len().max(1) as f64;
+        let w = kg
+            .row_width_hz
+            .get(r)
+            .copied()
+            .unwrap_or(nyq / row.len().max(1) as f64);
         e(chart.draw_series(row.iter().enumerate().map(|(i, &k)| {
             Rectangle::new(
                 [(i as f64 * w, y1 - 1.0), ((i + 1) as f64 * w, y1)],
