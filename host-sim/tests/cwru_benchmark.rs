@@ -17,6 +17,24 @@ const EVAL_CORRECT: usize = 18;
 /// Allowed regression, records (one record = 5 %).
 const EVAL_SLACK: usize = 1;
 
+/// The CWRU folder of the measured data, `None` (with a message) when it is missing
+/// outside CI; with `CI=true` a missing folder is an error.
+fn cwru_dir() -> Result<Option<std::path::PathBuf>, Box<dyn std::error::Error>> {
+    let Some(dir) = wearsim_host::io::data_dir()? else {
+        eprintln!("skipping: CWRU data not found (set WEARSIM_DATA)");
+        return Ok(None);
+    };
+    let cwru = dir.join("cwru");
+    if !cwru.is_dir() {
+        if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
+            return Err(format!("{} is missing", cwru.display()).into());
+        }
+        eprintln!("skipping: {} not found", cwru.display());
+        return Ok(None);
+    }
+    Ok(Some(cwru))
+}
+
 #[test]
 fn cwru_held_out_figures_hold() -> Result<(), Box<dyn std::error::Error>> {
     let Some(dir) = wearsim_host::io::data_dir()? else {
@@ -97,18 +115,9 @@ fn cwru_held_out_figures_hold() -> Result<(), Box<dyn std::error::Error>> {
 #[test]
 fn or014_at_6_development_records_hold_no_outer_race_family_on_any_channel(
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let Some(dir) = wearsim_host::io::data_dir()? else {
-        eprintln!("skipping: CWRU data not found (set WEARSIM_DATA)");
+    let Some(cwru) = cwru_dir()? else {
         return Ok(());
     };
-    let cwru = dir.join("cwru");
-    if !cwru.is_dir() {
-        if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
-            return Err(format!("{} is missing", cwru.display()).into());
-        }
-        eprintln!("skipping: {} not found", cwru.display());
-        return Ok(());
-    }
     for file in [
         "12k_Drive_End_OR014@6_0_197.mat",
         "12k_Drive_End_OR014@6_1_198.mat",
@@ -161,18 +170,9 @@ fn or014_at_6_development_records_hold_no_outer_race_family_on_any_channel(
 /// (docs/cwru-detector.md), not here.
 #[test]
 fn development_race_calls_survive_resampling() -> Result<(), Box<dyn std::error::Error>> {
-    let Some(dir) = wearsim_host::io::data_dir()? else {
-        eprintln!("skipping: CWRU data not found (set WEARSIM_DATA)");
+    let Some(cwru) = cwru_dir()? else {
         return Ok(());
     };
-    let cwru = dir.join("cwru");
-    if !cwru.is_dir() {
-        if std::env::var("CI").is_ok_and(|v| v == "true" || v == "1") {
-            return Err(format!("{} is missing", cwru.display()).into());
-        }
-        eprintln!("skipping: {} not found", cwru.display());
-        return Ok(());
-    }
     let (mut checked, mut baselines) = (0, 0);
     let mut worst = 0.0f64;
     for entry in std::fs::read_dir(&cwru)? {

@@ -245,15 +245,7 @@ pub fn hz_grid_kurtogram(
     for (r, &w) in widths.iter().enumerate() {
         let cells = ((span + 1e-9) / w).floor() as usize;
         let row: Vec<f64> = (0..cells)
-            .map(
-                |i| match band_bins((i as f64 * w, (i + 1) as f64 * w), fs, n) {
-                    Ok((k0, k1)) => {
-                        let m = k1 - k0 + 1;
-                        complex_kurtosis(&band_envelope(spec, n, k0, k1, fast_len(m)))
-                    }
-                    Err(_) => 0.0,
-                },
-            )
+            .map(|i| band_kurtosis(spec, n, fs, (i as f64 * w, (i + 1) as f64 * w)))
             .collect();
         for (i, &k) in row.iter().enumerate() {
             if k > best.0 {
@@ -334,13 +326,7 @@ pub(crate) fn fast_kurtogram_and_spectrum(
         let row: Vec<f64> = (0..nb)
             .map(|i| {
                 let band = (i as f64 * width, ((i + 1) as f64 * width).min(nyquist));
-                match band_bins(band, fs, n) {
-                    Ok((k0, k1)) => {
-                        let m = k1 - k0 + 1;
-                        complex_kurtosis(&band_envelope(&spec, n, k0, k1, fast_len(m)))
-                    }
-                    Err(_) => 0.0,
-                }
+                band_kurtosis(&spec, n, fs, band)
             })
             .collect();
         for (i, &k) in row.iter().enumerate() {
