@@ -247,11 +247,7 @@ pub fn hz_grid_kurtogram(
         let row: Vec<f64> = (0..cells)
             .map(|i| band_kurtosis(spec, n, fs, (i as f64 * w, (i + 1) as f64 * w)))
             .collect();
-        for (i, &k) in row.iter().enumerate() {
-            if k > best.0 {
-                best = (k, r, i);
-            }
-        }
+        best = best_cell(best, r, &row);
         grid.push(row);
     }
     let (best_kurtosis, r, i) = best;
@@ -329,11 +325,7 @@ pub(crate) fn fast_kurtogram_and_spectrum(
                 band_kurtosis(&spec, n, fs, band)
             })
             .collect();
-        for (i, &k) in row.iter().enumerate() {
-            if k > best.0 {
-                best = (k, r, i);
-            }
-        }
+        best = best_cell(best, r, &row);
         grid.push(row);
     }
     let (best_kurtosis, r, i) = best;
@@ -366,6 +358,17 @@ pub(crate) fn band_kurtosis(spec: &[Complex<f64>], n: usize, fs: f64, band: (f64
         }
         _ => 0.0,
     }
+}
+
+/// `best` (kurtosis, row, cell) updated with the cells of `row` (row index `r`): the first
+/// strictly larger kurtosis wins, as the grids scan.
+fn best_cell(mut best: (f64, usize, usize), r: usize, row: &[f64]) -> (f64, usize, usize) {
+    for (i, &k) in row.iter().enumerate() {
+        if k > best.0 {
+            best = (k, r, i);
+        }
+    }
+    best
 }
 
 /// Smallest `2^a 3^b 5^c >= m` (a length rustfft transforms quickly).
