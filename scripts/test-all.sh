@@ -7,7 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 
-step() { printf '\n== %s\n' "$*"; }
+start=$(date +%s)
+# Each step prints the minutes since the start, so a slow step shows in CI's log.
+step() { printf '\n== [%d min] %s\n' "$(( ($(date +%s) - start) / 60 ))" "$*"; }
 
 step "cargo fmt --check"
 cargo fmt --all -- --check
@@ -51,3 +53,4 @@ python3 python/examples/cwru_transfer.py --tiny --out "$(mktemp -d)/set"
 
 step "all tests"
 cargo test --workspace
+step "done"
