@@ -137,7 +137,7 @@ macro_rules! material_section {
 material_section! {
     youngs_modulus: f64, yield_strength: f64, hardness: f64, k_threshold: f64, crack_c0: f64,
     crack_m0: f64, life_exponent: f64, life_factor: f64, dent_fraction: f64, asperity_beta: f64,
-    initiation_passes: f64, overrolling: f64, abrasion: f64, spall_depth: f64, breakout_ratio: f64,
+    initiation_passes: f64, overrolling: f64, edge_shakedown_passes: f64, abrasion: f64, spall_depth: f64, breakout_ratio: f64,
     completed_length: f64, failure_defects: u8, propagation_passes: f64, debris_per_breakout: f64,
     debris_flush_passes: f64,
 }

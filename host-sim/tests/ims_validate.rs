@@ -7,7 +7,7 @@ use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
 use wearsim_host::life::ims::Curve;
 use wearsim_host::life::ims_validate::{
-    distance_db, medians, read_record, read_records, LifeFigures, RECORDS,
+    distance_db, medians, read_record, read_records, validate, FloorMode, LifeFigures, RECORDS,
 };
 
 #[test]
@@ -46,6 +46,56 @@ fn the_four_failed_lives_are_read_on_running_time() {
         let e = *by(id).curve.rms.last().unwrap();
         assert!((lo..hi).contains(&e), "{id}: end ratio {e}");
     }
+}
+
+/// The primary protocol (`wearsim ims-validate --primary-only`, seed 1): `life_factor`
+/// calibrated on IMS test 2 bearing 1, judged on the three other failed bearings (test 1
+/// bearings 3 and 4, test 3 bearing 3), each simulated on its own failure site, with the
+/// sensor reading the bearing alone. Asserted is the acceptance item the wear model meets
+/// (issue 14): the held-out median end-of-life ratio within a factor 2 of the measured
+/// ones. It failed by a factor 18 before fresh breakout edges shook down
+/// (`material.edge_shakedown_passes`) and before the simulated curve was read on the
+/// measurement's clock. The two items still missed are checked as what they are today,
+/// so a change that moves them shows: the held-out onset error below 0.2 of life and the
+/// trajectory distance below 7 dB RMS (acceptance: 0.1 and 3 dB; docs/ims-comparison.md).
+#[test]
+fn held_out_lives_end_within_a_factor_two_of_measured() {
+    let Some(data) = data_dir().expect("data folder required when CI=true") else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return;
+    };
+    let v = validate(&data, 1, false, FloorMode::None).unwrap();
+    let fold = &v.folds[0];
+    assert_eq!(fold.calibrated_on, "t2b1");
+    assert_eq!(fold.held_out.len(), 3);
+    for f in &fold.held_out {
+        eprintln!(
+            "{}: onset {:?} vs {:?}, end ratio {:.2} vs {:.2} (x{:.2}), distance {:.2} dB",
+            f.id,
+            f.onset_simulated,
+            f.onset_measured,
+            f.end_ratio_simulated,
+            f.end_ratio_measured,
+            f.end_ratio_factor,
+            f.distance_db_rms
+        );
+    }
+    let m = &fold.median;
+    assert!(
+        m.end_ratio_factor <= 2.0,
+        "held-out end ratio off by x{:.2}",
+        m.end_ratio_factor
+    );
+    assert!(
+        m.onset_error < 0.2,
+        "held-out onset error {:.3}",
+        m.onset_error
+    );
+    assert!(
+        m.distance_db_rms < 7.0,
+        "held-out distance {:.2} dB",
+        m.distance_db_rms
+    );
 }
 
 fn table(dir: &std::path::Path, rows: &[&str]) {

@@ -14,7 +14,7 @@ use crate::contact::{ElementContact, HertzContact};
 use crate::error::{check_range, ConfigError};
 use crate::forces::defect::ball_defect_max_length;
 use crate::kinematics::FaultOrders;
-use crate::real::{ln, pow, sqrt, Real, PI};
+use crate::real::{exp, ln, pow, sqrt, Real, PI};
 use crate::rng::Xoshiro128pp;
 use crate::topography::{self, Topography};
 
@@ -333,18 +333,29 @@ impl Life {
             // its floor and every step would stay too short to advance `cycles` (seen in
             // f32 on a 2.7 µm ball-spall edge floor: the life stalled). In f64 the
             // threshold (~10⁻²⁰ m) is far below any excess a step leaves.
-            let h_rate = if excess > 64.0 * Real::EPSILON * h {
-                let w_a = sigma0;
-                let omega = 1.12 * sqrt(w_a * p_mean) / m.youngs_modulus; // eq. 24 (relative)
+            // The asperity's excess over its floor decays by plastic flattening at the
+            // relative rate `h_decay` (per revolution) and loses `h_abr` (m per
+            // revolution) to abrasion: a breakout edge shakes down within
+            // `edge_shakedown_passes`, a dent's shoulder flattens by the over-rolling of
+            // eq. 24.
+            let (h_decay, h_abr) = if excess > 64.0 * Real::EPSILON * h {
                 let abr = if h > self.film() {
                     archard * (0.2 + interaction)
                 } else {
                     0.0
                 };
-                -n_p * (m.overrolling * excess * omega + abr)
+                let plastic = if st.stage.has_breakout_edge() {
+                    3.0 / m.edge_shakedown_passes
+                } else {
+                    let w_a = sigma0;
+                    let omega = 1.12 * sqrt(w_a * p_mean) / m.youngs_modulus; // eq. 24 (relative)
+                    m.overrolling * omega
+                };
+                (n_p * plastic, n_p * abr)
             } else {
-                0.0
+                (0.0, 0.0)
             };
+            let h_rate = -(h_decay * excess + h_abr);
             let depth = st.topography.map(|t| t.depth).unwrap_or(0.0);
             let flaw = (depth + h).max(MIN_FLAW);
             let dk_flaw = 1.12 * sigma0 * sqrt(PI * flaw);
@@ -399,7 +410,11 @@ impl Life {
             st.crack += crack_rate * dt;
             st.debris = (st.debris + debris_rate * dt).max(0.0);
             if let Some(t) = st.topography.as_mut() {
-                t.asperity_height = (t.asperity_height + h_rate * dt).max(st.asperity_floor);
+                // The decay integrated exactly over the step (its rate is frozen within it).
+                let flattened = st.asperity_floor + excess * exp(-h_decay * dt) - h_abr * dt;
+                if h_rate < 0.0 {
+                    t.asperity_height = flattened.max(st.asperity_floor);
+                }
             }
             st.cycles += dt;
             done += dt;

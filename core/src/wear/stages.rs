@@ -58,6 +58,12 @@ impl Stage {
         }
     }
 
+    /// Whether the defect of this stage is a broken-out spall whose edges are fracture
+    /// edges (defect completion onwards), rather than a dent's plastic shoulder.
+    pub fn has_breakout_edge(self) -> bool {
+        self >= Stage::DefectCompletion
+    }
+
     /// Index 0..=9 in life order.
     pub fn index(self) -> usize {
         self as usize

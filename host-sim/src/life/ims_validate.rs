@@ -50,7 +50,9 @@ use wearsim_core::wear::{LifeState, Site, Stage};
 /// An interval longer than this many median intervals is a stop of the rig (counted as
 /// one median interval of running time).
 pub const GAP_FACTOR: f64 = 2.0;
-/// Simulated snapshots per life (windows rendered at the snapshot interval).
+/// Simulated snapshots per life: windows on a clock of `expected / SIM_SNAPSHOTS`
+/// revolutions, as a periodic measurement takes them (windows at transitions are left out
+/// of the curve, see [`simulate`]).
 pub const SIM_SNAPSHOTS: f64 = 300.0;
 /// Share of life at the end whose median is the end level (–).
 pub const END_SHARE: f64 = 0.05;
@@ -288,11 +290,18 @@ pub fn simulate(
     let run = LifeRun::new(spec).map_err(|e| e.to_string())?;
     let every = run.spec.snapshot_every;
     let (mut revs, mut rms, mut mean_abs) = (vec![], vec![], vec![]);
+    // The measurement's clock: a window every `every` revolutions from the start, whatever
+    // the wear does between them. Windows the driver renders at a transition (a breakout,
+    // a spawned defect, the failure) are simulation-only instants that a periodic
+    // measurement does not see, so they feed the wear (their pass loads) but not the curve.
     let d = run
         .drive(
-            |_| every,
+            |st| next_on_grid(st.cycles, every) - st.cycles,
             100_000,
             |w| {
+                if !on_grid(w.state.cycles, every) {
+                    return Ok(());
+                }
                 let n = w.samples.len().max(1) as f64;
                 revs.push(w.state.cycles);
                 rms.push((w.samples.iter().map(|x| x * x).sum::<f64>() / n).sqrt());
@@ -314,6 +323,25 @@ pub fn simulate(
             .collect(),
         fixed: fixed_part(st),
     })
+}
+
+/// The first point of the grid `k · every` (k = 1, 2, …) after `cycles`.
+fn next_on_grid(cycles: f64, every: f64) -> f64 {
+    let k = (cycles / every).floor() + 1.0;
+    let next = k * every;
+    // A state a hair before a grid point (rounding of the advance) goes to that point, not
+    // past it.
+    if next - cycles > 1e-9 * every {
+        next
+    } else {
+        next + every
+    }
+}
+
+/// Whether `cycles` is a point of the grid `k · every` (k = 0, 1, …), to rounding.
+fn on_grid(cycles: f64, every: f64) -> bool {
+    let k = (cycles / every).round();
+    (cycles - k * every).abs() <= 1e-9 * every
 }
 
 fn fixed_part(st: &LifeState) -> f64 {
