@@ -2,7 +2,8 @@
 //! data folder, fails without it when CI=true).
 
 use wearsim_host::io::data_dir;
-use wearsim_host::life::ims;
+use wearsim_host::life::ims_validate::{read_record, RECORDS};
+use wearsim_host::life::{ims, ims_compare};
 
 #[test]
 fn ims_comparison_is_computed_and_consistent() {
@@ -10,14 +11,16 @@ fn ims_comparison_is_computed_and_consistent() {
         eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
         return;
     };
-    let (measured, hours) = ims::measured_curve(&data).unwrap();
+    let m = read_record(&data, &RECORDS[0]).unwrap();
+    assert_eq!(m.record.id, "t2b1");
+    let (measured, hours) = (&m.curve, m.running_h);
     // Test 2 ran about 164 h (README: 2004-02-12 10:32 to 02-19 06:22, dead end snapshots out).
     assert!((160.0..168.0).contains(&hours), "{hours} h");
     // The literature places the onset of bearing 1's degradation a little past the middle
     // of the test (about snapshot 530 of 984).
-    let om = ims::onset(&measured).unwrap();
+    let om = ims::onset(measured).unwrap();
     assert!((0.45..0.75).contains(&om), "measured onset {om}");
-    let c = ims::compare(&data, 1).unwrap();
+    let c = ims_compare::compare(&data, 1).unwrap();
     // Calibration hits the measured life within 1 %.
     assert!((c.simulated_life_revs / c.measured_life_revs - 1.0).abs() < 0.01);
     let os = c.onset_simulated.expect("simulated onset");

@@ -5,9 +5,9 @@
 mod support;
 use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
-use wearsim_host::life::ims::Curve;
+use wearsim_host::life::ims::{distance_db, Curve};
 use wearsim_host::life::ims_validate::{
-    distance_db, medians, read_record, read_records, validate, FloorMode, LifeFigures, RECORDS,
+    medians, read_record, read_records, validate, FloorMode, LifeFigures, RECORDS,
 };
 
 #[test]

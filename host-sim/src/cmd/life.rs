@@ -440,7 +440,7 @@ pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
             .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA"))?,
     };
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
-    let c = crate::life::ims::compare(&data, a.seed).map_err(CliError::input)?;
+    let c = crate::life::ims_compare::compare(&data, a.seed).map_err(CliError::input)?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let mut files = crate::life::plot::ims_overlay(&a.out, &c)?;

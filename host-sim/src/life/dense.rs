@@ -329,7 +329,9 @@ impl LifeRun {
             if st.stage == Stage::Failure {
                 break;
             }
-            let (revs, _) = self.advance_checked(&mut st, &loads, self.spec.snapshot_every)?;
+            let revs = self
+                .advance_checked(&mut st, &loads, self.spec.snapshot_every)?
+                .revs;
             let exact = revs / self.shaft_hz * fs + carry;
             let n_block = exact.floor() as u64;
             let next_carry = exact - n_block as f64;

@@ -23,6 +23,26 @@ pub struct DriverWindow<'a> {
     /// The stage this state entered at the end of the previous block (running-in for the
     /// first window), if it changed there.
     pub entered: Option<Stage>,
+    /// Whether the window ends a whole block of the observer's schedule (and the first
+    /// window): what a periodic measurement takes. `false` for a window the driver renders
+    /// because a transition cut the block short (a breakout, a spawned defect, the
+    /// failure): a simulation-only instant, for instance a fresh breakout edge that shakes
+    /// down within about 10⁴ passes (`material.edge_shakedown_passes`), which a snapshot
+    /// every few minutes almost never sees. Such windows still measure the pass loads that
+    /// advance the wear.
+    pub scheduled: bool,
+}
+
+/// What one block of the driver did ([`LifeRun::advance_checked`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Block {
+    /// Revolutions advanced.
+    pub revs: f64,
+    /// The stage entered, if it changed.
+    pub entered: Option<Stage>,
+    /// Whether a transition (a stage change or a growth step of the defect) ended the
+    /// block before its revolutions were done.
+    pub cut: bool,
 }
 
 /// The end of a driven life.
@@ -48,6 +68,7 @@ impl LifeRun {
         let mut st = self.life.initial_state(self.spec.seed);
         let mut k = 0u64;
         let mut entered: Option<Stage> = Some(Stage::RunningIn);
+        let mut scheduled = true;
         loop {
             let (samples, loads) = self.window(&st, k)?;
             observe(DriverWindow {
@@ -56,13 +77,16 @@ impl LifeRun {
                 samples,
                 loads: &loads,
                 entered: entered.take(),
+                scheduled,
             })?;
             k += 1;
             if st.stage == Stage::Failure {
                 break;
             }
             let revs = block(&st);
-            entered = self.advance_checked(&mut st, &loads, revs)?.1;
+            let b = self.advance_checked(&mut st, &loads, revs)?;
+            entered = b.entered;
+            scheduled = !b.cut;
             if k > max_windows {
                 return Err(LifeError::WindowCap {
                     windows: max_windows,
@@ -79,24 +103,27 @@ impl LifeRun {
 
     /// The driver's step: advances the wear by up to `revs` revolutions (less when a
     /// stage transition or a growth step of the defect ends the block early) and checks
-    /// the cycle cap. Returns the revolutions advanced and the stage entered, if it
-    /// changed.
+    /// the cycle cap.
     pub fn advance_checked(
         &self,
         st: &mut LifeState,
         loads: &PassLoads,
         revs: f64,
-    ) -> Result<(f64, Option<Stage>), LifeError> {
+    ) -> Result<Block, LifeError> {
         let mut remaining = revs;
-        let mut total = 0.0;
-        let mut entered = None;
+        let mut b = Block {
+            revs: 0.0,
+            entered: None,
+            cut: false,
+        };
         while remaining > 0.0 {
             let before = st.stage;
             let adv = self.life.advance(st, remaining, loads);
             remaining -= adv.revs;
-            total += adv.revs;
+            b.revs += adv.revs;
             if adv.transition.is_some() {
-                entered = (st.stage != before).then_some(st.stage);
+                b.entered = (st.stage != before).then_some(st.stage);
+                b.cut = true;
                 break;
             }
             if adv.revs <= 0.0 {
@@ -104,6 +131,6 @@ impl LifeRun {
             }
         }
         self.check_cap(st)?;
-        Ok((total, entered))
+        Ok(b)
     }
 }

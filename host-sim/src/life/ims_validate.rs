@@ -38,7 +38,7 @@
 //! the model's physics and is not refitted per life.
 
 use super::calibrate::{calibrate, Secant};
-use super::ims::{normalise, onset, Curve};
+use super::ims::{distance_db, normalise, onset, Curve};
 use super::{LifeError, LifeRun, LifeSpec};
 use crate::io::ims::{read_ims_features, IMS_RPM};
 use crate::io::ims_life::live_snapshots;
@@ -56,8 +56,6 @@ pub const GAP_FACTOR: f64 = 2.0;
 pub const SIM_SNAPSHOTS: f64 = 300.0;
 /// Share of life at the end whose median is the end level (–).
 pub const END_SHARE: f64 = 0.05;
-/// Points of the common fraction-of-life grid of the trajectory distance.
-pub const GRID: usize = 201;
 
 /// Which per-snapshot statistic a record carries.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -299,7 +297,7 @@ pub fn simulate(
             |st| next_on_grid(st.cycles, every) - st.cycles,
             100_000,
             |w| {
-                if !on_grid(w.state.cycles, every) {
+                if !w.scheduled {
                     return Ok(());
                 }
                 let n = w.samples.len().max(1) as f64;
@@ -336,12 +334,6 @@ fn next_on_grid(cycles: f64, every: f64) -> f64 {
     } else {
         next + every
     }
-}
-
-/// Whether `cycles` is a point of the grid `k · every` (k = 0, 1, …), to rounding.
-fn on_grid(cycles: f64, every: f64) -> bool {
-    let k = (cycles / every).round();
-    (cycles - k * every).abs() <= 1e-9 * every
 }
 
 fn fixed_part(st: &LifeState) -> f64 {
@@ -402,35 +394,6 @@ pub struct LifeFigures {
     pub floor: f64,
     /// Simulated stage onsets (fraction of life).
     pub stages: Vec<(String, f64)>,
-}
-
-fn interp(c: &Curve, t: f64) -> f64 {
-    let i = c.t.partition_point(|x| *x < t);
-    let last = c.rms.len().saturating_sub(1);
-    if i == 0 {
-        return c.rms.first().copied().unwrap_or(1.0);
-    }
-    if i > last {
-        return c.rms.get(last).copied().unwrap_or(1.0);
-    }
-    let (t0, t1, r0, r1) = (c.t[i - 1], c.t[i], c.rms[i - 1], c.rms[i]);
-    if t1 > t0 {
-        r0 + (r1 - r0) * (t - t0) / (t1 - t0)
-    } else {
-        r1
-    }
-}
-
-/// RMS over the common grid of the dB difference between two normalised curves.
-pub fn distance_db(sim: &Curve, meas: &Curve) -> f64 {
-    let s: f64 = (0..GRID)
-        .map(|i| {
-            let t = i as f64 / (GRID - 1) as f64;
-            let d = 20.0 * (interp(sim, t) / interp(meas, t)).log10();
-            d * d
-        })
-        .sum();
-    (s / GRID as f64).sqrt()
 }
 
 /// Median of a normalised curve over its last [`END_SHARE`] of life.
@@ -633,6 +596,41 @@ pub fn measured_floor(m: &MeasuredRecord, bare: &SimLife, units_per_ms2: f64) ->
     (level * level - own * own).max(0.0).sqrt()
 }
 
+/// A simulated life calibrated on a measured one.
+#[derive(Debug, Clone)]
+pub struct Calibrated {
+    /// Calibrated `material.life_factor`.
+    pub factor: f64,
+    /// Revolutions to failure of the uncalibrated life (ISO 281 fatigue, factor 1).
+    pub uncalibrated_life: f64,
+    /// The simulated life at `factor` (bearing only, no floor).
+    pub life: SimLife,
+}
+
+/// Calibrates `material.life_factor` on the running revolutions of `cal` (secant steps of
+/// [`super::calibrate`] on the part of life the factor scales), simulating on the site of
+/// its failure.
+pub fn calibrate_on(cal: &MeasuredRecord, seed: u64) -> Result<Calibrated, String> {
+    let target = cal.running_h * revs_per_hour();
+    let site = cal.record.site;
+    let first = simulate(site, 1.0, seed, 5e8, 0.0)?;
+    let uncalibrated_life = first.life;
+    let step = Secant {
+        fixed: first.fixed,
+        min_steps: 1,
+        max_steps: 6,
+    };
+    let c = calibrate(target, (first.life, first), &step, |a| {
+        let s = simulate(site, a, seed, target, 0.0)?;
+        Ok::<_, String>((s.life, s))
+    })?;
+    Ok(Calibrated {
+        factor: c.factor,
+        uncalibrated_life,
+        life: c.last,
+    })
+}
+
 /// For each calibration life (all of them when `all`, else only the first, test 2
 /// bearing 1) calibrates `life_factor` on its running revolutions and sets the floor by
 /// `mode`, then judges the others.
@@ -645,21 +643,11 @@ pub fn validate_records(
     let mut folds = vec![];
     let n_cal = if all { recs.len() } else { 1 };
     for cal in recs.iter().take(n_cal) {
-        let target = cal.running_h * revs_per_hour();
         let site = cal.record.site;
-        let first = simulate(site, 1.0, seed, 5e8, 0.0)?;
-        let step = Secant {
-            fixed: first.fixed,
-            min_steps: 1,
-            max_steps: 6,
-        };
-        let c = calibrate(target, (first.life, first), &step, |a| {
-            let s = simulate(site, a, seed, target, 0.0)?;
-            Ok::<_, String>((s.life, s))
-        })?;
+        let c = calibrate_on(cal, seed)?;
         let floor = match mode {
             FloorMode::Calibrated => {
-                floor_for_end_ratio(&c.last, cal.curve.rms.last().copied().unwrap_or(1.0))
+                floor_for_end_ratio(&c.life, cal.curve.rms.last().copied().unwrap_or(1.0))
             }
             FloorMode::None | FloorMode::Measured { .. } => 0.0,
         };
@@ -667,16 +655,16 @@ pub fn validate_records(
         // `Measured` the record's own background.
         let run = |m: &MeasuredRecord| -> Result<(SimLife, f64), String> {
             let bare = if m.record.site == site {
-                c.last.clone()
+                c.life.clone()
             } else {
-                simulate(m.record.site, c.factor, seed, c.last.life, 0.0)?
+                simulate(m.record.site, c.factor, seed, c.life.life, 0.0)?
             };
             let f = match mode {
                 FloorMode::Measured { units_per_ms2 } => measured_floor(m, &bare, units_per_ms2),
                 _ => floor,
             };
             if f > 0.0 {
-                Ok((simulate(m.record.site, c.factor, seed, c.last.life, f)?, f))
+                Ok((simulate(m.record.site, c.factor, seed, c.life.life, f)?, f))
             } else {
                 Ok((bare, 0.0))
             }

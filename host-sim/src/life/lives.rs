@@ -97,9 +97,12 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
         |_| every,
         u64::MAX,
         |w| {
-            let n = w.samples.len().max(1) as f64;
-            let rms = (w.samples.iter().map(|x| x * x).sum::<f64>() / n).sqrt();
-            pts.push((w.state.cycles, rms));
+            // The onset is read as a periodic measurement would: transition windows left out.
+            if w.scheduled {
+                let n = w.samples.len().max(1) as f64;
+                let rms = (w.samples.iter().map(|x| x * x).sum::<f64>() / n).sqrt();
+                pts.push((w.state.cycles, rms));
+            }
             Ok(())
         },
     )?;

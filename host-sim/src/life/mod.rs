@@ -13,6 +13,7 @@ pub mod calibrate;
 pub mod dense;
 pub mod driver;
 pub mod ims;
+pub mod ims_compare;
 pub mod ims_validate;
 pub mod lives;
 pub mod output;

@@ -3,7 +3,7 @@
 //! one figure per sampled event with time response, spectrum and envelope spectrum
 //! (publication IV Figs. 9–16), and the overlay of simulated and measured life.
 
-use super::ims::ImsComparison;
+use super::ims_compare::ImsComparison;
 use super::output::Span;
 use super::{EventWindow, Snapshot};
 use crate::analysis::stats::upper_median;

@@ -18,7 +18,8 @@ use wearsim_core::wear::LifeConfig;
 /// Window schedule of a simulated life, as fractions of the expected life: blocks of
 /// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
 /// 20 in the next 2 %, so that the simulated stage means are about as precise as the
-/// measured ones), coarser where the wear machine's own transitions add windows anyway.
+/// measured ones), then every 2 % of life. Windows the wear machine's transitions add are
+/// not statistics of the life (a periodic measurement does not see those instants).
 pub const SCHEDULE: [(f64, f64); 3] = [(0.03, 0.001), (0.1, 0.01), (1.0, 0.02)];
 
 /// Most windows of one simulated life (the schedule needs about 90).
@@ -105,6 +106,11 @@ impl LifeSim {
                 |st| self.block(st.cycles),
                 MAX_WINDOWS,
                 |w| {
+                    // Stage means of a periodic measurement: windows at transitions feed the
+                    // wear only (see `DriverWindow::scheduled`).
+                    if !w.scheduled {
+                        return Ok(());
+                    }
                     let cycles = w.state.cycles;
                     let s = analysis::stats(&w.samples)
                         .map_err(|source| LifeError::Analysis { cycles, source })?;
