@@ -5,7 +5,14 @@
 # need nightly features; the sanitizer is then switched off, coverage still works).
 # Exit status: non-zero if any target found a crash (the reproducer is in
 # host-sim/fuzz/artifacts/<target>/).
+# `fuzz.sh --build-only` builds the targets and stops (CI builds first, then starts other
+# work in the background while the single-process fuzzers run).
 set -euo pipefail
+BUILD_ONLY=0
+if [ "${1:-}" = "--build-only" ]; then
+    BUILD_ONLY=1
+    shift
+fi
 SECONDS_PER_TARGET="${1:-30}"
 cd "$(dirname "$0")/../host-sim/fuzz"
 
@@ -24,6 +31,9 @@ fi
 python3 make_corpus.py
 TARGETS=(mat wav npy csv ims_snapshot ims_features feature_table sidecar frame)
 cargo "${TOOLCHAIN[@]}" fuzz build "${SAN[@]}" -O --debug-assertions
+if [ "$BUILD_ONLY" = 1 ]; then
+    exit 0
+fi
 status=0
 for t in "${TARGETS[@]}"; do
     mkdir -p "corpus/$t"
