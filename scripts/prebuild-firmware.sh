@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds, ahead of `cargo test`, the firmware images and host tools that
-# host-sim/tests/firmware_qemu.rs builds — the same commands into the same target
+# host-sim/tests/integration/firmware_qemu.rs builds — the same commands into the same target
 # directories — so that CI can run these mostly single-threaded builds (fat LTO, one
 # codegen unit) while other steps leave a core idle. The test's own `cargo build` calls
 # then find them up to date; if this script fails, the test builds again and reports the

@@ -21,7 +21,7 @@ pub struct Calibration {
 /// The calibration in force: fitted by [`fit_logistic`] on the development part of the CWRU
 /// data (drive-end records at 0 and 1 hp, see `crate::cwru_benchmark::Part`), printed by
 /// `wearsim cwru-benchmark` as `calibration fitted on development`, and checked against that
-/// fit by `host-sim/tests/cwru_benchmark.rs`.
+/// fit by `host-sim/tests/integration/cwru_benchmark.rs`.
 pub const CALIBRATION: Calibration = Calibration {
     slope: 2.195_5,
     centre: 2.209_8,

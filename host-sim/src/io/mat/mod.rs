@@ -22,7 +22,7 @@
 //! (zlib, via `flate2`, inflated size capped at 1032 x the compressed size, the deflate maximum),
 //! and skips char/cell/struct/sparse/object arrays while still listing them. Every read is
 //! bounds-checked against the buffer, sizes are checked against the file size before anything is
-//! allocated, and no code path panics on any input (property-tested in `tests/io_fuzz.rs`).
+//! allocated, and no code path panics on any input (property-tested in `tests/integration/io_fuzz.rs`).
 //!
 //! # CWRU files
 //!

@@ -4,7 +4,7 @@
 //! (exit 2, field named, nothing written), and `gap --life` reading an IMS bearing through
 //! the documented format exactly as through the IMS table.
 
-mod support;
+use crate::support;
 use std::path::{Path, PathBuf};
 use support::{refused, s, wearsim};
 
@@ -506,7 +506,7 @@ fn an_ims_bearing_reads_the_same_through_the_documented_format(
 }
 
 /// The whole lifetime diagnosis on IMS test 2 read both ways (about twice `gap_life`'s
-/// time, so not in the default run): `cargo test -p wearsim-host --test feature_tables --
+/// time, so not in the default run): `cargo test -p wearsim-host --test integration feature_tables:: --
 /// --ignored`. Every figure of the result must be equal; only the file labels, the run
 /// time and the simulation count (which depends on thread timing) may differ.
 #[test]

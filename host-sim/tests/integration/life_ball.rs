@@ -8,7 +8,7 @@
 //! Randall & Antoni 2011 §2.1). Before issue 14's ball lives such a run was refused with
 //! `defect.location`.
 
-mod support;
+use crate::support;
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
 use wearsim_core::kinematics::FaultOrders;
 use wearsim_core::topography::Topography;

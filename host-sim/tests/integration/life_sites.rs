@@ -5,8 +5,8 @@
 //! that competes with the inner race's higher pass rate and pressure (core/tests/life_sites.rs
 //! isolates those at equal loads), and the inner life is not necessarily the shorter one.
 
+use crate::support;
 use std::path::Path;
-mod support;
 use wearsim_core::kinematics::FaultOrders;
 
 /// Runs a life with the defect at `location`; returns stdout JSON, the summary and the

@@ -5,7 +5,7 @@
 //! simulated bearing built from the sidecar; and the refusals of sidecars that cannot
 //! describe one bearing (exit 2, field named, nothing written).
 
-mod support;
+use crate::support;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 use support::{refused, s, wearsim};
@@ -61,7 +61,7 @@ fn table(dir: &Path, name: &str, seed: u64, bearing: &str, load: &str) -> PathBu
         r#"{{
   "format": "wearsim-feature-table",
   "format_version": 1,
-  "source": "synthetic FEMTO-like rig (tests/rig_tables.rs)",
+  "source": "synthetic FEMTO-like rig (tests/integration/rig_tables.rs)",
   "bearing": {bearing},
   "channel": "horiz",
   "unit": "g",

@@ -298,7 +298,7 @@ fn life_command_outputs_and_errors() {
             "lambda",
         ),
         (
-            // A ball life is carried (tests/life_ball.rs), but only on a ball the bearing
+            // A ball life is carried (tests/integration/life_ball.rs), but only on a ball the bearing
             // has (14 balls: 0..=13).
             "preset = \"thesis-61810\"\n[defect]\nlocation = \"ball\"\nelement = 14\n",
             vec![],

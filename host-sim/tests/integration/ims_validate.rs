@@ -2,7 +2,7 @@
 //! (data-backed: skips without the data folder, fails without it when CI=true), and bad
 //! feature tables refused with exit 2, the field named and nothing written.
 
-mod support;
+use crate::support;
 use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
 use wearsim_host::life::ims::{distance_db, Curve};

@@ -3,7 +3,7 @@
 //! reports duplicates, NaN samples and over-announced streams; an empty `rec.json` does not
 //! shadow a record; an unwritable output directory is refused before any work.
 
-mod support;
+use crate::support;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Output;
