@@ -9,33 +9,15 @@
 // needed in the other.
 #![allow(clippy::unnecessary_cast)]
 
+mod common;
+
 use wearsim_core::topography::{self, Topography};
 use wearsim_core::wear::life::SPALL_EDGE_RESIDUAL;
-use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, Site, Stage};
-use wearsim_core::{presets, Model, ModelConfig, Real};
+use wearsim_core::wear::{Life, LifeState, PassLoads, Stage};
+use wearsim_core::Real;
 
 fn setup() -> (Life, PassLoads) {
-    let base = ModelConfig {
-        defect: None,
-        ..presets::by_name("ims-za2115").unwrap()
-    };
-    let q = Model::new_checked(base.clone())
-        .unwrap()
-        .static_reference()
-        .q_max;
-    let cfg = LifeConfig {
-        slip: 0.0,
-        ..LifeConfig::DEFAULT
-    };
-    let life = Life::new_checked(cfg, &base.bearing, q, Site::OuterRace).unwrap();
-    let loads = PassLoads {
-        zone: q,
-        zone_mean: q,
-        edge: 1.3 * q,
-        edge_cubic: 1.3 * q,
-        passes: 100,
-    };
-    (life, loads)
+    common::za2115_outer_life()
 }
 
 /// A state in `stage` whose defect has an edge of height `h` over a floor `floor`.

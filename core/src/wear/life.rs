@@ -112,8 +112,14 @@ pub struct LifeState {
     pub asperity_floor: Real,
     /// Debris level (0–1).
     pub debris: Real,
-    /// Fatigue-life scatter factor of this bearing (Weibull, median 1).
+    /// Fatigue-life scatter factor of this bearing (Weibull, slope [`WEIBULL_SLOPE`],
+    /// median 1): divides the ISO 281 fatigue rate.
     pub scatter: Real,
+    /// Spall-propagation scatter factor of this bearing (Weibull, slope
+    /// [`PROPAGATION_WEIBULL_SLOPE`], median 1), drawn independently of `scatter`: the
+    /// spall's growth laws (trailing-edge breakouts from defect completion on, the
+    /// propagation limit that spawns new defects) run `1/propagation_scatter` times as fast.
+    pub propagation_scatter: Real,
     /// Transitions so far.
     pub events: EventLog,
     /// Transitions that did not fit in the log.
@@ -141,6 +147,11 @@ pub struct Life {
 
 /// Weibull slope of rolling-bearing lives (ISO 281: e = 1.11 for ball bearings).
 pub const WEIBULL_SLOPE: Real = 1.11;
+/// Weibull slope of the spall-propagation time, from the first spall to failure (–): 1.1,
+/// the median of Hoeprich 1992's tapered-roller propagation tests (as summarised by
+/// Kotzalas & Harris 2001, J. Tribol. 123, doi:10.1115/1.1308013): propagation is as
+/// stochastic as initiation, not a fixed tail after it.
+pub const PROPAGATION_WEIBULL_SLOPE: Real = 1.1;
 /// Share of a fresh spall edge's asperity that smoothing cannot remove: Table 1's
 /// smoothed large defect (4 µm) over the large defect (30 µm).
 pub const SPALL_EDGE_RESIDUAL: Real =
@@ -215,13 +226,18 @@ impl Life {
         self.rating
     }
 
-    /// Initial state; `seed` draws the bearing's fatigue-life scatter from the Weibull
-    /// distribution (slope 1.11, median 1).
+    /// Initial state; `seed` draws the bearing's fatigue-life scatter (Weibull, slope
+    /// [`WEIBULL_SLOPE`], median 1) and then, independently, its spall-propagation scatter
+    /// (slope [`PROPAGATION_WEIBULL_SLOPE`], median 1).
     pub fn initial_state(&self, seed: u64) -> LifeState {
         let mut rng = Xoshiro128pp::from_u64(seed ^ 0x5EED_11FE);
-        let u = 0.5 * (rng.uniform_pm1() + 1.0); // [0, 1)
-        let u = u.clamp(1e-6, 1.0 - 1e-6);
-        let scatter = pow(-ln(1.0 - u) / ln(2.0), 1.0 / WEIBULL_SLOPE);
+        let mut median_one_weibull = |slope: Real| {
+            let u = 0.5 * (rng.uniform_pm1() + 1.0); // [0, 1)
+            let u = u.clamp(1e-6, 1.0 - 1e-6);
+            pow(-ln(1.0 - u) / ln(2.0), 1.0 / slope)
+        };
+        let scatter = median_one_weibull(WEIBULL_SLOPE);
+        let propagation_scatter = median_one_weibull(PROPAGATION_WEIBULL_SLOPE);
         LifeState {
             cycles: 0.0,
             stage: Stage::RunningIn,
@@ -235,6 +251,7 @@ impl Life {
             asperity_floor: 0.0,
             debris: 0.0,
             scatter,
+            propagation_scatter,
             events: EventLog::new(),
             lost_events: 0,
         }
@@ -365,14 +382,21 @@ impl Life {
                 }
                 Stage::DefectSmoothing | Stage::DamageGrowth => {
                     let r = sigma0 / self.reference_pressure;
-                    n_p * r * r * r / m.propagation_passes
+                    n_p * r * r * r / (m.propagation_passes * st.propagation_scatter)
                 }
                 _ => 0.0,
             };
             let crack_rate = if st.crack > 0.0 {
                 let dk = 1.12 * sigma0 * sqrt(PI * st.crack);
                 let delta_pl = dk * dk / (2.0 * m.youngs_modulus * m.yield_strength);
-                n_p * m.crack_c0 * pow(delta_pl, m.crack_m0)
+                // From the first spall on, its trailing-edge cracks are spall propagation
+                // and carry the bearing's propagation scatter.
+                let spread = if st.stage == Stage::DefectCompletion {
+                    st.propagation_scatter
+                } else {
+                    1.0
+                };
+                n_p * m.crack_c0 * pow(delta_pl, m.crack_m0) / spread
             } else {
                 0.0
             };

@@ -499,6 +499,64 @@ pub fn medians(h: &[LifeFigures]) -> Medians {
     }
 }
 
+/// One seed's medians in a validation repeated over seeds.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct SeedMedians {
+    /// Seed of every simulated life of this repetition.
+    pub seed: u64,
+    /// Medians over the primary fold's held-out lives (calibrated on test 2 bearing 1).
+    pub primary: Medians,
+    /// Leave-one-life-out medians (the primary's with `--primary-only`).
+    pub leave_one_out: Medians,
+}
+
+/// The validation repeated over seeds: each seed draws each simulated bearing's fatigue and
+/// spall-propagation scatter anew and is calibrated on its own, so one seed is one draw of
+/// a stochastic life and the figure of a model is their distribution, not one draw.
+#[derive(Debug, Clone, Serialize)]
+pub struct SeedSweep {
+    /// Every seed's medians, in seed order.
+    pub seeds: Vec<SeedMedians>,
+    /// Median over the seeds of each primary-protocol figure.
+    pub primary: Medians,
+    /// Median over the seeds of each leave-one-life-out figure.
+    pub leave_one_out: Medians,
+}
+
+/// Median over seeds of each figure (the end factor through its logarithm);
+/// acceptance judged on those medians.
+fn median_of_medians(v: &[Medians]) -> Medians {
+    let o = median(v.iter().map(|m| m.onset_error).collect());
+    let e = 10f64.powf(median(
+        v.iter().map(|m| m.end_ratio_factor.log10().abs()).collect(),
+    ));
+    let d = median(v.iter().map(|m| m.distance_db_rms).collect());
+    Medians {
+        onset_error: o,
+        end_ratio_factor: e,
+        distance_db_rms: d,
+        accepted: [o <= 0.1, e <= 2.0, d <= 3.0],
+    }
+}
+
+/// Summarises validations of several seeds (each as returned by [`validate_records`]).
+pub fn over_seeds(runs: &[Validation]) -> SeedSweep {
+    let seeds: Vec<SeedMedians> = runs
+        .iter()
+        .map(|v| SeedMedians {
+            seed: v.seed,
+            primary: v.folds.first().map_or(v.leave_one_out, |f| f.median),
+            leave_one_out: v.leave_one_out,
+        })
+        .collect();
+    let pick = |f: fn(&SeedMedians) -> Medians| seeds.iter().map(f).collect::<Vec<_>>();
+    SeedSweep {
+        primary: median_of_medians(&pick(|s| s.primary)),
+        leave_one_out: median_of_medians(&pick(|s| s.leave_one_out)),
+        seeds,
+    }
+}
+
 /// The whole validation.
 #[derive(Debug, Clone, Serialize)]
 pub struct Validation {
@@ -513,6 +571,10 @@ pub struct Validation {
     pub folds: Vec<Fold>,
     /// Medians over every held-out figure of every fold (leave-one-life-out).
     pub leave_one_out: Medians,
+    /// With `--seeds N` (N > 1): the validation repeated for seeds `seed .. seed + N`, this
+    /// one being the first.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub over_seeds: Option<SeedSweep>,
 }
 
 /// What is reported of a measured life.
@@ -705,5 +767,6 @@ pub fn validate_records(
             .collect(),
         leave_one_out: medians(&all_held),
         folds,
+        over_seeds: None,
     })
 }

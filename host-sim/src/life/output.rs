@@ -154,6 +154,7 @@ pub fn write_life(
         "snapshots": snapshots.len(),
         "rating_n": run.life.rating(),
         "weibull_scatter": st.scatter,
+        "propagation_scatter": st.propagation_scatter,
         "seed": run.spec.seed,
         "run": extra,
     });

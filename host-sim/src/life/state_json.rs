@@ -96,8 +96,10 @@ pub struct LifeStateJson {
     pub asperity_floor: f64,
     /// Debris.
     pub debris: f64,
-    /// Weibull scatter.
+    /// Fatigue-life Weibull scatter.
     pub scatter: f64,
+    /// Spall-propagation Weibull scatter.
+    pub propagation_scatter: f64,
     /// Events.
     pub events: Vec<EventJson>,
     /// Events that did not fit the log.
@@ -123,6 +125,7 @@ impl From<&LifeState> for LifeStateJson {
             asperity_floor: s.asperity_floor,
             debris: s.debris,
             scatter: s.scatter,
+            propagation_scatter: s.propagation_scatter,
             events: s.events.iter().map(Into::into).collect(),
             lost_events: s.lost_events,
         }
@@ -130,8 +133,13 @@ impl From<&LifeState> for LifeStateJson {
 }
 
 impl LifeStateJson {
-    /// Back to the core's state; `None` if a stage name is unknown (corrupt checkpoint).
+    /// Back to the core's state; `None` if a stage name is unknown or a scatter factor is
+    /// not a positive finite number (corrupt checkpoint: the wear rates divide by them).
     pub fn to_state(&self) -> Option<LifeState> {
+        let factor_ok = |v: f64| v.is_finite() && v > 0.0;
+        if !factor_ok(self.scatter) || !factor_ok(self.propagation_scatter) {
+            return None;
+        }
         let mut events = EventLog::new();
         for e in &self.events {
             let ev = Event {
@@ -155,6 +163,7 @@ impl LifeStateJson {
             asperity_floor: self.asperity_floor,
             debris: self.debris,
             scatter: self.scatter,
+            propagation_scatter: self.propagation_scatter,
             events,
             lost_events: self.lost_events,
         })

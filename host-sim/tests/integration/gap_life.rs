@@ -5,8 +5,8 @@
 //!
 //! Asserted, each a statement about the physics rather than a figure:
 //! * where: the bare simulated bearing is sub-Gaussian in its steady stage (its periodic
-//!   waviness lines dominate), the housing accelerometer is not: the steady stage holds
-//!   the largest gap, its kurtosis below the measured; and the SDOF model's spall impacts
+//!   waviness lines dominate), the housing accelerometer is not: the steady stage's worst
+//!   cell is its kurtosis, far below the measured; and the SDOF model's spall impacts
 //!   end the life far louder than measured (end-stage RMS gap above +3 spreads);
 //! * the early-life part lies outside the sampling variability (≥ 3× the gap a correct
 //!   model would leave) and is closed by running-in (not in the thesis's model), ranked
@@ -78,13 +78,20 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         at.baseline_holdout, at.final_holdout, g.early_before, g.noise_only.1, g.early_effect
     );
 
-    // Where along life.
-    let first = g.stages_train.first().ok_or("no stages")?;
-    assert_eq!(first.stage, "steady", "largest stage gap: {}", first.stage);
+    // Where along life. The steady stage held the largest gap of all while the spall's
+    // propagation was deterministic; with its Hoeprich scatter, seed 1's bearing spalls
+    // early (its simulated RMS is up in the measured onset stage, +18.8 spreads), so
+    // which stage is largest depends on the draw. The physics asserted is the steady
+    // stage's: its worst cell is the kurtosis, far below the measured.
+    let steady = g
+        .stages_train
+        .iter()
+        .find(|s| s.stage == "steady")
+        .ok_or("no steady stage")?;
     assert!(
-        first.worst.0.ends_with(":kurtosis") && first.worst.3 < -5.0,
+        steady.worst.0.ends_with(":kurtosis") && steady.worst.3 < -5.0,
         "steady stage: {:?}",
-        first.worst
+        steady.worst
     );
     let end = g
         .stages_train
@@ -103,9 +110,10 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         g.early_before,
         g.noise_only.1
     );
-    // Which effect closes it is a tie on this record (running-in 13 % against roughness
-    // 11 %, inside the report's 2 % tie rule; issue 13): asserted is only that
-    // running-in shrinks it and is not beaten beyond the tie, not that it ranks first.
+    // Which effect closes it was a tie on this record before the propagation scatter
+    // (running-in 13 % against roughness 11 %, inside the report's 2 % tie rule; issue
+    // 13; now 14 % against -1 % on seed 1, one draw): asserted is only that running-in
+    // shrinks it and is not beaten beyond the tie, not that it ranks first.
     let top = g.early.first().ok_or("no early ranking")?;
     let ri = g
         .early

@@ -7,7 +7,8 @@ use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
 use wearsim_host::life::ims::{distance_db, Curve};
 use wearsim_host::life::ims_validate::{
-    medians, read_record, read_records, validate, FloorMode, LifeFigures, RECORDS,
+    medians, over_seeds, read_record, read_records, validate_records, FloorMode, LifeFigures,
+    Medians, Validation, RECORDS,
 };
 
 #[test]
@@ -48,51 +49,64 @@ fn the_four_failed_lives_are_read_on_running_time() {
     }
 }
 
-/// The primary protocol (`wearsim ims-validate --primary-only`, seed 1): `life_factor`
-/// calibrated on IMS test 2 bearing 1, judged on the three other failed bearings (test 1
-/// bearings 3 and 4, test 3 bearing 3), each simulated on its own failure site, with the
-/// sensor reading the bearing alone. Asserted is the acceptance item the wear model meets
-/// (issue 14): the held-out median end-of-life ratio within a factor 2 of the measured
-/// ones. It failed by a factor 18 before fresh breakout edges shook down
-/// (`material.edge_shakedown_passes`) and before the simulated curve was read on the
-/// measurement's clock. The two items still missed are checked as what they are today,
-/// so a change that moves them shows: the held-out onset error below 0.2 of life and the
-/// trajectory distance below 7 dB RMS (acceptance: 0.1 and 3 dB; docs/ims-comparison.md).
+/// The primary protocol (`wearsim ims-validate --primary-only --seeds 5`): `life_factor`
+/// calibrated on test 2 bearing 1 for each of seeds 1–5, judged on the three held-out
+/// failed bearings, the sensor reading the bearing alone; figures are medians over the
+/// seeds of the held-out medians (each seed draws its bearing's fatigue and
+/// spall-propagation scatter, so one seed is one draw). Asserted is the acceptance item the
+/// wear model meets (issue 14): the end-of-life ratio within a factor 2 of the measured. It
+/// failed by a factor 18 before fresh breakout edges shook down. The two items still missed
+/// are checked as what they are today, so a change that moves them shows: the onset error
+/// below 0.15 of life (0.069 over seeds 1–5; acceptance 0.1, reached by this median but not
+/// by leave-one-out) and the trajectory distance below 6 dB RMS (4.59; acceptance 3 dB;
+/// docs/ims-comparison.md).
 #[test]
 fn held_out_lives_end_within_a_factor_two_of_measured() {
     let Some(data) = data_dir().expect("data folder required when CI=true") else {
         eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
         return;
     };
-    let v = validate(&data, 1, false, FloorMode::None).unwrap();
-    let fold = &v.folds[0];
-    assert_eq!(fold.calibrated_on, "t2b1");
-    assert_eq!(fold.held_out.len(), 3);
-    for f in &fold.held_out {
-        eprintln!(
-            "{}: onset {:?} vs {:?}, end ratio {:.2} vs {:.2} (x{:.2}), distance {:.2} dB",
-            f.id,
-            f.onset_simulated,
-            f.onset_measured,
-            f.end_ratio_simulated,
-            f.end_ratio_measured,
-            f.end_ratio_factor,
-            f.distance_db_rms
-        );
+    let recs = read_records(&data).unwrap();
+    let runs: Vec<Validation> = std::thread::scope(|sc| {
+        let hs: Vec<_> = (1..=5u64)
+            .map(|seed| {
+                let recs = &recs;
+                sc.spawn(move || validate_records(recs, seed, false, FloorMode::None).unwrap())
+            })
+            .collect();
+        hs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for v in &runs {
+        let fold = &v.folds[0];
+        assert_eq!(fold.calibrated_on, "t2b1");
+        assert_eq!(fold.held_out.len(), 3);
+        for f in &fold.held_out {
+            eprintln!(
+                "seed {} {}: onset {:?} vs {:?}, end ratio {:.2} vs {:.2} (x{:.2}), distance {:.2} dB",
+                v.seed,
+                f.id,
+                f.onset_simulated,
+                f.onset_measured,
+                f.end_ratio_simulated,
+                f.end_ratio_measured,
+                f.end_ratio_factor,
+                f.distance_db_rms
+            );
+        }
     }
-    let m = &fold.median;
+    let m = over_seeds(&runs).primary;
     assert!(
         m.end_ratio_factor <= 2.0,
         "held-out end ratio off by x{:.2}",
         m.end_ratio_factor
     );
     assert!(
-        m.onset_error < 0.2,
+        m.onset_error < 0.15,
         "held-out onset error {:.3}",
         m.onset_error
     );
     assert!(
-        m.distance_db_rms < 7.0,
+        m.distance_db_rms < 6.0,
         "held-out distance {:.2} dB",
         m.distance_db_rms
     );
@@ -153,6 +167,60 @@ fn the_command_refuses_a_bad_table_and_writes_nothing() {
     ]);
     refused(&o, &["test2_timefeatures.csv"]);
     assert!(!out.exists(), "nothing may be written");
+}
+
+/// `--seeds` outside 1..=64: exit 2 naming it, before any file is read, nothing written.
+#[test]
+fn a_bad_seed_count_is_refused_before_anything_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for n in ["0", "65"] {
+        let o = wearsim(&[
+            "ims-validate",
+            "--data",
+            s(dir.path()),
+            "--seeds",
+            n,
+            "--out",
+            s(&out),
+        ]);
+        refused(&o, &["--seeds", "1..=64"]);
+        assert!(!out.exists(), "nothing may be written");
+    }
+}
+
+/// Over seeds, each figure's median is taken on its own (the end factor through its
+/// logarithm, so ×3 and ×1/3 weigh alike), and acceptance is judged on those medians.
+#[test]
+fn medians_over_seeds_take_each_figure_apart() {
+    let m = |o: f64, e: f64, d: f64| Medians {
+        onset_error: o,
+        end_ratio_factor: e,
+        distance_db_rms: d,
+        accepted: [o <= 0.1, e <= 2.0, d <= 3.0],
+    };
+    let run = |seed: u64, med: Medians| Validation {
+        seed,
+        floor_mode: FloorMode::None,
+        records: vec![],
+        folds: vec![],
+        leave_one_out: med,
+        over_seeds: None,
+    };
+    let sw = over_seeds(&[
+        run(1, m(0.05, 1.5, 2.0)),
+        run(2, m(0.3, 3.0, 4.0)),
+        run(3, m(0.1, 1.8, 3.5)),
+    ]);
+    assert_eq!(
+        sw.seeds.iter().map(|s| s.seed).collect::<Vec<_>>(),
+        [1, 2, 3]
+    );
+    let l = sw.leave_one_out;
+    assert!((l.onset_error - 0.1).abs() < 1e-12, "{l:?}");
+    assert!((l.end_ratio_factor - 1.8).abs() < 1e-9, "{l:?}");
+    assert!((l.distance_db_rms - 3.5).abs() < 1e-12, "{l:?}");
+    assert_eq!(l.accepted, [true, true, false]);
 }
 
 fn curve(v: &[f64]) -> Curve {
