@@ -484,19 +484,31 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
+impl Medians {
+    /// Each figure's median on its own — the end factor through its logarithm, so ×3 and
+    /// ×1/3 weigh alike — and issue 14's acceptance judged on them.
+    fn of(onsets: Vec<f64>, end_factors: Vec<f64>, distances: Vec<f64>) -> Medians {
+        let o = median(onsets);
+        let e = 10f64.powf(median(
+            end_factors.iter().map(|x| x.log10().abs()).collect(),
+        ));
+        let d = median(distances);
+        Medians {
+            onset_error: o,
+            end_ratio_factor: e,
+            distance_db_rms: d,
+            accepted: [o <= 0.1, e <= 2.0, d <= 3.0],
+        }
+    }
+}
+
 /// Medians of a set of held-out figures.
 pub fn medians(h: &[LifeFigures]) -> Medians {
-    let o = median(h.iter().map(|f| f.onset_error.unwrap_or(1.0)).collect());
-    let e = 10f64.powf(median(
-        h.iter().map(|f| f.end_ratio_factor.log10().abs()).collect(),
-    ));
-    let d = median(h.iter().map(|f| f.distance_db_rms).collect());
-    Medians {
-        onset_error: o,
-        end_ratio_factor: e,
-        distance_db_rms: d,
-        accepted: [o <= 0.1, e <= 2.0, d <= 3.0],
-    }
+    Medians::of(
+        h.iter().map(|f| f.onset_error.unwrap_or(1.0)).collect(),
+        h.iter().map(|f| f.end_ratio_factor).collect(),
+        h.iter().map(|f| f.distance_db_rms).collect(),
+    )
 }
 
 /// One seed's medians in a validation repeated over seeds.
@@ -523,20 +535,13 @@ pub struct SeedSweep {
     pub leave_one_out: Medians,
 }
 
-/// Median over seeds of each figure (the end factor through its logarithm);
-/// acceptance judged on those medians.
+/// Median over seeds of each figure.
 fn median_of_medians(v: &[Medians]) -> Medians {
-    let o = median(v.iter().map(|m| m.onset_error).collect());
-    let e = 10f64.powf(median(
-        v.iter().map(|m| m.end_ratio_factor.log10().abs()).collect(),
-    ));
-    let d = median(v.iter().map(|m| m.distance_db_rms).collect());
-    Medians {
-        onset_error: o,
-        end_ratio_factor: e,
-        distance_db_rms: d,
-        accepted: [o <= 0.1, e <= 2.0, d <= 3.0],
-    }
+    Medians::of(
+        v.iter().map(|m| m.onset_error).collect(),
+        v.iter().map(|m| m.end_ratio_factor).collect(),
+        v.iter().map(|m| m.distance_db_rms).collect(),
+    )
 }
 
 /// Summarises validations of several seeds (each as returned by [`validate_records`]).
