@@ -673,30 +673,8 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
         (true, None) => ims_validate::FloorMode::Calibrated,
         (false, None) => ims_validate::FloorMode::None,
     };
-    // One seed per thread, at most the machine's cores at a time.
-    let seeds: Vec<u64> = (a.seed..=last).collect();
-    let width = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut runs = Vec::with_capacity(seeds.len());
-    for chunk in seeds.chunks(width) {
-        let done: Vec<Result<ims_validate::Validation, String>> = std::thread::scope(|sc| {
-            let hs: Vec<_> = chunk
-                .iter()
-                .map(|&s| {
-                    let recs = &recs;
-                    sc.spawn(move || ims_validate::validate_records(recs, s, !a.primary_only, mode))
-                })
-                .collect();
-            hs.into_iter()
-                .map(|h| {
-                    h.join()
-                        .unwrap_or_else(|_| Err("a validation thread panicked".into()))
-                })
-                .collect()
-        });
-        for r in done {
-            runs.push(r.map_err(CliError::run)?);
-        }
-    }
+    let runs = ims_validate::validate_seeds(&recs, a.seed..=last, !a.primary_only, mode)
+        .map_err(CliError::run)?;
     let sweep = (runs.len() > 1).then(|| ims_validate::over_seeds(&runs));
     let mut v = runs
         .into_iter()

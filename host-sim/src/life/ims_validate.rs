@@ -544,6 +544,37 @@ fn median_of_medians(v: &[Medians]) -> Medians {
     )
 }
 
+/// [`validate_records`] for each seed of `seeds`, one thread per seed and at most the
+/// machine's cores at a time; the validations in seed order, or the first error.
+pub fn validate_seeds(
+    recs: &[MeasuredRecord],
+    seeds: std::ops::RangeInclusive<u64>,
+    all: bool,
+    mode: FloorMode,
+) -> Result<Vec<Validation>, String> {
+    let seeds: Vec<u64> = seeds.collect();
+    let width = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut runs = Vec::with_capacity(seeds.len());
+    for chunk in seeds.chunks(width) {
+        let done: Vec<Result<Validation, String>> = std::thread::scope(|sc| {
+            let hs: Vec<_> = chunk
+                .iter()
+                .map(|&s| sc.spawn(move || validate_records(recs, s, all, mode)))
+                .collect();
+            hs.into_iter()
+                .map(|h| {
+                    h.join()
+                        .unwrap_or_else(|_| Err("a validation thread panicked".into()))
+                })
+                .collect()
+        });
+        for r in done {
+            runs.push(r?);
+        }
+    }
+    Ok(runs)
+}
+
 /// Summarises validations of several seeds (each as returned by [`validate_records`]).
 pub fn over_seeds(runs: &[Validation]) -> SeedSweep {
     let seeds: Vec<SeedMedians> = runs

@@ -7,7 +7,7 @@ use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
 use wearsim_host::life::ims::{distance_db, Curve};
 use wearsim_host::life::ims_validate::{
-    medians, over_seeds, read_record, read_records, validate_records, FloorMode, LifeFigures,
+    medians, over_seeds, read_record, read_records, validate_seeds, FloorMode, LifeFigures,
     Medians, Validation, RECORDS,
 };
 
@@ -67,15 +67,7 @@ fn held_out_lives_end_within_a_factor_two_of_measured() {
         return;
     };
     let recs = read_records(&data).unwrap();
-    let runs: Vec<Validation> = std::thread::scope(|sc| {
-        let hs: Vec<_> = (1..=5u64)
-            .map(|seed| {
-                let recs = &recs;
-                sc.spawn(move || validate_records(recs, seed, false, FloorMode::None).unwrap())
-            })
-            .collect();
-        hs.into_iter().map(|h| h.join().unwrap()).collect()
-    });
+    let runs = validate_seeds(&recs, 1..=5, false, FloorMode::None).unwrap();
     for v in &runs {
         let fold = &v.folds[0];
         assert_eq!(fold.calibrated_on, "t2b1");
