@@ -34,6 +34,8 @@ cargo clippy -p wearsim-core-f32 --target thumbv7em-none-eabihf -- -D warnings
 
 step "every feature at once (features are additive)"
 cargo check --workspace --all-features
+# and the readers alone, as the fuzz targets build them (host-sim without its `app` feature)
+cargo clippy -p wearsim-host --no-default-features --all-targets -- -D warnings
 
 step "docs build without warnings"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --all-features

@@ -1,21 +1,42 @@
 //! wearsim host library: scenario configuration, the simulation runner, measurement
 //! readers and writers, signal analysis, and the figures the `wearsim` command prints.
+//!
+//! Without the default `app` feature only the measurement readers and writers ([`io`],
+//! [`capture`]), the signal analysis they use ([`analysis`]) and the bearing geometry
+//! ([`geometry`]) are built, without the plotting, Parquet and command-line dependencies:
+//! the fuzz targets (`host-sim/fuzz`) need only those, and their instrumented build was a
+//! third of CI's time.
 pub mod analysis;
+#[cfg(feature = "app")]
 pub mod analyze;
 pub mod capture;
+#[cfg(feature = "app")]
 pub mod cmd;
+#[cfg(feature = "app")]
 pub mod config;
+#[cfg(feature = "app")]
 pub mod cwru_benchmark;
+#[cfg(feature = "app")]
 pub mod effects;
+#[cfg(feature = "app")]
 pub mod features;
+#[cfg(feature = "app")]
 pub mod gap;
 pub mod geometry;
 pub mod io;
+#[cfg(feature = "app")]
 pub mod kinematics;
+#[cfg(feature = "app")]
 pub mod lanes;
+#[cfg(feature = "app")]
 pub mod life;
+#[cfg(feature = "app")]
 pub mod plot;
+#[cfg(feature = "app")]
 pub mod resolvable;
+#[cfg(feature = "app")]
 pub mod simulate;
+#[cfg(feature = "app")]
 pub mod summary;
+#[cfg(feature = "app")]
 pub mod sweep;

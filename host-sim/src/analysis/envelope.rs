@@ -56,6 +56,8 @@ pub fn envelope_spectrum(
 /// (squared with `squared`). The mean of the (squared) envelope is removed and the amplitude
 /// spectrum is taken with a Hann window over the whole record, as in [`envelope_spectrum`],
 /// which this equals for `squared = false`.
+// Used by the `app` modules only.
+#[cfg_attr(not(feature = "app"), allow(dead_code))]
 pub(crate) fn envelope_spectrum_of_spectrum(
     spec: &[realfft::num_complex::Complex<f64>],
     n: usize,

@@ -18,6 +18,8 @@ pub(crate) fn plan_r2c(n: usize) -> Arc<dyn RealToComplex<f64>> {
 }
 
 /// Inverse complex-to-real plan of length `n` (cached per thread, unnormalised).
+// Used by the `app` modules only.
+#[cfg_attr(not(feature = "app"), allow(dead_code))]
 pub(crate) fn plan_c2r(n: usize) -> Arc<dyn ComplexToReal<f64>> {
     REAL_PLANNER.with(|p| p.borrow_mut().plan_fft_inverse(n))
 }

@@ -549,6 +549,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(feature = "app")] // the FFT resampler is in cwru_benchmark
     fn hz_grid_and_content_edge_do_not_move_with_the_rate() -> Result<(), AnalysisError> {
         let fs = 12_000.0;
         let x = impulsive(fs, 48_000);
