@@ -177,6 +177,24 @@ impl Life {
         static_load: Real,
         site: Site,
     ) -> Result<Self, ConfigError> {
+        Self::new_checked_at(cfg, bearing, static_load, static_load, site)
+    }
+
+    /// [`Life::new_checked`] with the reference pressure taken at `calibration_load` (N,
+    /// the most loaded element's static load of the scenario the material constants hold
+    /// for) instead of at `static_load`. A load scaled away from the scenario's (`wearsim
+    /// life --load-scale`, `--loads`) then raises the initiation and propagation rates as
+    /// a heavier load does (pressure ratio to the ninth power in the dent's initiation,
+    /// Lundberg–Palmgren; cubed in the spawn law), rather than being normalised away with
+    /// a reference that moved with it.
+    pub fn new_checked_at(
+        cfg: LifeConfig,
+        bearing: &BearingGeometry,
+        static_load: Real,
+        calibration_load: Real,
+        site: Site,
+    ) -> Result<Self, ConfigError> {
+        check_range("life.calibration_load", calibration_load, 1e-3, 1e8)?;
         let material = Material::new_checked(cfg.material)?;
         check_range("lambda", cfg.lambda, 0.05, 20.0)?;
         check_range("life.roughness", cfg.roughness, 1e-9, 5e-6)?;
@@ -207,7 +225,7 @@ impl Life {
             passes_per_rev: site.passes_per_rev(&orders),
             contact: site.contact(&contact, static_load),
             element_radius: 0.5 * bearing.element_diameter,
-            reference_pressure: contact.outer.max_pressure(static_load),
+            reference_pressure: contact.outer.max_pressure(calibration_load),
             reference_load: static_load,
             kind: bearing.contact,
             site,
@@ -665,7 +683,8 @@ impl Life {
     }
 
     /// The reference Hertz pressure (Pa) of the static most loaded element at the outer
-    /// race (the normalisation of the initiation laws for every site).
+    /// race under the calibration load (the normalisation of the initiation laws for every
+    /// site; see [`Life::new_checked_at`]).
     pub fn reference_pressure(&self) -> Real {
         self.reference_pressure
     }

@@ -30,7 +30,8 @@ pub struct LifeArgs {
     /// Stream the continuous vibration of the whole life to disk (resumable).
     #[arg(long)]
     pub dense: bool,
-    /// Multiplier of the radial load, 0.05..=20.
+    /// Multiplier of the radial load, 0.05..=20: the same bearing and material under a
+    /// heavier or lighter load (the wear laws keep the unscaled load's reference pressure).
     #[arg(long, default_value_t = 1.0)]
     pub load_scale: f64,
     /// Film parameter λ (film thickness / composite roughness), 0.05..=20; default 2 (or the
@@ -85,6 +86,9 @@ impl LifeArgs {
         let (mut model, _) = file.resolve().map_err(CliError::input)?;
         wearsim_core::error::check_range("load_scale", self.load_scale, 0.05, 20.0)
             .map_err(CliError::input)?;
+        // The material's wear limits stay those of the unscaled scenario (see
+        // `LifeSpec::calibration_load`).
+        let calibration_load = Some(model.radial_load);
         model.radial_load *= self.load_scale;
         let d = LifeConfig::DEFAULT;
         let ls = file.life.clone().unwrap_or_default();
@@ -108,6 +112,7 @@ impl LifeArgs {
             snapshot_every: self.snapshot_every,
             window: self.window,
             settle: 0.05,
+            calibration_load,
         };
         LifeRun::new(spec).map_err(CliError::input)
     }

@@ -284,6 +284,7 @@ pub fn simulate(
         snapshot_every: (expected / SIM_SNAPSHOTS).max(1000.0),
         window: 0.25,
         settle: 0.05,
+        calibration_load: None,
     };
     let run = LifeRun::new(spec).map_err(|e| e.to_string())?;
     let every = run.spec.snapshot_every;

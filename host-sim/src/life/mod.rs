@@ -41,6 +41,12 @@ pub struct LifeSpec {
     pub window: f64,
     /// Settling time before each window (s).
     pub settle: f64,
+    /// Radial load (N) of the scenario the material's wear limits hold for, when the
+    /// model's load was scaled away from it (`wearsim life --load-scale`, `--loads`): the
+    /// initiation and propagation laws take their reference pressure there
+    /// ([`Life::new_checked_at`]), so a heavier load wears faster through them too. `None`:
+    /// the model's own radial load.
+    pub calibration_load: Option<f64>,
 }
 
 /// Why a life run cannot be done.
@@ -197,10 +203,26 @@ impl LifeRun {
         }
         wearsim_core::error::check_range("window", spec.window, 0.02, 10.0)?;
         wearsim_core::error::check_range("settle", spec.settle, 0.0, 10.0)?;
-        let life = Life::new_checked(
+        let static_load = base.static_reference().q_max.max(1e-3);
+        let calibration_load = match spec.calibration_load {
+            Some(radial) => {
+                wearsim_core::error::check_range("calibration_load", radial, 1e-3, 1e8)?;
+                Model::new_checked(ModelConfig {
+                    defect: None,
+                    radial_load: radial,
+                    ..spec.model.clone()
+                })?
+                .static_reference()
+                .q_max
+                .max(1e-3)
+            }
+            None => static_load,
+        };
+        let life = Life::new_checked_at(
             spec.life,
             &base.config().bearing,
-            base.static_reference().q_max.max(1e-3),
+            static_load,
+            calibration_load,
             Site::of(spec.model.defect.as_ref().map(|d| &d.location)),
         )?;
         let shaft_hz = spec.model.speed.shaft_hz(0.0);

@@ -15,6 +15,7 @@ fn reference(seed: u64, every: f64, window: f64) -> LifeSpec {
         snapshot_every: every,
         window,
         settle: 0.05,
+        calibration_load: None,
     }
 }
 
@@ -90,6 +91,8 @@ proptest! {
 
 fn life_with(load_scale: f64, lambda: f64, seed: u64, every: f64) -> (f64, LifeRun) {
     let mut spec = reference(seed, every, 0.05);
+    // The same bearing and material under a scaled load (as `--load-scale`).
+    spec.calibration_load = Some(spec.model.radial_load);
     spec.model.radial_load *= load_scale;
     spec.life.lambda = lambda;
     spec.life.cycle_cap = 1e12;
@@ -158,6 +161,7 @@ fn accelerated(seed: u64) -> LifeSpec {
         snapshot_every: 100.0,
         window: 0.1,
         settle: 0.05,
+        calibration_load: None,
     }
 }
 

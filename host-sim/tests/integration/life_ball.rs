@@ -120,6 +120,7 @@ fn late_ball_life_shows_its_envelope_line_at_twice_bsf() {
         snapshot_every: 2e8,
         window: 2.0,
         settle: 0.05,
+        calibration_load: None,
     })
     .unwrap();
     let r = run.run_snapshots(|_, _| {}).unwrap();

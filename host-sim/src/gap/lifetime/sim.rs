@@ -98,6 +98,7 @@ impl LifeSim {
             snapshot_every: self.block(0.0),
             window: self.window_samples as f64 / fs,
             settle: 0.05,
+            calibration_load: None,
         })
         .map_err(|e| e.to_string())?;
         let mut raw: Vec<(f64, analysis::Stats)> = vec![];
