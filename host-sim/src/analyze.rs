@@ -877,17 +877,7 @@ mod tests {
 
     const FS: f64 = 12_000.0;
 
-    /// CWRU drive-end bearing (SKF 6205) at 1797 rpm, Hz.
-    fn cwru() -> FaultFrequencies {
-        FaultFrequencies {
-            shaft_hz: 29.95,
-            ftf: 11.93,
-            bpfo: 107.36,
-            bpfi: 162.19,
-            bsf: 70.58,
-            natural_hz: 3000.0,
-        }
-    }
+    use crate::analysis::synth::cwru_6205_1797rpm as cwru;
 
     /// Outer-race fault record: impulses at BPFO with 1 % random slip between impacts
     /// (uniform, Randall & Antoni 2011 report 1-2 %; a jitter-free train would be a purely

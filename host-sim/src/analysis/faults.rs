@@ -409,17 +409,7 @@ mod tests {
     const FS: f64 = 12_000.0;
     const N: usize = 36_000;
 
-    /// CWRU drive-end bearing (SKF 6205) at 1797 rpm.
-    fn cwru() -> FaultFrequencies {
-        FaultFrequencies {
-            shaft_hz: 29.95,
-            ftf: 11.93,
-            bpfo: 107.36,
-            bpfi: 162.19,
-            bsf: 70.58,
-            natural_hz: 3000.0,
-        }
-    }
+    use crate::analysis::synth::cwru_6205_1797rpm as cwru;
 
     fn signal(fault_hz: f64, mod_hz: f64, mod_depth: f64, seed: u64) -> Vec<f64> {
         FaultSignal {

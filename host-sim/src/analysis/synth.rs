@@ -3,6 +3,20 @@
 
 use std::f64::consts::PI;
 
+/// Fault frequencies (Hz) of the CWRU drive-end bearing (SKF 6205) at 1797 rpm, with a
+/// 3 kHz structural resonance: the unit tests' common case.
+#[cfg(test)]
+pub(crate) fn cwru_6205_1797rpm() -> wearsim_core::kinematics::FaultFrequencies {
+    wearsim_core::kinematics::FaultFrequencies {
+        shaft_hz: 29.95,
+        ftf: 11.93,
+        bpfo: 107.36,
+        bpfi: 162.19,
+        bsf: 70.58,
+        natural_hz: 3000.0,
+    }
+}
+
 /// Small seeded pseudo-random generator (SplitMix64, Steele et al. 2014)
 /// with Box-Muller Gaussian deviates. Not cryptographic; reproducible.
 #[derive(Debug, Clone)]
