@@ -9,10 +9,13 @@ use wearsim_core::contact::ElementContact;
 use wearsim_core::wear::RingRatings;
 
 /// `{"name", "pass_frequency", "passes_per_rev", "pass_frequency_hz", "contact",
-/// "ratings"}` of `run`'s wear site at its shaft speed. `ratings` (N): the bearing's ISO 281
+/// "reference_pressure_pa", "calibration_load_n", "ratings"}` of `run`'s wear site at its shaft speed. `ratings` (N): the bearing's ISO 281
 /// rating `bearing` (the one the fatigue sum uses, for every site), the ring ratings
 /// `inner` (`Q_ci`) and `outer` (`Q_ce`), and `site`, the site's own ring's (null for an
-/// element); docs/life-sites.md "Ring ratings".
+/// element); docs/life-sites.md "Ring ratings". `reference_pressure_pa`: the outer contact's
+/// static pressure at the calibration load, which normalises the initiation laws, and
+/// `calibration_load_n`: the radial load it is taken at (the model's own unless a load
+/// scale moved it; docs/life-statistics.md, stop 26).
 pub fn site_json(run: &LifeRun) -> serde_json::Value {
     let site = run.life.site();
     let bearing = &run.spec.model.bearing;
@@ -30,6 +33,8 @@ pub fn site_json(run: &LifeRun) -> serde_json::Value {
         "passes_per_rev": run.life.passes_per_rev(),
         "pass_frequency_hz": run.life.passes_per_rev() * run.shaft_hz,
         "contact": name,
+        "reference_pressure_pa": run.life.reference_pressure(),
+        "calibration_load_n": run.spec.calibration_load.unwrap_or(run.spec.model.radial_load),
         "ratings": {
             "bearing": run.life.rating(),
             "inner": rings.inner,

@@ -64,6 +64,15 @@ fn life_names_its_site_and_measures_its_own_defect_loads() {
         let r = &s["ratings"];
         assert_eq!(r["site"], r[contact]);
         assert_eq!(r["fatigue_uses"], "bearing");
+        // The initiation laws' reference: the outer contact at the preset's own load (no
+        // load scale), in the GPa range of a loaded ball contact.
+        assert_eq!(s["calibration_load_n"].as_f64(), Some(model.radial_load));
+        let p_ref = s["reference_pressure_pa"].as_f64().unwrap();
+        assert!((0.3e9..5e9).contains(&p_ref), "{name}: {p_ref} Pa");
+        assert_eq!(
+            s["reference_pressure_pa"],
+            outer["site"]["reference_pressure_pa"]
+        );
         assert!(r["inner"].as_f64().unwrap() < r["outer"].as_f64().unwrap());
         let n = s["passes_per_rev"].as_f64().unwrap();
         assert!((n / order - 1.0).abs() < 1e-9, "{name}: {n} vs {order}");
