@@ -11,23 +11,18 @@
 // needed in the other.
 #![allow(clippy::unnecessary_cast)]
 
+mod common;
+
 use wearsim_core::topography::{self, Topography};
 use wearsim_core::wear::{Life, LifeConfig, PassLoads, Site, Stage};
-use wearsim_core::{presets, Model, ModelConfig, Real};
+use wearsim_core::Real;
 
 /// Load multiplier of the test.
 const SCALE: Real = 1.6;
 
 /// The 6205's bearing and its static most loaded element's load (N) at the preset's load.
 fn bearing_and_load() -> (wearsim_core::bearing::BearingGeometry, Real) {
-    let base = ModelConfig {
-        defect: None,
-        ..presets::by_name("cwru-6205-de").unwrap()
-    };
-    let q = Model::new_checked(base.clone())
-        .unwrap()
-        .static_reference()
-        .q_max;
+    let (base, q) = common::healthy_static_load("cwru-6205-de");
     (base.bearing, q)
 }
 

@@ -96,20 +96,27 @@ pub mod consts {
     pub const FRAC_PI_2: Real = std::f64::consts::FRAC_PI_2 as Real;
 }
 
+/// Preset `name` without its defect, and its static most loaded element's load (N) at the
+/// preset's radial load.
+pub fn healthy_static_load(name: &str) -> (ModelConfig, Real) {
+    let base = ModelConfig {
+        defect: None,
+        ..presets::by_name(name).unwrap()
+    };
+    let q = Model::new_checked(base.clone())
+        .unwrap()
+        .static_reference()
+        .q_max;
+    (base, q)
+}
+
 /// The outer-race life of the `ims-za2115` preset (Rexnord ZA-2115, 6000 lbf) without a
 /// defect and without slip (so no abrasion: the wear laws' plastic and fatigue parts
 /// alone), with constant pass loads at the static most loaded element's load `q`: zone
 /// `q`, defect edge `1.3 q`.
 pub fn za2115_outer_life() -> (wearsim_core::wear::Life, wearsim_core::wear::PassLoads) {
     use wearsim_core::wear::{Life, LifeConfig, PassLoads, Site};
-    let base = ModelConfig {
-        defect: None,
-        ..presets::by_name("ims-za2115").unwrap()
-    };
-    let q = Model::new_checked(base.clone())
-        .unwrap()
-        .static_reference()
-        .q_max;
+    let (base, q) = healthy_static_load("ims-za2115");
     let cfg = LifeConfig {
         slip: 0.0,
         ..LifeConfig::DEFAULT
