@@ -280,7 +280,11 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             && m0.cfg.defect.is_some()
             && self.states.first()?.steps.is_multiple_of(SLIP_CHECK_EVERY)
         {
-            self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
+            if OWN {
+                self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
+            } else {
+                self.update_slips();
+            }
         }
         match &own {
             None => self.advance_kinematics(f_end0),
@@ -342,6 +346,67 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             };
         }
         Some(out)
+    }
+
+    /// [`Model::update_slip`] of every lane with slip, for lanes that share their
+    /// kinematics: which elements enter the arming region (`cos_rel > 0.5`) and which the
+    /// far half-plane (`cos_rel < −0.5`) is the same for every lane, so it is decided once
+    /// from lane 0's angles; each lane then updates its armed bits, and only a lane with a
+    /// redraw takes its generator out of the word-major state (the scalar step's draws in
+    /// the same element order, the same bits). Before, every lane synchronised its
+    /// kinematics and took its generator out on every check.
+    fn update_slips(&mut self) {
+        let models = self.models;
+        let (Some(m0), Some(first)) = (models.first(), self.states.first()) else {
+            return;
+        };
+        let Some(d) = m0.cfg.defect else {
+            return;
+        };
+        let (dc, ds) = match d.location {
+            DefectLocation::InnerRace { .. } => rotate(first.shaft_cs, m0.defect_offset_cs),
+            DefectLocation::Ball { .. } => (0.0, 1.0),
+            DefectLocation::OuterRace { .. } => m0.defect_offset_cs,
+        };
+        let (cc, sc) = first.cage_cs;
+        let n = m0.cfg.bearing.elements;
+        // One bit per element, as the scalar bookkeeping (`rotate_left` over a u32).
+        let (mut arm, mut far) = (0u32, 0u32);
+        let mut bit = 1u32;
+        for (ce, se) in m0.elem_cs.get(..n as usize).unwrap_or(&[]) {
+            let cos_rel = (cc * ce - sc * se) * dc + (sc * ce + cc * se) * ds;
+            if cos_rel > 0.5 {
+                arm |= bit;
+            } else if cos_rel < -0.5 {
+                far |= bit;
+            }
+            bit = bit.rotate_left(1);
+        }
+        for l in 0..K {
+            let Some(slip) = models.get(l).and_then(|m| m.cfg.slip) else {
+                continue;
+            };
+            let Some(armed) = self.states.get(l).map(|st| st.armed) else {
+                continue;
+            };
+            let fire = armed & far;
+            if fire != 0 {
+                let mut r = self.lane_rng(l);
+                if let Some(st) = self.states.get_mut(l) {
+                    let mut bit = 1u32;
+                    for s in st.slip.iter_mut().take(n as usize) {
+                        if fire & bit != 0 {
+                            *s = slip.draw(&mut r, n);
+                        }
+                        bit = bit.rotate_left(1);
+                    }
+                }
+                self.set_lane_rng(l, &r);
+            }
+            if let Some(st) = self.states.get_mut(l) {
+                st.armed = (armed | arm) & !fire;
+            }
+        }
     }
 
     /// Moves lane 0's time, angles and phasors on (`f_end`: its shaft rate at the end of
