@@ -3,6 +3,7 @@
 //! computed once.
 
 use super::super::defect_term::race_terms;
+use super::super::step::redraw_slips;
 use super::super::{rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
 use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
@@ -360,51 +361,26 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let (Some(m0), Some(first)) = (models.first(), self.states.first()) else {
             return;
         };
-        let Some(d) = m0.cfg.defect else {
+        let Some(regions) = m0.slip_regions(first.shaft_cs, first.cage_cs) else {
             return;
         };
-        let (dc, ds) = match d.location {
-            DefectLocation::InnerRace { .. } => rotate(first.shaft_cs, m0.defect_offset_cs),
-            DefectLocation::Ball { .. } => (0.0, 1.0),
-            DefectLocation::OuterRace { .. } => m0.defect_offset_cs,
-        };
-        let (cc, sc) = first.cage_cs;
         let n = m0.cfg.bearing.elements;
-        // One bit per element, as the scalar bookkeeping (`rotate_left` over a u32).
-        let (mut arm, mut far) = (0u32, 0u32);
-        let mut bit = 1u32;
-        for (ce, se) in m0.elem_cs.get(..n as usize).unwrap_or(&[]) {
-            let cos_rel = (cc * ce - sc * se) * dc + (sc * ce + cc * se) * ds;
-            if cos_rel > 0.5 {
-                arm |= bit;
-            } else if cos_rel < -0.5 {
-                far |= bit;
-            }
-            bit = bit.rotate_left(1);
-        }
-        for l in 0..K {
-            let Some(slip) = models.get(l).and_then(|m| m.cfg.slip) else {
+        for (l, m) in models.iter().enumerate() {
+            let Some(slip) = m.cfg.slip else {
                 continue;
             };
             let Some(armed) = self.states.get(l).map(|st| st.armed) else {
                 continue;
             };
-            let fire = armed & far;
-            if fire != 0 {
+            // Only a lane with a redraw takes its generator out.
+            if armed & regions.1 != 0 {
                 let mut r = self.lane_rng(l);
                 if let Some(st) = self.states.get_mut(l) {
-                    let mut bit = 1u32;
-                    for s in st.slip.iter_mut().take(n as usize) {
-                        if fire & bit != 0 {
-                            *s = slip.draw(&mut r, n);
-                        }
-                        bit = bit.rotate_left(1);
-                    }
+                    st.armed = redraw_slips(&slip, &mut r, &mut st.slip, n, armed, regions);
                 }
                 self.set_lane_rng(l, &r);
-            }
-            if let Some(st) = self.states.get_mut(l) {
-                st.armed = (armed | arm) & !fire;
+            } else if let Some(st) = self.states.get_mut(l) {
+                st.armed = armed | regions.0;
             }
         }
     }
