@@ -14,7 +14,7 @@
 mod common;
 
 use wearsim_core::topography::{self, Topography};
-use wearsim_core::wear::{Life, LifeConfig, PassLoads, Site, Stage};
+use wearsim_core::wear::{Life, LifeConfig, Site, Stage};
 use wearsim_core::Real;
 
 /// Load multiplier of the test.
@@ -40,13 +40,7 @@ fn revolutions_to_crack(life: &Life, q: Real) -> Real {
     st.dent_asperity = h;
     // The fatigue sum far from its end, so that the crack opens by initiation.
     st.scatter = 1e12;
-    let loads = PassLoads {
-        zone: q,
-        zone_mean: q,
-        edge: 1.3 * q,
-        edge_cubic: 1.3 * q,
-        passes: 100,
-    };
+    let loads = common::constant_pass_loads(q);
     let mut revs = 0.0;
     for _ in 0..10_000 {
         let adv = life.advance(&mut st, 1e12, &loads);

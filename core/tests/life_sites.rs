@@ -8,6 +8,8 @@
 // needed in the other.
 #![allow(clippy::unnecessary_cast)]
 
+mod common;
+
 use wearsim_core::bearing::BearingGeometry;
 use wearsim_core::contact::ElementContact;
 use wearsim_core::forces::defect::DefectLocation;
@@ -163,13 +165,7 @@ fn site_follows_the_defect_location() {
 /// Loads held constant over a life (N): the static most-loaded element in the zone, 30 %
 /// more at the defect edge.
 fn loads(q: Real) -> PassLoads {
-    PassLoads {
-        zone: q,
-        zone_mean: q,
-        edge: 1.3 * q,
-        edge_cubic: 1.3 * q,
-        passes: 100,
-    }
+    common::constant_pass_loads(q)
 }
 
 /// Revolutions for a crack of depth `a0` to reach the spall depth in stage

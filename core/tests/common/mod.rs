@@ -115,19 +115,24 @@ pub fn healthy_static_load(name: &str) -> (ModelConfig, Real) {
 /// alone), with constant pass loads at the static most loaded element's load `q`: zone
 /// `q`, defect edge `1.3 q`.
 pub fn za2115_outer_life() -> (wearsim_core::wear::Life, wearsim_core::wear::PassLoads) {
-    use wearsim_core::wear::{Life, LifeConfig, PassLoads, Site};
+    use wearsim_core::wear::{Life, LifeConfig, Site};
     let (base, q) = healthy_static_load("ims-za2115");
     let cfg = LifeConfig {
         slip: 0.0,
         ..LifeConfig::DEFAULT
     };
     let life = Life::new_checked(cfg, &base.bearing, q, Site::OuterRace).unwrap();
-    let loads = PassLoads {
+    (life, constant_pass_loads(q))
+}
+
+/// Pass loads held constant over a life (N): the zone's most loaded element at `q`, 30 %
+/// more at the defect edge, 100 passes per window.
+pub fn constant_pass_loads(q: Real) -> wearsim_core::wear::PassLoads {
+    wearsim_core::wear::PassLoads {
         zone: q,
         zone_mean: q,
         edge: 1.3 * q,
         edge_cubic: 1.3 * q,
         passes: 100,
-    };
-    (life, loads)
+    }
 }
