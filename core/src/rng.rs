@@ -89,10 +89,83 @@ impl Xoshiro128pp {
     /// uniforms, rescaled): cheap, bounded (|x| ≤ 2√3), identical on every target.
     #[inline(always)]
     pub fn gauss_approx(&mut self) -> Real {
-        let s = self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1() + self.uniform_pm1();
-        // Var(U[-1,1)) = 1/3, four of them: 4/3.
-        s * crate::real::HALF_SQRT_3
+        let u = [
+            self.uniform_pm1(),
+            self.uniform_pm1(),
+            self.uniform_pm1(),
+            self.uniform_pm1(),
+        ];
+        irwin_hall_4(u)
     }
+}
+
+/// Four uniforms on `[−1, 1)` summed in order and rescaled to unit variance
+/// (Var(U[−1, 1)) = 1/3, four of them 4/3): [`Xoshiro128pp::gauss_approx`] and its lane
+/// form [`gauss_approx_where`].
+#[inline(always)]
+fn irwin_hall_4(u: [Real; 4]) -> Real {
+    let [a, b, c, d] = u;
+    (a + b + c + d) * crate::real::HALF_SQRT_3
+}
+
+/// [`Xoshiro128pp::uniform_pm1`] on K generators at once, state word-major (`rng[w][lane]`
+/// is word `w` of lane `lane`'s generator): every lane advances. The same words and bits
+/// as K scalar generators.
+#[inline(always)]
+pub(crate) fn uniform_pm1_lanes<const K: usize>(rng: &mut [[u32; K]; 4]) -> [Real; K] {
+    uniform_pm1_where(rng, &[true; K])
+}
+
+/// [`uniform_pm1_lanes`] advancing only the lanes whose `draw` is set (the others keep
+/// their state; their output is meaningless): lane `l`'s generator moves exactly when its
+/// scalar code draws.
+#[inline(always)]
+pub(crate) fn uniform_pm1_where<const K: usize>(
+    rng: &mut [[u32; K]; 4],
+    draw: &[bool; K],
+) -> [Real; K] {
+    let [s0, s1, s2, s3] = rng;
+    let mut out = [0.0; K];
+    for (((((o, a0), a1), a2), a3), d) in out
+        .iter_mut()
+        .zip(s0.iter_mut())
+        .zip(s1.iter_mut())
+        .zip(s2.iter_mut())
+        .zip(s3.iter_mut())
+        .zip(draw)
+    {
+        let ([n0, n1, n2, n3], result) = next_state([*a0, *a1, *a2, *a3]);
+        // A bit mask instead of a branch: the compiler would make the conditional stores
+        // masked stores, which are slow on some CPUs.
+        let keep_new = (*d as u32).wrapping_neg();
+        let pick = |new: u32, old: u32| (new & keep_new) | (old & !keep_new);
+        (*a0, *a1, *a2, *a3) = (pick(n0, *a0), pick(n1, *a1), pick(n2, *a2), pick(n3, *a3));
+        *o = to_pm1(result);
+    }
+    out
+}
+
+/// [`Xoshiro128pp::gauss_approx`] on the lanes whose `draw` is set (word-major state as
+/// [`uniform_pm1_where`]; the others keep their state and get 0).
+#[inline(always)]
+pub(crate) fn gauss_approx_where<const K: usize>(
+    rng: &mut [[u32; K]; 4],
+    draw: &[bool; K],
+) -> [Real; K] {
+    let u0 = uniform_pm1_where(rng, draw);
+    let u1 = uniform_pm1_where(rng, draw);
+    let u2 = uniform_pm1_where(rng, draw);
+    let u3 = uniform_pm1_where(rng, draw);
+    let mut out = [0.0; K];
+    for (l, (o, d)) in out.iter_mut().zip(draw).enumerate() {
+        let at = |u: &[Real; K]| u.get(l).copied().unwrap_or(0.0);
+        *o = if *d {
+            irwin_hall_4([at(&u0), at(&u1), at(&u2), at(&u3)])
+        } else {
+            0.0
+        };
+    }
+    out
 }
 
 impl RngCore for Xoshiro128pp {

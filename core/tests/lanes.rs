@@ -182,6 +182,42 @@ fn mains_hum_lanes_equal_the_scalar_step() {
     assert_lanes_match(cfgs, core::array::from_fn(|i| 40 + i as u64), 1200);
 }
 
+/// Transfer paths and sensor chains that differ in shape from lane to lane, K = 8 (the
+/// lanes filter them side by side): 0 to 3 active modes (a gap in the middle included),
+/// path gains, and sensors with and without noise, hum and low-pass, so a lane whose
+/// chain draws no noise must keep its generator while its neighbours draw.
+#[test]
+fn transfer_paths_and_sensors_of_every_shape_equal_the_scalar_step() {
+    let mut base = presets::by_name("cwru-6205-de").expect("preset");
+    base.channels = Channels::All;
+    let cfgs: [ModelConfig; 8] = core::array::from_fn(|i| {
+        let mut c = base.clone();
+        let g = |on: bool, v: Real| if on { v } else { 0.0 };
+        if i != 0 {
+            let gains = [g(i % 2 == 1, 1.5), g(i % 4 >= 2, 0.7), g(i >= 4, 2.0)];
+            c.effects
+                .set_named(
+                    "transfer-path",
+                    &[
+                        1800.0, 0.04, gains[0], 2600.0, 0.06, gains[1], 3900.0, 0.08, gains[2],
+                        0.5 + 0.25 * i as Real,
+                    ],
+                )
+                .expect("in bounds");
+        }
+        if i != 3 {
+            let noise = g(i % 3 != 0, 0.01 * (1 + i) as Real);
+            let hum = g(i % 2 == 0, 0.02);
+            let corner = g(i >= 5, 3000.0);
+            c.effects
+                .set_named("sensor", &[noise, corner, hum, 50.0, 0.3])
+                .expect("in bounds");
+        }
+        c
+    });
+    assert_lanes_match(cfgs, core::array::from_fn(|i| 70 + i as u64), 1500);
+}
+
 /// Ball defect, K = 4, lanes differing in seed, defect size and load; exact ZOH.
 #[test]
 fn ball_defect_lanes_equal_the_scalar_step() {

@@ -186,9 +186,30 @@ impl SensorChain {
     /// are equal share one evaluation ([`MainsMemo`]).
     #[inline(never)]
     pub fn apply_phasor(&self, st: &mut SensorState, a: Real, sc: (Real, Real)) -> Real {
-        st.lp += self.k * (a - st.lp);
-        st.phase = crate::real::wrap_angle(st.phase + self.dphi);
-        let mut out = st.lp;
+        let rng = &mut st.rng;
+        self.sample(&mut st.lp, &mut st.phase, a, sc, || rng.gauss_approx())
+    }
+
+    /// Whether the chain adds noise (draws from its generator on every sample).
+    pub fn has_noise(&self) -> bool {
+        self.p.noise > 0.0
+    }
+
+    /// One output sample from the chain's memory (`lp`, `phase`), the mains phasor `sc` and
+    /// the noise draw `gauss` (called only when the chain adds noise): the one definition
+    /// of the chain's arithmetic, for [`SensorChain::apply_phasor`] and [`SensorLanes`].
+    #[inline(always)]
+    fn sample(
+        &self,
+        lp: &mut Real,
+        phase: &mut Real,
+        a: Real,
+        sc: (Real, Real),
+        gauss: impl FnOnce() -> Real,
+    ) -> Real {
+        *lp += self.k * (a - *lp);
+        *phase = crate::real::wrap_angle(*phase + self.dphi);
+        let mut out = *lp;
         if self.p.hum > 0.0 {
             let h = self.p.hum_harmonics;
             let (s, c) = sc;
@@ -197,7 +218,69 @@ impl SensorChain {
             out += self.p.hum * (s + h * (sin2 + sin3));
         }
         if self.p.noise > 0.0 {
-            out += self.p.noise * st.rng.gauss_approx();
+            out += self.p.noise * gauss();
+        }
+        out
+    }
+}
+
+/// The sensor chains of K lanes for the lane stepper (`crate::model::LaneGroup`): the
+/// chains' memories side by side and their noise generators word-major, so the noise of
+/// all lanes is drawn in one vectorised pass. Lane `l` gives, bit for bit,
+/// [`SensorChain::apply`] of its own chain and memory (a lane without a chain passes its
+/// input through); the memory lives here, not in the lanes' [`SensorState`].
+#[derive(Debug, Clone)]
+pub struct SensorLanes<const K: usize> {
+    chains: [Option<SensorChain>; K],
+    lp: [Real; K],
+    phase: [Real; K],
+    /// Noise generators, word-major (`rng[w][lane]`).
+    words: [[u32; K]; 4],
+    /// Lane `l`'s chain adds noise.
+    noisy: [bool; K],
+    any_noise: bool,
+}
+
+impl<const K: usize> SensorLanes<K> {
+    /// The chains of K lanes (`None`: no chain) with their memories.
+    pub fn new(chains: [Option<&SensorChain>; K], states: [&SensorState; K]) -> Self {
+        let noisy = chains.map(|c| c.is_some_and(|c| c.has_noise()));
+        let raw = states.map(|s| s.raw());
+        SensorLanes {
+            chains: chains.map(|c| c.copied()),
+            lp: raw.map(|r| r.1),
+            phase: raw.map(|r| r.2),
+            words: core::array::from_fn(|w| raw.map(|r| r.0.get(w).copied().unwrap_or(0))),
+            noisy,
+            any_noise: noisy.iter().any(|n| *n),
+        }
+    }
+
+    /// Applies every lane's chain to its output sample `a[l]`; lanes whose mains phases are
+    /// equal share one phasor evaluation ([`MainsMemo`]).
+    #[inline(always)]
+    pub fn apply(&mut self, a: &[Real; K]) -> [Real; K] {
+        let g = if self.any_noise {
+            crate::rng::gauss_approx_where(&mut self.words, &self.noisy)
+        } else {
+            [0.0; K]
+        };
+        let mut out = *a;
+        let mut mains = MainsMemo::default();
+        for ((((o, c), lp), phase), gl) in out
+            .iter_mut()
+            .zip(&self.chains)
+            .zip(self.lp.iter_mut())
+            .zip(self.phase.iter_mut())
+            .zip(g)
+        {
+            let Some(chain) = c else { continue };
+            let sc = if chain.has_hum() {
+                mains.phasor(*phase)
+            } else {
+                (0.0, 1.0)
+            };
+            *o = chain.sample(lp, phase, *o, sc, || gl);
         }
         out
     }

@@ -207,11 +207,123 @@ impl TransferPath {
     pub fn filter(&self, st: &mut PathState, x: Real) -> Real {
         let mut y = x;
         for (r, z) in self.res.iter().zip(st.z.iter_mut()).take(self.active) {
-            let out = r.b0 * x + z.0;
-            z.0 = -r.a1 * out + z.1;
-            z.1 = -r.b0 * x - r.a2 * out;
-            y += out;
+            y += resonate((r.b0, r.a1, r.a2), &mut z.0, &mut z.1, x);
         }
         self.gain * y
+    }
+}
+
+/// One resonator's output for input `x`, its memory `(z0, z1)` moved on (transposed
+/// direct form II): the one definition of the arithmetic, for [`TransferPath::filter`]
+/// and the lanes' [`PathLanes::filter`].
+#[inline(always)]
+fn resonate(r: (Real, Real, Real), z0: &mut Real, z1: &mut Real, x: Real) -> Real {
+    let (b0, a1, a2) = r;
+    let out = b0 * x + *z0;
+    *z0 = -a1 * out + *z1;
+    *z1 = -b0 * x - a2 * out;
+    out
+}
+
+/// K transfer paths side by side for the lane stepper (`crate::model::LaneGroup`): each
+/// coefficient and memory of mode `i` of every lane in one array, so the resonators of
+/// all lanes run in one vectorised loop. Lane `l` gives, bit for bit,
+/// [`TransferPath::filter`] of its own path (a lane without a path passes its input
+/// through); the memory lives here, not in the lanes' [`PathState`].
+#[derive(Debug, Clone)]
+pub struct PathLanes<const K: usize> {
+    b0: [[Real; K]; MODES],
+    a1: [[Real; K]; MODES],
+    a2: [[Real; K]; MODES],
+    z0: [[Real; K]; MODES],
+    z1: [[Real; K]; MODES],
+    /// Mode `i` is active in lane `l` (`on[i][l]`).
+    on: [[bool; K]; MODES],
+    gain: [Real; K],
+    /// Lane `l` has a path.
+    has: [bool; K],
+    /// Some lane has a path.
+    any: bool,
+}
+
+impl<const K: usize> PathLanes<K> {
+    /// The paths of K lanes (`None`: no path) with their memories.
+    pub fn new(paths: [Option<&TransferPath>; K], states: [&PathState; K]) -> Self {
+        let mut p = PathLanes {
+            b0: [[0.0; K]; MODES],
+            a1: [[0.0; K]; MODES],
+            a2: [[0.0; K]; MODES],
+            z0: [[0.0; K]; MODES],
+            z1: [[0.0; K]; MODES],
+            on: [[false; K]; MODES],
+            gain: [1.0; K],
+            has: [false; K],
+            any: false,
+        };
+        let put = |a: &mut [[Real; K]; MODES], i: usize, l: usize, v: Real| {
+            if let Some(x) = a.get_mut(i).and_then(|m| m.get_mut(l)) {
+                *x = v;
+            }
+        };
+        for (l, (path, st)) in paths.iter().zip(states).enumerate() {
+            let Some(t) = path else { continue };
+            if let (Some(h), Some(g)) = (p.has.get_mut(l), p.gain.get_mut(l)) {
+                (*h, *g) = (true, t.gain);
+            }
+            for (i, (r, z)) in t.res.iter().zip(&st.z).enumerate().take(t.active) {
+                put(&mut p.b0, i, l, r.b0);
+                put(&mut p.a1, i, l, r.a1);
+                put(&mut p.a2, i, l, r.a2);
+                put(&mut p.z0, i, l, z.0);
+                put(&mut p.z1, i, l, z.1);
+                if let Some(o) = p.on.get_mut(i).and_then(|m| m.get_mut(l)) {
+                    *o = true;
+                }
+            }
+        }
+        p.any = p.has.iter().any(|h| *h);
+        p
+    }
+
+    /// Filters one internal-rate sample of every lane. An inactive mode's coefficients and
+    /// memory are zeros and its output is not added, so its lane keeps the scalar bits.
+    #[inline(always)]
+    pub fn filter(&mut self, x: &[Real; K]) -> [Real; K] {
+        if !self.any {
+            return *x;
+        }
+        let mut y = *x;
+        for i in 0..MODES {
+            let (Some(b0), Some(a1), Some(a2), Some(z0), Some(z1), Some(on)) = (
+                self.b0.get(i),
+                self.a1.get(i),
+                self.a2.get(i),
+                self.z0.get_mut(i),
+                self.z1.get_mut(i),
+                self.on.get(i),
+            ) else {
+                continue;
+            };
+            for l in 0..K {
+                let (Some(yl), Some(xl), Some(b), Some(p), Some(q), Some(za), Some(zb), Some(o)) = (
+                    y.get_mut(l),
+                    x.get(l),
+                    b0.get(l),
+                    a1.get(l),
+                    a2.get(l),
+                    z0.get_mut(l),
+                    z1.get_mut(l),
+                    on.get(l),
+                ) else {
+                    continue;
+                };
+                let out = resonate((*b, *p, *q), za, zb, *xl);
+                *yl = if *o { *yl + out } else { *yl };
+            }
+        }
+        for (((yl, xl), g), h) in y.iter_mut().zip(x).zip(&self.gain).zip(&self.has) {
+            *yl = if *h { *g * *yl } else { *xl };
+        }
+        y
     }
 }

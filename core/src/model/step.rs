@@ -533,6 +533,15 @@ impl Model {
             Some(t) => t.filter(&mut st.path, a0),
             None => a0,
         };
+        self.running_in_step(st);
+        a
+    }
+
+    /// Running-in's per-step work: the revolutions rolled and, every 256 steps, the
+    /// roughness scale (part of [`Model::effects_step`]; the lanes call it on its own, as
+    /// they filter the transfer path for all lanes at once).
+    #[inline(always)]
+    pub(super) fn running_in_step<const NB: usize>(&self, st: &mut State<NB>) {
         if let Some(p) = self.cfg.effects.running_in {
             st.revs += st.shaft_hz * self.h;
             if st.steps.is_multiple_of(256) {
@@ -540,7 +549,6 @@ impl Model {
                 st.rough_sigma = self.rough_sigma(st.shaft_hz, st.topography) * st.run_in;
             }
         }
-        a
     }
 
     /// Redraws an element's slip offset once per pass, while it is opposite the defect.

@@ -28,6 +28,8 @@ pub use step::{LibmSqrt, SqrtLanes};
 
 use super::{Model, Sample, State, StepStats};
 use crate::decimate::MAX_TAPS;
+use crate::effects::sensor::SensorLanes;
+use crate::effects::transfer_path::PathLanes;
 use crate::real::Real;
 use crate::topography::Topography;
 
@@ -120,6 +122,12 @@ pub struct LaneGroup<'a, const K: usize, const NB: usize> {
     /// xoshiro128++ state words, word-major: `rng[w][lane]`.
     rng: [[u32; K]; 4],
     lines: [LaneLine<K>; 3],
+    /// The lanes' transfer paths and their memories (the states' `path` is not used).
+    path: PathLanes<K>,
+    /// The lanes' sensor chains and their memories (the states' `sensor` is not used).
+    sensor: SensorLanes<K>,
+    /// Some lane runs in (its per-step work reads the lane's own state).
+    run_in: bool,
     phase: u32,
     /// Every lane moves as lane 0 ([`check::same_kinematics`]): the kinematics are computed
     /// once for all lanes; otherwise each lane computes its own (`own`).
@@ -168,6 +176,14 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
         let y = states.each_ref().map(|s| s.y);
         let words = states.each_ref().map(|s| s.rng.state_words());
         let rng = core::array::from_fn(|w| words.map(|s| s.get(w).copied().unwrap_or(0)));
+        let path = PathLanes::new(
+            models.each_ref().map(|m| m.transfer.as_ref()),
+            states.each_ref().map(|s| &s.path),
+        );
+        let sensor = SensorLanes::new(
+            models.each_ref().map(|m| m.sensor_chain.as_ref()),
+            states.each_ref().map(|s| &s.sensor),
+        );
         Ok(LaneGroup {
             models,
             states,
@@ -178,6 +194,9 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
             has_prev: false,
             rng,
             lines: [LaneLine::new(), LaneLine::new(), LaneLine::new()],
+            path,
+            sensor,
+            run_in: models.iter().any(|m| m.cfg.effects.running_in.is_some()),
             phase: 0,
             shared: models.iter().all(|m| check::same_kinematics(m0, m)),
             stale: false,

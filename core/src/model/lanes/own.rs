@@ -13,37 +13,11 @@ use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
 use crate::forces::Kinematics;
 use crate::real::Real;
-use crate::rng::{next_state, to_pm1};
+use crate::rng::uniform_pm1_where;
 
 /// Each lane's kinematics at the start of the step and, for a varying speed, its shaft
 /// rate at the end of the step (Hz; see `Model::kinematics_next`).
 pub(super) type OwnKinematics<const K: usize> = [(Kinematics, Option<Real>); K];
-
-/// xoshiro128++ advanced on the lanes whose `draw` is set (the others keep their state),
-/// then `uniform_pm1` of every lane's output word: lane `l`'s generator moves exactly when
-/// its scalar step draws.
-#[inline(always)]
-fn uniform_pm1_where<const K: usize>(rng: &mut [[u32; K]; 4], draw: &[bool; K]) -> [Real; K] {
-    let [s0, s1, s2, s3] = rng;
-    let mut out = [0.0; K];
-    for (((((o, a0), a1), a2), a3), d) in out
-        .iter_mut()
-        .zip(s0.iter_mut())
-        .zip(s1.iter_mut())
-        .zip(s2.iter_mut())
-        .zip(s3.iter_mut())
-        .zip(draw)
-    {
-        let ([n0, n1, n2, n3], result) = next_state([*a0, *a1, *a2, *a3]);
-        // A bit mask instead of a branch: the compiler would make the conditional stores
-        // masked stores, which are slow on some CPUs.
-        let keep_new = (*d as u32).wrapping_neg();
-        let pick = |new: u32, old: u32| (new & keep_new) | (old & !keep_new);
-        (*a0, *a1, *a2, *a3) = (pick(n0, *a0), pick(n1, *a1), pick(n2, *a2), pick(n3, *a3));
-        *o = to_pm1(result);
-    }
-    out
-}
 
 impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
     /// Every lane's [`OwnKinematics`] from its own state (`first`: lane 0's, already

@@ -10,7 +10,7 @@ use crate::forces::defect::DefectLocation;
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::IntegratorKind;
 use crate::real::Real;
-use crate::rng::{next_state, to_pm1, Xoshiro128pp};
+use crate::rng::{uniform_pm1_lanes, Xoshiro128pp};
 
 /// Steps between two checks of the slip bookkeeping (as the scalar step).
 const SLIP_CHECK_EVERY: u64 = 8;
@@ -51,27 +51,6 @@ impl<const K: usize> SqrtLanes<K> for LibmSqrt {
             *v = crate::real::sqrt(*v);
         }
     }
-}
-
-/// xoshiro128++ on every lane (word-major state), then `uniform_pm1` of
-/// [`Xoshiro128pp`]: the same words, the same bits.
-#[inline(always)]
-fn uniform_pm1_lanes<const K: usize>(rng: &mut [[u32; K]; 4]) -> [Real; K] {
-    let [s0, s1, s2, s3] = rng;
-    let mut out = [0.0; K];
-    for (((((o, a0), a1), a2), a3), _) in out
-        .iter_mut()
-        .zip(s0.iter_mut())
-        .zip(s1.iter_mut())
-        .zip(s2.iter_mut())
-        .zip(s3.iter_mut())
-        .zip(0..K)
-    {
-        let ([n0, n1, n2, n3], result) = next_state([*a0, *a1, *a2, *a3]);
-        (*a0, *a1, *a2, *a3) = (n0, n1, n2, n3);
-        *o = to_pm1(result);
-    }
-    out
 }
 
 /// The defect's terms `(unload, extra deflection (m), additive force (N))` on element `e`
@@ -294,12 +273,13 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         self.y = y1;
         self.v = v1;
 
-        if models.iter().any(|m| m.per_step_effects) {
+        // The scalar step's `effects_step`: the transfer path for all lanes at once, then
+        // running-in lane by lane.
+        let a0 = self.path.filter(&a0);
+        if self.run_in {
             self.sync_kinematics();
-        }
-        for ((a, m), st) in a0.iter_mut().zip(models).zip(self.states.iter_mut()) {
-            if m.per_step_effects {
-                *a = m.effects_step(st, *a);
+            for (m, st) in models.iter().zip(self.states.iter_mut()) {
+                m.running_in_step(st);
             }
         }
         let [l_acc, l_vel, l_disp] = &mut self.lines;
@@ -325,23 +305,12 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         } else {
             ([0.0; K], [0.0; K])
         };
+        let accel = self.sensor.apply(&accel);
         let mut out = [Sample::default(); K];
-        let mut mains = crate::effects::sensor::MainsMemo::default();
         for (l, o) in out.iter_mut().enumerate() {
             let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
-            let mut acc = get(&accel);
-            if let (Some(m), Some(st)) = (models.get(l), self.states.get_mut(l)) {
-                if let Some(chain) = &m.sensor_chain {
-                    let sc = if chain.has_hum() {
-                        mains.phasor(st.sensor.phase())
-                    } else {
-                        (0.0, 1.0)
-                    };
-                    acc = chain.apply_phasor(&mut st.sensor, acc, sc);
-                }
-            }
             *o = Sample {
-                accel: acc,
+                accel: get(&accel),
                 vel: get(&vel),
                 disp: get(&disp),
             };
