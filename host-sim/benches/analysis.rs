@@ -65,13 +65,13 @@ fn bench(c: &mut Criterion) {
     // The whole `wearsim analyze` decision chain (normalisation, kurtogram at the level set
     // by the physical band width, pre-whitening, envelope, calibrated detector, zones).
     let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", 29.95 * 60.0).unwrap();
-    let method = wearsim_host::analyze::Method::default();
+    let method = wearsim_host::analysis::chain::Method::default();
     g.bench_function("analyze_signal", |b| {
         b.iter(|| {
             // Timing only: this synthetic record is called `None` by the whole chain (a
             // finding recorded in docs/cwru-detector.md), so the call is not asserted here.
-            let a =
-                wearsim_host::analyze::analyze_signal(black_box(&x), FS, &kin, &method).unwrap();
+            let a = wearsim_host::analysis::chain::analyze_signal(black_box(&x), FS, &kin, &method)
+                .unwrap();
             (a.diagnosis.family, a.diagnosis.confidence)
         })
     });

@@ -1,4 +1,4 @@
-//! CWRU benchmark: the `wearsim analyze` chain ([`crate::analyze::analyze_signal`], one fixed
+//! CWRU benchmark: the `wearsim analyze` chain ([`crate::analysis::chain::analyze_signal`], one fixed
 //! [`Method`]) on every 12 kHz drive-end record of the CWRU Bearing Data Center and on the
 //! normal baseline, with a confusion matrix of the diagnosed fault family against the label
 //! (Smith & Randall 2015, "Rolling element bearing diagnostics using the Case Western Reserve
@@ -16,9 +16,10 @@
 //! baseline is decimated by 4 (ideal FFT-domain anti-alias filter at 6 kHz) so that every
 //! record is analysed over the same 0–6 kHz band.
 
+use crate::analysis::chain::{analyze_signal, Method};
 use crate::analysis::diagnose::{fit_logistic, Calibration, CALIBRATION};
 use crate::analysis::FaultFamily;
-use crate::analyze::{analyze_signal, family_name, Method};
+use crate::analyze::family_name;
 use crate::io::{mat, parse_cwru_name, CwruLabel};
 use clap::Args;
 use realfft::num_complex::Complex;
@@ -47,12 +48,12 @@ pub struct CwruBenchmarkArgs {
     /// instead of the default; the figures are then not those of `wearsim analyze`.
     #[arg(long)]
     pub squared_envelope: bool,
-    /// Experiment: choose the band by the evidence margin ([`crate::analyze::BandRule::Evidence`])
+    /// Experiment: choose the band by the evidence margin ([`crate::analysis::chain::BandRule::Evidence`])
     /// instead of the default; the figures are then not those of `wearsim analyze`.
     #[arg(long)]
     pub evidence_band: bool,
     /// Experiment: choose the band by the protrugram
-    /// ([`crate::analyze::BandRule::Protrugram`]) instead of the default.
+    /// ([`crate::analysis::chain::BandRule::Protrugram`]) instead of the default.
     #[arg(long, conflicts_with = "evidence_band")]
     pub protrugram_band: bool,
     /// Experiment (issue 12, sample-rate invariance): resample every record, after its

@@ -17,6 +17,7 @@
 //! amplitudes in the signal's own units. Typical chain: [`fast_kurtogram`]
 //! → [`envelope_spectrum`] in its best band → [`detect_fault`].
 
+pub mod chain;
 pub mod diagnose;
 pub mod envelope;
 pub mod error;

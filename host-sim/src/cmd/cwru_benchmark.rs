@@ -1,7 +1,7 @@
 //! `wearsim cwru-benchmark`: diagnose every CWRU 12 kHz drive-end record, print the
 //! confusion matrix (or `--json`), write Markdown.
 
-use crate::analyze::{BandRule, Method};
+use crate::analysis::chain::{BandRule, Method};
 use crate::cmd::args::CliError;
 use crate::cwru_benchmark::{
     print_report, run_benchmark_resampled, to_markdown, CwruBenchmarkArgs,

@@ -9,9 +9,10 @@
 //! Text uses DejaVu Sans embedded in the binary (crate `dejavu`, registered with plotters'
 //! `ab_glyph` font backend), so rendering needs no system font and no fontconfig.
 
+use crate::analysis::chain::Spectra;
 use crate::analysis::FaultFrequencies;
 use crate::analysis::{Kurtogram, Spectrum};
-use crate::analyze::{family_name, Analysis, Spectra};
+use crate::analyze::{family_name, Analysis};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

@@ -6,9 +6,9 @@
 //! (drive end, 0-1 hp) only. Skips with a message when the data folder is absent, fails when
 //! it is absent and `CI=true` (see `io::data_dir`).
 
+use wearsim_host::analysis::chain::Method;
 use wearsim_host::analysis::diagnose::CALIBRATION;
 use wearsim_host::analysis::FaultFamily;
-use wearsim_host::analyze::Method;
 use wearsim_host::cwru_benchmark::{print_report, run_benchmark, to_markdown, Part};
 
 /// Evaluation-part inner+outer-race records called correctly when the method was fixed
@@ -126,7 +126,7 @@ fn or014_at_6_development_records_hold_no_outer_race_family_on_any_channel(
             let rec = wearsim_host::io::read_cwru(cwru.join(file), channel, None)?;
             let rpm = rec.rpm.ok_or("no rpm")?;
             let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", rpm)?;
-            let a = wearsim_host::analyze::analyze_signal(
+            let a = wearsim_host::analysis::chain::analyze_signal(
                 &rec.samples,
                 rec.fs,
                 &kin,
@@ -197,8 +197,8 @@ fn development_race_calls_survive_resampling() -> Result<(), Box<dyn std::error:
         let fs0 = rec.fs / factor as f64;
         let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", rec.rpm.ok_or("no rpm")?)?;
         let call = |x: &[f64], fs: f64| -> Result<(FaultFamily, f64), Box<dyn std::error::Error>> {
-            let d =
-                wearsim_host::analyze::analyze_signal(x, fs, &kin, &Method::default())?.diagnosis;
+            let d = wearsim_host::analysis::chain::analyze_signal(x, fs, &kin, &Method::default())?
+                .diagnosis;
             Ok((d.family, d.confidence))
         };
         let (reference, confidence) = call(&samples, fs0)?;

@@ -5,9 +5,9 @@
 //! the 12 kHz reference; a healthy simulated bearing gets no call.
 
 use wearsim_core::forces::defect::DefectLocation;
+use wearsim_host::analysis::chain::{analyze_signal, Method};
 use wearsim_host::analysis::FaultFamily;
 use wearsim_host::analysis::FaultFrequencies;
-use wearsim_host::analyze::{analyze_signal, Method};
 use wearsim_host::config::RunSettings;
 use wearsim_host::kinematics;
 use wearsim_host::simulate::{run, Scenario};
