@@ -37,12 +37,14 @@ fn effect(cfg: &mut ModelConfig, name: &str, scale: Real) {
 }
 
 /// Runs the scalar step for every model and the lane stepper for all of them; asserts
-/// every lane's samples (all three channels) and contact figures are bit-identical.
+/// every lane's samples (all three channels), contact figures and shaft and cage angles
+/// (what a pass meter observes) are bit-identical.
 fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], samples: usize) {
     let models: [Model; K] = cfgs.map(|c| Model::new_checked(c).expect("valid model"));
     let mut group: LaneGroup<K, 16> = LaneGroup::new_checked(&models, &seeds).expect("lanes");
     let mut lane_out = vec![[Sample::default(); K]; samples];
     let mut lane_stats = Vec::new();
+    let mut lane_angles = Vec::new();
     for slot in lane_out.iter_mut() {
         loop {
             if let Some(s) = group.step() {
@@ -51,7 +53,14 @@ fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], s
             }
         }
         lane_stats.push(group.stats());
+        lane_angles.push(core::array::from_fn::<_, K, _>(|l| {
+            group.angles(l).expect("lane in range")
+        }));
     }
+    assert!(
+        group.angles(K).is_none(),
+        "a lane out of range has no angles"
+    );
     for (i, m) in models.iter().enumerate() {
         let mut st: State<16> = State::new(m, seeds[i]).expect("state");
         let mut nonzero = 0;
@@ -68,6 +77,12 @@ fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], s
                 "lane {i} sample {j}: scalar {s:?} vs lane {l:?}"
             );
             assert_eq!(st.stats(), lane_stats[j][i], "lane {i} stats at sample {j}");
+            let (shaft, cage) = lane_angles[j][i];
+            assert_eq!(
+                (st.shaft_angle().to_bits(), st.cage_angle().to_bits()),
+                (shaft.to_bits(), cage.to_bits()),
+                "lane {i} angles at sample {j}"
+            );
             if s.accel != 0.0 {
                 nonzero += 1;
             }
@@ -199,7 +214,15 @@ fn transfer_paths_and_sensors_of_every_shape_equal_the_scalar_step() {
                 .set_named(
                     "transfer-path",
                     &[
-                        1800.0, 0.04, gains[0], 2600.0, 0.06, gains[1], 3900.0, 0.08, gains[2],
+                        1800.0,
+                        0.04,
+                        gains[0],
+                        2600.0,
+                        0.06,
+                        gains[1],
+                        3900.0,
+                        0.08,
+                        gains[2],
                         0.5 + 0.25 * i as Real,
                     ],
                 )

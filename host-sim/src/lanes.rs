@@ -82,6 +82,29 @@ fn fill_avx2<const K: usize, const NB: usize>(
     group.fill_with(out, &PackedSqrt)
 }
 
+/// One step of every lane ([`LaneGroup::step_with`]) with packed square roots, compiled
+/// for AVX2 when the CPU has it (see [`simd_path`]): for callers that look at the lanes
+/// after every internal step (a life's pass meters), which [`fill`] does not allow.
+pub fn step<const K: usize, const NB: usize>(
+    group: &mut LaneGroup<'_, K, NB>,
+) -> Option<[Sample; K]> {
+    #[cfg(target_arch = "x86_64")]
+    if use_avx2() {
+        // SAFETY: the CPU has AVX2 (`use_avx2` checked it).
+        return unsafe { step_avx2(group) };
+    }
+    group.step_with(&PackedSqrt)
+}
+
+/// The lane step inlined into a function compiled with AVX2 (see [`fill_avx2`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn step_avx2<const K: usize, const NB: usize>(
+    group: &mut LaneGroup<'_, K, NB>,
+) -> Option<[Sample; K]> {
+    group.step_with(&PackedSqrt)
+}
+
 /// Largest lane group [`run_accel`] forms (the bench's best per-core figure; see
 /// `docs/python.md`).
 pub const MAX_LANES: usize = 16;
@@ -89,7 +112,7 @@ pub const MAX_LANES: usize = 16;
 /// Whether [`plan`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
 /// variable forces the scalar step for every run, to measure the lanes' gain; the output
 /// is the same bits either way).
-fn lanes_on() -> bool {
+pub(crate) fn lanes_on() -> bool {
     static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *ON.get_or_init(|| std::env::var_os("WEARSIM_LANES_OFF").is_none())
 }
@@ -310,6 +333,42 @@ pub fn lane_accel<const K: usize>(
             .map(|(a, ok)| if ok { Ok(a) } else { Err(a) })
             .collect(),
     )
+}
+
+/// [`lane_accel`] that also shows the group to `observe` after every internal step once
+/// `settle` output samples are done, up to the step that gives the last kept sample (the
+/// steps a scalar run observes when it checks `emitted >= settle` after each step): a
+/// life's windows measure their pass loads this way. `None` when the core refuses the
+/// group or any lane gives a non-finite acceleration (the caller runs those scalar).
+pub fn lane_accel_observed<const K: usize>(
+    models: &[Model; K],
+    seeds: &[u64; K],
+    settle: usize,
+    n: usize,
+    mut observe: impl FnMut(&LaneGroup<'_, K, CAPACITY>),
+) -> Option<Vec<Vec<f64>>> {
+    let group = LaneGroup::<K, CAPACITY>::new_checked(models, seeds).ok()?;
+    let mut group = Box::new(group);
+    let mut accel: Vec<Vec<f64>> = (0..K).map(|_| Vec::with_capacity(n)).collect();
+    let mut emitted = 0usize;
+    while accel.first().is_some_and(|a| a.len() < n) {
+        let s = step(&mut group);
+        if emitted >= settle {
+            observe(&group);
+        }
+        if let Some(row) = s {
+            if row.iter().any(|x| !x.accel.is_finite()) {
+                return None;
+            }
+            if emitted >= settle {
+                for (a, x) in accel.iter_mut().zip(row) {
+                    a.push(x.accel);
+                }
+            }
+            emitted += 1;
+        }
+    }
+    Some(accel)
 }
 
 #[cfg(test)]

@@ -4,7 +4,9 @@
 //! ([`LifeRun::run_snapshots`]) and the lifetime gap's simulated life
 //! (`gap::lifetime::LifeSim::run`) are this driver with their own block schedule and
 //! observer; dense mode streams samples between windows but advances the wear with the
-//! same step ([`LifeRun::advance_checked`]).
+//! same step ([`LifeRun::advance_checked`]). While the wear leaves the dynamic model
+//! unchanged from window to window (the fatigue accumulation before the first dent), the
+//! driver renders the next windows together as lanes (`Ahead`): the same bits, faster.
 
 use super::{LifeError, LifeRun};
 use wearsim_core::wear::{LifeState, PassLoads, Stage};
@@ -69,8 +71,17 @@ impl LifeRun {
         let mut k = 0u64;
         let mut entered: Option<Stage> = Some(Stage::RunningIn);
         let mut scheduled = true;
+        let mut ahead = Ahead::default();
         loop {
-            let (samples, loads) = self.window(&st, k)?;
+            let model = self.model_for(&st)?;
+            let (samples, loads) = match ahead.take(model.config()) {
+                Some(w) => w,
+                None => match self.render_ahead(&model, k, ahead.depth()) {
+                    Some(ws) => ahead.fill(model.config(), ws),
+                    None => None,
+                }
+                .map_or_else(|| self.window_of(&model, &st, k), Ok)?,
+            };
             observe(DriverWindow {
                 state: &st,
                 index: k,
@@ -99,6 +110,27 @@ impl LifeRun {
             state: st,
             windows: k,
         })
+    }
+
+    /// Windows `k ..` for `model`, `depth` of them as the lanes of one group (the
+    /// speculation of [`Ahead`]); `None` for a depth of 1, with the lanes off
+    /// (`WEARSIM_LANES_OFF`) or when the lanes cannot run them.
+    fn render_ahead(
+        &self,
+        model: &wearsim_core::Model,
+        k: u64,
+        depth: usize,
+    ) -> Option<Vec<(Vec<f64>, PassLoads)>> {
+        if !crate::lanes::lanes_on() {
+            return None;
+        }
+        match depth {
+            16.. => self.windows_ahead::<16>(model, k),
+            8.. => self.windows_ahead::<8>(model, k),
+            4.. => self.windows_ahead::<4>(model, k),
+            2.. => self.windows_ahead::<2>(model, k),
+            _ => None,
+        }
     }
 
     /// The driver's step: advances the wear by up to `revs` revolutions (less when a
@@ -132,5 +164,68 @@ impl LifeRun {
         }
         self.check_cap(st)?;
         Ok(b)
+    }
+}
+
+/// The driver's speculation. A window depends on the wear state only through the dynamic
+/// model built for it (`LifeRun::model_for`), and through most of a life (the fatigue
+/// accumulation before the first dent, with roughness at its floor, no defect and a
+/// constant slip) that model does not change from one window to the next. So after a run
+/// of unchanged models the driver renders the next windows together, as the lanes of one
+/// group, each with its own seed and pass meter, and keeps them while the model stays the
+/// same: the lanes give the scalar step's bits, so the life is the same as when every
+/// window is rendered alone, only faster. A window whose model changed (a stage, a growth
+/// step, a roughness, debris or asperity change) drops what was rendered ahead.
+#[derive(Debug, Default)]
+struct Ahead {
+    /// Windows rendered ahead for `model`, the next one first.
+    windows: std::collections::VecDeque<(Vec<f64>, PassLoads)>,
+    /// The model configuration they were rendered for.
+    model: Option<wearsim_core::ModelConfig>,
+    /// The previous window's model configuration.
+    last: Option<wearsim_core::ModelConfig>,
+    /// Windows in a row (before this one) whose model equalled the previous window's.
+    streak: usize,
+}
+
+impl Ahead {
+    /// The next window rendered ahead when it was rendered for `model`; otherwise drops
+    /// what is held. Counts the run of unchanged models either way.
+    fn take(&mut self, model: &wearsim_core::ModelConfig) -> Option<(Vec<f64>, PassLoads)> {
+        self.streak = if self.last.as_ref() == Some(model) {
+            self.streak + 1
+        } else {
+            0
+        };
+        self.last = Some(model.clone());
+        if self.model.as_ref() != Some(model) {
+            self.windows.clear();
+            self.model = None;
+        }
+        self.windows.pop_front()
+    }
+
+    /// How many windows to render at once: 1 (no speculation) until the model has stayed
+    /// the same for a window, then doubling with the run, at most 16 (the widest lane
+    /// group). A run that ends wastes at most the windows rendered in its last group.
+    fn depth(&self) -> usize {
+        match self.streak {
+            0 => 1,
+            1..=2 => 2,
+            3..=6 => 4,
+            7..=14 => 8,
+            _ => 16,
+        }
+    }
+
+    /// Holds `windows`, rendered for `model`, and hands out the first.
+    fn fill(
+        &mut self,
+        model: &wearsim_core::ModelConfig,
+        windows: Vec<(Vec<f64>, PassLoads)>,
+    ) -> Option<(Vec<f64>, PassLoads)> {
+        self.windows = windows.into();
+        self.model = Some(model.clone());
+        self.windows.pop_front()
     }
 }

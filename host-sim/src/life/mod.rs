@@ -247,12 +247,33 @@ impl LifeRun {
     /// Renders one window for state `st` (index `k` seeds its random stream): returns the
     /// samples and the pass loads measured over it.
     pub fn window(&self, st: &LifeState, k: u64) -> Result<(Vec<f64>, PassLoads), LifeError> {
-        let model = self.model_for(st)?;
+        self.window_of(&self.model_for(st)?, st, k)
+    }
+
+    /// Seed of window `k`'s random stream.
+    fn window_seed(&self, k: u64) -> u64 {
+        self.spec.seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    }
+
+    /// Output samples `(settle, kept)` of a window of `model`.
+    fn window_samples(&self, model: &Model) -> (usize, usize) {
         let fs = model.config().output_rate;
-        let seed = self.spec.seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        let mut ds: State<CAPACITY> = State::new(&model, seed)?;
-        let settle = (self.spec.settle * fs) as usize;
-        let n = (self.spec.window * fs) as usize;
+        (
+            (self.spec.settle * fs) as usize,
+            (self.spec.window * fs) as usize,
+        )
+    }
+
+    /// [`LifeRun::window`] with the model of `st` already built.
+    fn window_of(
+        &self,
+        model: &Model,
+        st: &LifeState,
+        k: u64,
+    ) -> Result<(Vec<f64>, PassLoads), LifeError> {
+        let seed = self.window_seed(k);
+        let mut ds: State<CAPACITY> = State::new(model, seed)?;
+        let (settle, n) = self.window_samples(model);
         let mut meter = PassMeter::new(self.life.site(), &model.config().bearing);
         let mut out = Vec::with_capacity(n);
         let mut emitted = 0usize;
@@ -272,6 +293,40 @@ impl LifeRun {
             }
         }
         Ok((out, meter.loads()))
+    }
+
+    /// Windows `k .. k + K` rendered for one model (`model`, the state's) as the lanes of
+    /// one group: what [`LifeRun::window`] gives for each of them while the wear state keeps
+    /// this model (the driver's speculation, `driver.rs`), bit for bit (the lanes keep the
+    /// scalar step's bits; each window has its own seed and pass meter). `None` when the
+    /// lanes cannot run them (the caller renders scalar windows, which also report errors).
+    pub fn windows_ahead<const K: usize>(
+        &self,
+        model: &Model,
+        k: u64,
+    ) -> Option<Vec<(Vec<f64>, PassLoads)>> {
+        let models: [Model; K] = std::array::from_fn(|_| model.clone());
+        let seeds: [u64; K] = std::array::from_fn(|l| self.window_seed(k + l as u64));
+        let (settle, n) = self.window_samples(model);
+        let bearing = &model.config().bearing;
+        let mut meters: Vec<PassMeter> = (0..K)
+            .map(|_| PassMeter::new(self.life.site(), bearing))
+            .collect();
+        let accel = crate::lanes::lane_accel_observed(&models, &seeds, settle, n, |g| {
+            let stats = g.stats();
+            for (l, (m, s)) in meters.iter_mut().zip(stats).enumerate() {
+                if let Some((shaft, cage)) = g.angles(l) {
+                    m.observe(s, shaft, cage);
+                }
+            }
+        })?;
+        Some(
+            accel
+                .into_iter()
+                .zip(meters)
+                .map(|(a, m)| (a, m.loads()))
+                .collect(),
+        )
     }
 
     /// Features of a window.

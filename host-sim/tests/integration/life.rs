@@ -165,6 +165,54 @@ fn accelerated(seed: u64) -> LifeSpec {
     }
 }
 
+/// The driver's speculation (`life/driver.rs`): windows rendered ahead as the lanes of one
+/// group give, bit for bit, the samples and pass loads of the same windows rendered alone,
+/// for a healthy state and for one with a dent (defect pass loads), outer-race and
+/// inner-race sites; and the windows differ from each other (each has its own seed).
+#[test]
+fn windows_rendered_ahead_equal_windows_rendered_alone() {
+    for inner in [false, true] {
+        let mut spec = accelerated(9);
+        if inner {
+            if let Some(d) = spec.model.defect.as_mut() {
+                d.location = wearsim_core::forces::defect::DefectLocation::InnerRace { angle: 0.0 };
+            }
+        }
+        let run = LifeRun::new(spec).unwrap();
+        let mut states = vec![run.life.initial_state(9)];
+        run.drive(
+            |_| 100.0,
+            100_000,
+            |w| {
+                let dented = w.state.stage.index() >= Stage::Dent.index();
+                if dented && w.state.stage != Stage::Failure && states.len() == 1 {
+                    states.push(w.state.clone());
+                }
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert_eq!(states.len(), 2, "the life reaches a dent");
+        for st in &states {
+            let model = run.model_for(st).unwrap();
+            let ahead = run.windows_ahead::<4>(&model, 11).expect("lanes run");
+            assert_eq!(ahead.len(), 4);
+            for (i, (a, loads)) in ahead.iter().enumerate() {
+                let (b, alone) = run.window(st, 11 + i as u64).unwrap();
+                assert!(!b.is_empty());
+                assert_eq!(a.len(), b.len(), "window {i} length");
+                assert!(
+                    a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
+                    "window {i} samples (inner race {inner}, stage {:?})",
+                    st.stage
+                );
+                assert_eq!(*loads, alone, "window {i} pass loads");
+            }
+            assert!(ahead[0].0 != ahead[1].0, "windows share a seed");
+        }
+    }
+}
+
 /// The same seed gives the same wear history in snapshot and dense mode, and a dense run
 /// interrupted twice and resumed writes exactly the samples of an uninterrupted one.
 #[test]
@@ -273,6 +321,30 @@ fn life_command_outputs_and_errors() {
         "life-summary.json",
     ] {
         assert!(out.join(f).exists(), "{f}");
+    }
+    // The driver renders the windows of unchanged models ahead as lanes; with the lanes
+    // off (every window alone) the life is the same, byte for byte.
+    let alone = dir.path().join("alone");
+    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args([
+            "life",
+            "--snapshot-every",
+            "200000",
+            "--window",
+            "0.05",
+            "--out",
+        ])
+        .arg(&alone)
+        .env("WEARSIM_LANES_OFF", "1")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["life-features.csv", "life-timeline.csv", "life-events.csv"] {
+        let (a, b) = (
+            std::fs::read(out.join(f)).unwrap(),
+            std::fs::read(alone.join(f)).unwrap(),
+        );
+        assert!(a == b, "{f} differs with the lanes off");
     }
     let cfg = dir.path().join("bad.toml");
     for (text, args, needle) in [

@@ -227,6 +227,16 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
         self.states.each_ref().map(|s| s.stats)
     }
 
+    /// Shaft and cage angle (rad, in `[0, 2π)`) of lane `lane` after the last step: its
+    /// scalar state's [`State::shaft_angle`] and [`State::cage_angle`] (lanes that share
+    /// their kinematics read lane 0's, which the others copy only when needed). `None` for a
+    /// lane out of range.
+    pub fn angles(&self, lane: usize) -> Option<(Real, Real)> {
+        let own = if self.shared { 0 } else { lane };
+        let st = self.states.get(own).filter(|_| lane < K)?;
+        Some((st.shaft_angle, st.cage_angle))
+    }
+
     /// Internal steps taken (the same in every lane).
     pub fn steps(&self) -> u64 {
         self.states.first().map_or(0, |s| s.steps)
