@@ -163,8 +163,8 @@ impl SensorChain {
         self.k / crate::real::sqrt(re * re + im * im)
     }
 
-    /// Whether the chain adds mains hum (then [`SensorChain::apply_phasor`] needs the
-    /// [`mains_phasor`] of the state's phase).
+    /// Whether the chain adds mains hum (then each sample needs the [`mains_phasor`] of the
+    /// memory's phase).
     pub fn has_hum(&self) -> bool {
         self.p.hum > 0.0
     }
@@ -178,14 +178,6 @@ impl SensorChain {
         } else {
             (0.0, 1.0)
         };
-        self.apply_phasor(st, a, sc)
-    }
-
-    /// [`SensorChain::apply`] with the mains phasor `(sin φ, cos φ)` of the state's phase
-    /// supplied by the caller ([`mains_phasor`], ignored without hum): lanes whose phases
-    /// are equal share one evaluation ([`MainsMemo`]).
-    #[inline(never)]
-    pub fn apply_phasor(&self, st: &mut SensorState, a: Real, sc: (Real, Real)) -> Real {
         let rng = &mut st.rng;
         self.sample(&mut st.lp, &mut st.phase, a, sc, || rng.gauss_approx())
     }
@@ -197,7 +189,7 @@ impl SensorChain {
 
     /// One output sample from the chain's memory (`lp`, `phase`), the mains phasor `sc` and
     /// the noise draw `gauss` (called only when the chain adds noise): the one definition
-    /// of the chain's arithmetic, for [`SensorChain::apply_phasor`] and [`SensorLanes`].
+    /// of the chain's arithmetic, for [`SensorChain::apply`] and [`SensorLanes`].
     #[inline(always)]
     fn sample(
         &self,
@@ -234,7 +226,7 @@ pub struct SensorLanes<const K: usize> {
     chains: [Option<SensorChain>; K],
     lp: [Real; K],
     phase: [Real; K],
-    /// Noise generators, word-major (`rng[w][lane]`).
+    /// Noise generators, word-major (`words[w][lane]` is word `w` of lane `lane`'s).
     words: [[u32; K]; 4],
     /// Lane `l`'s chain adds noise.
     noisy: [bool; K],
