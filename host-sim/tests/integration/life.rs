@@ -300,16 +300,25 @@ fn wearsim(args: &[&str]) -> std::process::Output {
 fn life_command_outputs_and_errors() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("life");
-    let o = wearsim(&[
-        "life",
-        "--snapshot-every",
-        "200000",
-        "--window",
-        "0.05",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    // One short life into `out`, with the lanes on or off (`WEARSIM_LANES_OFF`).
+    let life = |out: &std::path::Path, lanes_off: bool| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_wearsim"));
+        c.args([
+            "life",
+            "--snapshot-every",
+            "200000",
+            "--window",
+            "0.05",
+            "--json",
+        ])
+        .arg("--out")
+        .arg(out);
+        if lanes_off {
+            c.env("WEARSIM_LANES_OFF", "1");
+        }
+        c.output().unwrap()
+    };
+    let o = life(&out, false);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v["cycles_to_failure"].as_f64().unwrap() > 1e5);
@@ -325,19 +334,7 @@ fn life_command_outputs_and_errors() {
     // The driver renders the windows of unchanged models ahead as lanes; with the lanes
     // off (every window alone) the life is the same, byte for byte.
     let alone = dir.path().join("alone");
-    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
-        .args([
-            "life",
-            "--snapshot-every",
-            "200000",
-            "--window",
-            "0.05",
-            "--out",
-        ])
-        .arg(&alone)
-        .env("WEARSIM_LANES_OFF", "1")
-        .output()
-        .unwrap();
+    let o = life(&alone, true);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["life-features.csv", "life-timeline.csv", "life-events.csv"] {
         let (a, b) = (
