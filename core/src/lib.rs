@@ -44,6 +44,7 @@ pub mod ring_modes;
 pub mod rng;
 pub mod sensor;
 pub mod speed;
+pub mod spring_preload;
 pub mod topography;
 pub mod wear;
 

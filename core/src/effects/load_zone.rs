@@ -43,7 +43,8 @@ pub struct Params {
     /// with `P_d = −2δ_p`; `y` the new, smaller displacement), and at `δ_p ≥ y` every
     /// element is loaded: an inner-race defect's impacts are then modulated far less than
     /// the half-circle's on/off at 1× shaft. The contacts also stiffen (the resonance
-    /// rises). 0 = the baseline's contacts.
+    /// rises). 0 = the baseline's contacts. The attribution fits it only up to the
+    /// bearing's plausible spring preload ([`crate::spring_preload::plausible_preload`]).
     pub preload: Real,
 }
 
@@ -54,7 +55,7 @@ impl EffectParams for Params {
         params: &[
             param("depth", "load-zone.depth", "-", 1.0, 0.0, 1.0, "modulation depth: 0 = baseline, 1 = full Stribeck factor"),
             param("epsilon", "load-zone.epsilon", "-", 0.5, 0.2, 1.0, "load-distribution factor (0.5 = half-circle load zone)"),
-            param("preload", "load-zone.preload", "-", 0.0, 0.0, MAX_PRELOAD as f64, "uniform contact preload in static displacements (0 = none; >= 1 loads every element)"),
+            param("preload", "load-zone.preload", "-", 0.0, 0.0, MAX_PRELOAD as f64, "uniform contact preload in static displacements (0 = none; >= 1 loads every element; gap fits at most the bearing's spring preload)"),
         ],
         signature: Signature {
             mechanism: Mechanism::DefectForce,
@@ -66,7 +67,10 @@ impl EffectParams for Params {
             fitted: &[
                 fit("depth", FitBound::Abs(0.0), FitBound::Abs(1.0), false),
                 fit("epsilon", FitBound::Abs(0.2), FitBound::Abs(1.0), false),
-                fit("preload", FitBound::Abs(0.0), FitBound::Abs(MAX_PRELOAD as f64), false),
+                // At most the motor's spring preload (`crate::spring_preload`): beyond it the
+                // preload's contact stiffening moves the resonance, which is the rig's
+                // calibration and the transfer path's, not the load zone's.
+                fit("preload", FitBound::Abs(0.0), FitBound::PlausiblePreload, false),
             ],
             fixed: &[],
             needs_defect: true,

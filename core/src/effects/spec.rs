@@ -83,16 +83,21 @@ pub enum FitBound {
     Rms(f64),
     /// The mains frequency assumed for the record (Hz).
     Mains,
+    /// The largest plausible contact preload of the record's bearing, in static
+    /// displacements (–): [`crate::spring_preload::plausible_preload`].
+    PlausiblePreload,
 }
 
 impl FitBound {
-    /// The value for a record with sample rate `fs` (Hz), RMS `rms` and mains `mains_hz`.
-    pub fn resolve(&self, fs: f64, rms: f64, mains_hz: f64) -> f64 {
+    /// The value for a record with sample rate `fs` (Hz), RMS `rms`, mains `mains_hz` and
+    /// a bearing whose plausible contact preload is `preload` (–).
+    pub fn resolve(&self, fs: f64, rms: f64, mains_hz: f64, preload: f64) -> f64 {
         match *self {
             FitBound::Abs(v) => v,
             FitBound::Fs(f) => f * fs,
             FitBound::Rms(f) => f * rms,
             FitBound::Mains => mains_hz,
+            FitBound::PlausiblePreload => preload,
         }
     }
 }

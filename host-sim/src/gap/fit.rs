@@ -660,6 +660,7 @@ mod tests {
             shaft_hz: 29.95,
             rms: 1.0,
             mains_hz: 60.0,
+            preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
         };
         let all: Vec<FitSpace> = spaces(&ctx)
             .into_iter()

@@ -141,6 +141,7 @@ mod tests {
             shaft_hz: 30.0,
             rms: 1.0,
             mains_hz: 60.0,
+            preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
         };
         let all = spaces(&ctx);
         let n = all.len();

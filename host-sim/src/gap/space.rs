@@ -3,10 +3,17 @@
 //! bounds (`wearsim effects`) are the physical limits; a fit space is the part of them a
 //! record can tell apart. Each effect declares its space in its own file in the core
 //! ([`wearsim_core::effects::FitSpec`], with the reasons); here it is scaled to the record
-//! (sample rate, level, mains frequency) and clamped to the catalogue bounds.
+//! (sample rate, level, mains frequency, the bearing's plausible preload) and clamped to the
+//! catalogue bounds.
 
 use super::cells::CellSpec;
+use wearsim_core::contact::ElementContact;
 use wearsim_core::effects::{EffectKind, Effects, FitBound};
+use wearsim_core::model::ModelConfig;
+
+/// The `load-zone` preload's catalogue bound (–, static displacements), the
+/// [`Context::preload_max`] of contexts with no bearing to bound it by.
+pub const CATALOGUE_PRELOAD_MAX: f64 = wearsim_core::effects::load_zone::MAX_PRELOAD as f64;
 
 /// One fitted parameter.
 #[derive(Debug, Clone, PartialEq)]
@@ -80,6 +87,9 @@ pub struct Context {
     pub rms: f64,
     /// Mains frequency (Hz) assumed for hum.
     pub mains_hz: f64,
+    /// Largest plausible contact preload of the record's bearing (–, static
+    /// displacements): the `load-zone` preload's fitted range ([`preload_limit`]).
+    pub preload_max: f64,
 }
 
 impl FitSpace {
@@ -140,7 +150,7 @@ pub fn spaces(ctx: &Context) -> Vec<FitSpace> {
 /// The fit space of effect `kind` for a record described by `ctx`.
 pub fn space(kind: EffectKind, ctx: &Context) -> FitSpace {
     let spec = kind.spec();
-    let r = |b: &FitBound| b.resolve(ctx.fs, ctx.rms, ctx.mains_hz);
+    let r = |b: &FitBound| b.resolve(ctx.fs, ctx.rms, ctx.mains_hz, ctx.preload_max);
     let fitted = spec
         .fit
         .fitted
@@ -178,12 +188,29 @@ pub fn applicable(ctx: &Context, has_defect: bool, only: Option<&[String]>) -> V
         .collect()
 }
 
-/// Context for a spec and a record level.
-pub fn context(spec: &CellSpec, rms: f64, mains_hz: f64) -> Context {
+/// Context for a spec, a record level and the matched simulation's configuration `base`.
+pub fn context(spec: &CellSpec, rms: f64, mains_hz: f64, base: &ModelConfig) -> Context {
     Context {
         fs: spec.fs,
         shaft_hz: spec.ff.shaft_hz,
         rms,
         mains_hz,
+        preload_max: preload_limit(base),
     }
+}
+
+/// The largest plausible `load-zone` preload for the bearing, load, clearance and
+/// structure of `cfg` (–): its spring preload over its static displacement
+/// ([`wearsim_core::spring_preload::plausible_preload`]), at most the effect's catalogue
+/// bound.
+pub fn preload_limit(cfg: &ModelConfig) -> f64 {
+    let contact = ElementContact::of(&cfg.bearing);
+    wearsim_core::spring_preload::plausible_preload(
+        &cfg.bearing,
+        &contact,
+        cfg.clearance,
+        cfg.radial_load,
+        cfg.structure.stiffness,
+        CATALOGUE_PRELOAD_MAX,
+    )
 }

@@ -398,7 +398,7 @@ pub fn diagnose(
         .iter()
         .find(|r| r.role == "train")
         .map_or(1.0, |r| rms(&r.meta.accel));
-    let ctx = space::context(first.spec(), level, a.mains);
+    let ctx = space::context(first.spec(), level, a.mains, &first.base);
     let has_defect = p
         .train
         .iter()

@@ -421,7 +421,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         base: base.clone(),
         floor,
     };
-    let ctx = space::context(&spec, level, 60.0);
+    let ctx = space::context(&spec, level, 60.0, &base);
     let all = space::applicable(&ctx, true, None);
     let chosen: Vec<FitSpace> = if opt.effects.is_empty() {
         all.clone()

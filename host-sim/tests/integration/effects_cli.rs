@@ -241,6 +241,9 @@ fn misspelled_effect_name_is_an_error_everywhere() {
         shaft_hz: 30.0,
         rms: 1.0,
         mains_hz: 60.0,
+        preload_max: wearsim_host::gap::space::preload_limit(
+            &wearsim_core::presets::by_name("cwru-6205-de").unwrap(),
+        ),
     };
     let spaces = wearsim_host::gap::space::spaces(&ctx);
     assert_eq!(spaces.len(), EffectKind::ALL.len());

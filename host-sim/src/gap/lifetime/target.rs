@@ -134,6 +134,7 @@ pub fn life_spaces(steady_rms: f64, fs: f64, shaft_hz: f64) -> Vec<FitSpace> {
         shaft_hz,
         rms: r,
         mains_hz: 60.0,
+        preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
     });
     let shared = |kind: EffectKind| {
         stationary
