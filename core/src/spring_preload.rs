@@ -127,7 +127,7 @@ pub fn plausible_preload(
         clearance,
     )
     .y0 as f64;
-    if !(y0 > 0.0) {
+    if y0.is_nan() || y0 <= 0.0 {
         return limit;
     }
     (t.approach / y0).max(0.0).min(limit)

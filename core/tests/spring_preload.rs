@@ -1,6 +1,7 @@
 //! The plausible spring preload of a deep-groove ball bearing (`spring_preload`): the
 //! thrust balance and the groove geometry of Harris & Kotzalas (2006) ch. 7, its
 //! small-angle closed form, and the bound it puts on the `load-zone` preload.
+#![allow(clippy::unnecessary_cast)] // `Real` is f32 in the `wearsim-core-f32` run
 
 use wearsim_core::contact::ElementContact;
 use wearsim_core::spring_preload::{plausible_preload, spring_force, thrust_contact};

@@ -13,6 +13,7 @@ use wearsim_core::model::ModelConfig;
 
 /// The `load-zone` preload's catalogue bound (–, static displacements), the
 /// [`Context::preload_max`] of contexts with no bearing to bound it by.
+#[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
 pub const CATALOGUE_PRELOAD_MAX: f64 = wearsim_core::effects::load_zone::MAX_PRELOAD as f64;
 
 /// One fitted parameter.
