@@ -106,8 +106,9 @@ pub fn thrust_contact(
 /// The largest plausible `load-zone` preload of a bearing (–, static displacements `y₀`):
 /// the normal approach under [`spring_force`] over the static radial displacement under
 /// `radial_load` (N) with the structural stiffness `structure_k` (N/m) and the radial
-/// clearance `clearance` (m). 0 for line contacts; `limit` when the bearing carries no
-/// radial load (`y₀ = 0`: the effect's unit is undefined) and at most `limit`.
+/// clearance `clearance` (m). 0 when [`thrust_contact`] has no contact (line contacts, a
+/// groove without curvature); `limit` when the bearing carries no radial load (`y₀ = 0`:
+/// the effect's unit is undefined); at most `limit`.
 pub fn plausible_preload(
     bearing: &BearingGeometry,
     contact: &ElementContact,
