@@ -7,9 +7,17 @@
 //! effect. Both are weighted as the total gap weights the cells (every group counts
 //! equally). Effect `b` can *reproduce* effect `a` when `a`'s signature lies close to
 //! `b`'s signature subspace `span(J_b, d_b)`: the angle between `d_a` and its projection
-//! on that subspace is below [`CONFOUND_DEG`]. Two effects that both shrink the gap by at
-//! least the minimum shrink, and of which either can reproduce the other, are
-//! **confounded**: the report names the set and does not rank inside it.
+//! on that subspace is below [`CONFOUND_DEG`]. Effect `a`'s ranking is evidence for `a`
+//! only if no other effect that also shrinks the gap by at least the minimum shrink can
+//! reproduce what `a` did; those that can are `a`'s **confounded set**: the report names
+//! it and does not rank inside it.
+//!
+//! The relation is read in that one direction (stop 28; before, a pair counted when
+//! *either* effect reproduced the other). `b` reproducing `a` undermines the evidence for
+//! `a`; `a` reproducing `b` does not: a sensor whose fitted change is a noise floor is not
+//! put in doubt by a shaft-harmonics effect just because the sensor's hum (60 Hz) could
+//! mimic the 2× shaft line (59.9 Hz at 1797 rpm). The shaft-harmonics effect, ranked first,
+//! still names the sensor, because the hum can reproduce its line.
 //!
 //! Method: principal angles between subspaces (Björck & Golub 1973, "Numerical methods for
 //! computing angles between linear subspaces", Math. Comp. 27) reduced to one vector and a
@@ -17,6 +25,7 @@
 //! squares (the same Jacobian as the parameters' uncertainty).
 
 use super::attribute::Attribution;
+use super::signature::Signature;
 use std::collections::BTreeMap;
 
 /// Angle (degrees) between one effect's signature and another's signature subspace
@@ -26,41 +35,26 @@ use std::collections::BTreeMap;
 /// batches (issue 13 asks for that; see docs/sim-to-real-results.md).
 pub const CONFOUND_DEG: f64 = 25.0;
 
-/// Fills `confounded_with` of every ranked effect (effects both shrinking the validation
-/// gap by at least `min_shrink`, either reproducing the other), adds a finding naming
-/// each confounded set that holds the first-ranked effect, and returns the angles
-/// (degrees, `a → b`) for the report.
+/// Fills `confounded_with` of every ranked effect `a`: the other effects, both shrinking
+/// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature. Adds a
+/// finding naming the confounded set of the first-ranked effect, and returns the angles
+/// (degrees, `a → b`: `a`'s signature to `b`'s subspace) for the report.
 pub fn confounded(at: &mut Attribution, min_shrink: f64) -> BTreeMap<String, f64> {
-    let n = at.ranking.len();
     let mut angles = BTreeMap::new();
-    let mut pairs = vec![vec![false; n]; n];
-    for i in 0..n {
-        for j in 0..n {
-            let (Some(a), Some(b)) = (at.ranking.get(i), at.ranking.get(j)) else {
-                continue;
-            };
-            if i == j {
-                continue;
-            }
+    for a in &at.ranking {
+        for b in at.ranking.iter().filter(|b| b.effect != a.effect) {
             let t = a.signature.angle_to(&b.signature);
             angles.insert(format!("{} -> {}", a.effect, b.effect), t);
-            if a.shrink >= min_shrink && b.shrink >= min_shrink && t < CONFOUND_DEG {
-                if let Some(p) = pairs.get_mut(i).and_then(|r| r.get_mut(j)) {
-                    *p = true;
-                }
-                if let Some(p) = pairs.get_mut(j).and_then(|r| r.get_mut(i)) {
-                    *p = true;
-                }
-            }
         }
     }
+    let sigs: Vec<&Signature> = at.ranking.iter().map(|r| &r.signature).collect();
+    let shrink: Vec<f64> = at.ranking.iter().map(|r| r.shrink).collect();
+    let sets = reproducers(&sigs, &shrink, min_shrink);
     let names: Vec<String> = at.ranking.iter().map(|r| r.effect.clone()).collect();
-    for (i, r) in at.ranking.iter_mut().enumerate() {
-        r.confounded_with = names
-            .iter()
-            .enumerate()
-            .filter(|(j, _)| pairs.get(i).and_then(|p| p.get(*j)).copied() == Some(true))
-            .map(|(_, e)| e.clone())
+    for (r, set) in at.ranking.iter_mut().zip(sets) {
+        r.confounded_with = set
+            .into_iter()
+            .filter_map(|j| names.get(j).cloned())
             .collect();
     }
     if let Some(first) = at.ranking.first().filter(|r| r.shrink >= min_shrink) {
@@ -68,7 +62,7 @@ pub fn confounded(at: &mut Attribution, min_shrink: f64) -> BTreeMap<String, f64
             let mut set = vec![first.effect.clone()];
             set.extend(first.confounded_with.iter().cloned());
             at.findings.push(format!(
-                "confounded set {{{}}}: at the fitted point each can reproduce the other's cell signature (angle below {CONFOUND_DEG}°); the ranking inside the set is not evidence for either",
+                "confounded set {{{}}}: at the fitted point the others can each reproduce the first's cell signature (angle below {CONFOUND_DEG}°); the ranking inside the set is not evidence for either",
                 set.iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", ")
             ));
         }
@@ -106,5 +100,54 @@ pub fn group_shrink(at: &mut Attribution, group: &[String]) {
                 (g.to_string(), if b > 0.0 { 1.0 - e / b } else { 0.0 })
             })
             .collect();
+    }
+}
+
+/// For each effect `i`, the effects `j ≠ i` that can reproduce it: both shrink the
+/// validation gap by at least `min_shrink` (`shrink[i]`, `shrink[j]`) and `sig[i]`'s
+/// signature lies within [`CONFOUND_DEG`] of `sig[j]`'s subspace.
+pub fn reproducers(sig: &[&Signature], shrink: &[f64], min_shrink: f64) -> Vec<Vec<usize>> {
+    let strong = |i: usize| shrink.get(i).is_some_and(|s| *s >= min_shrink);
+    (0..sig.len())
+        .map(|i| {
+            (0..sig.len())
+                .filter(|&j| j != i && strong(i) && strong(j))
+                .filter(|&j| match (sig.get(i), sig.get(j)) {
+                    (Some(a), Some(b)) => a.angle_to(b) < CONFOUND_DEG,
+                    _ => false,
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sensor-like effect (fitted change: a noise floor, cell 0; its subspace also holds
+    /// a hum line, cell 1) and a shaft-harmonics-like effect (change and subspace: the line,
+    /// cell 1). The line can be reproduced by the sensor's hum, the noise floor not by the
+    /// line: the sensor stands alone, the harmonics are confounded with the sensor.
+    #[test]
+    fn an_effect_is_confounded_only_with_the_effects_that_reproduce_it() {
+        let sensor = Signature {
+            d: vec![1.0, 0.05, 0.0],
+            cols: vec![vec![1.0, 0.0, 0.0], vec![0.0, 1.0, 0.0]],
+        };
+        let harmonics = Signature {
+            d: vec![0.0, 1.0, 0.1],
+            cols: vec![vec![0.0, 1.0, 0.0]],
+        };
+        let weak = Signature {
+            d: vec![1.0, 0.0, 0.0],
+            cols: vec![vec![1.0, 0.0, 0.0]],
+        };
+        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.05);
+        assert_eq!(sets, vec![Vec::<usize>::new(), vec![0], vec![]]);
+        // The weak effect reproduces the sensor exactly but shrinks too little to count;
+        // with a lower minimum it joins the sensor's set (and the sensor its).
+        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.0);
+        assert_eq!(sets, vec![vec![2], vec![0], vec![0]]);
     }
 }
