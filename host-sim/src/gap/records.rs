@@ -218,11 +218,12 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let preset = presets::by_name(&bearing)
         .ok_or_else(|| format!("--bearing: unknown preset `{bearing}` (see `wearsim presets`)"))?;
     let scale = match rec.unit.as_str() {
-        "g" => G,
-        "m/s^2" => 1.0,
+        "g" | "G" => G,
+        "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => 1.0,
         u => {
             return Err(format!(
-                "{p}: samples in unit `{u}` cannot be compared with simulated m/s²; give a calibrated file (unit g or m/s^2, e.g. in the JSON sidecar)"
+                "{p}: samples in unit `{u}` (channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `\"units\": {{\"{}\": \"g\"}}` or `\"units\": \"g\"`",
+                rec.channel, rec.channel
             ))
         }
     };

@@ -402,6 +402,31 @@ mod tests {
             (r.fs, r.unit.as_str(), r.channel.as_str()),
             (20000.0, "g", "y")
         );
+        // One unit for the whole file (`"unit"` or `"units"` as a string) reaches a
+        // one-dimensional array, whose channel the reader names `col0`; a column's own
+        // entry in `units` wins over it.
+        let q = dir.path().join("b.npy");
+        std::fs::write(&q, write_npy(&[3], false, &[1.0f64, 2.0, 3.0])).unwrap();
+        for (side, unit) in [
+            (r#"{"fs": 48000, "unit": "g"}"#, "g"),
+            (r#"{"fs": 48000, "units": "m/s^2"}"#, "m/s^2"),
+            (
+                r#"{"fs": 48000, "unit": "g", "units": {"col0": "m/s^2"}}"#,
+                "m/s^2",
+            ),
+            (r#"{"fs": 48000}"#, "unknown"),
+        ] {
+            std::fs::write(dir.path().join("b.json"), side).unwrap();
+            let r = read_npy(&q, &o(None)).unwrap();
+            assert_eq!(
+                (r.channel.as_str(), r.unit.as_str()),
+                ("col0", unit),
+                "{side}"
+            );
+        }
+        std::fs::write(dir.path().join("b.json"), r#"{"fs": 48000, "unit": 9.81}"#).unwrap();
+        let e = read_npy(&q, &o(None)).unwrap_err().to_string();
+        assert!(e.contains("\"unit\"") && e.contains("string"), "{e}");
     }
 
     #[test]

@@ -4,7 +4,8 @@
 //! `data/run.json` (the name [`crate::io::write::write_outputs`] uses, shared by the `.csv` and
 //! `.wav` of one output set). The schema is the one the writer produces (see
 //! [`crate::io::write::SIDECAR_FORMAT`]); every key is optional for reading:
-//! `fs` (Hz), `rpm`, `n_samples`, `columns`, `units` (column → unit), `bearing`,
+//! `fs` (Hz), `rpm`, `n_samples`, `columns`, `units` (column → unit, or one unit for every
+//! column as a string; `unit` is read the same way), `bearing`,
 //! `wav.{column, unit, scale}` (`scale`: physical units per full scale of an integer WAV, or a
 //! factor applied to a float WAV), and `complete` (a sidecar saying `false` is an error).
 //!
@@ -44,6 +45,10 @@ pub struct Sidecar {
     pub columns: Vec<String>,
     /// Column name → unit.
     pub units: BTreeMap<String, String>,
+    /// The unit of every column not in `units` (`"units": "g"` or `"unit": "g"`): what a
+    /// single-channel file's sidecar says, whatever name the reader gives its channel
+    /// (`col0` for a one-dimensional NPY).
+    pub unit: Option<String>,
     /// Column written to the WAV.
     pub wav_column: Option<String>,
     /// Unit of the WAV samples.
@@ -60,9 +65,12 @@ pub struct Sidecar {
 }
 
 impl Sidecar {
-    /// Unit of `column`: `units[column]`, if given.
+    /// Unit of `column`: `units[column]`, else the sidecar-wide unit, if given.
     pub fn unit_of(&self, column: &str) -> Option<&str> {
-        self.units.get(column).map(String::as_str)
+        self.units
+            .get(column)
+            .or(self.unit.as_ref())
+            .map(String::as_str)
     }
 }
 
@@ -186,6 +194,7 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         }
     };
     let mut units = BTreeMap::new();
+    let mut unit = string(path, &raw, "unit")?;
     match raw.get("units") {
         None | Some(Value::Null) => {}
         Some(Value::Object(m)) => {
@@ -197,9 +206,7 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         }
         Some(Value::String(s)) => {
             // A single unit for every column.
-            for c in &columns {
-                units.insert(c.clone(), s.clone());
-            }
+            unit = Some(s.clone());
         }
         Some(other) => {
             return Err(IoError::malformed(
@@ -230,6 +237,7 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         n_samples,
         columns,
         units,
+        unit,
         wav_column,
         wav_unit,
         wav_scale,

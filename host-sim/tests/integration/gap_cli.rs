@@ -106,6 +106,17 @@ fn gap_rejects_bad_input_naming_the_field() {
     );
     v.insert(3, long.clone());
     run(v, "must not be fitted on");
+    // A record of unknown unit: the message names the channel and the sidecar key.
+    let mut s = String::from("x\n");
+    for i in 0..24_000 {
+        s.push_str(&format!("{}\n", ((i * 7919) % 1000) as f64 / 1000.0 - 0.5));
+    }
+    let raw = dir.path().join("raw.csv");
+    std::fs::write(&raw, s).unwrap();
+    run(
+        with(&["--rpm", "1797"], &raw.display().to_string()),
+        r#"channel `x`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `"units": {"x": "g"}`"#,
+    );
 }
 
 #[test]
