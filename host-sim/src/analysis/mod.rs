@@ -18,6 +18,7 @@
 //! → [`envelope_spectrum`] in its best band → [`detect_fault`].
 
 pub mod chain;
+pub mod content_band;
 pub mod diagnose;
 pub mod envelope;
 pub mod error;

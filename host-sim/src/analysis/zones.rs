@@ -85,6 +85,33 @@ impl ZoneBands {
     }
 }
 
+impl ZoneBands {
+    /// The zones cut at `top` (Hz): a record that holds nothing above `top`
+    /// ([`super::content_band::content_edge`]) informs no level above it. A zone that
+    /// starts at or above `top` is an error naming it.
+    pub fn below(self, top: f64) -> Result<Self, AnalysisError> {
+        let cut = |name: &'static str, (lo, hi): (f64, f64)| -> Result<(f64, f64), AnalysisError> {
+            if lo < top {
+                Ok((lo, hi.min(top)))
+            } else {
+                Err(AnalysisError::BadParameter {
+                    name,
+                    allowed: format!(
+                        "a zone starting below {top:.0} Hz, the edge of what the record holds (it has no content above)"
+                    ),
+                    value: format!("({lo:.0}, {hi:.0}) Hz"),
+                })
+            }
+        };
+        Ok(ZoneBands {
+            rotating: cut("rotating zone", self.rotating)?,
+            fault: cut("fault zone", self.fault)?,
+            natural: cut("natural zone", self.natural)?,
+            high: cut("high zone", self.high)?,
+        })
+    }
+}
+
 /// RMS in `band` (Hz, edges inclusive) from a one-sided PSD:
 /// `sqrt(Σ PSD_k · df)` over the bins whose centre lies in the band.
 pub fn band_rms(psd: &Spectrum, band: (f64, f64)) -> f64 {

@@ -15,6 +15,11 @@ pub struct CellSpec {
     pub ff: FaultFrequencies,
     /// Fault family whose harmonics the envelope cells follow (none: BPFO).
     pub family: FaultFamily,
+    /// Upper edge (Hz) of what the measured record holds, when it ends well below its
+    /// Nyquist frequency ([`analysis::content_band::content_edge`]): the record and every
+    /// simulation are low-passed there and the zones cut there
+    /// ([`super::segment_cells`]). `None`: the whole band up to fs/2.
+    pub band_hz: Option<f64>,
 }
 
 /// One cell value.
@@ -66,7 +71,10 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
             ..WelchParams::default()
         },
     )?;
-    let zones = ZoneBands::new(&spec.ff, fs)?;
+    let zones = match spec.band_hz {
+        Some(top) => ZoneBands::new(&spec.ff, fs)?.below(top)?,
+        None => ZoneBands::new(&spec.ff, fs)?,
+    };
     let amp = analysis::amplitude_spectrum(x, fs, analysis::Window::Hann).ok();
     // The natural-frequency zone of the cells spans every structural resonance band between
     // the fault zone and the high zone (the thesis's zone is the model's one resonance ±30 %;

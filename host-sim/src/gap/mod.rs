@@ -106,6 +106,14 @@ fn wander_db(segs: &[Vec<CellValue>]) -> Option<f64> {
 
 /// Cell values of each of `SEGMENTS` equal segments of `x`.
 pub fn segment_cells(x: &[f64], spec: &CellSpec) -> Result<Vec<Vec<CellValue>>, AnalysisError> {
+    let band_limited;
+    let x = match spec.band_hz {
+        Some(top) => {
+            band_limited = crate::analysis::content_band::low_pass(x, spec.fs, top);
+            &band_limited[..]
+        }
+        None => x,
+    };
     let len = x.len() / SEGMENTS;
     (0..SEGMENTS)
         .map(|i| cells(&x[i * len..(i + 1) * len], spec))

@@ -6,7 +6,7 @@
 use super::matched::{Matched, MEMO};
 use super::memo::Memo;
 use super::validate::spec_of;
-use super::Reference;
+use super::{CellSpec, Reference};
 use crate::analysis::stats::upper_median;
 use crate::analysis::{self, WelchParams};
 use crate::io::{self, mat::CwruFault, ReadOptions, Record};
@@ -141,6 +141,11 @@ pub struct RealRecord {
     pub defect: Option<DefectSpec>,
     /// Unit of the file and the factor to m/s².
     pub unit: String,
+    /// Upper edge (Hz) of what the record holds when it ends well below fs/2 (an
+    /// acquisition low-pass or a resampled record,
+    /// [`analysis::content_band::content_edge`]): the cells compare the record and
+    /// its simulations below it only. `None`: content up to near fs/2.
+    pub content_hz: Option<f64>,
     /// Things the metadata and the content disagree on, in words.
     pub warnings: Vec<String>,
 }
@@ -283,8 +288,17 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             None
         }
     };
+    let content_hz = analysis::content_band::content_edge(&accel, fs);
+    if let Some(e) = content_hz {
+        warnings.push(format!(
+            "the record holds no content above {e:.0} Hz (every 1/6-octave band above lies {:.0} dB or more under the octave below; fs/2 = {:.0} Hz): an acquisition low-pass or a resampled record. The record and its simulations are compared below {e:.0} Hz only",
+            analysis::content_band::EMPTY_DB,
+            fs / 2.0
+        ));
+    }
     Ok(RealRecord {
         file: path.to_path_buf(),
+        content_hz,
         accel,
         fs,
         rpm,
@@ -350,7 +364,10 @@ pub fn part(
     tag: &str,
 ) -> Result<Matched, String> {
     let cfg = matched_config(r)?;
-    let spec = spec_of(&cfg)?;
+    let spec = CellSpec {
+        band_hz: r.content_hz,
+        ..spec_of(&cfg)?
+    };
     let x = r
         .accel
         .get(start..start + len)

@@ -258,6 +258,7 @@ pub fn spec_of(cfg: &ModelConfig) -> Result<CellSpec, String> {
         fs: cfg.output_rate,
         ff: model.frequencies_at(cfg.speed.shaft_hz(0.0)),
         family,
+        band_hz: None,
     })
 }
 
