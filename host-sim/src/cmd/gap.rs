@@ -169,6 +169,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
     }
     for (flag, given) in [
         ("--bearing", a.bearing.is_some()),
+        ("--bearing-geometry", a.bearing_geometry.is_some()),
         ("--rpm", a.rpm.is_some()),
         ("--defect", a.defect.is_some()),
         ("--channel", a.channel.is_some()),

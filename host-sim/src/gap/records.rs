@@ -135,8 +135,12 @@ pub struct RealRecord {
     pub rpm: f64,
     /// Where the speed came from: `argument`, `file`, `spectrum`.
     pub rpm_source: String,
-    /// Bearing preset.
+    /// Bearing: a model preset's name, a catalogue bearing's, or `custom` (a geometry from
+    /// `--bearing-geometry` or the sidecar, or a wearsim sidecar's own model).
     pub bearing: String,
+    /// The rig's nominal model the matched simulations start from ([`base_model`]).
+    #[serde(skip)]
+    pub base: ModelConfig,
     /// Defect (None: healthy).
     pub defect: Option<DefectSpec>,
     /// Unit of the file and the factor to m/s².
@@ -183,6 +187,8 @@ pub fn estimate_shaft_hz(x: &[f64], fs: f64, nominal_hz: f64) -> Option<f64> {
 pub struct Overrides {
     /// `--bearing`.
     pub bearing: Option<String>,
+    /// `--bearing-geometry`.
+    pub geometry: Option<String>,
     /// `--rpm`.
     pub rpm: Option<f64>,
     /// `--defect` (Some(None) = `none`).
@@ -207,21 +213,7 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     .map_err(|e| e.to_string())?;
     let p = path.display();
     let mut warnings = vec![];
-    let bearing = match (&o.bearing, &rec.bearing) {
-        (Some(b), Some(f)) if b != f => {
-            warnings.push(format!("--bearing {b} overrides the file's bearing {f}"));
-            b.clone()
-        }
-        (Some(b), _) => b.clone(),
-        (None, Some(f)) => f.clone(),
-        (None, None) => {
-            return Err(format!(
-                "{p}: the bearing is not known from the file; give --bearing PRESET (see `wearsim presets`)"
-            ))
-        }
-    };
-    let preset = presets::by_name(&bearing)
-        .ok_or_else(|| format!("--bearing: unknown preset `{bearing}` (see `wearsim presets`)"))?;
+    let (bearing, base) = base_model(&rec, o, &mut warnings).map_err(|e| format!("{p}: {e}"))?;
     let scale = match rec.unit.as_str() {
         "g" | "G" => G,
         "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => 1.0,
@@ -243,7 +235,7 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         ));
     }
     // Speed: argument, file, or the spectrum.
-    let nominal = preset.speed.shaft_hz(0.0) as f64;
+    let nominal: f64 = base.speed.shaft_hz(0.0);
     let from_spectrum = estimate_shaft_hz(&accel, fs, nominal);
     let (rpm, rpm_source) = match (o.rpm, rec.rpm) {
         (Some(r), _) => (r, "argument"),
@@ -304,16 +296,104 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         rpm,
         rpm_source: rpm_source.into(),
         bearing,
+        base,
         defect,
         unit: rec.unit,
         warnings,
     })
 }
 
+/// The rig's nominal model of record `rec` and the bearing's name, in this order of
+/// precedence: `--bearing-geometry`; `--bearing` (a model preset, or a catalogue bearing);
+/// the sidecar's `bearing_geometry`; the catalogue bearing the file or its layout names; a
+/// model preset it names (this wins over a wearsim sidecar's model, so that a twin
+/// simulated away from a preset is still matched to the preset's nominal description); a
+/// wearsim sidecar's own structured model for a bearing it calls `custom` (its effects
+/// removed: they are what the diagnosis looks for). A bearing that is no preset gets the
+/// one rule for such bearings, [`crate::geometry::GeometrySpec::model`] (the nearest
+/// preset's structure scaled by geometric similitude), and a warning that says so.
+pub fn base_model(
+    rec: &Record,
+    o: &Overrides,
+    warnings: &mut Vec<String>,
+) -> Result<(String, ModelConfig), String> {
+    if let (Some(b), Some(f)) = (&o.bearing, &rec.bearing) {
+        if b != f {
+            warnings.push(format!("--bearing {b} overrides the file's bearing {f}"));
+        }
+    }
+    let preset = o.bearing.as_deref().and_then(presets::by_name);
+    let custom = match preset {
+        Some(_) if o.geometry.is_some() => {
+            return Err("give either --bearing or --bearing-geometry, not both".into())
+        }
+        Some(_) => None,
+        None => crate::geometry::choose(rec, o.bearing.as_deref(), o.geometry.as_deref())?,
+    };
+    let scaled = |name: String,
+                  source: &str,
+                  g: crate::geometry::GeometrySpec,
+                  warnings: &mut Vec<String>| {
+        let m = g.model()?;
+        warnings.push(format!(
+            "the bearing ({name}, from the {source}: {} elements of {:.3} mm on {:.3} mm, {:.1} deg) is no model preset: its model is `{}`'s with this geometry and the structure scaled by geometric similitude (s = {:.3}: mass x s^3, stiffness x s); an assumption, so the zone levels and the rig's calibration start from it",
+            g.elements, g.ball_mm, g.pitch_mm, g.angle_deg, m.base, m.scale
+        ));
+        Ok::<_, String>((name, m.model))
+    };
+    if let Some(p) = preset {
+        return Ok((o.bearing.clone().unwrap_or_default(), p));
+    }
+    if let Some((name, source, g)) = custom {
+        return scaled(name, source, g, warnings);
+    }
+    if let Some(b) = &o.bearing {
+        return Err(unknown_bearing(b));
+    }
+    let file_model = rec
+        .meta
+        .get("sidecar")
+        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
+    if let Some(named) = rec
+        .bearing
+        .as_deref()
+        .and_then(|b| presets::by_name(b).map(|p| (b.to_string(), p)))
+    {
+        return Ok(named);
+    }
+    match (file_model, rec.bearing.as_deref()) {
+        (Some(mut m), label) => {
+            m.effects = wearsim_core::effects::Effects::NONE;
+            Ok((label.unwrap_or("custom").to_string(), m))
+        }
+        (None, Some(b)) => Err(format!(
+            "the file names the bearing `{b}`, which is no model preset and no catalogue bearing; {}",
+            bearing_choices()
+        )),
+        (None, None) => Err(format!(
+            "the bearing is not known from the file; {}",
+            bearing_choices()
+        )),
+    }
+}
+
+/// The error for a `--bearing` that is neither a preset nor a catalogue bearing.
+fn unknown_bearing(b: &str) -> String {
+    format!("--bearing: unknown bearing `{b}`; {}", bearing_choices())
+}
+
+/// What a bearing may be given as.
+fn bearing_choices() -> String {
+    format!(
+        "give --bearing NAME (a model preset: {}; or a catalogue bearing: {}) or --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG",
+        presets::NAMES.join(", "),
+        crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
+    )
+}
+
 /// The matched baseline configuration of a record.
 pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
-    let mut cfg =
-        presets::by_name(&r.bearing).ok_or_else(|| format!("unknown preset `{}`", r.bearing))?;
+    let mut cfg = r.base.clone();
     cfg.speed = SpeedProfile::Constant((r.rpm / 60.0) as Real);
     cfg.output_rate = r.fs as Real;
     cfg.defect = match r.defect {

@@ -26,9 +26,16 @@ pub struct GapArgs {
     /// tables (docs/feature-tables.md), one life each, --train/--holdout counting them from 1.
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
-    /// Bearing preset of the records (default: from the file, e.g. CWRU drive end).
+    /// Bearing of the records: a model preset (`wearsim presets`) or a catalogue bearing of
+    /// a public data set (`mfpt-nice`, `paderborn-6203`, `xjtu-ldk-uer204`; default: from
+    /// the file, e.g. CWRU drive end).
     #[arg(long)]
     pub bearing: Option<String>,
+    /// Geometry of a bearing that is neither: `elements=N,ball=MM,pitch=MM[,angle=DEG]`
+    /// (as for `analyze`); its model is the nearest preset's, scaled by geometric
+    /// similitude (an assumption the report states).
+    #[arg(long)]
+    pub bearing_geometry: Option<String>,
     /// Shaft speed (rpm) of every record (default: from the file, else the spectrum).
     #[arg(long)]
     pub rpm: Option<f64>,
@@ -265,6 +272,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
     };
     let o = Overrides {
         bearing: a.bearing.clone(),
+        geometry: a.bearing_geometry.clone(),
         rpm: a.rpm,
         defect,
         channel: a.channel.clone(),

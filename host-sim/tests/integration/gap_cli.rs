@@ -143,8 +143,103 @@ fn gap_contradicting_label_and_unknown_bearing() {
     );
     bad(
         &["gap", "--real", &f, "--bearing", "skf-9999", "--out", &o],
-        "unknown preset `skf-9999`",
+        "--bearing: unknown bearing `skf-9999`; give --bearing NAME (a model preset: ",
         &dir.path().join("out"),
+    );
+    bad(
+        &[
+            "gap",
+            "--real",
+            &f,
+            "--bearing",
+            "cwru-6205-de",
+            "--bearing-geometry",
+            "elements=9,ball=7.94,pitch=39.04",
+            "--out",
+            &o,
+        ],
+        "give either --bearing or --bearing-geometry, not both",
+        &dir.path().join("out"),
+    );
+    bad(
+        &[
+            "gap",
+            "--real",
+            &f,
+            "--bearing-geometry",
+            "elements=9,ball=8,pitch=7.9",
+            "--out",
+            &o,
+        ],
+        "bearing-geometry.pitch = 7.9 is impossible",
+        &dir.path().join("out"),
+    );
+}
+
+/// A bearing that is no model preset — a catalogue bearing of a public data set, a
+/// geometry given on the command line or in the sidecar — is matched with the one rule for
+/// such bearings (`GeometrySpec::model`): its own geometry and kinematics, the nearest
+/// preset's structure scaled by similitude, and a warning that says so; a preset named by
+/// the file keeps the preset.
+#[test]
+fn gap_matches_a_bearing_that_is_no_preset() {
+    use wearsim_host::gap::records::{load, matched_config, Overrides};
+    use wearsim_host::geometry::{catalogue, GeometrySpec};
+    let dir = tempfile::tempdir().unwrap();
+    let f = std::path::PathBuf::from(csv(dir.path(), "rig.csv", 24_000));
+    let fs_rpm = r#""fs": 12000, "rpm": 1500, "units": "m/s^2""#;
+    let side = |extra: &str| {
+        std::fs::write(dir.path().join("rig.json"), format!("{{{fs_rpm}{extra}}}")).unwrap()
+    };
+    let o = |bearing: Option<&str>, geometry: Option<&str>| Overrides {
+        bearing: bearing.map(String::from),
+        geometry: geometry.map(String::from),
+        defect: Some(None),
+        ..Default::default()
+    };
+    // A catalogue bearing by name (Paderborn's 6203).
+    side("");
+    let r = load(&f, &o(Some("paderborn-6203"), None)).expect("catalogue bearing");
+    let g = catalogue("paderborn-6203").unwrap().geometry;
+    let want = g.model().unwrap();
+    assert_eq!(r.bearing, "paderborn-6203");
+    assert_eq!(r.base, want.model);
+    assert_eq!(r.base.bearing.elements, 8);
+    assert!((r.base.bearing.pitch_diameter - 28.55e-3).abs() < 1e-12);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("is no model preset") && w.contains(&format!("`{}`", want.base))),
+        "{:?}",
+        r.warnings
+    );
+    let m = matched_config(&r).expect("matched");
+    assert!((m.speed.shaft_hz(0.0) - 25.0).abs() < 1e-12);
+    // A geometry on the command line, and the same in the sidecar.
+    let geo = "elements=12,ball=9.5,pitch=52,angle=0";
+    let r = load(&f, &o(None, Some(geo))).expect("geometry");
+    assert_eq!(
+        r.base,
+        GeometrySpec::parse(geo).unwrap().model().unwrap().model
+    );
+    assert_eq!(r.bearing, "custom");
+    side(r#", "bearing_geometry": "elements=12,ball=9.5,pitch=52,angle=0""#);
+    let s = load(&f, &o(None, None)).expect("sidecar geometry");
+    assert_eq!(s.base, r.base);
+    // A preset the sidecar names is the preset.
+    side(r#", "bearing": "cwru-6205-de""#);
+    let p = load(&f, &o(None, None)).expect("preset");
+    assert_eq!(
+        p.base,
+        wearsim_core::presets::by_name("cwru-6205-de").unwrap()
+    );
+    assert!(!p.warnings.iter().any(|w| w.contains("is no model preset")));
+    // A name that is neither, from the file.
+    side(r#", "bearing": "skf-6310""#);
+    let e = load(&f, &o(None, None)).unwrap_err();
+    assert!(
+        e.contains("the file names the bearing `skf-6310`, which is no model preset"),
+        "{e}"
     );
 }
 

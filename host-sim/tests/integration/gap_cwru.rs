@@ -36,6 +36,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
     GapArgs {
         real: files,
         bearing: None,
+        bearing_geometry: None,
         rpm: None,
         defect: None,
         train: Some("_0_".into()),
