@@ -305,8 +305,9 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
 
 /// The rig's nominal model of record `rec` and the bearing's name, in this order of
 /// precedence: `--bearing-geometry`; `--bearing` (a model preset, or a catalogue bearing);
-/// the sidecar's `bearing_geometry`; the catalogue bearing the file or its layout names; a
-/// model preset it names (this wins over a wearsim sidecar's model, so that a twin
+/// the sidecar's `bearing_geometry`; the catalogue bearing the file or its layout names;
+/// the faulty bearing a CWRU label names (whatever the channel); a model preset the file
+/// names (this wins over a wearsim sidecar's model, so that a twin
 /// simulated away from a preset is still matched to the preset's nominal description); a
 /// wearsim sidecar's own structured model for a bearing it calls `custom` (its effects
 /// removed: they are what the diagnosis looks for). A bearing that is no preset gets the
@@ -354,6 +355,21 @@ pub fn base_model(
         .meta
         .get("sidecar")
         .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
+    // The defect sits in the bearing the file's label names (CWRU: the drive- or fan-end
+    // bearing), whichever channel recorded it: a drive-end fault measured at the fan end or
+    // on the base plate is the drive-end bearing seen through a longer path.
+    if let Some(faulty) = fault_end_bearing(rec) {
+        if rec.bearing.as_deref() != Some(faulty) {
+            warnings.push(format!(
+                "the label puts the defect in the {faulty} bearing and the record is channel {} (whose bearing is {}): the matched simulation is of the faulty bearing, and the path from it to this sensor is left to the rig's calibration and the transfer-path effect",
+                rec.channel,
+                rec.bearing.as_deref().unwrap_or("none")
+            ));
+        }
+        if let Some(p) = presets::by_name(faulty) {
+            return Ok((faulty.to_string(), p));
+        }
+    }
     if let Some(named) = rec
         .bearing
         .as_deref()
@@ -375,6 +391,18 @@ pub fn base_model(
             bearing_choices()
         )),
     }
+}
+
+/// The bearing preset holding the defect of a CWRU record, from its file name's label
+/// (`12k_Drive_End_…` → the drive-end bearing); `None` for a record without such a label
+/// (or a healthy one).
+fn fault_end_bearing(rec: &Record) -> Option<&'static str> {
+    let name = rec.source.file_name()?.to_string_lossy().into_owned();
+    let label = io::mat::parse_cwru_name(&name)?;
+    if matches!(label.fault, CwruFault::Normal) {
+        return None;
+    }
+    io::mat::cwru_bearing_preset(label.fault_end.as_deref()?)
 }
 
 /// The error for a `--bearing` that is neither a preset nor a catalogue bearing.

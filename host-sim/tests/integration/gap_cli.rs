@@ -392,3 +392,47 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
         &out,
     );
 }
+
+/// The faulty bearing of a CWRU record is the one its label names, whichever channel
+/// recorded it: a drive-end fault at the fan-end or base-plate accelerometer is matched to
+/// the drive-end bearing (with a finding), a fan-end fault to the fan-end bearing; a
+/// channel that sits on the faulty bearing gives no finding. Data-backed.
+#[test]
+fn gap_matches_the_faulty_bearing_whatever_the_channel() {
+    use wearsim_host::gap::records::{load, Overrides};
+    let Some(data) = wearsim_host::io::data_dir().expect("data folder required when CI=true")
+    else {
+        return;
+    };
+    let de = data.join("cwru/12k_Drive_End_IR007_1_106.mat");
+    let fe = data.join("cwru/12k_Fan_End_IR007_1_279.mat");
+    for (file, channel, bearing, finding) in [
+        (&de, "DE", "cwru-6205-de", false),
+        (&de, "FE", "cwru-6205-de", true),
+        (&de, "BA", "cwru-6205-de", true),
+        (&fe, "FE", "cwru-6203-fe", false),
+        (&fe, "DE", "cwru-6203-fe", true),
+    ] {
+        let r = load(
+            file,
+            &Overrides {
+                channel: Some(channel.into()),
+                ..Default::default()
+            },
+        )
+        .expect("record");
+        let said = r
+            .warnings
+            .iter()
+            .any(|w| w.contains("the label puts the defect in the"));
+        assert_eq!(
+            (r.bearing.as_str(), said),
+            (bearing, finding),
+            "{} {channel}: {:?}",
+            file.display(),
+            r.warnings
+        );
+        assert_eq!(r.base, wearsim_core::presets::by_name(bearing).unwrap());
+        assert_eq!(r.defect.map(|d| d.location), Some("inner"));
+    }
+}
