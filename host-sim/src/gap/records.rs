@@ -307,9 +307,9 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
 /// precedence: `--bearing-geometry`; `--bearing` (a model preset, or a catalogue bearing);
 /// the sidecar's `bearing_geometry`; the catalogue bearing the file or its layout names;
 /// the faulty bearing a CWRU label names (whatever the channel); a model preset the file
-/// names (this wins over a wearsim sidecar's model, so that a twin
-/// simulated away from a preset is still matched to the preset's nominal description); a
-/// wearsim sidecar's own structured model for a bearing it calls `custom` (its effects
+/// names (this wins over a wearsim sidecar's model, so that a twin simulated away from a
+/// preset is still matched to the preset's nominal description); a wearsim sidecar's own
+/// structured model for a bearing it calls `custom` (its effects
 /// removed: they are what the diagnosis looks for). A bearing that is no preset gets the
 /// one rule for such bearings, [`crate::geometry::GeometrySpec::model`] (the nearest
 /// preset's structure scaled by geometric similitude), and a warning that says so.
@@ -337,7 +337,7 @@ pub fn base_model(
                   warnings: &mut Vec<String>| {
         let m = g.model()?;
         warnings.push(format!(
-            "the bearing ({name}, from the {source}: {} elements of {:.3} mm on {:.3} mm, {:.1} deg) is no model preset: its model is `{}`'s with this geometry and the structure scaled by geometric similitude (s = {:.3}: mass x s^3, stiffness x s); an assumption, so the zone levels and the rig's calibration start from it",
+            "the bearing ({name}, from the {source}: {} elements of {:.3} mm on {:.3} mm, {:.1} deg) is no model preset: its model is `{}`'s with this geometry and the structure scaled by geometric similitude (s = {:.3}: mass x s^3, stiffness x s, damping x s^2); an assumption, so the zone levels and the rig's calibration start from it",
             g.elements, g.ball_mm, g.pitch_mm, g.angle_deg, m.base, m.scale
         ));
         Ok::<_, String>((name, m.model))
@@ -351,10 +351,6 @@ pub fn base_model(
     if let Some(b) = &o.bearing {
         return Err(unknown_bearing(b));
     }
-    let file_model = rec
-        .meta
-        .get("sidecar")
-        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
     // The defect sits in the bearing the file's label names (CWRU: the drive- or fan-end
     // bearing), whichever channel recorded it: a drive-end fault measured at the fan end or
     // on the base plate is the drive-end bearing seen through a longer path.
@@ -377,6 +373,10 @@ pub fn base_model(
     {
         return Ok(named);
     }
+    let file_model = rec
+        .meta
+        .get("sidecar")
+        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
     match (file_model, rec.bearing.as_deref()) {
         (Some(mut m), label) => {
             m.effects = wearsim_core::effects::Effects::NONE;
