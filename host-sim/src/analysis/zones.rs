@@ -83,9 +83,7 @@ impl ZoneBands {
             high: clip(1.3 * ff.natural_hz, nyquist)?,
         })
     }
-}
 
-impl ZoneBands {
     /// The zones cut at `top` (Hz): a record that holds nothing above `top`
     /// ([`super::content_band::content_edge`]) informs no level above it. A zone that
     /// starts at or above `top` is an error naming it.

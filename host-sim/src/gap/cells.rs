@@ -71,9 +71,10 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
             ..WelchParams::default()
         },
     )?;
+    let zones = ZoneBands::new(&spec.ff, fs)?;
     let zones = match spec.band_hz {
-        Some(top) => ZoneBands::new(&spec.ff, fs)?.below(top)?,
-        None => ZoneBands::new(&spec.ff, fs)?,
+        Some(top) => zones.below(top)?,
+        None => zones,
     };
     let amp = analysis::amplitude_spectrum(x, fs, analysis::Window::Hann).ok();
     // The natural-frequency zone of the cells spans every structural resonance band between
