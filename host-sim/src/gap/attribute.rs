@@ -29,6 +29,40 @@ pub fn same_class(a: &str, b: &str) -> bool {
             .any(|(x, y, _)| (*x == a && *y == b) || (*x == b && *y == a))
 }
 
+/// Held-out baseline gap from which the diagnosis names an effect (total gap, the
+/// cells' spread-weighted units): a false-alarm level, not a tuning of the hits. The rule,
+/// fixed before it was applied: the 95th percentile of the held-out gaps of no-effect twins
+/// (rig mismatch, rig calibrated, nothing withheld), rounded up to 0.1
+/// ([`false_alarm_threshold`]), on a batch that reports nothing: 40 such twins of seed 41
+/// (`wearsim gap-validate --trials 1 --effects slip --null 40 --seed 41`; gaps 0.32–1.10,
+/// 95th percentile 0.98; noise-only gap 0.39, so about 2.6× it). The twin figures are
+/// reported on another seed (`docs/sim-to-real-results.md`). Before stop 30 it was 1.5, a
+/// round number about 4× the noise-only gap, under which twins of strength 2–4× the noise
+/// went unnamed.
+pub const SIGNIFICANT_GAP: f64 = 1.0;
+
+/// The [`SIGNIFICANT_GAP`] rule: the `1 − false_alarm` quantile (linear interpolation
+/// between order statistics, Hyndman & Fan type 7) of the no-effect twins' held-out gaps
+/// `null_gaps`, rounded up to a multiple of 0.1; `None` for fewer than two gaps, a
+/// non-finite one, or `false_alarm` outside (0, 1).
+pub fn false_alarm_threshold(null_gaps: &[f64], false_alarm: f64) -> Option<f64> {
+    if null_gaps.len() < 2
+        || null_gaps.iter().any(|g| !g.is_finite())
+        || !(false_alarm > 0.0 && false_alarm < 1.0)
+    {
+        return None;
+    }
+    let mut g = null_gaps.to_vec();
+    g.sort_by(f64::total_cmp);
+    let h = (1.0 - false_alarm) * (g.len() - 1) as f64;
+    let lo = h.floor() as usize;
+    let hi = (lo + 1).min(g.len() - 1);
+    let q = g[lo] + (h - lo as f64) * (g[hi] - g[lo]);
+    // Rounded up to 0.1 (the small tolerance keeps an exact tenth from rounding past
+    // itself through its binary representation).
+    Some((q * 10.0 - 1e-9).ceil() / 10.0)
+}
+
 /// Attribution settings.
 #[derive(Debug, Clone, Copy)]
 pub struct Options {
@@ -43,7 +77,8 @@ pub struct Options {
     /// apart by the cells.
     pub tie: f64,
     /// A held-out baseline gap below this is within the measurement's own variability:
-    /// no effect is named (every effect is still fitted and ranked).
+    /// no effect is named (every effect is still fitted and ranked). Default
+    /// [`SIGNIFICANT_GAP`].
     pub significant_gap: f64,
     /// How far each fit may search.
     pub budget: Budget,
@@ -56,7 +91,7 @@ impl Default for Options {
             max_effects: 4,
             greedy_candidates: usize::MAX,
             tie: 0.02,
-            significant_gap: 1.5,
+            significant_gap: SIGNIFICANT_GAP,
             budget: Budget::DEFAULT,
         }
     }
@@ -579,5 +614,24 @@ impl Totals {
             test_shrink: at.test.map(|t| t.shrink),
             closed_by_library: at.test.map(|t| t.closed),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The type-7 quantile of 0.1, 0.2, …, 4.0 at 0.95 sits at order statistic 37.05
+    /// (3.805), rounded up to 3.9; an exact tenth stays itself; bad input gives `None`.
+    #[test]
+    fn false_alarm_threshold_is_the_rounded_up_quantile() {
+        let g: Vec<f64> = (1..=40).map(|i| i as f64 / 10.0).rev().collect();
+        assert_eq!(false_alarm_threshold(&g, 0.05), Some(3.9));
+        // Median of 0.1..=4.0 is 2.05 → 2.1; of 0.1, 0.3 at 0.5 it is 0.2 exactly.
+        assert_eq!(false_alarm_threshold(&g, 0.5), Some(2.1));
+        assert_eq!(false_alarm_threshold(&[0.1, 0.3], 0.5), Some(0.2));
+        assert_eq!(false_alarm_threshold(&[1.0], 0.05), None);
+        assert_eq!(false_alarm_threshold(&[1.0, f64::NAN], 0.05), None);
+        assert_eq!(false_alarm_threshold(&g, 0.0), None);
     }
 }
