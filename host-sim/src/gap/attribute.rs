@@ -30,10 +30,11 @@ pub fn same_class(a: &str, b: &str) -> bool {
 }
 
 /// Held-out baseline gap from which the diagnosis names an effect (total gap, the
-/// cells' spread-weighted units): a false-alarm level, not a tuning of the hits. The rule,
-/// fixed before it was applied: the 95th percentile of the held-out gaps of no-effect twins
-/// (rig mismatch, rig calibrated, nothing withheld), rounded up to 0.1
-/// ([`false_alarm_threshold`]), on a batch that reports nothing: 40 such twins of seed 41
+/// cells' spread-weighted units): a false-alarm level, not a tuning of the hits. The rule
+/// (written down after looking at this batch's gaps, applied to no other batch): the 95th
+/// percentile of the held-out gaps of no-effect twins (rig mismatch, rig calibrated,
+/// nothing withheld), rounded up to 0.1 ([`false_alarm_threshold`]), on a batch that
+/// reports nothing: 40 such twins of seed 41
 /// (`wearsim gap-validate --trials 1 --effects slip --null 40 --seed 41`; gaps 0.32–1.10,
 /// 95th percentile 0.98; noise-only gap 0.39, so about 2.6× it). The twin figures are
 /// reported on another seed (`docs/sim-to-real-results.md`). Before stop 30 it was 1.5, a
