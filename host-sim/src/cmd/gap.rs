@@ -3,7 +3,7 @@
 //! the report files and what is printed.
 
 use crate::cmd::args::CliError;
-use crate::gap::attribute::{self, Options, Totals};
+use crate::gap::attribute::{self, Totals};
 use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
@@ -51,7 +51,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
                 &parts.train,
                 &parts.test,
                 &ev,
-                &Options::default(),
+                &a.attribution_options(),
             )
             .map_err(CliError::run)?,
         )
@@ -180,6 +180,11 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
                 "{flag}: a lifetime record is matched to its preset (IMS tables: ims-za2115, Rexnord ZA-2115, 2000 rpm, 6000 lbf, 20 480 samples a snapshot; documented tables: their sidecar) and its life; {flag} does not apply"
             )));
         }
+    }
+    if a.significant_gap.is_some() {
+        return Err(CliError::input(
+            "--significant-gap: a lifetime diagnosis takes 3× its own computed noise-only gap; the flag applies to records of seconds",
+        ));
     }
     if a.jobs == Some(0) {
         return Err(CliError::input("--jobs 0: give at least 1"));

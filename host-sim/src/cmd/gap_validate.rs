@@ -205,6 +205,12 @@ pub fn print(r: &TwinReport) {
             100.0 * named as f64 / n.max(1) as f64
         );
     }
+    if let Some(t) = r.null_threshold {
+        println!(
+            "  their 5 % false-alarm level (95th percentile of their held-out gaps, rounded up to 0.1): {t:.1} (in force: {:.1}; `gap --significant-gap`)",
+            crate::gap::attribute::SIGNIFICANT_GAP
+        );
+    }
     if let Some((n, open)) = r.outside {
         println!(
             "mechanism outside the library ({n} trials): reported as not closed by the library {open} ({:.0} %)",

@@ -2,7 +2,7 @@
 //! training/held-out selection, the attribution run, and the "where" cells of the report
 //! ([`super::report`] writes it; [`crate::cmd::gap`] runs it).
 
-use super::attribute::{attribute, Attribution, Options, Totals};
+use super::attribute::{attribute, Attribution, Options, Totals, SIGNIFICANT_GAP};
 use super::error::GapError;
 use super::identify;
 use super::informed;
@@ -103,6 +103,13 @@ pub struct GapArgs {
     /// bounds the diagnosis's work, e.g. for a quick check of a new rig's tables.
     #[arg(long, value_parser = clap::value_parser!(u16).range(0..=1000))]
     pub life_search: Option<u16>,
+    /// Held-out baseline gap from which an effect is named, 0.05..=100 (default 1.0, the
+    /// 95th percentile of no-effect twins' gaps of the CWRU 6205 rig: a 5 % false-alarm
+    /// level; `wearsim gap-validate --null N` reports the level of its own twins as
+    /// `null_threshold`). Records of seconds only: a lifetime diagnosis takes 3× its
+    /// computed noise-only gap.
+    #[arg(long)]
+    pub significant_gap: Option<f64>,
     /// Machine-readable report on stdout.
     #[arg(long)]
     pub json: bool,
@@ -220,6 +227,14 @@ fn select(spec: &str, recs: &[RealRecord]) -> Result<Vec<usize>, String> {
 }
 
 impl GapArgs {
+    /// The attribution's settings: the defaults, with `--significant-gap` when given.
+    pub fn attribution_options(&self) -> Options {
+        Options {
+            significant_gap: self.significant_gap.unwrap_or(SIGNIFICANT_GAP),
+            ..Options::default()
+        }
+    }
+
     fn check(&self) -> Result<(), GapError> {
         if !(self.seconds.is_finite() && (MIN_PART_S..=30.0).contains(&self.seconds)) {
             return Err(GapError::input(format!(
@@ -235,6 +250,13 @@ impl GapArgs {
         }
         if self.jobs == Some(0) {
             return Err(GapError::input("--jobs 0: give at least 1"));
+        }
+        if let Some(g) = self.significant_gap {
+            if !(g.is_finite() && (0.05..=100.0).contains(&g)) {
+                return Err(GapError::input(format!(
+                    "--significant-gap {g} is out of range 0.05..=100 (total held-out gap)"
+                )));
+            }
         }
         for e in &self.effects {
             if wearsim_core::effects::info(e).is_none() {
@@ -444,7 +466,7 @@ pub fn diagnose(
                 .join("; ")
         )));
     }
-    let opt = Options::default();
+    let opt = a.attribution_options();
     let mut at =
         attribute(&spaces, &Effects::NONE, &p.train, &p.valid, &ev, &opt).map_err(GapError::run)?;
     at.findings.extend(uninformed.iter().map(informed::finding));

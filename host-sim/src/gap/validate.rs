@@ -190,6 +190,12 @@ pub struct TwinReport {
     /// Held-out total gap of the baseline against twins without any withheld effect
     /// (median over trials): the floor of the gap measure itself.
     pub noise_only_gap: f64,
+    /// The significance level this batch's no-effect twins imply
+    /// ([`super::attribute::false_alarm_threshold`] at 5 %: the 95th percentile of their
+    /// held-out gaps, rounded up to 0.1), to compare with the one in force
+    /// ([`super::attribute::SIGNIFICANT_GAP`]) or to pass to `gap --significant-gap` for a
+    /// rig of one's own; `null` with fewer than two no-effect twins.
+    pub null_threshold: Option<f64>,
     /// Per-effect identification.
     pub rates: Vec<EffectRate>,
     /// Confusion matrix: `confusion[i][j]` = trials withholding `labels[i]` whose first
@@ -713,9 +719,15 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         .collect();
     let mut columns = cols;
     columns.push("none".into());
+    let null_gaps: Vec<f64> = trials
+        .iter()
+        .filter(|t| t.withheld.is_empty() && t.outside.is_none())
+        .map(|t| t.before)
+        .collect();
     Ok(TwinReport {
         scenario: "cwru-6205-de, 0.007 in inner-race defect, 1797 rpm, 12 kHz".into(),
         noise_only_gap: noise_gap,
+        null_threshold: super::attribute::false_alarm_threshold(&null_gaps, 0.05),
         rates,
         confusion,
         labels,

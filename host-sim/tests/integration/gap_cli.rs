@@ -98,6 +98,14 @@ fn gap_rejects_bad_input_naming_the_field() {
         with(&["--rpm", "1797", "--mains", "100"], &long),
         "--mains 100 Hz is out of range",
     );
+    run(
+        with(&["--rpm", "1797", "--significant-gap", "0"], &long),
+        "--significant-gap 0 is out of range 0.05..=100",
+    );
+    run(
+        with(&["--rpm", "1797", "--significant-gap", "NaN"], &long),
+        "--significant-gap NaN is out of range",
+    );
     run(with(&["--rpm", "-5"], &long), "rpm");
     // A held-out record must not be fitted on.
     let mut v = with(
@@ -341,6 +349,11 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
         bad(&v, needle, &out);
     };
     run(&["--rpm", "1800"], &life, "--rpm: a lifetime record");
+    run(
+        &["--significant-gap", "2"],
+        &life,
+        "--significant-gap: a lifetime diagnosis takes 3× its own computed noise-only gap",
+    );
     run(&["--defect", "outer:0.007in"], &life, "--defect");
     run(&["--train", "B9"], &life, "--train: `B9` is not a bearing");
     run(&["--train", "B1,B2"], &life, "trains on one bearing");

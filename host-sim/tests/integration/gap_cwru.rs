@@ -54,6 +54,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         no_calibration: false,
         stability: false,
         life_search: None,
+        significant_gap: None,
         json: false,
         life: false,
     }

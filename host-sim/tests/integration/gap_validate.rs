@@ -304,4 +304,5 @@ fn significance_threshold_comes_from_no_effect_twins() {
     assert_eq!(null.len(), 40);
     println!("no-effect held-out gaps: {null:.2?}");
     assert_eq!(false_alarm_threshold(&null, 0.05), Some(SIGNIFICANT_GAP));
+    assert_eq!(r.null_threshold, Some(SIGNIFICANT_GAP));
 }
