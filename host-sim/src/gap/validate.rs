@@ -576,11 +576,13 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     }
     // No effect withheld: anything named is a false attribution.
     let mut null = None;
+    let mut null_gaps = Vec::with_capacity(opt.null_trials);
     if opt.null_trials > 0 {
         let mut named = 0;
         for t in 0..opt.null_trials {
             let tr = run(&[], false, opt.seed * 5_000_011 + t as u64, &mut rng, 1)?;
             named += usize::from(tr.ranked_first.is_some());
+            null_gaps.push(tr.before);
             trials.push(tr);
             done += 1;
             progress(done, total);
@@ -719,11 +721,6 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         .collect();
     let mut columns = cols;
     columns.push("none".into());
-    let null_gaps: Vec<f64> = trials
-        .iter()
-        .filter(|t| t.withheld.is_empty() && t.outside.is_none())
-        .map(|t| t.before)
-        .collect();
     Ok(TwinReport {
         scenario: "cwru-6205-de, 0.007 in inner-race defect, 1797 rpm, 12 kHz".into(),
         noise_only_gap: noise_gap,
