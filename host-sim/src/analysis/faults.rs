@@ -422,6 +422,7 @@ mod tests {
             impulse_amp: 1.0,
             noise_sigma: 0.5,
             seed,
+            jitter: 0.0,
         }
         .generate(N)
     }

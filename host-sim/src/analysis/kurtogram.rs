@@ -407,6 +407,7 @@ mod tests {
             impulse_amp: 1.0,
             noise_sigma: 0.1,
             seed: 11,
+            jitter: 0.0,
         }
         .generate(n)
     }

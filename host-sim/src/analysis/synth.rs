@@ -99,6 +99,12 @@ pub struct FaultSignal {
     pub noise_sigma: f64,
     /// Noise seed.
     pub seed: u64,
+    /// Standard deviation of each impulse's time about `k / fault_hz`, as a fraction of the
+    /// period (–): the elements' random slip, which makes a real bearing's impulse train
+    /// pseudo-cyclostationary rather than periodic (Randall & Antoni 2011, "Rolling element
+    /// bearing diagnostics — A tutorial", §2: 1–2 % typical). 0 gives an exactly periodic
+    /// train, whose spectrum is discrete lines; the offsets are drawn from `seed + 1`.
+    pub jitter: f64,
 }
 
 impl FaultSignal {
@@ -113,14 +119,15 @@ impl FaultSignal {
         let ring = ((9.2 / decay) * self.fs).ceil() as usize + 1;
         let period = 1.0 / self.fault_hz;
         let duration = n as f64 / self.fs;
+        let mut slip = Rng::new(self.seed.wrapping_add(1));
         let mut k = 0usize;
         loop {
-            let tk = k as f64 * period;
+            let tk = k as f64 * period + self.jitter * period * slip.gaussian();
             if tk >= duration {
                 break;
             }
             let a = self.impulse_amp * (1.0 + self.mod_depth * (2.0 * PI * self.mod_hz * tk).cos());
-            let first = (tk * self.fs).ceil() as usize;
+            let first = (tk.max(0.0) * self.fs).ceil() as usize;
             for (i, xi) in x.iter_mut().enumerate().skip(first).take(ring) {
                 let t = i as f64 / self.fs - tk;
                 *xi += a * (-decay * t).exp() * (wd * t).sin();

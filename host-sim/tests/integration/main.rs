@@ -31,4 +31,5 @@ mod life_sites;
 mod readers;
 mod reference_hashes;
 mod rig_tables;
+mod slip_jitter;
 mod sweep_cli;
