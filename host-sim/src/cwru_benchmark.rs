@@ -223,12 +223,30 @@ pub struct BenchmarkReport {
 }
 
 /// Fit the confidence calibration on the development records only: one pair (margin, the
-/// leading family is the true one) per development record that has a leading family.
+/// top family is the true one) per development record with any evidence. The top family is
+/// the leading family where there is one, else the family of highest exclusive score (the
+/// best partial evidence, whose margin `margin_db` then is); a record whose families all
+/// score 0 says nothing and is left out. Partial leads are included since the detector's
+/// harmonic thresholds became false-alarm thresholds (stop 31): no development record's
+/// leading family is then wrong, and a fit on leads alone has no wrong case to place its
+/// centre (it diverges to "every lead is right").
 pub fn fit_development(rows: &[FileResult]) -> Option<Calibration> {
     let pairs: Vec<(f64, bool)> = rows
         .iter()
-        .filter(|r| r.part == Part::Development && r.candidate != FaultFamily::None)
-        .map(|r| (r.margin_db, r.candidate == r.truth))
+        .filter(|r| r.part == Part::Development)
+        .filter_map(|r| {
+            let top = if r.candidate != FaultFamily::None {
+                Some(r.candidate)
+            } else {
+                r.family_scores
+                    .iter()
+                    .zip(CLASSES)
+                    .filter(|(s, _)| **s > 0.0)
+                    .max_by(|a, b| a.0.total_cmp(b.0))
+                    .map(|(_, f)| f)
+            };
+            top.map(|f| (r.margin_db, f == r.truth))
+        })
         .collect();
     fit_logistic(&pairs)
 }

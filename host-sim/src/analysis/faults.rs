@@ -38,8 +38,15 @@ pub struct DetectParams {
     /// harmonics from BPFI ones (2×BPFI is only 0.7 % from 3×BPFO on a 6205).
     pub harmonic_tol: f64,
     /// A peak counts as found when it is at least this many dB above the
-    /// local noise floor (default 10 dB).
+    /// local noise floor (default 10 dB), and at least [`false_alarm_db`] of the
+    /// harmonic's search region at `false_alarm`.
     pub min_db: f64,
+    /// Probability that noise alone puts a harmonic over its threshold anywhere in the
+    /// region the family search can place that harmonic (±`slip` of its kinematic
+    /// frequency, widened by its tolerance): a constant-false-alarm-rate threshold, so
+    /// that a longer record or a higher sample rate (more bins searched) does not find
+    /// more noise lines (default 0.05, fixed a priori; see [`false_alarm_db`]).
+    pub false_alarm: f64,
     /// Harmonics that must be found for a family to be diagnosed (default 3).
     pub min_harmonics: usize,
     /// Half-width of the noise-floor neighbourhood, as a fraction of the
@@ -60,6 +67,7 @@ impl Default for DetectParams {
             slip: 0.02,
             harmonic_tol: 0.004,
             min_db: 10.0,
+            false_alarm: 0.05,
             min_harmonics: 3,
             floor_half_width: 0.5,
             sideband_weight: 0.0,
@@ -79,7 +87,10 @@ pub struct HarmonicEvidence {
     pub peak: Option<Peak>,
     /// Height of that peak above the local noise floor, dB (0 if none).
     pub over_floor_db: f64,
-    /// Whether the peak clears `min_db`.
+    /// Height over the floor (dB) the peak must reach to count: `min_db` or the
+    /// false-alarm threshold of this harmonic's search region, whichever is higher.
+    pub threshold_db: f64,
+    /// Whether the peak clears `threshold_db`.
     pub found: bool,
     /// Whether another family also claims this peak as one of its found harmonics (then it
     /// does not count in [`FamilyEvidence::exclusive_score`]).
@@ -147,13 +158,38 @@ fn probe(env: &Spectrum, f: f64, tol: f64, floor: f64) -> (Option<Peak>, f64) {
 /// Most local maxima taken from each harmonic's slip window as fundamental candidates.
 const CANDIDATES_PER_HARMONIC: usize = 4;
 
-/// Evidence of one family for a fundamental `f0` Hz; `floors[k-1]` and `sb_floors[k-1]` are
-/// the noise floors around harmonic `k` and around its sidebands.
+/// Height over the median floor (dB) that the largest of `bins` bins of noise exceeds with
+/// probability `p`, in an amplitude (or power) spectrum of Gaussian noise: a bin's magnitude is
+/// Rayleigh (its power exponential), so a bin exceeds `a` times the median with probability
+/// `exp(−a² ln 2)`, and the largest of `W` independent bins with `1 − (1 − exp(−a² ln 2))^W`
+/// (the constant-false-alarm-rate threshold of radar detection; Richards 2005, *Fundamentals
+/// of Radar Signal Processing*, §6.5). Setting that to `p` gives
+/// `a² = −ln(1 − (1 − p)^{1/W}) / ln 2`, returned as `10 log10 a²`. Counting every bin as
+/// independent (a Hann window correlates neighbours) errs on the high, safe side. One bin at
+/// `p ≈ 0.001` gives 10 dB. `bins` below 1 count as 1; `p` outside (0, 1) gives infinity
+/// (nothing is found) for `p ≤ 0` and 0 dB for `p ≥ 1`.
+pub fn false_alarm_db(bins: f64, p: f64) -> f64 {
+    if p.is_nan() || p <= 0.0 {
+        return f64::INFINITY;
+    }
+    if p >= 1.0 {
+        return 0.0;
+    }
+    let w = if bins.is_finite() { bins.max(1.0) } else { 1.0 };
+    // 1 − (1 − p)^{1/W}, without cancellation for small p or large W.
+    let per_bin = -((-p).ln_1p() / w).exp_m1();
+    let a2 = -per_bin.ln() / core::f64::consts::LN_2;
+    10.0 * a2.max(f64::MIN_POSITIVE).log10()
+}
+
+/// Evidence of one family for a fundamental `f0` Hz; `floors[k-1]` holds the noise floor
+/// around harmonic `k`, those around its sidebands, and the height over the floor (dB) a
+/// peak must reach to count.
 fn evidence_at(
     env: &Spectrum,
     f0: f64,
     sideband_hz: Option<f64>,
-    floors: &[(f64, [f64; 2])],
+    floors: &[(f64, [f64; 2], f64)],
     p: &DetectParams,
 ) -> (Vec<HarmonicEvidence>, usize, f64) {
     let min_tol = 2.0 * env.df;
@@ -162,12 +198,12 @@ fn evidence_at(
     let harmonics = floors
         .iter()
         .enumerate()
-        .map(|(i, &(floor, sb_floor))| {
+        .map(|(i, &(floor, sb_floor, threshold_db))| {
             let order = i + 1;
             let expected_hz = order as f64 * f0;
             let tol = (p.harmonic_tol * expected_hz).max(min_tol);
             let (peak, db) = probe(env, expected_hz, tol, floor);
-            let is_found = peak.is_some() && db >= p.min_db;
+            let is_found = peak.is_some() && db >= threshold_db;
             if is_found {
                 found += 1;
                 score += db;
@@ -190,6 +226,7 @@ fn evidence_at(
                 expected_hz,
                 peak,
                 over_floor_db: db,
+                threshold_db,
                 found: is_found,
                 shared: false,
                 sidebands_db,
@@ -232,15 +269,19 @@ fn family_evidence(
     let s = sideband_hz
         .filter(|s| s.is_finite() && *s > 0.0)
         .unwrap_or(0.0);
-    let floors: Vec<(f64, [f64; 2])> = (1..=p.harmonics)
+    let floors: Vec<(f64, [f64; 2], f64)> = (1..=p.harmonics)
         .map(|order| {
             let f = order as f64 * base_hz;
+            // The region the search can place this harmonic in: the fundamental's slip
+            // window times the order, widened by the harmonic's own tolerance.
+            let region = 2.0 * (p.slip * f).max(min_tol) + 2.0 * (p.harmonic_tol * f).max(min_tol);
             (
                 noise_floor(env, f, floor_hw),
                 [
                     noise_floor(env, f - s, floor_hw),
                     noise_floor(env, f + s, floor_hw),
                 ],
+                p.min_db.max(false_alarm_db(region / env.df, p.false_alarm)),
             )
         })
         .collect();
@@ -410,6 +451,42 @@ mod tests {
     const N: usize = 36_000;
 
     use crate::analysis::synth::cwru_6205_1797rpm as cwru;
+
+    /// The false-alarm threshold's closed form: one bin at `p = 2^{-10}` (a Rayleigh
+    /// magnitude 10 dB over its median has probability `exp(−10 ln 2)`) gives 10 dB; more
+    /// bins or a smaller `p` a higher threshold; and on Gaussian noise the largest of `W`
+    /// bins of a power spectrum exceeds it in about `p` of the records.
+    #[test]
+    fn false_alarm_threshold_has_its_closed_form_and_rate() {
+        let one = false_alarm_db(1.0, (-10.0 * core::f64::consts::LN_2).exp());
+        assert!((one - 10.0).abs() < 1e-9, "{one}");
+        assert!(false_alarm_db(100.0, 0.05) > false_alarm_db(10.0, 0.05));
+        assert!(false_alarm_db(100.0, 0.01) > false_alarm_db(100.0, 0.05));
+        assert_eq!(false_alarm_db(10.0, 0.0), f64::INFINITY);
+        assert_eq!(false_alarm_db(10.0, 1.0), 0.0);
+        assert!(false_alarm_db(f64::NAN, 0.05).is_finite());
+        // Monte Carlo: periodograms of white noise (independent bins, exponential powers),
+        // the largest of W = 64 bins against the median of the record.
+        let (w, p, records) = (64usize, 0.05, 2000usize);
+        let t = 10f64.powf(false_alarm_db(w as f64, p) / 10.0);
+        let mut rng = crate::analysis::synth::Rng::new(3);
+        let mut over = 0;
+        for _ in 0..records {
+            let max = (0..w)
+                .map(|_| {
+                    let (a, b) = (rng.gaussian(), rng.gaussian());
+                    a * a + b * b
+                })
+                .fold(0.0, f64::max);
+            // The median of the exponential distribution: ln 2 times its mean (2 here).
+            if max > t * 2.0 * core::f64::consts::LN_2 {
+                over += 1;
+            }
+        }
+        let rate = over as f64 / records as f64;
+        // Binomial standard error at p = 0.05 over 2000 records: 0.005.
+        assert!((rate - p).abs() < 0.02, "rate {rate}");
+    }
 
     fn signal(fault_hz: f64, mod_hz: f64, mod_depth: f64, seed: u64) -> Vec<f64> {
         FaultSignal {
