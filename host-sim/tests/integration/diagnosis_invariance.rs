@@ -130,7 +130,7 @@ fn white_noise_is_not_called_at_any_length_or_rate() {
     }
 }
 
-/// The full false-alarm measurement of `docs/cwru-detector.md` (about 4 minutes in release):
+/// The full false-alarm measurement of `docs/cwru-detector.md` (about 3.5 minutes in release):
 /// white noise at 12, 25.6, 48 and 97.656 kHz, 2, 10 and 30 s, 300 seeds each (100 for
 /// 30 s above 25.6 kHz), seeds 1000 on; prints the calls per cell and asserts at most 1 %.
 #[test]
