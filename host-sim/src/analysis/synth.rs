@@ -108,8 +108,9 @@ pub struct FaultSignal {
 }
 
 impl FaultSignal {
-    /// Generate `n` samples. Impulses fall at exact (non-integer) times
-    /// `k / fault_hz`, so the repetition frequency is exact.
+    /// Generate `n` samples. Impulse `k` falls at the (non-integer) time `k / fault_hz`
+    /// plus its slip offset (`jitter` periods × a standard normal deviate), so the mean
+    /// repetition frequency is exact and, with `jitter` = 0, so is every interval.
     pub fn generate(&self, n: usize) -> Vec<f64> {
         let mut x = gaussian_noise(n, self.noise_sigma, self.seed);
         let wn = 2.0 * PI * self.resonance_hz;
