@@ -10,6 +10,7 @@
 use super::ims::{normalise, onset};
 use super::weibull::{fit_with_ci, load_exponent, Estimate, WeibullFit};
 use super::{LifeError, LifeRun, LifeSpec};
+use crate::analysis::stats::median;
 use serde::Serialize;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -122,19 +123,6 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
             .map(|e| (e.stage.name().to_string(), e.cycles))
             .collect(),
         wall_s: t0.elapsed().as_secs_f64(),
-    })
-}
-
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    Some(if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
     })
 }
 

@@ -95,7 +95,9 @@ pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str) -> LifeFigures {
     }
 }
 
-/// Median of `v` (NaN when empty).
+/// Median of `v` (NaN when empty). Unlike [`crate::analysis::stats::median`] it keeps
+/// non-finite values (sorted by `total_cmp`): an infinite end factor (a record ending at
+/// level 0) must fail the acceptance medians, not drop out of them.
 pub(super) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     let n = v.len();
