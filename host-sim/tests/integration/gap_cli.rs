@@ -72,40 +72,31 @@ fn gap_rejects_bad_input_naming_the_field() {
     );
     // Speed missing and not estimable from a broadband record.
     run(with(&[], &long), "not estimable");
-    // Unknown defect location, size without unit, out-of-range size.
-    run(
-        with(&["--rpm", "1797", "--defect", "cage:1mm"], &long),
-        "the model knows: none, inner",
-    );
-    run(
-        with(&["--rpm", "1797", "--defect", "inner:0.007"], &long),
-        "needs a unit",
-    );
-    run(
-        with(&["--rpm", "1797", "--defect", "inner:50mm"], &long),
-        "out of range",
-    );
-    // Unknown effect; out-of-range arguments.
-    run(
-        with(&["--rpm", "1797", "--effects", "magic"], &long),
-        "unknown effect `magic`",
-    );
-    run(
-        with(&["--rpm", "1797", "--seconds", "0.1"], &long),
-        "--seconds 0.1 is out of range",
-    );
-    run(
-        with(&["--rpm", "1797", "--mains", "100"], &long),
-        "--mains 100 Hz is out of range",
-    );
-    run(
-        with(&["--rpm", "1797", "--significant-gap", "0"], &long),
-        "--significant-gap 0 is out of range 0.05..=100",
-    );
-    run(
-        with(&["--rpm", "1797", "--significant-gap", "NaN"], &long),
-        "--significant-gap NaN is out of range",
-    );
+    // Unknown defect location, size without unit, out-of-range size; unknown effect;
+    // out-of-range arguments: each with the record's speed given.
+    for (args, message) in [
+        (
+            &["--defect", "cage:1mm"][..],
+            "the model knows: none, inner",
+        ),
+        (&["--defect", "inner:0.007"], "needs a unit"),
+        (&["--defect", "inner:50mm"], "out of range"),
+        (&["--effects", "magic"], "unknown effect `magic`"),
+        (&["--seconds", "0.1"], "--seconds 0.1 is out of range"),
+        (&["--mains", "100"], "--mains 100 Hz is out of range"),
+        (
+            &["--significant-gap", "0"],
+            "--significant-gap 0 is out of range 0.05..=100",
+        ),
+        (
+            &["--significant-gap", "NaN"],
+            "--significant-gap NaN is out of range",
+        ),
+    ] {
+        let mut a = vec!["--rpm", "1797"];
+        a.extend_from_slice(args);
+        run(with(&a, &long), message);
+    }
     run(with(&["--rpm", "-5"], &long), "rpm");
     // A held-out record must not be fitted on.
     let mut v = with(
