@@ -100,7 +100,47 @@ impl AntiAlias {
         }
         acc
     }
+
+    /// Internal samples a block of [`BLOCK`] outputs, `ratio` samples apart, reads: the
+    /// oldest output's window and `(BLOCK − 1)·ratio` newer samples. `None` when they do
+    /// not fit the delay line's contiguous window ([`MAX_TAPS`]), so the outputs must be
+    /// taken one at a time (never for the designs of ratios up to `MAX_OVERSAMPLE` = 8:
+    /// at most 209 + 24 samples).
+    pub fn block_span(&self) -> Option<usize> {
+        let span = self.len + (BLOCK - 1) * self.ratio as usize;
+        (span <= MAX_TAPS).then_some(span)
+    }
+
+    /// The filter outputs of the last [`BLOCK`] output instants, oldest first, the newest
+    /// ending at the newest sample of `line` and each earlier one `ratio` samples before
+    /// the next: what [`AntiAlias::output`] gave at each instant, bit for bit (every sum
+    /// starts from 0 and adds `taps[j]·x[j]` in the same order), but the four sums advance
+    /// together, four independent chains of additions instead of one, which a pipelined
+    /// FPU overlaps. The samples must still be in `line` (see [`AntiAlias::block_span`]);
+    /// zeros otherwise.
+    #[inline]
+    pub fn outputs_block(&self, line: &DelayLine) -> [Real; BLOCK] {
+        let mut acc = [0.0; BLOCK];
+        let Some(span) = self.block_span() else {
+            return acc;
+        };
+        let r = self.ratio as usize;
+        let hist = line.window(span);
+        let w = |j: usize| hist.get(j * r..j * r + self.len).unwrap_or(&[]);
+        let taps = self.taps();
+        for ((((t, a), b), c), d) in taps.iter().zip(w(0)).zip(w(1)).zip(w(2)).zip(w(3)) {
+            let [s0, s1, s2, s3] = &mut acc;
+            *s0 += t * a;
+            *s1 += t * b;
+            *s2 += t * c;
+            *s3 += t * d;
+        }
+        acc
+    }
 }
+
+/// Output instants [`AntiAlias::outputs_block`] evaluates together.
+pub const BLOCK: usize = 4;
 
 /// Modified Bessel function of the first kind, order 0 (power series).
 fn bessel_i0(x: f64) -> f64 {

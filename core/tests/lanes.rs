@@ -7,7 +7,7 @@
 use wearsim_core::effects::CATALOGUE;
 use wearsim_core::forces::defect::{DefectLocation, DefectModel};
 use wearsim_core::integrate::IntegratorKind;
-use wearsim_core::model::{LaneError, LaneGroup};
+use wearsim_core::model::{LaneError, LaneGroup, LibmSqrt};
 use wearsim_core::speed::SpeedProfile;
 use wearsim_core::{presets, Channels, Model, ModelConfig, Real, Sample, State};
 
@@ -61,6 +61,25 @@ fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], s
         group.angles(K).is_none(),
         "a lane out of range has no angles"
     );
+    // The fill (blocks of four outputs for groups up to 8 lanes) gives the step's samples,
+    // and its observer sees every internal step.
+    let mut filled: LaneGroup<K, 16> = LaneGroup::new_checked(&models, &seeds).expect("lanes");
+    let mut fill_out = vec![[Sample::default(); K]; samples];
+    let mut observed = 0u64;
+    filled.fill_observed_with(&mut fill_out, &LibmSqrt, |g| {
+        observed += 1;
+        assert_eq!(g.steps(), observed, "observed after every step");
+    });
+    assert_eq!(observed, group.steps());
+    for (j, (f, s)) in fill_out.iter().zip(&lane_out).enumerate() {
+        for (l, (a, b)) in f.iter().zip(s).enumerate() {
+            assert_eq!(
+                (a.accel.to_bits(), a.vel.to_bits(), a.disp.to_bits()),
+                (b.accel.to_bits(), b.vel.to_bits(), b.disp.to_bits()),
+                "lane {l} sample {j}: fill {a:?} vs step {b:?}"
+            );
+        }
+    }
     for (i, m) in models.iter().enumerate() {
         let mut st: State<16> = State::new(m, seeds[i]).expect("state");
         let mut nonzero = 0;
@@ -135,7 +154,7 @@ fn outer_race_lanes_equal_the_scalar_step() {
         };
         c
     });
-    assert_lanes_match(cfgs, [1, 2, 3, 4], 1500);
+    assert_lanes_match(cfgs, [1, 2, 3, 4], 1501);
 }
 
 /// Inner-race defect on the CWRU bearing, K = 8, with a shared speed fluctuation and

@@ -82,27 +82,31 @@ fn fill_avx2<const K: usize, const NB: usize>(
     group.fill_with(out, &PackedSqrt)
 }
 
-/// One step of every lane ([`LaneGroup::step_with`]) with packed square roots, compiled
-/// for AVX2 when the CPU has it (see [`simd_path`]): for callers that look at the lanes
-/// after every internal step (a life's pass meters), which [`fill`] does not allow.
-pub fn step<const K: usize, const NB: usize>(
+/// [`fill`], calling `observe` with the group after every internal step
+/// ([`LaneGroup::fill_observed_with`]): for callers that look at the lanes after every
+/// step (a life's pass meters).
+pub fn fill_observed<const K: usize, const NB: usize>(
     group: &mut LaneGroup<'_, K, NB>,
-) -> Option<[Sample; K]> {
+    out: &mut [[Sample; K]],
+    observe: impl FnMut(&LaneGroup<'_, K, NB>),
+) -> usize {
     #[cfg(target_arch = "x86_64")]
     if use_avx2() {
         // SAFETY: the CPU has AVX2 (`use_avx2` checked it).
-        return unsafe { step_avx2(group) };
+        return unsafe { fill_observed_avx2(group, out, observe) };
     }
-    group.step_with(&PackedSqrt)
+    group.fill_observed_with(out, &PackedSqrt, observe)
 }
 
-/// The lane step inlined into a function compiled with AVX2 (see [`fill_avx2`]).
+/// The observed lane fill inlined into a function compiled with AVX2 (see [`fill_avx2`]).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn step_avx2<const K: usize, const NB: usize>(
+fn fill_observed_avx2<const K: usize, const NB: usize>(
     group: &mut LaneGroup<'_, K, NB>,
-) -> Option<[Sample; K]> {
-    group.step_with(&PackedSqrt)
+    out: &mut [[Sample; K]],
+    observe: impl FnMut(&LaneGroup<'_, K, NB>),
+) -> usize {
+    group.fill_observed_with(out, &PackedSqrt, observe)
 }
 
 /// Largest lane group [`run_accel`] forms (the bench's best per-core figure; see
@@ -345,30 +349,32 @@ pub fn lane_accel_observed<const K: usize>(
     seeds: &[u64; K],
     settle: usize,
     n: usize,
-    mut observe: impl FnMut(&LaneGroup<'_, K, CAPACITY>),
+    observe: impl FnMut(&LaneGroup<'_, K, CAPACITY>),
 ) -> Option<Vec<Vec<f64>>> {
     let group = LaneGroup::<K, CAPACITY>::new_checked(models, seeds).ok()?;
     let mut group = Box::new(group);
-    let mut accel: Vec<Vec<f64>> = (0..K).map(|_| Vec::with_capacity(n)).collect();
-    let mut emitted = 0usize;
-    while accel.first().is_some_and(|a| a.len() < n) {
-        let s = step(&mut group);
-        if emitted >= settle {
-            observe(&group);
-        }
-        if let Some(row) = s {
-            if row.iter().any(|x| !x.accel.is_finite()) {
-                return None;
-            }
-            if emitted >= settle {
-                for (a, x) in accel.iter_mut().zip(row) {
-                    a.push(x.accel);
-                }
-            }
-            emitted += 1;
-        }
+    // The settling samples unobserved, then the window observed after every step.
+    let mut rows = vec![[Sample::default(); K]; settle.max(n)];
+    let finite = |r: &[[Sample; K]]| r.iter().flatten().all(|x| x.accel.is_finite());
+    let settled = rows.get_mut(..settle)?;
+    fill(&mut group, settled);
+    if !finite(settled) {
+        return None;
     }
-    Some(accel)
+    let kept = rows.get_mut(..n)?;
+    fill_observed(&mut group, kept, observe);
+    if !finite(kept) {
+        return None;
+    }
+    Some(
+        (0..K)
+            .map(|l| {
+                kept.iter()
+                    .map(|r| r.get(l).map_or(0.0, |x| x.accel))
+                    .collect()
+            })
+            .collect(),
+    )
 }
 
 #[cfg(test)]

@@ -19,6 +19,7 @@
 pub mod config;
 mod defect_term;
 pub mod lanes;
+mod output;
 pub mod state;
 mod step;
 

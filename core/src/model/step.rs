@@ -323,6 +323,40 @@ impl Model {
     /// [`Model::oversample`] steps.
     #[inline]
     pub fn step<const NB: usize>(&self, st: &mut State<NB>) -> Option<Sample> {
+        if !self.advance(st) {
+            return None;
+        }
+        let vel_disp = if self.cfg.channels == Channels::All {
+            (self.aa.output(&st.lines[1]), self.aa.output(&st.lines[2]))
+        } else {
+            (0.0, 0.0)
+        };
+        Some(self.sample(st, self.aa.output(&st.lines[0]), vel_disp))
+    }
+
+    /// The output sample from the anti-alias filter's outputs (acceleration, and velocity
+    /// and displacement for [`Channels::All`]): the acceleration through the sensor chain,
+    /// which keeps state, so samples must come here in their order.
+    #[inline(always)]
+    pub(super) fn sample<const NB: usize>(
+        &self,
+        st: &mut State<NB>,
+        accel: Real,
+        (vel, disp): (Real, Real),
+    ) -> Sample {
+        let accel = match &self.sensor_chain {
+            Some(chain) => chain.apply(&mut st.sensor, accel),
+            None => accel,
+        };
+        Sample { accel, vel, disp }
+    }
+
+    /// [`Model::step`] without the output: advances the state by one internal step and
+    /// returns whether the step ends an output period (every [`Model::oversample`] steps),
+    /// whose sample the caller takes from the delay lines ([`Model::step`], or
+    /// `Model::fill`'s blocks).
+    #[inline]
+    pub(super) fn advance<const NB: usize>(&self, st: &mut State<NB>) -> bool {
         if self.cfg.integrator == IntegratorKind::Rk4 {
             self.draw_random(st);
         }
@@ -408,34 +442,10 @@ impl Model {
         }
         st.phase += 1;
         if st.phase < self.ratio {
-            return None;
+            return false;
         }
         st.phase = 0;
-        let mut accel = self.aa.output(&st.lines[0]);
-        if let Some(chain) = &self.sensor_chain {
-            accel = chain.apply(&mut st.sensor, accel);
-        }
-        let (vel, disp) = if self.cfg.channels == Channels::All {
-            (self.aa.output(&st.lines[1]), self.aa.output(&st.lines[2]))
-        } else {
-            (0.0, 0.0)
-        };
-        Some(Sample { accel, vel, disp })
-    }
-
-    /// Fills `out` with output samples; returns how many were written (all of them).
-    pub fn fill<const NB: usize>(&self, st: &mut State<NB>, out: &mut [Sample]) -> usize {
-        let mut written = 0;
-        for slot in out.iter_mut() {
-            loop {
-                if let Some(s) = self.step(st) {
-                    *slot = s;
-                    break;
-                }
-            }
-            written += 1;
-        }
-        written
+        true
     }
 
     /// Draws the per-step random quantities (roughness heights) once per step, so every

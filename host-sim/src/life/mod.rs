@@ -275,24 +275,23 @@ impl LifeRun {
         let mut ds: State<CAPACITY> = State::new(model, seed)?;
         let (settle, n) = self.window_samples(model);
         let mut meter = PassMeter::new(self.life.site(), &model.config().bearing);
-        let mut out = Vec::with_capacity(n);
-        let mut emitted = 0usize;
-        while out.len() < n {
-            let s: Option<Sample> = model.step(&mut ds);
-            if emitted >= settle {
-                meter.observe(ds.stats(), ds.shaft_angle(), ds.cage_angle());
-            }
-            if let Some(s) = s {
-                if !s.accel.is_finite() {
-                    return Err(LifeError::NonFinite { cycles: st.cycles });
-                }
-                if emitted >= settle {
-                    out.push(s.accel);
-                }
-                emitted += 1;
-            }
+        // The settling samples unobserved, then the window with the meter reading every
+        // internal step.
+        let mut buf = vec![Sample::default(); settle.max(n)];
+        let finite = |b: &[Sample]| b.iter().all(|s| s.accel.is_finite());
+        let settled = buf.get_mut(..settle).unwrap_or_default();
+        model.fill(&mut ds, settled);
+        if !finite(settled) {
+            return Err(LifeError::NonFinite { cycles: st.cycles });
         }
-        Ok((out, meter.loads()))
+        let kept = buf.get_mut(..n).unwrap_or_default();
+        model.fill_observed(&mut ds, kept, |s| {
+            meter.observe(s.stats(), s.shaft_angle(), s.cage_angle())
+        });
+        if !finite(kept) {
+            return Err(LifeError::NonFinite { cycles: st.cycles });
+        }
+        Ok((kept.iter().map(|s| s.accel).collect(), meter.loads()))
     }
 
     /// Windows `k .. k + K` rendered for one model (`model`, the state's) as the lanes of

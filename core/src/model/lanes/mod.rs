@@ -27,7 +27,7 @@ pub use check::{same_kinematics, shareable, LaneError};
 pub use step::{LibmSqrt, SqrtLanes};
 
 use super::{Model, Sample, State, StepStats};
-use crate::decimate::MAX_TAPS;
+use crate::decimate::{BLOCK, MAX_TAPS};
 use crate::effects::sensor::SensorLanes;
 use crate::effects::transfer_path::PathLanes;
 use crate::real::Real;
@@ -79,7 +79,42 @@ impl<const K: usize> LaneLine<K> {
         }
         acc
     }
+
+    /// [`LaneLine::output`] at the last [`BLOCK`] output instants, `ratio` samples apart,
+    /// oldest first (`span` = [`AntiAlias::block_span`](crate::decimate::AntiAlias::block_span)):
+    /// the same sums in the same order, four of them advancing together, as
+    /// [`AntiAlias::outputs_block`](crate::decimate::AntiAlias::outputs_block).
+    #[inline(always)]
+    fn outputs_block(&self, taps: &[Real], ratio: usize, span: usize) -> [[Real; K]; BLOCK] {
+        let end = self.pos + MAX_TAPS;
+        let start = end.saturating_sub(span);
+        let hist = self.buf.get(start..end).unwrap_or(&[]);
+        let n = taps.len();
+        let w = |j: usize| hist.get(j * ratio..j * ratio + n).unwrap_or(&[]);
+        let mut acc = [[0.0; K]; BLOCK];
+        for ((((t, a), b), c), d) in taps.iter().zip(w(0)).zip(w(1)).zip(w(2)).zip(w(3)) {
+            let [s0, s1, s2, s3] = &mut acc;
+            for (((((x0, x1), x2), x3), ((y0, y1), y2)), y3) in s0
+                .iter_mut()
+                .zip(s1.iter_mut())
+                .zip(s2.iter_mut())
+                .zip(s3.iter_mut())
+                .zip(a.iter().zip(b).zip(c))
+                .zip(d)
+            {
+                *x0 += t * y0;
+                *x1 += t * y1;
+                *x2 += t * y2;
+                *x3 += t * y3;
+            }
+        }
+        acc
+    }
 }
+
+/// Widest group whose outputs [`LaneGroup::fill_with`] takes in blocks of [`BLOCK`]
+/// output instants; wider groups take them one instant at a time.
+const BLOCK_LANES: usize = 8;
 
 /// Per-lane constants of the step, gathered from the models once.
 #[derive(Debug, Clone)]
@@ -252,10 +287,23 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
     /// [`SqrtLanes`]).
     #[inline(always)]
     pub fn fill_with<S: SqrtLanes<K>>(&mut self, out: &mut [[Sample; K]], sqrt: &S) -> usize {
+        self.fill_observed_with(out, sqrt, |_| {})
+    }
+
+    /// [`LaneGroup::fill_with`], calling `observe` with the group after every internal
+    /// step (for per-lane meters that read [`LaneGroup::stats`] and the angles, as a
+    /// life's pass meters do).
+    #[inline(always)]
+    pub fn fill_observed_with<S: SqrtLanes<K>>(
+        &mut self,
+        out: &mut [[Sample; K]],
+        sqrt: &S,
+        observe: impl FnMut(&Self),
+    ) -> usize {
         if self.shared {
-            self.fill_as::<S, false>(out, sqrt)
+            self.fill_as::<S, false>(out, sqrt, observe)
         } else {
-            self.fill_as::<S, true>(out, sqrt)
+            self.fill_as::<S, true>(out, sqrt, observe)
         }
     }
 
@@ -266,16 +314,57 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
         &mut self,
         out: &mut [[Sample; K]],
         sqrt: &S,
+        mut observe: impl FnMut(&Self),
     ) -> usize {
+        let models = self.models;
+        let Some(m0) = models.first() else {
+            return 0;
+        };
+        // Wide groups sum enough lanes side by side to keep the FPU busy, and four
+        // instants' sums of 16 lanes (64 accumulators) would not stay in registers.
+        let span = m0.aa.block_span().filter(|_| K <= BLOCK_LANES);
+        let (taps, ratio) = (m0.aa.taps(), m0.ratio as usize);
+        let all = self.all_channels();
         let mut written = 0;
-        for slot in out.iter_mut() {
-            loop {
-                if let Some(s) = self.step_as::<S, OWN>(sqrt) {
-                    *slot = s;
-                    break;
+        for chunk in out.chunks_mut(BLOCK) {
+            match span {
+                // Four output periods stepped, then their four outputs together (the
+                // filter does not feed back; `super::super::output` explains the gain).
+                Some(span) if chunk.len() == BLOCK => {
+                    for _ in 0..BLOCK {
+                        while !self.advance_as::<S, OWN>(sqrt) {
+                            observe(self);
+                        }
+                        observe(self);
+                    }
+                    let [l_acc, l_vel, l_disp] = &self.lines;
+                    let accel = l_acc.outputs_block(taps, ratio, span);
+                    let (vel, disp) = if all {
+                        (
+                            l_vel.outputs_block(taps, ratio, span),
+                            l_disp.outputs_block(taps, ratio, span),
+                        )
+                    } else {
+                        ([[0.0; K]; BLOCK], [[0.0; K]; BLOCK])
+                    };
+                    for (((slot, a), v), d) in chunk.iter_mut().zip(&accel).zip(&vel).zip(&disp) {
+                        *slot = self.samples(a, v, d);
+                    }
+                }
+                _ => {
+                    for slot in chunk.iter_mut() {
+                        loop {
+                            let s = self.step_as::<S, OWN>(sqrt);
+                            observe(self);
+                            if let Some(s) = s {
+                                *slot = s;
+                                break;
+                            }
+                        }
+                    }
                 }
             }
-            written += 1;
+            written += chunk.len();
         }
         written
     }

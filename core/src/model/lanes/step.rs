@@ -177,12 +177,35 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         &mut self,
         sqrt: &S,
     ) -> Option<[Sample; K]> {
+        if !self.advance_as::<S, OWN>(sqrt) {
+            return None;
+        }
+        let taps = self.models.first()?.aa.taps();
+        let [l_acc, l_vel, l_disp] = &self.lines;
+        let accel = l_acc.output(taps);
+        let (vel, disp) = if self.all_channels() {
+            (l_vel.output(taps), l_disp.output(taps))
+        } else {
+            ([0.0; K], [0.0; K])
+        };
+        Some(self.samples(&accel, &vel, &disp))
+    }
+
+    /// [`LaneGroup::step_as`] without the output: advances every lane by one internal step
+    /// and returns whether the step ends an output period (the samples are then in the
+    /// delay lines).
+    #[inline(always)]
+    pub(super) fn advance_as<S: SqrtLanes<K>, const OWN: bool>(&mut self, sqrt: &S) -> bool {
         let models = self.models;
-        let m0 = models.first()?;
+        let Some(m0) = models.first() else {
+            return false;
+        };
         if models.iter().any(|m| m.summits) {
             self.with_lane_rngs(|m| m.summits, |m, st| m.draw_summit(st));
         }
-        let st0 = self.states.first()?;
+        let Some(st0) = self.states.first() else {
+            return false;
+        };
         let (k0, f_end0) = m0.kinematics_next(st0, 0);
         // Lanes at their own speed take their own kinematics (`super::own`).
         let own = OWN.then(|| self.own_kinematics((k0, f_end0)));
@@ -258,7 +281,10 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         }
         if models.iter().any(|m| m.cfg.slip.is_some())
             && m0.cfg.defect.is_some()
-            && self.states.first()?.steps.is_multiple_of(SLIP_CHECK_EVERY)
+            && self
+                .states
+                .first()
+                .is_some_and(|s| s.steps.is_multiple_of(SLIP_CHECK_EVERY))
         {
             if OWN {
                 self.with_lane_rngs(|m| m.cfg.slip.is_some(), |m, st| m.update_slip(st));
@@ -295,27 +321,41 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         }
         self.phase += 1;
         if self.phase < m0.ratio {
-            return None;
+            return false;
         }
         self.phase = 0;
-        let taps = m0.aa.taps();
-        let accel = l_acc.output(taps);
-        let (vel, disp) = if all {
-            (l_vel.output(taps), l_disp.output(taps))
-        } else {
-            ([0.0; K], [0.0; K])
-        };
-        let accel = self.sensor.apply(&accel);
+        true
+    }
+
+    /// Whether the lanes emit all three channels ([`Channels::All`]).
+    #[inline(always)]
+    pub(super) fn all_channels(&self) -> bool {
+        self.models
+            .first()
+            .is_some_and(|m| m.cfg.channels == Channels::All)
+    }
+
+    /// Every lane's sample from the anti-alias outputs (acceleration, velocity,
+    /// displacement), the acceleration through the lanes' sensor chains (stateful: samples
+    /// come here in their order), as [`Model::sample`](super::super::Model) does per lane.
+    #[inline(always)]
+    pub(super) fn samples(
+        &mut self,
+        accel: &[Real; K],
+        vel: &[Real; K],
+        disp: &[Real; K],
+    ) -> [Sample; K] {
+        let accel = self.sensor.apply(accel);
         let mut out = [Sample::default(); K];
         for (l, o) in out.iter_mut().enumerate() {
             let get = |a: &[Real; K]| a.get(l).copied().unwrap_or(0.0);
             *o = Sample {
                 accel: get(&accel),
-                vel: get(&vel),
-                disp: get(&disp),
+                vel: get(vel),
+                disp: get(disp),
             };
         }
-        Some(out)
+        out
     }
 
     /// [`Model::update_slip`] of every lane with slip, for lanes that share their
