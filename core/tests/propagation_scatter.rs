@@ -41,28 +41,6 @@ fn state(life: &Life, stage: Stage, crack: Real, spread: Real) -> LifeState {
     st
 }
 
-/// Revolutions until the next transition (at most `cap`).
-fn revs_to_transition(life: &Life, st: &mut LifeState, loads: &PassLoads, cap: Real) -> Real {
-    let mut done = 0.0;
-    while done < cap {
-        let adv = life.advance(st, cap - done, loads);
-        done += adv.revs;
-        if adv.transition.is_some() {
-            return done;
-        }
-    }
-    panic!("no transition within {cap} revolutions");
-}
-
-/// Weibull slope from the 10 % and 90 % quantiles of `v` (sorted in place):
-/// `β = [ln(−ln 0.1) − ln(−ln 0.9)] / ln(x₉₀ / x₁₀)`.
-fn quantile_slope(v: &mut [Real]) -> (Real, Real) {
-    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    let q = |f: Real| v[((v.len() as Real - 1.0) * f).round() as usize];
-    let slope = ((-(0.1 as Real).ln()).ln() - (-(0.9 as Real).ln()).ln()) / (q(0.9) / q(0.1)).ln();
-    (slope, q(0.5))
-}
-
 /// Over 4000 seeds: the propagation factor has median 1 and slope 1.1, the fatigue factor
 /// keeps its ISO slope 1.11, and the two are uncorrelated (|r| of their logarithms below
 /// 0.05, about 3 standard errors). A factor drawn from the fatigue draw, a fixed factor or
@@ -90,8 +68,8 @@ fn propagation_factor_is_an_independent_weibull_of_slope_1_1() {
         "fatigue and propagation factors correlate: r = {r}"
     );
 
-    let (slope_p, median_p) = quantile_slope(&mut prop);
-    let (slope_f, median_f) = quantile_slope(&mut fat);
+    let (slope_p, median_p) = common::quantile_slope(&mut prop);
+    let (slope_f, median_f) = common::quantile_slope(&mut fat);
     assert!(
         (median_p - 1.0).abs() < 0.06 && (median_f - 1.0).abs() < 0.06,
         "medians {median_p}, {median_f}"
@@ -113,19 +91,19 @@ fn propagation_factor_is_an_independent_weibull_of_slope_1_1() {
 fn spawn_time_scales_with_the_propagation_factor() {
     let (life, loads) = setup();
     let cap = 1e12 as Real;
-    let t1 = revs_to_transition(
+    let t1 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::DamageGrowth, 0.0, 1.0),
         &loads,
         cap,
     );
-    let t2 = revs_to_transition(
+    let t2 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::DamageGrowth, 0.0, 2.0),
         &loads,
         cap,
     );
-    let t_half = revs_to_transition(
+    let t_half = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::DamageGrowth, 0.0, 0.5),
         &loads,
@@ -158,26 +136,26 @@ fn breakouts_scale_and_the_first_spall_does_not() {
     let (life, loads) = setup();
     let cap = 1e12 as Real;
     let flaw = 5e-6 as Real;
-    let b1 = revs_to_transition(
+    let b1 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::DefectCompletion, flaw, 1.0),
         &loads,
         cap,
     );
-    let b3 = revs_to_transition(
+    let b3 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::DefectCompletion, flaw, 3.0),
         &loads,
         cap,
     );
     assert!((b3 / b1 - 3.0).abs() < 3e-3, "breakout: {b3} / {b1}");
-    let c1 = revs_to_transition(
+    let c1 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::CrackPropagation, 2.0 * flaw, 1.0),
         &loads,
         cap,
     );
-    let c3 = revs_to_transition(
+    let c3 = common::revs_to_transition(
         &life,
         &mut state(&life, Stage::CrackPropagation, 2.0 * flaw, 3.0),
         &loads,

@@ -97,8 +97,14 @@ pub struct LifeState {
     pub topography: Option<Topography>,
     /// Composite roughness σ (m).
     pub roughness: Real,
-    /// Rolling-contact fatigue damage (life fraction).
+    /// Subsurface rolling-contact fatigue damage (life fraction): ISO 281's sum with the
+    /// bearing's fatigue scatter; a subsurface crack opens at 1, at the dent if there is
+    /// one, else under the surface of the most loaded zone.
     pub fatigue: Real,
+    /// Surface damage (life fraction): the same ISO 281 integrand (loads, lubrication
+    /// factor, debris) divided by the bearing's own dent scatter; the dent forms when it
+    /// reaches `material.dent_fraction`.
+    pub surface: Real,
     /// Crack-initiation damage at the dent (opens at 1).
     pub initiation: Real,
     /// Depth of the current crack (m), 0 before it opens.
@@ -120,6 +126,19 @@ pub struct LifeState {
     /// spall's growth laws (trailing-edge breakouts from defect completion on, the
     /// propagation limit that spawns new defects) run `1/propagation_scatter` times as fast.
     pub propagation_scatter: Real,
+    /// Surface-initiation scatter factor of this bearing (Weibull, slope
+    /// [`INITIATION_WEIBULL_SLOPE`], median 1), drawn independently of the other two: the
+    /// crack-initiation sum at the dent, `Σ (σ₀/p_ref)⁹ / N_i`, runs `1/initiation_scatter`
+    /// times as fast. A surface-initiated crack at a dent shoulder starts from the flaws of
+    /// a thin surface layer, not from the subsurface volume that sets the fatigue scatter.
+    pub initiation_scatter: Real,
+    /// Surface-damage scatter factor of this bearing (Weibull, slope [`WEIBULL_SLOPE`],
+    /// median 1), drawn independently of the other three: the surface-damage sum that forms
+    /// the dent runs `1/dent_scatter` times as fast. Surface and subsurface initiation
+    /// compete; with one shared factor the dent formed at exactly `dent_fraction` of the
+    /// bearing's own subsurface life, and the crack opened at exactly twice the dent's
+    /// time in most lives (issue 14).
+    pub dent_scatter: Real,
     /// Transitions so far.
     pub events: EventLog,
     /// Transitions that did not fit in the log.
@@ -152,6 +171,16 @@ pub const WEIBULL_SLOPE: Real = 1.11;
 /// Kotzalas & Harris 2001, J. Tribol. 123, doi:10.1115/1.1308013): propagation is as
 /// stochastic as initiation, not a fixed tail after it.
 pub const PROPAGATION_WEIBULL_SLOPE: Real = 1.1;
+/// Weibull slope of the crack-initiation life at a dent (–): 10/9, Lundberg–Palmgren's
+/// dispersion exponent for point contact (ISO 281's e = 10/9 for ball bearings). The
+/// dent's initiation law `Σ (σ₀/p_ref)⁹` is Lundberg–Palmgren's pressure–life law (life ∝
+/// p⁻⁹ = Q⁻³), and a life law of that theory carries that theory's scatter: with a fixed
+/// initiation time every long life would open its crack after the same number of passes
+/// at the dent, a deterministic cap on the dent stage that narrows the spread of lives.
+/// Surface and subsurface initiation then compete with independent scatter (the structure
+/// of SKF's generalised bearing life model, Morales-Espejel, Gabelli & de Vries 2015,
+/// Tribol. Trans. 58:894–906, surface and subsurface survival combined).
+pub const INITIATION_WEIBULL_SLOPE: Real = WEIBULL_SLOPE;
 /// Share of a fresh spall edge's asperity that smoothing cannot remove: Table 1's
 /// smoothed large defect (4 µm) over the large defect (30 µm).
 pub const SPALL_EDGE_RESIDUAL: Real =
@@ -245,8 +274,11 @@ impl Life {
     }
 
     /// Initial state; `seed` draws the bearing's fatigue-life scatter (Weibull, slope
-    /// [`WEIBULL_SLOPE`], median 1) and then, independently, its spall-propagation scatter
-    /// (slope [`PROPAGATION_WEIBULL_SLOPE`], median 1).
+    /// [`WEIBULL_SLOPE`], median 1), then, independently, its spall-propagation scatter
+    /// (slope [`PROPAGATION_WEIBULL_SLOPE`], median 1), its surface-initiation scatter
+    /// (slope [`INITIATION_WEIBULL_SLOPE`], median 1) and its dent scatter (slope
+    /// [`WEIBULL_SLOPE`], median 1), in that order (a factor added later is drawn last, so
+    /// the earlier ones keep their values for every seed).
     pub fn initial_state(&self, seed: u64) -> LifeState {
         let mut rng = Xoshiro128pp::from_u64(seed ^ 0x5EED_11FE);
         let mut median_one_weibull = |slope: Real| {
@@ -256,12 +288,15 @@ impl Life {
         };
         let scatter = median_one_weibull(WEIBULL_SLOPE);
         let propagation_scatter = median_one_weibull(PROPAGATION_WEIBULL_SLOPE);
+        let initiation_scatter = median_one_weibull(INITIATION_WEIBULL_SLOPE);
+        let dent_scatter = median_one_weibull(WEIBULL_SLOPE);
         LifeState {
             cycles: 0.0,
             stage: Stage::RunningIn,
             topography: None,
             roughness: self.cfg.roughness * self.cfg.running_in,
             fatigue: 0.0,
+            surface: 0.0,
             initiation: 0.0,
             crack: 0.0,
             crack_start: 0.0,
@@ -270,6 +305,8 @@ impl Life {
             debris: 0.0,
             scatter,
             propagation_scatter,
+            initiation_scatter,
+            dent_scatter,
             events: EventLog::new(),
             lost_events: 0,
         }
@@ -352,8 +389,10 @@ impl Life {
 
             // Rates per revolution.
             let a_l = lubrication_factor(lambda);
-            let fatigue_rate = pow(load / self.rating, self.exponent) * (1.0 + 2.0 * st.debris)
-                / (1e6 * m.life_factor * a_l * st.scatter);
+            let iso_rate = pow(load / self.rating, self.exponent) * (1.0 + 2.0 * st.debris)
+                / (1e6 * m.life_factor * a_l);
+            let fatigue_rate = iso_rate / st.scatter;
+            let surface_rate = iso_rate / st.dent_scatter;
             let rough_rate = if st.stage == Stage::RunningIn {
                 -n_p * archard * interaction
             } else {
@@ -396,7 +435,8 @@ impl Life {
             let dk_flaw = 1.12 * sigma0 * sqrt(PI * flaw);
             let init_rate = match st.stage {
                 Stage::Dent | Stage::DentSmoothing if dk_flaw >= m.k_threshold => {
-                    n_p * pow(sigma0 / self.reference_pressure, 9.0) / m.initiation_passes
+                    n_p * pow(sigma0 / self.reference_pressure, 9.0)
+                        / (m.initiation_passes * st.initiation_scatter)
                 }
                 Stage::DefectSmoothing | Stage::DamageGrowth => {
                     let r = sigma0 / self.reference_pressure;
@@ -423,10 +463,14 @@ impl Life {
             // Step: at most the remaining revolutions, small relative changes, and
             // landing exactly on the next threshold of a linear accumulator.
             let mut dt = remaining;
-            if st.stage == Stage::SteadyState && fatigue_rate > 0.0 {
-                dt = dt.min(((m.dent_fraction - st.fatigue) / fatigue_rate).max(0.0));
+            if st.stage == Stage::SteadyState && surface_rate > 0.0 {
+                dt = dt.min(((m.dent_fraction - st.surface) / surface_rate).max(0.0));
             }
-            if matches!(st.stage, Stage::Dent | Stage::DentSmoothing) && fatigue_rate > 0.0 {
+            if matches!(
+                st.stage,
+                Stage::SteadyState | Stage::Dent | Stage::DentSmoothing
+            ) && fatigue_rate > 0.0
+            {
                 dt = dt.min(((1.0 - st.fatigue) / fatigue_rate).max(0.0));
             }
             if init_rate > 0.0 {
@@ -447,6 +491,7 @@ impl Life {
             let dt = dt.max(remaining.min(1e-3));
 
             st.fatigue += fatigue_rate * dt;
+            st.surface += surface_rate * dt;
             st.roughness = (st.roughness + rough_rate * dt).max(self.cfg.roughness);
             st.initiation += init_rate * dt;
             st.crack += crack_rate * dt;
@@ -483,7 +528,10 @@ impl Life {
                 let done = st.roughness <= 1.05 * self.cfg.roughness || self.lambda_now(st) >= 3.0;
                 done.then_some(Stage::SteadyState)
             }
-            Stage::SteadyState => (st.fatigue >= m.dent_fraction).then_some(Stage::Dent),
+            // Subsurface initiation first when both limits fall in one step (the step
+            // lands exactly on the nearer one, so a tie is only a tie).
+            Stage::SteadyState if st.fatigue >= 1.0 => Some(Stage::CrackOpening),
+            Stage::SteadyState => (st.surface >= m.dent_fraction).then_some(Stage::Dent),
             Stage::Dent | Stage::DentSmoothing => {
                 if st.initiation >= 1.0 || st.fatigue >= 1.0 {
                     Some(Stage::CrackOpening)
@@ -546,8 +594,10 @@ impl Life {
                 st.asperity_floor = topography::SMOOTHED_DENT.asperity_height;
             }
             Stage::CrackOpening => {
-                let t = st.topography.unwrap_or(topography::REAL_DENT);
-                st.crack = (t.depth + t.asperity_height).max(MIN_FLAW);
+                // From the dent's depth and shoulder, or, for a subsurface crack without a
+                // dent, from an inclusion-sized flaw.
+                let start = st.topography.map_or(0.0, |t| t.depth + t.asperity_height);
+                st.crack = start.max(MIN_FLAW);
                 st.crack_start = st.crack;
             }
             Stage::DefectCompletion | Stage::DefectSmoothing => {

@@ -46,7 +46,9 @@ pub struct Material {
     pub asperity_beta: Real,
     /// Fatigue-initiation passes at the reference pressure N_i (–), *calibrated*: with the
     /// dent's shoulder (K_t ≈ 1.3) a crack would open within about 10 % of life, so the
-    /// competition with smoothing decides whether it opens at the dent or later.
+    /// competition with smoothing decides whether it opens at the dent or later. The
+    /// median over bearings: each bearing needs `N_i` times its own surface-initiation
+    /// scatter factor ([`LifeState::initiation_scatter`](super::LifeState::initiation_scatter)).
     pub initiation_passes: Real,
     /// Over-rolling efficiency c_ol (–): share of eq. 24's elastic-plastic deformation that
     /// stays per pass; *calibrated*: a dent shoulder halves in about 5 % of life.

@@ -1,7 +1,9 @@
 //! The wear stages in the order they occur (thesis §4.2.2, publication III Fig. 3).
 
 /// A wear stage. The order of the variants is the order of life; the stage machine
-/// only ever moves forward.
+/// only ever moves forward. A life whose subsurface fatigue sum reaches its limit before
+/// the surface forms a dent goes from steady state straight to crack opening (a
+/// subsurface-initiated spall); every other stage is passed in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Stage {
@@ -13,7 +15,8 @@ pub enum Stage {
     Dent,
     /// Over-rolling and abrasion have halved the dent's shoulder.
     DentSmoothing,
-    /// A crack has opened at the dent's trailing edge.
+    /// A crack has opened: at the dent's trailing edge, or under the surface when the
+    /// subsurface fatigue sum reached its limit first.
     CrackOpening,
     /// The crack propagates (its depth has doubled).
     CrackPropagation,

@@ -136,3 +136,30 @@ pub fn constant_pass_loads(q: Real) -> wearsim_core::wear::PassLoads {
         passes: 100,
     }
 }
+
+/// Revolutions until the next transition (at most `cap`).
+pub fn revs_to_transition(
+    life: &wearsim_core::wear::Life,
+    st: &mut wearsim_core::wear::LifeState,
+    loads: &wearsim_core::wear::PassLoads,
+    cap: Real,
+) -> Real {
+    let mut done = 0.0;
+    while done < cap {
+        let adv = life.advance(st, cap - done, loads);
+        done += adv.revs;
+        if adv.transition.is_some() {
+            return done;
+        }
+    }
+    panic!("no transition within {cap} revolutions");
+}
+
+/// Weibull slope from the 10 % and 90 % quantiles of `v` (sorted in place):
+/// `β = [ln(−ln 0.1) − ln(−ln 0.9)] / ln(x₉₀ / x₁₀)`.
+pub fn quantile_slope(v: &mut [Real]) -> (Real, Real) {
+    v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let q = |f: Real| v[((v.len() as Real - 1.0) * f).round() as usize];
+    let slope = ((-(0.1 as Real).ln()).ln() - (-(0.9 as Real).ln()).ln()) / (q(0.9) / q(0.1)).ln();
+    (slope, q(0.5))
+}

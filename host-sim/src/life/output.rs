@@ -155,6 +155,8 @@ pub fn write_life(
         "rating_n": run.life.rating(),
         "weibull_scatter": st.scatter,
         "propagation_scatter": st.propagation_scatter,
+        "initiation_scatter": st.initiation_scatter,
+        "dent_scatter": st.dent_scatter,
         "seed": run.spec.seed,
         "run": extra,
     });

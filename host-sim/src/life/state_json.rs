@@ -84,6 +84,8 @@ pub struct LifeStateJson {
     pub roughness: f64,
     /// Fatigue damage.
     pub fatigue: f64,
+    /// Surface damage (dent at `dent_fraction`).
+    pub surface: f64,
     /// Initiation / propagation accumulator.
     pub initiation: f64,
     /// Crack depth (m).
@@ -100,6 +102,10 @@ pub struct LifeStateJson {
     pub scatter: f64,
     /// Spall-propagation Weibull scatter.
     pub propagation_scatter: f64,
+    /// Surface-initiation (dent crack) Weibull scatter.
+    pub initiation_scatter: f64,
+    /// Surface-damage (dent) Weibull scatter.
+    pub dent_scatter: f64,
     /// Events.
     pub events: Vec<EventJson>,
     /// Events that did not fit the log.
@@ -118,6 +124,7 @@ impl From<&LifeState> for LifeStateJson {
             topography: s.topography.map(Into::into),
             roughness: s.roughness,
             fatigue: s.fatigue,
+            surface: s.surface,
             initiation: s.initiation,
             crack: s.crack,
             crack_start: s.crack_start,
@@ -126,6 +133,8 @@ impl From<&LifeState> for LifeStateJson {
             debris: s.debris,
             scatter: s.scatter,
             propagation_scatter: s.propagation_scatter,
+            initiation_scatter: s.initiation_scatter,
+            dent_scatter: s.dent_scatter,
             events: s.events.iter().map(Into::into).collect(),
             lost_events: s.lost_events,
         }
@@ -137,7 +146,11 @@ impl LifeStateJson {
     /// not a positive finite number (corrupt checkpoint: the wear rates divide by them).
     pub fn to_state(&self) -> Option<LifeState> {
         let factor_ok = |v: f64| v.is_finite() && v > 0.0;
-        if !factor_ok(self.scatter) || !factor_ok(self.propagation_scatter) {
+        if !factor_ok(self.scatter)
+            || !factor_ok(self.propagation_scatter)
+            || !factor_ok(self.initiation_scatter)
+            || !factor_ok(self.dent_scatter)
+        {
             return None;
         }
         let mut events = EventLog::new();
@@ -156,6 +169,7 @@ impl LifeStateJson {
             topography: self.topography.map(Into::into),
             roughness: self.roughness,
             fatigue: self.fatigue,
+            surface: self.surface,
             initiation: self.initiation,
             crack: self.crack,
             crack_start: self.crack_start,
@@ -164,6 +178,8 @@ impl LifeStateJson {
             debris: self.debris,
             scatter: self.scatter,
             propagation_scatter: self.propagation_scatter,
+            initiation_scatter: self.initiation_scatter,
+            dent_scatter: self.dent_scatter,
             events,
             lost_events: self.lost_events,
         })

@@ -26,7 +26,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Normalised RMS over life: steady (within ±5 % of its median) over the steady-state
 /// stage, a step of at least 30 % at the dent, a fall back below 80 % of the dent's level
-/// with smoothing, and a rise to at least 10× the steady level at the end.
+/// with smoothing, and a rise to at least 10× the steady level at the end. (Seed 3 forms a
+/// dent, at 0.08 of its life; where the dent falls in a life is the competition tested
+/// below, not a property of one seed.)
 #[test]
 fn reference_life_follows_the_thesis() {
     let run = LifeRun::new(reference(3, 20_000.0, 0.25)).unwrap();
@@ -54,22 +56,66 @@ fn reference_life_follows_the_thesis() {
     );
     let end = r.snapshots.last().unwrap().features.rms;
     assert!(end > 10.0 * m, "end of life {end} vs steady {m}");
-    // The dent forms around the middle of life (thesis: "the dent appears around the
-    // middle of life").
-    let dent_at = r
-        .state
-        .events
-        .iter()
-        .find(|e| e.stage == Stage::Dent)
-        .unwrap()
-        .cycles;
-    let frac = dent_at / r.state.cycles;
-    assert!((0.3..0.7).contains(&frac), "dent at {frac} of life");
     // Every stage of the thesis occurs, in order.
     let stages: Vec<Stage> = r.state.events.iter().map(|e| e.stage).collect();
     for s in &Stage::ALL[1..] {
         assert!(stages.contains(s), "{s:?} missing in {stages:?}");
     }
+}
+
+/// Surface and subsurface initiation compete with independent scatter (issue 14: the
+/// crack opened at exactly twice the dent's time in most lives, because the dent formed at
+/// half of the same fatigue sum that later opened the crack). Over seeds 1–40 (coarse
+/// snapshots): both ways occur — lives whose subsurface fatigue opens a crack before any
+/// dent (steady state → crack opening) and lives that dent first — each in at least 10 %
+/// of lives; among dented lives at most 10 % open their crack within 0.5 % of twice the
+/// dent's time (it was 44 of 60 with one shared factor), and the dent's place in life
+/// spreads over more than 0.4 of life.
+#[test]
+fn surface_and_subsurface_initiation_compete() {
+    let (mut subsurface, mut ratios, mut fractions) = (0, Vec::new(), Vec::new());
+    for seed in 1..=40 {
+        let run = LifeRun::new(reference(seed, 200_000.0, 0.05)).unwrap();
+        let r = run.run_snapshots(|_, _| {}).unwrap();
+        assert_eq!(r.state.stage, Stage::Failure, "seed {seed}");
+        let at = |stage: Stage| {
+            r.state
+                .events
+                .iter()
+                .find(|e| e.stage == stage)
+                .map(|e| e.cycles)
+        };
+        let crack = at(Stage::CrackOpening).expect("every life opens a crack");
+        match at(Stage::Dent) {
+            None => {
+                subsurface += 1;
+                assert!(at(Stage::DentSmoothing).is_none(), "seed {seed}");
+            }
+            Some(dent) => {
+                ratios.push(crack / dent);
+                fractions.push(dent / r.state.cycles);
+            }
+        }
+    }
+    let dented = ratios.len();
+    eprintln!(
+        "subsurface {subsurface}/40, crack/dent ratios {ratios:?}, dent fractions {fractions:?}"
+    );
+    assert!(
+        subsurface >= 4 && dented >= 4,
+        "subsurface {subsurface}, dented {dented}"
+    );
+    let clock = ratios
+        .iter()
+        .filter(|r| (*r / 2.0 - 1.0).abs() < 0.005)
+        .count();
+    assert!(
+        clock * 10 <= dented,
+        "{clock} of {dented} dented lives crack at 2× the dent time"
+    );
+    let spread = fractions.iter().cloned().fold(0.0, f64::max)
+        - fractions.iter().cloned().fold(1.0, f64::min);
+    assert!(spread > 0.4, "dent fractions {fractions:?}");
 }
 
 proptest! {
