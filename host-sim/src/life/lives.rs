@@ -2,7 +2,10 @@
 //! more load scales) through the one life driver, in parallel on std threads, and
 //! reports the distribution of lives and stage onsets, a Weibull fit with bootstrap
 //! intervals ([`super::weibull`]), ISO 281's L10 for the same bearing and load, and the
-//! life–load exponent across the loads.
+//! life–load exponent across the loads — each for two definitions of life: to failure
+//! (the fourth defect) and to the first spall (entry into defect completion: ISO 281's
+//! "first evidence of fatigue", the end point of the endurance tests behind the
+//! published Weibull slopes).
 //!
 //! Each life records only what the statistics need: the RMS of every window (for the
 //! onset of instability, [`super::ims::onset`]) and the stage event log.
@@ -26,6 +29,8 @@ pub struct LifeOutcome {
     pub seed: u64,
     /// Revolutions to failure.
     pub life: f64,
+    /// Revolutions to the first spall (entry into defect completion), if reached.
+    pub first_spall: Option<f64>,
     /// Onset of instability of the normalised RMS (fraction of life), if found.
     pub onset: Option<f64>,
     /// Revolutions at which each stage was entered (stage name, revolutions).
@@ -47,6 +52,9 @@ pub struct LoadGroup {
     pub lives: Vec<LifeOutcome>,
     /// Weibull fit of the lives (None when fewer than 3 or degenerate).
     pub weibull: Option<WeibullFit>,
+    /// Weibull fit of the revolutions to the first spall (None when fewer than 3 or
+    /// degenerate).
+    pub first_spall_weibull: Option<WeibullFit>,
     /// Median onset of instability (fraction of life) over the lives where one was found.
     pub onset_median: Option<f64>,
     /// Lives with an onset found.
@@ -112,9 +120,16 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
         pts.iter().map(|(c, _)| c / end).collect(),
         pts.iter().map(|(_, r)| *r).collect(),
     );
+    let first_spall = d
+        .state
+        .events
+        .iter()
+        .find(|e| e.stage == Stage::DefectCompletion)
+        .map(|e| e.cycles);
     Ok(LifeOutcome {
         seed,
         life: d.state.cycles,
+        first_spall,
         onset: onset(&curve),
         stages: d
             .state
@@ -129,6 +144,7 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
 /// Summarises the lives at one load.
 pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutcome>) -> LoadGroup {
     let x: Vec<f64> = lives.iter().map(|l| l.life).collect();
+    let spall: Vec<f64> = lives.iter().filter_map(|l| l.first_spall).collect();
     let onsets: Vec<f64> = lives.iter().filter_map(|l| l.onset).collect();
     let stage_onsets = Stage::ALL
         .iter()
@@ -150,6 +166,7 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
         load_n,
         iso_l10,
         weibull: fit_with_ci(&x, BOOTSTRAP, 0x11FE),
+        first_spall_weibull: fit_with_ci(&spall, BOOTSTRAP, 0x5BA1),
         onset_found: onsets.len(),
         onset_median: median(onsets),
         stage_onsets,
@@ -157,11 +174,20 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
     }
 }
 
-/// The life–load exponent across the groups (slope of ln η against ln load).
-pub fn exponent(groups: &[LoadGroup]) -> Option<Estimate> {
+/// The life–load exponent across the groups (slope of ln η against ln load), of the
+/// lives to failure (`first_spall` false) or to the first spall (true).
+pub fn exponent(groups: &[LoadGroup], first_spall: bool) -> Option<Estimate> {
     let g: Vec<(f64, Vec<f64>)> = groups
         .iter()
-        .map(|g| (g.load_n, g.lives.iter().map(|l| l.life).collect()))
+        .map(|g| {
+            let x = g.lives.iter();
+            let x = if first_spall {
+                x.filter_map(|l| l.first_spall).collect()
+            } else {
+                x.map(|l| l.life).collect()
+            };
+            (g.load_n, x)
+        })
         .collect();
     load_exponent(&g, BOOTSTRAP, 0x10AD)
 }

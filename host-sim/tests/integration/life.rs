@@ -495,8 +495,29 @@ fn lives_give_weibull_and_load_exponent() {
     let x = e["value"].as_f64().unwrap();
     assert!((-6.0..=-1.0).contains(&x), "life–load exponent {e}");
     assert!(e["lo"].as_f64().unwrap() <= x && x <= e["hi"].as_f64().unwrap());
+    let es = &v["first_spall_load_exponent"]["value"];
+    assert!(
+        es.as_f64().is_some_and(|x| (-6.0..=-1.0).contains(&x)),
+        "first-spall exponent {es}"
+    );
     let csv = std::fs::read_to_string(out.join("lives.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 16);
+    // Every life reaches its first spall before it fails.
+    let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
+    for line in csv.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let life: f64 = f[col("life_revs")].parse().unwrap();
+        let spall: f64 = f[col("first_spall_revs")].parse().unwrap();
+        assert!(spall > 0.0 && spall < life, "{line}");
+    }
+    for g in groups {
+        assert_eq!(g["first_spall"]["reached"], 8);
+        let b = g["first_spall"]["weibull"]["shape"]["value"]
+            .as_f64()
+            .unwrap();
+        assert!(b > 0.3 && b < 20.0, "{g}");
+    }
 }
 
 /// Bad `--lives`/`--loads` values: exit 2, the field named, nothing written.
