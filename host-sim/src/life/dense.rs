@@ -50,8 +50,10 @@ fn checkpoint_every() -> u64 {
         .filter(|n| (1..=1 << 30).contains(n))
         .unwrap_or(CHECKPOINT_SAMPLES)
 }
-/// Version 2: the window of the interrupted block and a trailing checksum.
-const MAGIC: &[u8; 8] = b"WSLDCK2\n";
+/// Version 2: the window of the interrupted block and a trailing checksum. Version 3:
+/// the wear state's surface-damage sum and its two surface scatter factors (stop 33); a
+/// version-2 checkpoint holds a state of the older wear model and is refused as such.
+const MAGIC: &[u8; 8] = b"WSLDCK3\n";
 
 /// FNV-1a 64-bit hash (checkpoint checksum, configuration hash).
 pub fn fnv1a64(bytes: &[u8]) -> u64 {
