@@ -3,7 +3,7 @@
 use crate::cmd::args::{CliError, Progress};
 use crate::config::{self, ScenarioFile};
 use crate::life::dense::DenseOptions;
-use crate::life::lives::{exponent, run_lives, summarise, LoadGroup, PUBLISHED_SLOPES};
+use crate::life::lives::{exponent, run_lives, summarise, Initiation, LoadGroup, PUBLISHED_SLOPES};
 use crate::life::weibull::Estimate;
 use crate::life::{LifeRun, LifeSpec};
 use clap::Args;
@@ -323,17 +323,19 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     let exp_spall = exponent(&groups, true);
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
-    let mut csv =
-        String::from("load_scale,seed,life_revs,first_spall_revs,onset_fraction,wall_s\n");
+    let mut csv = String::from(
+        "load_scale,seed,life_revs,first_spall_revs,initiation,onset_fraction,wall_s\n",
+    );
     let opt = |x: Option<f64>| x.map(|o| o.to_string()).unwrap_or_default();
     for g in &groups {
         for l in &g.lives {
             csv.push_str(&format!(
-                "{},{},{},{},{},{}\n",
+                "{},{},{},{},{},{},{}\n",
                 g.load_scale,
                 l.seed,
                 l.life,
                 opt(l.first_spall),
+                l.initiation.map_or("", |i| i.name()),
                 opt(l.onset),
                 l.wall_s
             ));
@@ -429,6 +431,10 @@ fn group_json(g: &LoadGroup) -> serde_json::Value {
             "weibull": g.first_spall_weibull,
             "l10_over_iso": g.first_spall_weibull.as_ref().map(|w| w.l10.value / g.iso_l10),
             "reached": g.lives.iter().filter(|l| l.first_spall.is_some()).count(),
+        },
+        "initiation": {
+            "surface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Surface)).count(),
+            "subsurface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Subsurface)).count(),
         },
         "life_min": mn, "life_max": mx, "onset_median": g.onset_median, "onset_found": g.onset_found,
         "stage_onsets": g.stage_onsets,

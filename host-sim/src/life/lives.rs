@@ -31,12 +31,36 @@ pub struct LifeOutcome {
     pub life: f64,
     /// Revolutions to the first spall (entry into defect completion), if reached.
     pub first_spall: Option<f64>,
+    /// How the first crack started: at a dent (surface) or under the surface before any
+    /// dent formed (subsurface); `None` if no crack opened.
+    pub initiation: Option<Initiation>,
     /// Onset of instability of the normalised RMS (fraction of life), if found.
     pub onset: Option<f64>,
     /// Revolutions at which each stage was entered (stage name, revolutions).
     pub stages: Vec<(String, f64)>,
     /// Wall-clock time of this life (s).
     pub wall_s: f64,
+}
+
+/// How a life's first crack started (the two competing initiation modes of the wear
+/// model, `wearsim_core::wear::LifeState::surface` and `fatigue`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Initiation {
+    /// At a dent: the surface-damage sum formed a dent first.
+    Surface,
+    /// Under the surface: the subsurface fatigue sum opened a crack before any dent.
+    Subsurface,
+}
+
+impl Initiation {
+    /// Name in tables (`surface`, `subsurface`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Initiation::Surface => "surface",
+            Initiation::Subsurface => "subsurface",
+        }
+    }
 }
 
 /// Lives at one load.
@@ -120,16 +144,17 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
         pts.iter().map(|(c, _)| c / end).collect(),
         pts.iter().map(|(_, r)| *r).collect(),
     );
-    let first_spall = d
-        .state
-        .events
-        .iter()
-        .find(|e| e.stage == Stage::DefectCompletion)
-        .map(|e| e.cycles);
+    let at = |stage: Stage| d.state.events.iter().find(|e| e.stage == stage);
+    let first_spall = at(Stage::DefectCompletion).map(|e| e.cycles);
+    let initiation = at(Stage::CrackOpening).map(|_| match at(Stage::Dent) {
+        Some(_) => Initiation::Surface,
+        None => Initiation::Subsurface,
+    });
     Ok(LifeOutcome {
         seed,
         life: d.state.cycles,
         first_spall,
+        initiation,
         onset: onset(&curve),
         stages: d
             .state

@@ -510,9 +510,19 @@ fn lives_give_weibull_and_load_exponent() {
         let life: f64 = f[col("life_revs")].parse().unwrap();
         let spall: f64 = f[col("first_spall_revs")].parse().unwrap();
         assert!(spall > 0.0 && spall < life, "{line}");
+        assert!(
+            ["surface", "subsurface"].contains(&f[col("initiation")]),
+            "{line}"
+        );
     }
     for g in groups {
         assert_eq!(g["first_spall"]["reached"], 8);
+        let modes = &g["initiation"];
+        assert_eq!(
+            modes["surface"].as_u64().unwrap() + modes["subsurface"].as_u64().unwrap(),
+            8,
+            "{modes}"
+        );
         let b = g["first_spall"]["weibull"]["shape"]["value"]
             .as_f64()
             .unwrap();
