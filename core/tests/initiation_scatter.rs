@@ -42,27 +42,19 @@ fn initiation_factor_is_an_independent_weibull_of_slope_10_9() {
     let (life, _) = common::za2115_outer_life();
     let n = 4000;
     let states: Vec<LifeState> = (1..=n as u64).map(|s| life.initial_state(s)).collect();
-    let logs =
-        |f: fn(&LifeState) -> Real| -> Vec<Real> { states.iter().map(|s| f(s).ln()).collect() };
-    let ini = logs(|s| s.initiation_scatter);
-    let corr = |a: &[Real], b: &[Real]| {
-        let mean = |v: &[Real]| v.iter().sum::<Real>() / v.len() as Real;
-        let (ma, mb) = (mean(a), mean(b));
-        let cov: Real = a.iter().zip(b).map(|(x, y)| (x - ma) * (y - mb)).sum();
-        let var = |v: &[Real], m: Real| v.iter().map(|x| (x - m) * (x - m)).sum::<Real>();
-        cov / (var(a, ma) * var(b, mb)).sqrt()
-    };
+    let factor = |f: fn(&LifeState) -> Real| -> Vec<Real> { states.iter().map(f).collect() };
+    let ini = factor(|s| s.initiation_scatter);
     for (name, other) in [
-        ("fatigue", logs(|s| s.scatter)),
-        ("propagation", logs(|s| s.propagation_scatter)),
+        ("fatigue", factor(|s| s.scatter)),
+        ("propagation", factor(|s| s.propagation_scatter)),
     ] {
-        let r = corr(&ini, &other);
+        let r = common::log_correlation(&ini, &other);
         assert!(
             r.abs() < 0.05,
             "initiation and {name} factors correlate: r = {r}"
         );
     }
-    let mut v: Vec<Real> = states.iter().map(|s| s.initiation_scatter).collect();
+    let mut v = ini;
     let (slope, median) = common::quantile_slope(&mut v);
     assert!((median - 1.0).abs() < 0.06, "median {median}");
     assert!(

@@ -56,13 +56,7 @@ fn propagation_factor_is_an_independent_weibull_of_slope_1_1() {
         fat.push(st.scatter);
         prop.push(st.propagation_scatter);
     }
-    let (lf, lp): (Vec<Real>, Vec<Real>) =
-        fat.iter().zip(&prop).map(|(a, b)| (a.ln(), b.ln())).unzip();
-    let mean = |v: &[Real]| v.iter().sum::<Real>() / v.len() as Real;
-    let (mf, mp) = (mean(&lf), mean(&lp));
-    let cov: Real = lf.iter().zip(&lp).map(|(a, b)| (a - mf) * (b - mp)).sum();
-    let var = |v: &[Real], m: Real| v.iter().map(|a| (a - m) * (a - m)).sum::<Real>();
-    let r = cov / (var(&lf, mf) * var(&lp, mp)).sqrt();
+    let r = common::log_correlation(&fat, &prop);
     assert!(
         r.abs() < 0.05,
         "fatigue and propagation factors correlate: r = {r}"

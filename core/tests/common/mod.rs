@@ -163,3 +163,14 @@ pub fn quantile_slope(v: &mut [Real]) -> (Real, Real) {
     let slope = ((-(0.1 as Real).ln()).ln() - (-(0.9 as Real).ln()).ln()) / (q(0.9) / q(0.1)).ln();
     (slope, q(0.5))
 }
+
+/// Pearson correlation of the logarithms of `a` and `b` (positive values, same length).
+pub fn log_correlation(a: &[Real], b: &[Real]) -> Real {
+    let la: Vec<Real> = a.iter().map(|x| x.ln()).collect();
+    let lb: Vec<Real> = b.iter().map(|x| x.ln()).collect();
+    let mean = |v: &[Real]| v.iter().sum::<Real>() / v.len() as Real;
+    let (ma, mb) = (mean(&la), mean(&lb));
+    let cov: Real = la.iter().zip(&lb).map(|(x, y)| (x - ma) * (y - mb)).sum();
+    let var = |v: &[Real], m: Real| v.iter().map(|x| (x - m) * (x - m)).sum::<Real>();
+    cov / (var(&la, ma) * var(&lb, mb)).sqrt()
+}
