@@ -15,8 +15,6 @@ use super::weibull::{fit_with_ci, load_exponent, Estimate, WeibullFit};
 use super::{LifeError, LifeRun, LifeSpec};
 use crate::analysis::stats::median;
 use serde::Serialize;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use wearsim_core::wear::Stage;
 
 /// Bootstrap resamples of the intervals.
@@ -93,30 +91,17 @@ pub fn run_lives(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<Vec<LifeOutcome>, LifeError> {
-    let n = specs.len();
-    let next = AtomicUsize::new(0);
-    let out: Mutex<Vec<Option<Result<LifeOutcome, LifeError>>>> =
-        Mutex::new((0..n).map(|_| None).collect());
-    let done = AtomicUsize::new(0);
-    std::thread::scope(|s| {
-        for _ in 0..threads.clamp(1, n.max(1)) {
-            s.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(spec) = specs.get(i) else { break };
-                let r = one_life(spec.clone());
-                if let Ok(mut o) = out.lock() {
-                    if let Some(slot) = o.get_mut(i) {
-                        *slot = Some(r);
-                    }
-                }
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            });
-        }
-    });
-    let o = out.into_inner().unwrap_or_default();
-    o.into_iter()
-        .map(|r| r.unwrap_or(Err(LifeError::NonFinite { cycles: f64::NAN })))
-        .collect()
+    let lives = super::parallel::map_indexed(
+        specs.len(),
+        threads,
+        |i| match specs.get(i) {
+            Some(spec) => one_life(spec.clone()),
+            None => Err(LifeError::NonFinite { cycles: f64::NAN }),
+        },
+        progress,
+        || Err(LifeError::NonFinite { cycles: f64::NAN }),
+    );
+    lives.into_iter().collect()
 }
 
 /// One life through the driver, recording the window RMS.

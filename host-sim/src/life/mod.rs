@@ -17,6 +17,7 @@ pub mod ims_compare;
 pub mod ims_validate;
 pub mod lives;
 pub mod output;
+pub mod parallel;
 pub mod plot;
 pub mod site_json;
 pub mod state_json;
