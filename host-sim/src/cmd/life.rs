@@ -553,6 +553,14 @@ pub struct ImsValidateArgs {
     /// volts of a 100 mV/g sensor).
     #[arg(long, value_name = "UNITS_PER_MS2")]
     pub measured_floor: Option<f64>,
+    /// Judge against a population of N seeds (`--seed` .. `--seed` + N − 1, 5..=200)
+    /// instead of one draw: one `life_factor` per fold puts the population's median life on
+    /// the calibration life; per life, the 5–95 % band and the measured value's rank (PIT)
+    /// of onset, onset-to-failure hours, end level and life, the share of the measured curve
+    /// inside the pointwise band, and its distance to the median curve. Writes
+    /// `ims-ensemble.md` and `ims-ensemble.json`.
+    #[arg(long, value_name = "N", conflicts_with_all = ["floor", "measured_floor"])]
+    pub ensemble: Option<u64>,
     /// Output directory for `ims-validation.json` and `ims-validation.md`.
     #[arg(long, default_value = "wearsim-ims-validation")]
     pub out: PathBuf,
@@ -676,6 +684,27 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
             a.seeds
         )));
     }
+    if let Some(n) = a.ensemble {
+        let range = crate::life::ims_validate::ENSEMBLE_RANGE;
+        if !range.contains(&n) {
+            return Err(CliError::input(format!(
+                "--ensemble {n}: allowed {}..={}",
+                range.start(),
+                range.end()
+            )));
+        }
+        if a.seeds > 1 {
+            return Err(CliError::input(
+                "--ensemble with --seeds: the ensemble already runs N seeds; give one of them",
+            ));
+        }
+        if a.seed.checked_add(n - 1).is_none() {
+            return Err(CliError::input(format!(
+                "--seed {} with --ensemble {n}: the last seed overflows u64",
+                a.seed
+            )));
+        }
+    }
     let last = a.seed.checked_add(a.seeds - 1).ok_or_else(|| {
         CliError::input(format!(
             "--seed {} with --seeds {}: the last seed overflows u64",
@@ -691,6 +720,18 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     // Bad records stop the run before anything is written.
     let recs = ims_validate::read_records(&data).map_err(CliError::input)?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
+    if let Some(n) = a.ensemble {
+        let cmd = format!(
+            "wearsim ims-validate --seed {} --ensemble {n}{}",
+            a.seed,
+            if a.primary_only {
+                " --primary-only"
+            } else {
+                ""
+            }
+        );
+        return super::ims_ensemble::run(&recs, a.seed, n, !a.primary_only, &a.out, a.json, &cmd);
+    }
     let mode = match (a.floor, a.measured_floor) {
         (_, Some(u)) if !(u.is_finite() && u > 0.0) => {
             return Err(CliError::input(format!(

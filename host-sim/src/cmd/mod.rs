@@ -14,6 +14,7 @@ pub mod exit;
 pub mod features;
 pub mod gap;
 pub mod gap_validate;
+pub mod ims_ensemble;
 pub mod life;
 pub mod presets;
 pub mod simulate;

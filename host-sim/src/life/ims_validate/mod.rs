@@ -37,11 +37,13 @@
 //! [`super::calibrate`] on the calibration life's running revolutions. Everything else is
 //! the model's physics and is not refitted per life.
 
+mod ensemble;
 mod figures;
 mod floor;
 mod record;
 mod sim;
 
+pub use ensemble::*;
 pub use figures::*;
 pub use floor::*;
 pub use record::*;
@@ -148,8 +150,8 @@ fn median_of_medians(v: &[Medians]) -> Medians {
     )
 }
 
-/// [`validate_records`] for each seed of `seeds`, one thread per seed and at most the
-/// machine's cores at a time; the validations in seed order, or the first error.
+/// [`validate_records`] for each seed of `seeds`, on the machine's cores
+/// ([`super::parallel`]); the validations in seed order, or the first error.
 pub fn validate_seeds(
     recs: &[MeasuredRecord],
     seeds: std::ops::RangeInclusive<u64>,
@@ -157,26 +159,18 @@ pub fn validate_seeds(
     mode: FloorMode,
 ) -> Result<Vec<Validation>, String> {
     let seeds: Vec<u64> = seeds.collect();
-    let width = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut runs = Vec::with_capacity(seeds.len());
-    for chunk in seeds.chunks(width) {
-        let done: Vec<Result<Validation, String>> = std::thread::scope(|sc| {
-            let hs: Vec<_> = chunk
-                .iter()
-                .map(|&s| sc.spawn(move || validate_records(recs, s, all, mode)))
-                .collect();
-            hs.into_iter()
-                .map(|h| {
-                    h.join()
-                        .unwrap_or_else(|_| Err("a validation thread panicked".into()))
-                })
-                .collect()
-        });
-        for r in done {
-            runs.push(r?);
-        }
-    }
-    Ok(runs)
+    super::parallel::map_indexed(
+        seeds.len(),
+        super::parallel::default_threads(),
+        |i| match seeds.get(i) {
+            Some(&s) => validate_records(recs, s, all, mode),
+            None => Err("no such seed".into()),
+        },
+        &|_| {},
+        || Err("a validation thread panicked".into()),
+    )
+    .into_iter()
+    .collect()
 }
 
 /// Summarises validations of several seeds (each as returned by [`validate_records`]).
