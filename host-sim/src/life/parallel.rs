@@ -12,14 +12,14 @@ pub fn default_threads() -> usize {
 }
 
 /// `f(0) … f(n − 1)` on at most `threads` threads (at least one); `done(k)` after each
-/// result with the number finished so far. Results in index order. A job whose thread
-/// panicked yields `lost()`.
+/// result with the number finished so far. Results in index order. A job that panicked
+/// yields `lost()` (the panic message still goes to stderr through the panic hook).
 pub fn map_indexed<R: Send>(
     n: usize,
     threads: usize,
     f: impl Fn(usize) -> R + Sync,
     done: &(dyn Fn(usize) + Sync),
-    lost: impl Fn() -> R,
+    lost: impl Fn() -> R + Sync,
 ) -> Vec<R> {
     let next = AtomicUsize::new(0);
     let finished = AtomicUsize::new(0);
@@ -31,7 +31,9 @@ pub fn map_indexed<R: Send>(
                 if i >= n {
                     break;
                 }
-                let r = f(i);
+                // A panicking job becomes `lost()`; the other jobs go on.
+                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(i)))
+                    .unwrap_or_else(|_| lost());
                 if let Ok(mut o) = out.lock() {
                     if let Some(slot) = o.get_mut(i) {
                         *slot = Some(r);
@@ -70,5 +72,17 @@ mod tests {
             assert_eq!(calls.load(Ordering::Relaxed), 50);
         }
         assert!(map_indexed(0, 2, |i| i, &|_| {}, || 0).is_empty());
+        // A panicking job is lost alone.
+        let v = map_indexed(
+            5,
+            2,
+            |i| {
+                assert!(i != 3, "job 3 fails");
+                i
+            },
+            &|_| {},
+            || 99,
+        );
+        assert_eq!(v, vec![0, 1, 2, 99, 4]);
     }
 }

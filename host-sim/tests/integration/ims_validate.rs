@@ -223,6 +223,7 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
         }
         assert!((0.0..=1.0).contains(&l.coverage_life) && (0.0..=1.0).contains(&l.coverage_hours));
         assert!(l.distance_to_median_db.is_finite() && l.distance_to_median_db >= 0.0);
+        assert!(l.distance_flat_db.is_finite() && l.distance_flat_db > 0.0);
         let end = &l.end_level;
         assert!(
             end.median.unwrap() > end.measured.unwrap(),

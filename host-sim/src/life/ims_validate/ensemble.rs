@@ -29,7 +29,10 @@
 //!     90 % of the points;
 //!   * the distance (dB RMS) of the measured curve to the pointwise *median* curve on
 //!     both axes, and the spread over the seeds of the per-seed distance that the
-//!     acceptance of issue 14 judges.
+//!     acceptance of issue 14 judges;
+//!   * the same distance for a null model that never degrades (1 throughout): the
+//!     measured curves stay near their healthy level for most of the record, so a
+//!     distance is only informative where it beats this one.
 //!
 //! Held-out discipline: a fold's factor comes from its calibration life alone; the
 //! held-out lives choose nothing. With three held-out lives a PIT is an anecdote, not a
@@ -144,6 +147,10 @@ pub struct EnsembleLife {
     /// The per-seed trajectory distance (dB RMS, the acceptance's figure) over the seeds;
     /// no measured value.
     pub distance_db: Spread,
+    /// The null model's distance (dB RMS): a curve that never leaves its healthy level
+    /// (1 throughout) against the measured one. A simulated curve, or the median of a
+    /// population, is only informative where it beats this.
+    pub distance_flat_db: f64,
 }
 
 /// One fold: a factor calibrated on one life's population, every life judged with it.
@@ -180,6 +187,8 @@ pub struct EnsembleSummary {
     /// Median over lives of the per-seed distance's median (dB RMS): what one seed gives
     /// typically.
     pub median_seed_distance_db: f64,
+    /// Median of the null model's distance (dB RMS, [`EnsembleLife::distance_flat_db`]).
+    pub median_distance_flat_db: f64,
     /// Onset-to-failure hours: measured values inside the simulated [`BAND`] / lives with
     /// both.
     pub onset_to_failure_inside: [usize; 2],
@@ -331,6 +340,15 @@ pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> Ensembl
         distance_to_median_db,
         distance_to_median_hours_db,
         distance_db: Spread::of(None, &col(|f| Some(f.distance_db_rms))),
+        distance_flat_db: distance_db(&flat(), &m.curve),
+    }
+}
+
+/// The null model's normalised curve: the healthy level, 1, over the whole life.
+fn flat() -> Curve {
+    Curve {
+        t: vec![0.0, 1.0],
+        rms: vec![1.0, 1.0],
     }
 }
 
@@ -351,6 +369,7 @@ pub fn summarise(lives: &[EnsembleLife]) -> EnsembleSummary {
                 .iter()
                 .map(|l| l.distance_db.median.unwrap_or(f64::NAN)),
         ),
+        median_distance_flat_db: median_of(lives.iter().map(|l| l.distance_flat_db)),
         onset_to_failure_inside: count(|l| &l.onset_to_failure_h),
         end_level_inside: count(|l| &l.end_level),
         onset_inside: count(|l| &l.onset),
