@@ -8,10 +8,7 @@ use crate::life::ims_validate::{
 use std::fmt::Write;
 use std::path::Path;
 
-fn f(x: Option<f64>, digits: usize) -> String {
-    x.map(|v| format!("{v:.digits$}"))
-        .unwrap_or_else(|| "–".into())
-}
+use super::life::fig as f;
 
 /// `measured [low, median, high] PIT` of a spread.
 fn spread(s: &Spread, digits: usize) -> String {
@@ -118,19 +115,5 @@ pub fn run(
 ) -> Result<(), CliError> {
     let v = validate_ensemble(recs, first, n, all).map_err(CliError::run)?;
     std::fs::create_dir_all(out).map_err(|e| CliError::input(format!("{}: {e}", out.display())))?;
-    let md = markdown(&v, cmd);
-    let mdp = out.join("ims-ensemble.md");
-    crate::life::output::write_atomic(&mdp, md.as_bytes())
-        .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
-    let jp = out.join("ims-ensemble.json");
-    let js = serde_json::to_string_pretty(&v).map_err(CliError::run)?;
-    crate::life::output::write_atomic(&jp, js.as_bytes())
-        .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
-    if json {
-        println!("{js}");
-    } else {
-        print!("{md}");
-        println!("wrote {}\nwrote {}", mdp.display(), jp.display());
-    }
-    Ok(())
+    super::life::write_report(out, "ims-ensemble", &markdown(&v, cmd), &v, json)
 }

@@ -569,7 +569,8 @@ pub struct ImsValidateArgs {
     pub json: bool,
 }
 
-fn fig(x: Option<f64>, digits: usize) -> String {
+/// `x` with `digits` decimals, or `none`.
+pub(crate) fn fig(x: Option<f64>, digits: usize) -> String {
     x.map(|v| format!("{v:.digits$}"))
         .unwrap_or_else(|| "none".into())
 }
@@ -770,15 +771,32 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
             .map(|u| format!(" --measured-floor {u}"))
             .unwrap_or_default()
     );
-    let md = ims_validation_markdown(&v, &cmd);
-    let mdp = a.out.join("ims-validation.md");
+    write_report(
+        &a.out,
+        "ims-validation",
+        &ims_validation_markdown(&v, &cmd),
+        &v,
+        a.json,
+    )
+}
+
+/// Writes `out/STEM.md` and `out/STEM.json` (each atomically), then prints the JSON
+/// (`json`) or the Markdown and the files written.
+pub fn write_report(
+    out: &std::path::Path,
+    stem: &str,
+    md: &str,
+    v: &impl serde::Serialize,
+    json: bool,
+) -> Result<(), CliError> {
+    let mdp = out.join(format!("{stem}.md"));
     crate::life::output::write_atomic(&mdp, md.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
-    let jp = a.out.join("ims-validation.json");
-    let js = serde_json::to_string_pretty(&v).map_err(CliError::run)?;
+    let jp = out.join(format!("{stem}.json"));
+    let js = serde_json::to_string_pretty(v).map_err(CliError::run)?;
     crate::life::output::write_atomic(&jp, js.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
-    if a.json {
+    if json {
         println!("{js}");
     } else {
         print!("{md}");
