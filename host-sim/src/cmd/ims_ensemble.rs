@@ -26,14 +26,17 @@ fn summary_line(s: &EnsembleSummary) -> String {
     format!(
         "{} lives: mean coverage {:.2} (fraction of life) and {:.2} (hours before failure); \
 distance to the median curve {:.2} dB RMS (median), one seed's distance {:.2} dB RMS (median), \
-the never-degrading null curve's {:.2} dB RMS (median); \
-measured inside the 5–95 % band: onset→failure hours {}/{}, end level {}/{}, onset {}/{}.",
+the never-degrading null curve's {:.2} dB RMS (median); after the measured onset: median \
+curve {:.2}, one seed {:.2}, null curve {:.2} dB RMS (medians); measured inside the 5–95 % band: onset→failure hours {}/{}, end level {}/{}, onset {}/{}.",
         s.lives,
         s.mean_coverage_life,
         s.mean_coverage_hours,
         s.median_distance_to_median_db,
         s.median_seed_distance_db,
         s.median_distance_flat_db,
+        s.median_late_to_median_db,
+        s.median_late_seed_db,
+        s.median_late_flat_db,
         s.onset_to_failure_inside[0],
         s.onset_to_failure_inside[1],
         s.end_level_inside[0],
@@ -60,8 +63,8 @@ the population: about 0.9).\n",
         let _ = write!(
             md,
             "\n## Calibrated on {} (`life_factor` = {:.3e}; median life / record {:.3}, {} populations run)\n\n\
-| life | role | onset (fraction) | onset→failure h | end level (last 5 %) | last value | life sim./record | coverage life | coverage hours | dB to median curve (life / hours) | one seed's distance dB [5 · 50 · 95 %] | null curve dB |\n\
-|---|---|---|---|---|---|---|---:|---:|---|---|---:|\n",
+| life | role | onset (fraction) | onset→failure h | end level (last 5 %) | last value | life sim./record | coverage life | coverage hours | dB to median curve (life / hours) | one seed's distance dB [5 · 50 · 95 %] | null curve dB | after the measured onset: median curve / one seed (median) / null dB |\n\
+|---|---|---|---|---|---|---|---:|---:|---|---|---:|---|\n",
             fold.calibrated_on,
             fold.life_factor,
             fold.calibration_median_ratio,
@@ -83,7 +86,7 @@ the population: about 0.9).\n",
 fn row(l: &EnsembleLife) -> String {
     let d = &l.distance_db;
     format!(
-        "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} / {:.2} | {} · {} · {} | {:.2} |\n",
+        "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.2} / {:.2} | {} · {} · {} | {:.2} | {} / {} / {} |\n",
         l.id,
         l.role,
         spread(&l.onset, 3),
@@ -98,7 +101,10 @@ fn row(l: &EnsembleLife) -> String {
         f(d.low, 2),
         f(d.median, 2),
         f(d.high, 2),
-        l.distance_flat_db
+        l.distance_flat_db,
+        f(l.distance_late_to_median_db, 2),
+        f(l.distance_late_db.median, 2),
+        f(l.distance_late_flat_db, 2)
     )
 }
 

@@ -94,7 +94,21 @@ fn db_differences<'a>(sim: &'a Curve, meas: &'a Curve) -> impl Iterator<Item = f
 
 /// RMS over the common grid of the dB difference between two normalised curves.
 pub fn distance_db(sim: &Curve, meas: &Curve) -> f64 {
-    (db_differences(sim, meas).map(|d| d * d).sum::<f64>() / GRID as f64).sqrt()
+    distance_db_from(sim, meas, 0.0)
+}
+
+/// [`distance_db`] over the grid points at or after fraction `from` of life only (`from`
+/// clamped to 0–1; the last point, 1, is always in).
+pub fn distance_db_from(sim: &Curve, meas: &Curve, from: f64) -> f64 {
+    let from = from.clamp(0.0, 1.0);
+    let (mut sq, mut n) = (0.0, 0usize);
+    for (i, d) in db_differences(sim, meas).enumerate() {
+        if i as f64 / (GRID - 1) as f64 >= from {
+            sq += d * d;
+            n += 1;
+        }
+    }
+    (sq / n.max(1) as f64).sqrt()
 }
 
 /// Mean absolute dB difference between two normalised curves over the common grid.

@@ -224,6 +224,16 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
         assert!((0.0..=1.0).contains(&l.coverage_life) && (0.0..=1.0).contains(&l.coverage_hours));
         assert!(l.distance_to_median_db.is_finite() && l.distance_to_median_db >= 0.0);
         assert!(l.distance_flat_db.is_finite() && l.distance_flat_db > 0.0);
+        // The measured curve climbs after its onset, so the never-degrading null curve is
+        // farther from it there than over the whole record (where the healthy part dilutes
+        // it): the degradation part is where a model can be told from none.
+        let late_flat = l.distance_late_flat_db.expect("every failed IMS life has an onset");
+        assert!(
+            late_flat > l.distance_flat_db,
+            "{}: null curve {late_flat:.2} dB after the onset, {:.2} dB over the record",
+            l.id,
+            l.distance_flat_db
+        );
         let end = &l.end_level;
         assert!(
             end.median.unwrap() > end.measured.unwrap(),

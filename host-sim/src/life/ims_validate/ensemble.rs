@@ -32,7 +32,10 @@
 //!     acceptance of issue 14 judges;
 //!   * the same distance for a null model that never degrades (1 throughout): the
 //!     measured curves stay near their healthy level for most of the record, so a
-//!     distance is only informative where it beats this one.
+//!     distance is only informative where it beats this one;
+//!   * the three distances (one seed's, the median curve's, the null curve's) over the
+//!     degradation part only — the grid points from the measured onset to failure —
+//!     where a flat line is far from the measured climb.
 //!
 //! Held-out discipline: a fold's factor comes from its calibration life alone; the
 //! held-out lives choose nothing. With three held-out lives a PIT is an anecdote, not a
@@ -41,7 +44,7 @@
 use super::super::calibrate::{calibrate, Secant};
 use super::super::parallel::{default_threads, map_indexed};
 use super::*;
-use crate::life::ims::{interp, GRID};
+use crate::life::ims::{distance_db_from, interp, GRID};
 
 /// The central band of the simulated population (quantiles).
 pub const BAND: [f64; 2] = [0.05, 0.95];
@@ -151,6 +154,16 @@ pub struct EnsembleLife {
     /// (1 throughout) against the measured one. A simulated curve, or the median of a
     /// population, is only informative where it beats this.
     pub distance_flat_db: f64,
+    /// Start of the degradation part (fraction of the record): the measured onset; none
+    /// without one (then the three figures below are none too).
+    pub late_from: Option<f64>,
+    /// The per-seed distance (dB RMS) over the degradation part only, over the seeds:
+    /// where a degrading model has to beat the null curve.
+    pub distance_late_db: Spread,
+    /// The median curve's distance over the degradation part.
+    pub distance_late_to_median_db: Option<f64>,
+    /// The null curve's distance over the degradation part.
+    pub distance_late_flat_db: Option<f64>,
 }
 
 /// One fold: a factor calibrated on one life's population, every life judged with it.
@@ -189,6 +202,13 @@ pub struct EnsembleSummary {
     pub median_seed_distance_db: f64,
     /// Median of the null model's distance (dB RMS, [`EnsembleLife::distance_flat_db`]).
     pub median_distance_flat_db: f64,
+    /// Over the degradation part (after the measured onset): the median curve's distance
+    /// (median over lives, dB RMS).
+    pub median_late_to_median_db: f64,
+    /// The same for one seed (median over lives of the per-seed median).
+    pub median_late_seed_db: f64,
+    /// The same for the null curve.
+    pub median_late_flat_db: f64,
     /// Onset-to-failure hours: measured values inside the simulated [`BAND`] / lives with
     /// both.
     pub onset_to_failure_inside: [usize; 2],
@@ -277,28 +297,27 @@ fn on_hours(c: &Curve, life_h: f64, span: f64) -> Curve {
     }
 }
 
-/// Coverage of `meas` by the pointwise band of `sims`, and its distance to their
-/// pointwise median (dB RMS), over the common grid.
-fn band_figures(meas: &Curve, sims: &[Curve]) -> (f64, f64) {
+/// Coverage of `meas` by the pointwise band of `sims` over the common grid, and the
+/// pointwise median curve of `sims` on that grid.
+fn band_figures(meas: &Curve, sims: &[Curve]) -> (f64, Curve) {
     let mut inside = 0usize;
-    let mut sq = 0.0;
+    let (mut t, mut mid) = (Vec::with_capacity(GRID), Vec::with_capacity(GRID));
     for i in 0..GRID {
-        let t = i as f64 / (GRID - 1) as f64;
-        let mut v: Vec<f64> = sims.iter().map(|c| interp(c, t)).collect();
+        let ti = i as f64 / (GRID - 1) as f64;
+        let mut v: Vec<f64> = sims.iter().map(|c| interp(c, ti)).collect();
         v.sort_by(f64::total_cmp);
-        let m = interp(meas, t);
-        let (lo, mid, hi) = (
+        let m = interp(meas, ti);
+        let (lo, hi) = (
             quantile(&v, BAND[0]).unwrap_or(f64::NAN),
-            quantile(&v, 0.5).unwrap_or(f64::NAN),
             quantile(&v, BAND[1]).unwrap_or(f64::NAN),
         );
         if (lo..=hi).contains(&m) {
             inside += 1;
         }
-        let d = 20.0 * (mid / m).log10();
-        sq += d * d;
+        t.push(ti);
+        mid.push(quantile(&v, 0.5).unwrap_or(f64::NAN));
     }
-    (inside as f64 / GRID as f64, (sq / GRID as f64).sqrt())
+    (inside as f64 / GRID as f64, Curve { t, rms: mid })
 }
 
 /// The figures of record `m` against population `pop` (its own site, one factor).
@@ -311,8 +330,11 @@ pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> Ensembl
         .zip(pop)
         .map(|(c, s)| on_hours(c, s.life / revs_per_hour(), span))
         .collect();
-    let (coverage_life, distance_to_median_db) = band_figures(&m.curve, &curves);
-    let (coverage_hours, distance_to_median_hours_db) = band_figures(&m.curve, &hours);
+    let (coverage_life, median_life) = band_figures(&m.curve, &curves);
+    let (coverage_hours, median_hours) = band_figures(&m.curve, &hours);
+    // The degradation part: from the measured onset to failure.
+    let late_from = onset(&m.curve);
+    let late = |c: &Curve| late_from.map(|from| distance_db_from(c, &m.curve, from));
     let col = |f: fn(&LifeFigures) -> Option<f64>| figs.iter().map(f).collect::<Vec<_>>();
     let first = figs.first();
     EnsembleLife {
@@ -337,10 +359,14 @@ pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> Ensembl
         life_ratio: Spread::of(Some(1.0), &col(|f| Some(f.life_ratio))),
         coverage_life,
         coverage_hours,
-        distance_to_median_db,
-        distance_to_median_hours_db,
+        distance_to_median_db: distance_db(&median_life, &m.curve),
+        distance_to_median_hours_db: distance_db(&median_hours, &m.curve),
         distance_db: Spread::of(None, &col(|f| Some(f.distance_db_rms))),
         distance_flat_db: distance_db(&flat(), &m.curve),
+        late_from,
+        distance_late_db: Spread::of(None, &curves.iter().map(late).collect::<Vec<_>>()),
+        distance_late_to_median_db: late(&median_life),
+        distance_late_flat_db: late(&flat()),
     }
 }
 
@@ -370,6 +396,21 @@ pub fn summarise(lives: &[EnsembleLife]) -> EnsembleSummary {
                 .map(|l| l.distance_db.median.unwrap_or(f64::NAN)),
         ),
         median_distance_flat_db: median_of(lives.iter().map(|l| l.distance_flat_db)),
+        median_late_to_median_db: median_of(
+            lives
+                .iter()
+                .map(|l| l.distance_late_to_median_db.unwrap_or(f64::NAN)),
+        ),
+        median_late_seed_db: median_of(
+            lives
+                .iter()
+                .map(|l| l.distance_late_db.median.unwrap_or(f64::NAN)),
+        ),
+        median_late_flat_db: median_of(
+            lives
+                .iter()
+                .map(|l| l.distance_late_flat_db.unwrap_or(f64::NAN)),
+        ),
         onset_to_failure_inside: count(|l| &l.onset_to_failure_h),
         end_level_inside: count(|l| &l.end_level),
         onset_inside: count(|l| &l.onset),
@@ -472,12 +513,22 @@ mod tests {
             rms: vec![k; t.len()],
         };
         let sims: Vec<Curve> = (1..=21).map(|i| flat(0.9 + 0.01 * i as f64)).collect();
-        let (cov, d) = band_figures(&flat(1.0), &sims);
+        let (cov, mid) = band_figures(&flat(1.0), &sims);
         assert_eq!(cov, 1.0);
+        let d = distance_db(&mid, &flat(1.0));
         assert!(d.abs() < 0.5, "{d}");
-        let (cov, d) = band_figures(&flat(10.0), &sims);
+        let (cov, mid) = band_figures(&flat(10.0), &sims);
         assert_eq!(cov, 0.0);
+        let d = distance_db(&mid, &flat(10.0));
         assert!((d - 20.0).abs() < 0.1, "{d}");
+        // Over the late part only: a curve that is 20 dB off after 0.5 and on before.
+        let step = Curve {
+            t: vec![0.0, 0.5, 0.5000001, 1.0],
+            rms: vec![1.0, 1.0, 10.0, 10.0],
+        };
+        let late = distance_db_from(&flat(1.0), &step, 0.6);
+        assert!((late - 20.0).abs() < 1e-9, "{late}");
+        assert!(distance_db(&flat(1.0), &step) < late);
     }
 
     /// Hours before failure: a life twice the span puts its midpoint at the span's start.
