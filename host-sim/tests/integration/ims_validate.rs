@@ -227,7 +227,9 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
         // The measured curve climbs after its onset, so the never-degrading null curve is
         // farther from it there than over the whole record (where the healthy part dilutes
         // it): the degradation part is where a model can be told from none.
-        let late_flat = l.distance_late_flat_db.expect("every failed IMS life has an onset");
+        let late_flat = l
+            .distance_late_flat_db
+            .expect("every failed IMS life has an onset");
         assert!(
             late_flat > l.distance_flat_db,
             "{}: null curve {late_flat:.2} dB after the onset, {:.2} dB over the record",
