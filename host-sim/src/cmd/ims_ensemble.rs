@@ -8,7 +8,7 @@ use crate::life::ims_validate::{
 use std::fmt::Write;
 use std::path::Path;
 
-use super::life::fig as f;
+use super::report::fig as f;
 
 /// `measured [low, median, high] PIT` of a spread.
 fn spread(s: &Spread, digits: usize) -> String {
@@ -121,5 +121,5 @@ pub fn run(
 ) -> Result<(), CliError> {
     let v = validate_ensemble(recs, first, n, all).map_err(CliError::run)?;
     std::fs::create_dir_all(out).map_err(|e| CliError::input(format!("{}: {e}", out.display())))?;
-    super::life::write_report(out, "ims-ensemble", &markdown(&v, cmd), &v, json)
+    super::report::write_report(out, "ims-ensemble", &markdown(&v, cmd), &v, json)
 }

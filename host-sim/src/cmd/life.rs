@@ -1,6 +1,7 @@
 //! `wearsim life`: arguments and the command (one life, or `--lives N` statistics).
 
 use crate::cmd::args::{CliError, Progress};
+use crate::cmd::report::{fig, write_report};
 use crate::config::{self, ScenarioFile};
 use crate::life::dense::DenseOptions;
 use crate::life::lives::{exponent, run_lives, summarise, Initiation, LoadGroup, PUBLISHED_SLOPES};
@@ -569,12 +570,6 @@ pub struct ImsValidateArgs {
     pub json: bool,
 }
 
-/// `x` with `digits` decimals, or `none`.
-pub(crate) fn fig(x: Option<f64>, digits: usize) -> String {
-    x.map(|v| format!("{v:.digits$}"))
-        .unwrap_or_else(|| "none".into())
-}
-
 /// The Markdown report of a validation.
 pub fn ims_validation_markdown(v: &crate::life::ims_validate::Validation, cmd: &str) -> String {
     use std::fmt::Write;
@@ -778,29 +773,4 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
         &v,
         a.json,
     )
-}
-
-/// Writes `out/STEM.md` and `out/STEM.json` (each atomically), then prints the JSON
-/// (`json`) or the Markdown and the files written.
-pub fn write_report(
-    out: &std::path::Path,
-    stem: &str,
-    md: &str,
-    v: &impl serde::Serialize,
-    json: bool,
-) -> Result<(), CliError> {
-    let mdp = out.join(format!("{stem}.md"));
-    crate::life::output::write_atomic(&mdp, md.as_bytes())
-        .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
-    let jp = out.join(format!("{stem}.json"));
-    let js = serde_json::to_string_pretty(v).map_err(CliError::run)?;
-    crate::life::output::write_atomic(&jp, js.as_bytes())
-        .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
-    if json {
-        println!("{js}");
-    } else {
-        print!("{md}");
-        println!("wrote {}\nwrote {}", mdp.display(), jp.display());
-    }
-    Ok(())
 }

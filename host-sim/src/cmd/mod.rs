@@ -17,6 +17,7 @@ pub mod gap_validate;
 pub mod ims_ensemble;
 pub mod life;
 pub mod presets;
+pub mod report;
 pub mod simulate;
 pub mod sweep;
 
