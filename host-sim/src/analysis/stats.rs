@@ -125,6 +125,24 @@ pub fn median(v: Vec<f64>) -> Option<f64> {
     }
 }
 
+/// Quantile `p` (clamped to [0, 1]) of the ascending-sorted `v`, linear between order
+/// statistics (Hyndman & Fan 1996, type 7: R's and NumPy's default); `None` when `v` is
+/// empty. The one quantile of the project: the ensemble's bands and the Weibull fits'
+/// bootstrap intervals.
+pub fn quantile(v: &[f64], p: f64) -> Option<f64> {
+    let n = v.len();
+    if n == 0 {
+        return None;
+    }
+    let h = (n - 1) as f64 * p.clamp(0.0, 1.0);
+    let (i, f) = (h.floor() as usize, h - h.floor());
+    let lo = *v.get(i)?;
+    Some(match v.get(i + 1) {
+        Some(hi) if f > 0.0 => lo + f * (hi - lo),
+        _ => lo,
+    })
+}
+
 /// Upper median of the finite values of `v`: the value at index `n/2` of the sorted
 /// values (the median for an odd count, the upper of the two middle values for an even
 /// one). `None` when no value is finite. Always one of the values themselves; the life
@@ -149,6 +167,17 @@ mod tests {
     use super::*;
     use crate::analysis::synth::{gaussian_noise, sine};
     use proptest::prelude::*;
+
+    #[test]
+    fn type_7_quantiles_by_hand() {
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0];
+        assert_eq!(quantile(&v, 0.5), Some(3.0));
+        assert_eq!(quantile(&v, 0.25), Some(2.0));
+        assert!((quantile(&v, 0.05).unwrap() - 1.2).abs() < 1e-12);
+        assert_eq!(quantile(&v, 1.0), Some(5.0));
+        assert_eq!(quantile(&v, 1.5), Some(5.0));
+        assert_eq!(quantile(&[], 0.5), None);
+    }
 
     #[test]
     fn medians_of_odd_and_even_counts() {

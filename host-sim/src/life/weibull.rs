@@ -5,6 +5,7 @@
 //! Source: the Weibull likelihood equations as in Abernethy, *The New Weibull Handbook*
 //! (5th ed., §5); L10 = η·(−ln 0.9)^(1/β) (ISO 281's 90 % reliability).
 
+use crate::analysis::stats;
 use serde::Serialize;
 
 /// A fitted Weibull distribution of lives.
@@ -99,13 +100,10 @@ impl SplitMix {
     }
 }
 
+/// Quantile `q` of the bootstrap values `v` ([`stats::quantile`]; NaN when none).
 fn percentile(v: &mut [f64], q: f64) -> f64 {
     v.sort_by(f64::total_cmp);
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    let i = (q * (v.len() - 1) as f64).round() as usize;
-    v[i.min(v.len() - 1)]
+    stats::quantile(v, q).unwrap_or(f64::NAN)
 }
 
 fn resample(x: &[f64], rng: &mut SplitMix) -> Vec<f64> {

@@ -44,6 +44,7 @@
 use super::super::calibrate::{calibrate, Secant};
 use super::super::parallel::{default_threads, map_indexed};
 use super::*;
+use crate::analysis::stats::quantile;
 use crate::life::ims::{distance_db_from, interp, GRID};
 
 /// The central band of the simulated population (quantiles).
@@ -101,22 +102,6 @@ impl Spread {
         let (m, lo, hi) = (self.measured?, self.low?, self.high?);
         Some((lo..=hi).contains(&m))
     }
-}
-
-/// Quantile `p` of sorted `v`, linear between order statistics (Hyndman & Fan type 7);
-/// none when `v` is empty.
-pub fn quantile(v: &[f64], p: f64) -> Option<f64> {
-    let n = v.len();
-    if n == 0 {
-        return None;
-    }
-    let h = (n - 1) as f64 * p.clamp(0.0, 1.0);
-    let (i, f) = (h.floor() as usize, h - h.floor());
-    let lo = *v.get(i)?;
-    Some(match v.get(i + 1) {
-        Some(hi) if f > 0.0 => lo + f * (hi - lo),
-        _ => lo,
-    })
 }
 
 /// The figures of one measured life against the simulated population.
@@ -474,12 +459,6 @@ mod tests {
     /// Type-7 quantiles and the PIT with ties, on values whose answers are known.
     #[test]
     fn quantiles_and_pit_by_hand() {
-        let v = [1.0, 2.0, 3.0, 4.0, 5.0];
-        assert_eq!(quantile(&v, 0.5), Some(3.0));
-        assert_eq!(quantile(&v, 0.25), Some(2.0));
-        assert!((quantile(&v, 0.05).unwrap() - 1.2).abs() < 1e-12);
-        assert_eq!(quantile(&v, 1.0), Some(5.0));
-        assert_eq!(quantile(&[], 0.5), None);
         let sim: Vec<Option<f64>> = vec![
             Some(1.0),
             Some(2.0),
