@@ -4,7 +4,10 @@ use crate::cmd::args::{CliError, Progress};
 use crate::cmd::report::{fig, write_report};
 use crate::config::{self, ScenarioFile};
 use crate::life::dense::DenseOptions;
-use crate::life::lives::{exponent, run_lives, summarise, Initiation, LoadGroup, PUBLISHED_SLOPES};
+use crate::life::lives::{
+    against_published, exponent, run_lives, summarise, Initiation, LoadGroup,
+    PUBLISHED_LOAD_EXPONENTS_BALL, PUBLISHED_SLOPES,
+};
 use crate::life::weibull::Estimate;
 use crate::life::{LifeRun, LifeSpec};
 use clap::Args;
@@ -291,6 +294,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     let total = n * scales.len();
     let mut groups: Vec<LoadGroup> = vec![];
     let mut site = serde_json::Value::Null;
+    let mut point = true;
     for (gi, scale) in scales.iter().enumerate() {
         let mut specs = vec![];
         let mut iso = (0.0, 0.0);
@@ -303,11 +307,8 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
                 site = crate::life::site_json::site_json(&run);
             }
             if i == 0 {
-                let p = if run.life.contact_kind() == ContactKind::Point {
-                    3.0
-                } else {
-                    10.0 / 3.0
-                };
+                point = run.life.contact_kind() == ContactKind::Point;
+                let p = if point { 3.0 } else { 10.0 / 3.0 };
                 let load = run.spec.model.radial_load;
                 iso = (load, (run.life.rating() / load).powf(p) * 1e6);
             }
@@ -351,6 +352,13 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         "load_exponent": exp,
         "first_spall_load_exponent": exp_spall,
         "load_exponent_iso": [-3.0, -10.0 / 3.0],
+        "load_exponent_published": if point {
+            PUBLISHED_LOAD_EXPONENTS_BALL.iter().map(|(v, s)| json!({"exponent": v, "source": s})).collect::<Vec<_>>()
+        } else {
+            vec![json!({"exponent": -10.0 / 3.0, "source": "ISO 281, line contact"})]
+        },
+        "load_exponent_against_published": exp.as_ref().and_then(|e| against_published(e, point)),
+        "first_spall_load_exponent_against_published": exp_spall.as_ref().and_then(|e| against_published(e, point)),
         "published_slopes": PUBLISHED_SLOPES.iter().map(|(v, s)| json!({"slope": v, "source": s})).collect::<Vec<_>>(),
         "note": "the core draws four independent scatter factors per seed: subsurface fatigue, surface damage (the dent) and surface crack initiation at the dent from Weibulls of slope 1.11 (ISO 281's 10/9, Lundberg-Palmgren), spall propagation from one of slope 1.1 (Hoeprich 1992); the fitted slopes are those inputs combined through the stages (competing surface and subsurface initiation, then propagation), not independent predictions. Published slopes are of endurance tests stopped at the first spall: compare them with first_spall.weibull",
     });
@@ -406,15 +414,37 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     }
     for (what, e) in [("to failure", exp), ("to the first spall", exp_spall)] {
         match e {
-            Some(e) => println!(
-                "life–load exponent {what} {} (ISO 281: −3 ball, −10/3 roller)",
-                est(&e)
-            ),
+            Some(e) => {
+                println!(
+                    "life–load exponent {what} {} (ISO 281: −3 ball, −10/3 roller)",
+                    est(&e)
+                );
+                if let Some(r) = against_published(&e, point) {
+                    println!(
+                        "  against the published ball-bearing range [{}, {}]: value {}, interval {}",
+                        r.range[0],
+                        r.range[1],
+                        if r.value_inside { "inside" } else { "outside" },
+                        if r.interval_inside {
+                            "inside"
+                        } else if r.interval_overlaps {
+                            "overlaps it"
+                        } else {
+                            "outside"
+                        }
+                    );
+                }
+            }
             None => println!("life–load exponent: needs --loads with two or more loads"),
         }
     }
     for (v, s) in PUBLISHED_SLOPES {
         println!("published slope {v:.3}: {s}");
+    }
+    if point {
+        for (v, s) in PUBLISHED_LOAD_EXPONENTS_BALL {
+            println!("published life–load exponent {v}: {s}");
+        }
     }
     println!("wrote {}\nwrote {}", cp.display(), jp.display());
     Ok(())

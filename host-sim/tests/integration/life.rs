@@ -500,6 +500,21 @@ fn lives_give_weibull_and_load_exponent() {
         es.as_f64().is_some_and(|x| (-6.0..=-1.0).contains(&x)),
         "first-spall exponent {es}"
     );
+    // The ball bearing's published range, and the comparison consistent with the estimate.
+    let pubs: Vec<f64> = v["load_exponent_published"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["exponent"].as_f64().unwrap())
+        .collect();
+    assert_eq!(pubs, [-3.0, -4.0]);
+    let r = &v["load_exponent_against_published"];
+    assert_eq!(r["range"], serde_json::json!([-4.0, -3.0]));
+    assert_eq!(
+        r["value_inside"].as_bool().unwrap(),
+        (-4.0..=-3.0).contains(&x),
+        "{r}"
+    );
     let csv = std::fs::read_to_string(out.join("lives.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 16);
     // Every life reaches its first spall before it fails.
