@@ -283,6 +283,60 @@ fn ball_defect_lanes_equal_the_scalar_step() {
     assert_lanes_match(cfgs, [7, 8, 9, 10], 1500);
 }
 
+/// Ball defects whose lanes skip the terms together (`LaneGroup::ball_far`, a shared
+/// conservative test on the spin): K = 4 with two defects each, lengths ×1–×0.4 and slip
+/// ×12–×0 per lane (so the longest defect's slip offset sets the reach), then counts 1 and
+/// 3 mixed (the arc of the lanes' defects). Each lane's defect must actually be rolled over
+/// in the run (a non-zero defect load on some step), so a wrong skip would change its
+/// samples: leaving out the slip offset, the tail, the arc or most of the length each
+/// fails this test.
+#[test]
+fn ball_defect_lanes_skip_together_and_keep_the_scalar_bits() {
+    let mut base = thesis();
+    base.integrator = IntegratorKind::ExactFoh;
+    if let Some(d) = base.defect.as_mut() {
+        d.location = DefectLocation::Ball {
+            element: 5,
+            phase: 1.3,
+        };
+    }
+    let make = |counts: [u8; 4]| -> [ModelConfig; 4] {
+        core::array::from_fn(|i| {
+            let mut c = base.clone();
+            if let Some(d) = c.defect.as_mut() {
+                d.topography.length *= 1.0 - 0.2 * i as Real;
+                d.topography.count = counts[i];
+            }
+            // The longest defect with the largest slip, so that its offset sets the reach.
+            c.slip = c.slip.map(|mut s| {
+                s.fraction *= [12.0, 6.0, 3.0, 0.0][i];
+                s
+            });
+            c
+        })
+    };
+    for counts in [[2, 2, 2, 2], [1, 3, 1, 3]] {
+        let cfgs = make(counts);
+        let models: [Model; 4] = cfgs
+            .clone()
+            .map(|c| Model::new_checked(c).expect("valid model"));
+        let mut g: LaneGroup<4, 16> =
+            LaneGroup::new_checked(&models, &[3, 4, 5, 6]).expect("lanes");
+        let mut hit = [false; 4];
+        for _ in 0..4000 {
+            while g.step().is_none() {}
+            for (h, s) in hit.iter_mut().zip(g.stats()) {
+                *h |= s.defect_load > 0.0;
+            }
+        }
+        assert_eq!(
+            hit, [true; 4],
+            "every lane's ball defect is rolled over ({counts:?})"
+        );
+        assert_lanes_match(cfgs, [3, 4, 5, 6], 4000);
+    }
+}
+
 /// Lanes at their own speed (`lanes/own.rs`), K = 4: constant speeds of 20–35 Hz, one
 /// ramp, on the roughened, wavy thesis bearing (so the roughness draws, the contact and the
 /// defect window are decided lane by lane), with per-lane load and slip as well.

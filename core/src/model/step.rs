@@ -240,17 +240,30 @@ impl Model {
         dcs: (Real, Real),
         sin_skip: Real,
     ) -> bool {
+        self.ball_position(k, d, dcs)
+            .is_none_or(|(sin_t, rel)| sin_t > sin_skip && rel > st.window_cos)
+    }
+
+    /// The defective ball's `(sin θ, cos of its angle to the defect phasor dcs)` for
+    /// kinematics `k`, by the element loop's own expressions: the geometric part of
+    /// [`Model::ball_in_use`], the same for lanes that share their kinematics. `None` for an
+    /// element index out of range.
+    #[inline(always)]
+    pub(super) fn ball_position(
+        &self,
+        k: &Kinematics,
+        d: DefectConfig,
+        dcs: (Real, Real),
+    ) -> Option<(Real, Real)> {
         let e = match d.location {
             DefectLocation::Ball { element, .. } => element as usize,
             _ => 0,
         };
-        let Some((ce, se)) = self.elem_cs.get(e).copied() else {
-            return true;
-        };
+        let (ce, se) = self.elem_cs.get(e).copied()?;
         let (cc, sc) = k.cage_cs;
         let sin_t = sc * ce + cc * se;
         let cos_t = cc * ce - sc * se;
-        sin_t > sin_skip && cos_t * dcs.0 + sin_t * dcs.1 > st.window_cos
+        Some((sin_t, cos_t * dcs.0 + sin_t * dcs.1))
     }
 
     /// Terms `(unload, extra deflection (m), additive force (N))` of ball defect `d` on the
@@ -268,6 +281,27 @@ impl Model {
         k: &Kinematics,
         d: DefectConfig,
     ) -> (Real, Real, Real) {
+        self.ball_defect_from(st, k, d, self.ball_spin_base(st, k))
+    }
+
+    /// The ball's spin angle at this evaluation before its slip offset (rad): the state's,
+    /// advanced by BSF × the shaft's advance within the step. The kinematic part of
+    /// [`Model::ball_defect`], the same for lanes that share their kinematics.
+    #[inline(always)]
+    pub(super) fn ball_spin_base<const NB: usize>(&self, st: &State<NB>, k: &Kinematics) -> Real {
+        st.spin_angle + self.spin_order * angle_diff(k.shaft_angle, st.shaft_angle)
+    }
+
+    /// [`Model::ball_defect`] from the spin base `base` ([`Model::ball_spin_base`]): the
+    /// per-lane part (the element's slip, the defect's shape and tail).
+    #[inline(always)]
+    pub(super) fn ball_defect_from<const NB: usize>(
+        &self,
+        st: &State<NB>,
+        k: &Kinematics,
+        d: DefectConfig,
+        base: Real,
+    ) -> (Real, Real, Real) {
         let shape = &st.shape;
         let e = match d.location {
             DefectLocation::Ball { element, .. } => element as usize,
@@ -275,9 +309,7 @@ impl Model {
         };
         let slip = st.slip.get(e).copied().unwrap_or(0.0);
         let theta = k.cage_angle + self.elem_angle.get(e).copied().unwrap_or(0.0) + slip;
-        let spin = st.spin_angle
-            + self.spin_order * angle_diff(k.shaft_angle, st.shaft_angle)
-            + self.slip_spin * slip;
+        let spin = base + self.slip_spin * slip;
         let mut terms = (0.0, 0.0, 0.0);
         for contact in [0.0, PI] {
             for kd in 0..shape.count {

@@ -6,10 +6,10 @@ use super::super::defect_term::race_terms;
 use super::super::step::redraw_slips;
 use super::super::{rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
 use super::LaneGroup;
-use crate::forces::defect::DefectLocation;
+use crate::forces::defect::{DefectConfig, DefectLocation};
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::IntegratorKind;
-use crate::real::Real;
+use crate::real::{angle_diff, Real, PI};
 use crate::rng::{uniform_pm1_lanes, Xoshiro128pp};
 
 /// Steps between two checks of the slip bookkeeping (as the scalar step).
@@ -452,6 +452,86 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         sigma
     }
 
+    /// Every lane's ball-defect terms this step ([`Model::ball_defect`], zero for a lane
+    /// whose defective ball is outside its window), or `None` when no lane's is in use or
+    /// the defect is not on a ball. For lanes that share their kinematics: the ball's
+    /// position and its spin before slip are computed once, from lane 0's state (the other
+    /// lanes' kinematic fields equal it once synchronised, so nothing is copied), and only
+    /// the window test and the per-lane terms lane by lane — the scalar expressions in the
+    /// same order, so the same bits.
+    #[inline(always)]
+    fn ball_terms(
+        &self,
+        k: &Kinematics,
+        dcs: (Real, Real),
+        sin_skip: Real,
+    ) -> Option<[(Real, Real, Real); K]> {
+        let m0 = self.models.first()?;
+        let d = m0.cfg.defect.filter(|d| d.location.is_ball())?;
+        // As `Model::ball_in_use`: an element index out of range counts as in use.
+        let pos = m0.ball_position(k, d, dcs);
+        let used =
+            |st: &State<NB>| pos.is_none_or(|(sin_t, rel)| sin_t > sin_skip && rel > st.window_cos);
+        if !self.states.iter().any(used) {
+            return None;
+        }
+        let base = m0.ball_spin_base(self.states.first()?, k);
+        if self.ball_far(d, base) {
+            return None;
+        }
+        Some(core::array::from_fn(|l| {
+            match (self.models.get(l), self.states.get(l)) {
+                (Some(m), Some(st)) if used(st) => match m.cfg.defect {
+                    Some(dl) => m.ball_defect_from(st, k, dl, base),
+                    None => (0.0, 0.0, 0.0),
+                },
+                _ => (0.0, 0.0, 0.0),
+            }
+        }))
+    }
+
+    /// Whether no lane's ball-defect term can be non-zero this step, decided once from the
+    /// spin base `base` ([`Model::ball_spin_base`]) — a conservative test, so the terms the
+    /// lanes do evaluate keep the scalar bits. Lane `l`'s term from its defect `kd` at
+    /// contact `c` is non-zero only when `angle_diff(spin_l, c + kd·s_l)` lies in
+    /// `[−L_l/2, (1/2 + tail_l)·L_l)` (`L` the defect's length angle, `s` its spacing;
+    /// `add_term`'s `0 ≤ ξ < 1 + tail`), with `spin_l = base + o_l` (`o_l` its slip offset).
+    /// So with `r_l = max(1/2, 1/2 + tail_l)·L_l + |o_l|`, `R = max r_l` and `S = max (n_l −
+    /// 1)·s_l`, every non-zero term needs `angle_diff(base, c)` within `[−R, S + R]`
+    /// (mod 2π); outside it by a margin far above the rounding of these few operations
+    /// (10⁻⁶ rad against ~10⁻¹⁵), at both contacts, no lane's term is evaluated. `false`
+    /// (evaluate) when a length angle is not finite and positive, or the arc comes near a
+    /// whole turn.
+    #[inline(always)]
+    fn ball_far(&self, d: DefectConfig, base: Real) -> bool {
+        const MARGIN: Real = 1e-6;
+        let e = match d.location {
+            DefectLocation::Ball { element, .. } => element as usize,
+            _ => 0,
+        };
+        let (mut reach, mut arc): (Real, Real) = (0.0, 0.0);
+        for (m, st) in self.models.iter().zip(&self.states) {
+            let l = st.shape.length_angle;
+            if l <= 0.0 || !l.is_finite() {
+                return false;
+            }
+            let half = if st.tail > 0.0 { 0.5 + st.tail } else { 0.5 };
+            let slip = st.slip.get(e).copied().unwrap_or(0.0);
+            reach = reach.max(l * half + (m.slip_spin * slip).abs());
+            arc = arc.max(Real::from(st.shape.count.saturating_sub(1)) * st.shape.spacing_angle);
+        }
+        let (lo, hi) = (reach + MARGIN, arc + reach + MARGIN);
+        if lo.is_nan() || hi.is_nan() || lo >= PI || lo + hi >= 2.0 * PI {
+            return false;
+        }
+        [0.0, PI].into_iter().all(|contact| {
+            // `angle_diff` is in [−π, π); move it into [−lo, 2π − lo).
+            let a = angle_diff(base, contact);
+            let a = if a < -lo { a + 2.0 * PI } else { a };
+            a > hi
+        })
+    }
+
     /// Hertz element forces of every lane (N), as the scalar `element_forces` with the
     /// roughness drawn in the loop: the geometry of each element once, the per-lane work
     /// in loops over the lanes.
@@ -477,30 +557,13 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, m0.defect_offset_cs),
             _ => m0.defect_offset_cs,
         };
-        let ball_used = m0.cfg.defect.is_some_and(|d| d.location.is_ball())
-            && models.iter().zip(&self.states).any(|(m, st)| {
-                m.cfg
-                    .defect
-                    .is_some_and(|dl| m.ball_in_use(st, k, dl, (dc, ds), sin_skip))
-            });
+        let ball = self
+            .ball_terms(k, (dc, ds), sin_skip)
+            .unwrap_or([(0.0, 0.0, 0.0); K]);
         let rough_on = m0.cfg.roughness.is_some();
-        if ball_used || (rough_on && models.iter().any(|m| m.rot.is_none())) {
+        if rough_on && models.iter().any(|m| m.rot.is_none()) {
             self.sync_kinematics();
         }
-        let ball: [(Real, Real, Real); K] = match m0.cfg.defect {
-            Some(d) if ball_used && d.location.is_ball() => {
-                core::array::from_fn(|l| match (models.get(l), self.states.get(l)) {
-                    (Some(m), Some(st)) => match m.cfg.defect {
-                        Some(dl) if m.ball_in_use(st, k, dl, (dc, ds), sin_skip) => {
-                            m.ball_defect(st, k, dl)
-                        }
-                        _ => (0.0, 0.0, 0.0),
-                    },
-                    _ => (0.0, 0.0, 0.0),
-                })
-            }
-            _ => [(0.0, 0.0, 0.0); K],
-        };
         let is_ball = location.is_some_and(|l| l.is_ball());
         let sigma = if rough_on {
             self.rough_sigmas()
