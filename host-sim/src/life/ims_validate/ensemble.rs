@@ -456,9 +456,10 @@ pub fn validate_ensemble(
 mod tests {
     use super::*;
 
-    /// Type-7 quantiles and the PIT with ties, on values whose answers are known.
+    /// A spread's band (type-7 quantiles of the defined values) and its PIT with ties, on
+    /// values whose answers are known.
     #[test]
-    fn quantiles_and_pit_by_hand() {
+    fn spread_band_and_pit_by_hand() {
         let sim: Vec<Option<f64>> = vec![
             Some(1.0),
             Some(2.0),
