@@ -97,6 +97,10 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
         let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
         let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
+        // The generators in a local for the loop: drawn in place in the group, each lane's
+        // words went through memory between two elements with stores and loads of unequal
+        // widths (a store-forwarding stall per draw, the sweep's hottest instruction).
+        let mut rng = self.rng;
         for (e, ((ecs, wcs), elem_angle)) in ecs_all.iter().zip(wcs_all).zip(ang_all).enumerate() {
             let (ce, se) = *ecs;
             let mut sin_t = [0.0; K];
@@ -107,7 +111,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             if rough_on {
                 let draw = sin_t.map(|s| s > sin_skip - ROUGH_DRAW_MARGIN);
                 if draw.iter().any(|d| *d) {
-                    let u = uniform_pm1_where(&mut self.rng, &draw);
+                    let u = uniform_pm1_where(&mut rng, &draw);
                     for (((r, s), ui), d) in rough.iter_mut().zip(&sigma).zip(&u).zip(&draw) {
                         *r = if *d { *s * *ui } else { 0.0 };
                     }
@@ -214,6 +218,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                 *fl -= settle_load(*ql, *ul, *al, ml, dl) * *s;
             }
         }
+        self.rng = rng;
         for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
             s.max_load = m;
             s.defect_load = d;

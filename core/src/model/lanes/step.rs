@@ -584,11 +584,15 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
         let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
         let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
+        // The generators in a local for the loop: drawn in place in the group, each lane's
+        // words went through memory between two elements with stores and loads of unequal
+        // widths (a store-forwarding stall per draw, the sweep's hottest instruction).
+        let mut rng = self.rng;
         for (e, ((ecs, wcs), elem_angle)) in ecs_all.iter().zip(wcs_all).zip(ang_all).enumerate() {
             let (ce, se) = *ecs;
             let sin_t = sc * ce + cc * se;
             let rough = if rough_on && sin_t > sin_skip - ROUGH_DRAW_MARGIN {
-                let u = uniform_pm1_lanes(&mut self.rng);
+                let u = uniform_pm1_lanes(&mut rng);
                 let mut r = [0.0; K];
                 for ((ri, s), ui) in r.iter_mut().zip(&sigma).zip(&u) {
                     *ri = *s * *ui;
@@ -668,6 +672,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                 *fl -= settle_load(*ql, *ul, *al, ml, dl) * sin_t;
             }
         }
+        self.rng = rng;
         for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
             s.max_load = m;
             s.defect_load = d;
