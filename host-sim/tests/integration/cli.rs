@@ -259,6 +259,37 @@ fn presets_and_bench_json() {
     assert_eq!(v["oversample"], 2);
 }
 
+/// `bench --lanes` on the two documented lane configurations (inner race with three
+/// effects; ball defect with slip and the sensor, whose lanes skip their ball terms
+/// together): the host's lane path (packed square roots, AVX2 where the CPU has it) gives
+/// the scalar step's samples bit for bit. The speed figures are not asserted.
+#[test]
+fn lane_bench_configs_are_bit_identical_to_the_scalar_step() {
+    let docs = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/");
+    for (cfg, k) in [
+        ("bench-lanes-cwru-inner.toml", "4"),
+        ("bench-lanes-cwru-ball.toml", "16"),
+    ] {
+        let path = format!("{docs}{cfg}");
+        let o = wearsim(&[
+            "bench",
+            "--lanes",
+            k,
+            "--config",
+            &path,
+            "--fs",
+            "12000",
+            "--seconds",
+            "1",
+            "--json",
+        ]);
+        assert!(o.status.success(), "{cfg}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(v["bit_identical"], true, "{cfg}: {v}");
+        assert_eq!(v["lanes"].as_u64(), k.parse().ok(), "{cfg}");
+    }
+}
+
 /// `[defect] location = "ball"`: the element and the spin phase (`angle_deg`) reach the core,
 /// and the simulation's envelope spectrum is labelled with the ball's lines.
 #[test]
