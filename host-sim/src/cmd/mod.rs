@@ -14,6 +14,7 @@ pub mod exit;
 pub mod features;
 pub mod gap;
 pub mod gap_validate;
+pub mod ims;
 pub mod ims_ensemble;
 pub mod life;
 pub mod presets;
@@ -48,10 +49,10 @@ pub enum Command {
     #[command(allow_negative_numbers = true)]
     Life(life::LifeArgs),
     /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
-    ImsCompare(life::ImsCompareArgs),
+    ImsCompare(ims::ImsCompareArgs),
     /// Hold simulated lives against every failed IMS bearing: calibrate on one life, judge
     /// on the others, leave-one-life-out.
-    ImsValidate(life::ImsValidateArgs),
+    ImsValidate(ims::ImsValidateArgs),
     /// Measure the real-time factor of the reference scenario on one core.
     Bench(crate::cmd::args::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
@@ -90,8 +91,8 @@ pub fn dispatch(command: Command) -> Result<(), CliError> {
         Command::Bench(a) => bench::run(a),
         Command::Capture(a) => capture::run(a).map_err(CliError::from),
         Command::Life(a) => life::life_cmd(&a),
-        Command::ImsCompare(a) => life::ims_compare_cmd(&a),
-        Command::ImsValidate(a) => life::ims_validate_cmd(&a),
+        Command::ImsCompare(a) => ims::ims_compare_cmd(&a),
+        Command::ImsValidate(a) => ims::ims_validate_cmd(&a),
         Command::Presets { json } => presets::run(json),
         Command::Gap(a) => gap::run(&a),
         Command::GapValidate(a) => gap_validate::run(&a),
