@@ -370,32 +370,21 @@ pub fn summarise(lives: &[EnsembleLife]) -> EnsembleSummary {
         let with: Vec<bool> = lives.iter().filter_map(|l| f(l).inside()).collect();
         [with.iter().filter(|b| **b).count(), with.len()]
     };
+    // Median over the lives of one figure, a missing one as NaN (`figures::median` keeps
+    // non-finite values, so missing figures show rather than drop out).
+    let med = |f: fn(&EnsembleLife) -> Option<f64>| {
+        median_of(lives.iter().map(|l| f(l).unwrap_or(f64::NAN)))
+    };
     EnsembleSummary {
         lives: lives.len(),
         mean_coverage_life: lives.iter().map(|l| l.coverage_life).sum::<f64>() / n,
         mean_coverage_hours: lives.iter().map(|l| l.coverage_hours).sum::<f64>() / n,
-        median_distance_to_median_db: median_of(lives.iter().map(|l| l.distance_to_median_db)),
-        median_seed_distance_db: median_of(
-            lives
-                .iter()
-                .map(|l| l.distance_db.median.unwrap_or(f64::NAN)),
-        ),
-        median_distance_flat_db: median_of(lives.iter().map(|l| l.distance_flat_db)),
-        median_late_to_median_db: median_of(
-            lives
-                .iter()
-                .map(|l| l.distance_late_to_median_db.unwrap_or(f64::NAN)),
-        ),
-        median_late_seed_db: median_of(
-            lives
-                .iter()
-                .map(|l| l.distance_late_db.median.unwrap_or(f64::NAN)),
-        ),
-        median_late_flat_db: median_of(
-            lives
-                .iter()
-                .map(|l| l.distance_late_flat_db.unwrap_or(f64::NAN)),
-        ),
+        median_distance_to_median_db: med(|l| Some(l.distance_to_median_db)),
+        median_seed_distance_db: med(|l| l.distance_db.median),
+        median_distance_flat_db: med(|l| Some(l.distance_flat_db)),
+        median_late_to_median_db: med(|l| l.distance_late_to_median_db),
+        median_late_seed_db: med(|l| l.distance_late_db.median),
+        median_late_flat_db: med(|l| l.distance_late_flat_db),
         onset_to_failure_inside: count(|l| &l.onset_to_failure_h),
         end_level_inside: count(|l| &l.end_level),
         onset_inside: count(|l| &l.onset),
