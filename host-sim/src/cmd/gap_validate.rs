@@ -38,6 +38,11 @@ pub struct GapValidateArgs {
     /// before the calibration, for comparison.
     #[arg(long)]
     pub no_calibration: bool,
+    /// At each greedy step, refit the effects already added with the candidate on (one
+    /// backfitting round; an experiment, off by default: see
+    /// `docs/sim-to-real-results.md`, "Pairs of effects").
+    #[arg(long)]
+    pub backfit: bool,
     /// Seed of the parameter draws and realisations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -125,6 +130,7 @@ impl GapValidateArgs {
             half_s: self.half,
             noise: self.noise,
             jobs: self.jobs.unwrap_or(d.jobs),
+            backfit: self.backfit,
         })
     }
 }
@@ -230,6 +236,14 @@ pub fn print(r: &TwinReport) {
             100.0 * any,
             100.0 * both
         );
+    }
+    for (k, d) in [("two", r.pairs_detectable), ("three", r.triples_detectable)] {
+        if let Some((n, named)) = d {
+            println!(
+                "{k} effects withheld, each detectable on its own ({n} trials): all named {named} ({:.0} %)",
+                100.0 * named as f64 / n.max(1) as f64
+            );
+        }
     }
     println!();
     for (a, b, why) in &r.indistinguishable {

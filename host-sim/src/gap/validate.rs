@@ -15,7 +15,7 @@
 pub use super::attribute::{same_class, INDISTINGUISHABLE};
 
 use super::attribute::{attribute, Options};
-use super::matched::{merge, Evaluator, Matched, MEMO};
+use super::matched::{merge, without, Evaluator, Matched, MEMO};
 use super::memo::Memo;
 use super::nuisance::{calibrate, Calibration, Tolerances};
 use super::space::{self, FitSpace};
@@ -60,6 +60,8 @@ pub struct TwinOptions {
     pub noise: f64,
     /// Worker threads.
     pub jobs: usize,
+    /// The greedy steps refit the effects kept before ([`Options::backfit`]).
+    pub backfit: bool,
 }
 
 impl Default for TwinOptions {
@@ -77,6 +79,7 @@ impl Default for TwinOptions {
             half_s: 1.0,
             noise: 0.01,
             jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            backfit: false,
         }
     }
 }
@@ -116,6 +119,11 @@ pub struct Trial {
     /// out-of-library mechanism), over the noise-only gap. For the report only: nothing
     /// is redrawn or chosen on it.
     pub strength: f64,
+    /// Each withheld effect's own strength, in the order of `withheld`: the total gap
+    /// between the third run and the twin's configuration with the *other* withheld
+    /// effects at their true values (× the noise-only gap), i.e. what is left for this
+    /// effect to explain once the others are known. Equal to `strength` for one effect.
+    pub strengths: Vec<f64>,
     /// Effects the greedy addition kept.
     pub kept: Vec<String>,
     /// Held-out total gap of the final (greedy) model.
@@ -210,12 +218,20 @@ pub struct TwinReport {
     /// Two-effect trials: fraction whose first-ranked effect is one of the two withheld,
     /// and fraction whose two greedy additions are exactly the two.
     pub pairs: Option<(usize, f64, f64)>,
+    /// Two-effect trials in which each withheld effect is detectable on its own
+    /// ([`Trial::strengths`] ≥ [`DETECTABLE`]), and how many of them the greedy additions
+    /// name exactly: the pair figure on the footing of the single-effect
+    /// `in_set_detectable`.
+    pub pairs_detectable: Option<(usize, usize)>,
     /// No-effect twins: trials, and how many the diagnosis attributed to an effect
     /// (the false-attribution rate is their ratio).
     pub null: Option<(usize, usize)>,
     /// Three-effect trials: trials, and the fraction whose greedy additions hold all three
     /// (the indistinguishable pair counted as one class).
     pub triples: Option<(usize, f64)>,
+    /// Three-effect trials with every withheld effect detectable on its own, and how many
+    /// of them the greedy additions name exactly.
+    pub triples_detectable: Option<(usize, usize)>,
     /// Out-of-library twins: trials, and how many the final model left not closed.
     pub outside: Option<(usize, usize)>,
     /// Detection power against strength, over the single-effect trials.
@@ -450,6 +466,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let ev = Evaluator::new(opt.jobs);
     let aopt = Options {
         max_effects: 1,
+        backfit: opt.backfit,
         ..Options::default()
     };
     let mut rng = Xoshiro128pp::from_u64(opt.seed);
@@ -509,6 +526,19 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         let strength = ev.total(std::slice::from_ref(&r.strength), &setup.floor) / noise_gap;
         let mut truth = setup.floor;
         merge(&mut truth, &fx);
+        // Each withheld effect's own strength: the gap the others at their true values
+        // leave (for one effect, the strength itself).
+        let strengths = if withheld.len() < 2 {
+            vec![strength; withheld.len()]
+        } else {
+            withheld
+                .iter()
+                .map(|s| {
+                    without(&truth, s.effect)
+                        .map(|rest| ev.total(std::slice::from_ref(&r.strength), &rest) / noise_gap)
+                })
+                .collect::<Result<Vec<_>, _>>()?
+        };
         let oracle = ev.total(std::slice::from_ref(&r.truth), &truth);
         let (calibration, train, holdout) = if opt.calibrate.is_none() {
             (None, vec![r.train], vec![r.holdout])
@@ -560,6 +590,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             calibration,
             outside: out.map(|o| o.named()),
             strength,
+            strengths,
             kept: a.kept.clone(),
             final_gap: a.final_holdout,
             closed: a.final_holdout <= DETECTABLE * noise_gap,
@@ -611,6 +642,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     // Two and three withheld effects at once: all of them named by the greedy additions.
     let mut pairs = None;
     let mut triples = None;
+    let (mut pairs_detectable, mut triples_detectable) = (None, None);
     for (k, n, seed0) in [
         (2, opt.pair_trials, 7_000_003),
         (3, opt.triple_trials, 8_000_009),
@@ -618,7 +650,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         if n == 0 || chosen.len() < k {
             continue;
         }
-        let (mut any, mut all_named) = (0, 0);
+        let (mut any, mut all_named, mut seen, mut seen_named) = (0, 0, 0, 0);
         for t in 0..n {
             let picked: Vec<&FitSpace> = distinct(t, k, chosen.len())
                 .into_iter()
@@ -632,14 +664,15 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             {
                 any += 1;
             }
-            if tr.kept.len() == k
+            let named = tr.kept.len() == k
                 && tr
                     .withheld
                     .iter()
-                    .all(|w| tr.kept.iter().any(|x| same_class(w, x)))
-            {
-                all_named += 1;
-            }
+                    .all(|w| tr.kept.iter().any(|x| same_class(w, x)));
+            let detectable = tr.strengths.iter().all(|s| *s >= DETECTABLE);
+            all_named += usize::from(named);
+            seen += usize::from(detectable);
+            seen_named += usize::from(detectable && named);
             trials.push(tr);
             done += 1;
             progress(done, total);
@@ -647,8 +680,10 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         let nf = n as f64;
         if k == 2 {
             pairs = Some((n, any as f64 / nf, all_named as f64 / nf));
+            pairs_detectable = Some((seen, seen_named));
         } else {
             triples = Some((n, all_named as f64 / nf));
+            triples_detectable = Some((seen, seen_named));
         }
     }
     // Summaries.
@@ -734,8 +769,10 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             .map(|(a, b, c)| (a.to_string(), b.to_string(), c.to_string()))
             .collect(),
         pairs,
+        pairs_detectable,
         null,
         triples,
+        triples_detectable,
         outside,
         power,
         mismatch: format!("{:?}", opt.mismatch),

@@ -306,3 +306,47 @@ fn significance_threshold_comes_from_no_effect_twins() {
     assert_eq!(false_alarm_threshold(&null, 0.05), Some(SIGNIFICANT_GAP));
     assert_eq!(r.null_threshold, Some(SIGNIFICANT_GAP));
 }
+
+/// Pairs of withheld effects report each effect's own strength (the gap left with the
+/// other at its true value): one per effect, detectable for these two strong effects of
+/// seed 11 (3.9–41 × the noise-only gap; with neither effect taken out of the truth it
+/// would sit at the exact model's ≈ 1), and not the pair's strength (both taken out),
+/// while the single-effect trials' own strength is their strength. Two pair trials.
+#[test]
+fn pair_trials_report_each_effects_own_strength() {
+    let opt = TwinOptions {
+        trials: 1,
+        effects: vec!["edge-shape".into(), "sensor".into()],
+        pair_trials: 2,
+        seed: 11,
+        ..TwinOptions::default()
+    };
+    let r = validate(&opt, &|_, _| {}).expect("twin experiments run");
+    let mut pairs = 0;
+    for t in &r.trials {
+        assert_eq!(t.strengths.len(), t.withheld.len(), "{t:?}");
+        if t.withheld.len() == 1 {
+            assert_eq!(t.strengths, vec![t.strength]);
+            continue;
+        }
+        pairs += 1;
+        for (w, s) in t.withheld.iter().zip(&t.strengths) {
+            assert!(
+                s.is_finite() && *s >= DETECTABLE,
+                "{w}: own strength {s:.2}, the exact model's {:.2}",
+                t.oracle / r.noise_only_gap
+            );
+        }
+        assert!(
+            t.strengths
+                .iter()
+                .any(|s| (s - t.strength).abs() > 0.01 * t.strength),
+            "own strengths {:?} are the pair's {}",
+            t.strengths,
+            t.strength
+        );
+    }
+    assert_eq!(pairs, 2);
+    let (n, named) = r.pairs_detectable.expect("pair figures");
+    assert!(named <= n && n <= 2, "{named}/{n}");
+}
