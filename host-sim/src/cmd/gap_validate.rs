@@ -246,6 +246,18 @@ pub fn print(r: &TwinReport) {
         }
     }
     println!();
+    println!("confounded sets at other angles (detectable single-effect trials):");
+    for a in &r.set_angles {
+        println!(
+            "  {:>4.1}°: truth in set {}/{}, worst effect {:.0} %, largest mean set size {:.2}",
+            a.angle_deg,
+            a.in_set,
+            a.detectable,
+            100.0 * a.worst_effect_in_set,
+            a.largest_mean_set_size
+        );
+    }
+    println!();
     for (a, b, why) in &r.indistinguishable {
         println!("indistinguishable: {a} / {b}: {why}");
     }

@@ -23,6 +23,7 @@ pub mod space;
 pub mod stability;
 pub mod stationary;
 pub mod twin;
+pub mod twin_report;
 pub mod validate;
 
 pub use cells::{cells, CellSpec, CellValue};

@@ -13,17 +13,21 @@
 //! are all named.
 
 pub use super::attribute::{same_class, INDISTINGUISHABLE};
+pub use super::twin_report::{
+    AngleRow, EffectRate, PowerBin, Reproducer, Trial, TwinReport, DETECTABLE, SET_ANGLES,
+    STRENGTH_BINS,
+};
 
 use super::attribute::{attribute, Options};
 use super::matched::{merge, without, Evaluator, Matched, MEMO};
 use super::memo::Memo;
-use super::nuisance::{calibrate, Calibration, Tolerances};
+use super::nuisance::{calibrate, Tolerances};
 use super::space::{self, FitSpace};
 use super::twin::{Mismatch, Outside};
+use super::twin_report::{angle_curve, holds, mean_size};
 use super::{CellSpec, Reference};
 use crate::analysis::stats::{self, rms};
 use crate::analysis::FaultFamily;
-use serde::Serialize;
 use std::time::Instant;
 use wearsim_core::effects::Effects;
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation, DefectModel};
@@ -84,167 +88,8 @@ impl Default for TwinOptions {
     }
 }
 
-/// One trial.
-#[derive(Debug, Clone, Serialize)]
-pub struct Trial {
-    /// Effects withheld (switched on in the "measured" twin).
-    pub withheld: Vec<String>,
-    /// Their parameter values (catalogue units).
-    pub params: Vec<Vec<(String, f64)>>,
-    /// The effect the diagnosis ranked first (none: no effect shrank the gap).
-    pub ranked_first: Option<String>,
-    /// The reported set: the first-ranked effect and those confounded with it
-    /// ([`super::identify`]); empty when none shrank the gap.
-    pub reported_set: Vec<String>,
-    /// Parameters of the first-ranked effect as fitted.
-    pub fitted: Vec<super::fit::FittedParam>,
-    /// Held-out total gap of the baseline.
-    pub before: f64,
-    /// Held-out total gap with the first-ranked effect added.
-    pub after: f64,
-    /// Held-out total gap of the exactly right model (the withheld effects at their true
-    /// parameters, another realisation): what remains from noise alone in this trial.
-    pub oracle: f64,
-    /// Simulations this trial ran.
-    pub simulations: usize,
-    /// The twin's mismatch factors (name, factor; empty without mismatch).
-    pub mismatch: Vec<(String, f64)>,
-    /// The rig as the diagnosis calibrated it on the training run (compare with
-    /// `mismatch`); `null` without calibration.
-    pub calibration: Option<Calibration>,
-    /// The out-of-library mechanism's parameters, when the twin has one.
-    pub outside: Option<Vec<(String, f64)>>,
-    /// Strength of what was withheld: the total gap between a third, independent run of
-    /// the twin and the twin's own configuration without the withheld effects (or the
-    /// out-of-library mechanism), over the noise-only gap. For the report only: nothing
-    /// is redrawn or chosen on it.
-    pub strength: f64,
-    /// Each withheld effect's own strength, in the order of `withheld`: the total gap
-    /// between the third run and the twin's configuration with the *other* withheld
-    /// effects at their true values (× the noise-only gap), i.e. what is left for this
-    /// effect to explain once the others are known. Equal to `strength` for one effect.
-    pub strengths: Vec<f64>,
-    /// Effects the greedy addition kept.
-    pub kept: Vec<String>,
-    /// Held-out total gap of the final (greedy) model.
-    pub final_gap: f64,
-    /// The final model closes the gap: its held-out total is within [`DETECTABLE`] × the
-    /// noise-only gap.
-    pub closed: bool,
-    /// Draws before this one that the model refused (a configuration outside what it
-    /// can integrate at the scenario's rate); such draws are drawn again.
-    pub refused: usize,
-}
-
 /// Refused twin draws allowed per trial.
 pub const MAX_REFUSED: usize = 20;
-
-/// A withheld effect counts as detectable when its strength ([`Trial::strength`]) is at
-/// least this multiple of the noise-only gap
-/// ([`TwinReport::noise_only_gap`]); the same multiple of the noise-only gap left after
-/// the final model counts as a gap the library did not close.
-pub const DETECTABLE: f64 = 2.0;
-
-/// Edges of the strength bins of the detection-power table (multiples of the noise-only
-/// gap).
-pub const STRENGTH_BINS: [f64; 5] = [0.0, 1.0, 2.0, 4.0, 8.0];
-
-/// Detection power in one band of effect strength (single-effect trials).
-#[derive(Debug, Clone, Serialize)]
-pub struct PowerBin {
-    /// Lower edge of the strength band (× noise-only gap; the band ends at the next edge).
-    pub from: f64,
-    /// Trials whose strength is in the band.
-    pub trials: usize,
-    /// Of them, trials whose reported set holds the withheld effect.
-    pub in_set: usize,
-}
-
-/// Per-effect summary.
-#[derive(Debug, Clone, Serialize)]
-pub struct EffectRate {
-    /// Effect withheld.
-    pub effect: String,
-    /// Trials.
-    pub trials: usize,
-    /// Trials in which it was ranked first.
-    pub top1: usize,
-    /// `top1 / trials`.
-    pub rate: f64,
-    /// Trials in which the first-ranked effect was it or one it cannot be told apart from.
-    pub top1_class: usize,
-    /// Median over trials of the held-out total gap after adding the first-ranked
-    /// effect, divided by the trial's noise-only gap ([`Trial::oracle`]).
-    pub median_after_over_noise: f64,
-    /// Median held-out shrink of the total gap.
-    pub median_shrink: f64,
-    /// Trials whose reported set (first-ranked effect and its confounded set) holds it.
-    pub in_set: usize,
-    /// Mean size of the reported set over its trials (0 when nothing was named).
-    pub mean_set_size: f64,
-    /// Trials in which it was detectable ([`DETECTABLE`]).
-    pub detectable: usize,
-    /// Of those, trials whose reported set holds it.
-    pub in_set_detectable: usize,
-    /// Mean reported set size over the detectable trials.
-    pub mean_set_size_detectable: f64,
-}
-
-/// The result of `gap-validate`.
-#[derive(Debug, Clone, Serialize)]
-pub struct TwinReport {
-    /// Scenario the twins are built on.
-    pub scenario: String,
-    /// Held-out total gap of the baseline against twins without any withheld effect
-    /// (median over trials): the floor of the gap measure itself.
-    pub noise_only_gap: f64,
-    /// The significance level this batch's no-effect twins imply
-    /// ([`super::attribute::false_alarm_threshold`] at 5 %: the 95th percentile of their
-    /// held-out gaps, rounded up to 0.1), to compare with the one in force
-    /// ([`super::attribute::SIGNIFICANT_GAP`]) or to pass to `gap --significant-gap` for a
-    /// rig of one's own; `null` with fewer than two no-effect twins.
-    pub null_threshold: Option<f64>,
-    /// Per-effect identification.
-    pub rates: Vec<EffectRate>,
-    /// Confusion matrix: `confusion[i][j]` = trials withholding `labels[i]` whose first
-    /// ranked effect was `labels[j]` (last column: none).
-    pub confusion: Vec<Vec<usize>>,
-    /// Row labels of the confusion matrix (effects withheld).
-    pub labels: Vec<String>,
-    /// Column labels (effects ranked first, and `none`).
-    pub columns: Vec<String>,
-    /// Pairs the cells cannot tell apart, with the reason.
-    pub indistinguishable: Vec<(String, String, String)>,
-    /// Two-effect trials: fraction whose first-ranked effect is one of the two withheld,
-    /// and fraction whose two greedy additions are exactly the two.
-    pub pairs: Option<(usize, f64, f64)>,
-    /// Two-effect trials in which each withheld effect is detectable on its own
-    /// ([`Trial::strengths`] ≥ [`DETECTABLE`]), and how many of them the greedy additions
-    /// name exactly: the pair figure on the footing of the single-effect
-    /// `in_set_detectable`.
-    pub pairs_detectable: Option<(usize, usize)>,
-    /// No-effect twins: trials, and how many the diagnosis attributed to an effect
-    /// (the false-attribution rate is their ratio).
-    pub null: Option<(usize, usize)>,
-    /// Three-effect trials: trials, and the fraction whose greedy additions hold all three
-    /// (the indistinguishable pair counted as one class).
-    pub triples: Option<(usize, f64)>,
-    /// Three-effect trials with every withheld effect detectable on its own, and how many
-    /// of them the greedy additions name exactly.
-    pub triples_detectable: Option<(usize, usize)>,
-    /// Out-of-library twins: trials, and how many the final model left not closed.
-    pub outside: Option<(usize, usize)>,
-    /// Detection power against strength, over the single-effect trials.
-    pub power: Vec<PowerBin>,
-    /// The mismatch ranges the twins were drawn with.
-    pub mismatch: String,
-    /// Every trial.
-    pub trials: Vec<Trial>,
-    /// Simulations run.
-    pub simulations: usize,
-    /// Wall-clock time (s).
-    pub seconds: f64,
-}
 
 /// The twin scenario: the CWRU drive-end bearing (cwru-6205-de) with a 0.007 in inner-race
 /// defect (EDM seeded, 0.011 in deep) at 1797 rpm, 12 kHz — the inner race so that every
@@ -311,16 +156,6 @@ fn draw(space: &FitSpace, rng: &mut Xoshiro128pp) -> Vec<f64> {
     #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
     let mut u01 = || 0.5 * (rng.uniform_pm1() as f64 + 1.0);
     space.fitted.iter().map(|_| u01()).collect()
-}
-
-/// Whether trial `t`'s reported set holds effect `e`.
-fn holds(t: &Trial, e: &str) -> bool {
-    t.reported_set.iter().any(|x| x == e)
-}
-
-/// Mean reported set size over `ts` (0 for none).
-fn mean_size(ts: &[&Trial]) -> f64 {
-    ts.iter().map(|t| t.reported_set.len()).sum::<usize>() as f64 / ts.len().max(1) as f64
 }
 
 /// `k` distinct indices below `n` for trial `t` (k ≤ n): every combination is visited in
@@ -564,7 +399,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 ..aopt
             },
         )?;
-        super::identify::confounded(&mut a, aopt.min_shrink);
+        let angles = super::identify::confounded(&mut a, aopt.min_shrink);
         let first = a
             .identified
             .as_ref()
@@ -591,6 +426,22 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             outside: out.map(|o| o.named()),
             strength,
             strengths,
+            first_angles: first
+                .map(|f| {
+                    a.ranking
+                        .iter()
+                        .filter(|b| b.effect != f.effect)
+                        .filter_map(|b| {
+                            let t = angles.get(&format!("{} -> {}", f.effect, b.effect))?;
+                            Some(Reproducer {
+                                effect: b.effect.clone(),
+                                angle_deg: *t,
+                                shrink: b.shrink,
+                            })
+                        })
+                        .collect()
+                })
+                .unwrap_or_default(),
             kept: a.kept.clone(),
             final_gap: a.final_holdout,
             closed: a.final_holdout <= DETECTABLE * noise_gap,
@@ -754,6 +605,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             }
         })
         .collect();
+    let set_angles = angle_curve(&trials, &labels, aopt.min_shrink);
     let mut columns = cols;
     columns.push("none".into());
     Ok(TwinReport {
@@ -775,6 +627,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         triples_detectable,
         outside,
         power,
+        set_angles,
         mismatch: format!("{:?}", opt.mismatch),
         trials,
         simulations: ev.sims(),

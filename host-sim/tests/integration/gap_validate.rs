@@ -19,6 +19,7 @@
 //!   not, are recorded in `docs/sim-to-real-results.md` ("Twin experiments").
 
 use wearsim_host::gap::attribute::{false_alarm_threshold, same_class, Options, SIGNIFICANT_GAP};
+use wearsim_host::gap::identify::CONFOUND_DEG;
 use wearsim_host::gap::validate::{validate, TwinOptions, TwinReport, DETECTABLE};
 
 fn print(r: &TwinReport) {
@@ -71,6 +72,27 @@ fn twins_name_the_withheld_effect_ci() {
     };
     let r = validate(&opt, &|_, _| {}).expect("twin experiments run");
     print(&r);
+    // The angle curve recomputes the sets from each trial's angles: at the shipped angle it
+    // must give the report's own sets, and wider angles can only add to them.
+    let own = r
+        .set_angles
+        .iter()
+        .find(|a| a.angle_deg == CONFOUND_DEG)
+        .expect("the shipped angle is on the curve");
+    let in_set: usize = r.rates.iter().map(|e| e.in_set_detectable).sum();
+    let detectable: usize = r.rates.iter().map(|e| e.detectable).sum();
+    assert_eq!((own.in_set, own.detectable), (in_set, detectable));
+    let largest = r
+        .rates
+        .iter()
+        .filter(|e| e.detectable > 0)
+        .map(|e| e.mean_set_size_detectable)
+        .fold(0.0, f64::max);
+    assert!((own.largest_mean_set_size - largest).abs() < 1e-12);
+    for w in r.set_angles.windows(2) {
+        assert!(w[0].in_set <= w[1].in_set);
+        assert!(w[0].largest_mean_set_size <= w[1].largest_mean_set_size);
+    }
     assert!(
         r.noise_only_gap < 1.0,
         "noise-only gap {}",
