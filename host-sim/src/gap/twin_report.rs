@@ -133,20 +133,32 @@ fn set_at(t: &Trial, deg: f64, min_shrink: f64) -> Vec<&str> {
     v
 }
 
+/// The single-effect trials that withheld `effect`.
+pub(super) fn single<'a>(trials: &'a [Trial], effect: &str) -> Vec<&'a Trial> {
+    trials
+        .iter()
+        .filter(|t| t.withheld.len() == 1 && t.withheld.first().map(String::as_str) == Some(effect))
+        .collect()
+}
+
+/// Those of `ts` whose withheld effect was detectable ([`DETECTABLE`]).
+pub(super) fn detectable<'a>(ts: &[&'a Trial]) -> Vec<&'a Trial> {
+    ts.iter()
+        .copied()
+        .filter(|t| t.strength >= DETECTABLE)
+        .collect()
+}
+
 /// [`AngleRow`] for every angle of [`SET_ANGLES`] over the detectable single-effect trials
 /// of `labels`.
 pub(super) fn angle_curve(trials: &[Trial], labels: &[String], min_shrink: f64) -> Vec<AngleRow> {
     SET_ANGLES
         .iter()
         .map(|&deg| {
-            let (mut in_set, mut detectable) = (0, 0);
+            let (mut in_set, mut counted) = (0, 0);
             let (mut worst, mut largest) = (1.0f64, 0.0f64);
             for l in labels {
-                let seen: Vec<&Trial> = trials
-                    .iter()
-                    .filter(|t| t.withheld.len() == 1 && t.withheld.first() == Some(l))
-                    .filter(|t| t.strength >= DETECTABLE)
-                    .collect();
+                let seen = detectable(&single(trials, l));
                 if seen.is_empty() {
                     continue;
                 }
@@ -154,7 +166,7 @@ pub(super) fn angle_curve(trials: &[Trial], labels: &[String], min_shrink: f64) 
                     seen.iter().map(|t| set_at(t, deg, min_shrink)).collect();
                 let held = sets.iter().filter(|s| s.contains(&l.as_str())).count();
                 in_set += held;
-                detectable += seen.len();
+                counted += seen.len();
                 worst = worst.min(held as f64 / seen.len() as f64);
                 let size = sets.iter().map(Vec::len).sum::<usize>() as f64 / seen.len() as f64;
                 largest = largest.max(size);
@@ -162,7 +174,7 @@ pub(super) fn angle_curve(trials: &[Trial], labels: &[String], min_shrink: f64) 
             AngleRow {
                 angle_deg: deg,
                 in_set,
-                detectable,
+                detectable: counted,
                 worst_effect_in_set: worst,
                 largest_mean_set_size: largest,
             }

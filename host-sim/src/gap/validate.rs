@@ -24,7 +24,7 @@ use super::memo::Memo;
 use super::nuisance::{calibrate, Tolerances};
 use super::space::{self, FitSpace};
 use super::twin::{Mismatch, Outside};
-use super::twin_report::{angle_curve, holds, mean_size};
+use super::twin_report::{angle_curve, detectable, holds, mean_size, single};
 use super::{CellSpec, Reference};
 use crate::analysis::stats::{self, rms};
 use crate::analysis::FaultFamily;
@@ -543,10 +543,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let mut confusion = vec![vec![0usize; cols.len() + 1]; labels.len()];
     let mut rates = vec![];
     for (i, l) in labels.iter().enumerate() {
-        let mine: Vec<&Trial> = trials
-            .iter()
-            .filter(|t| t.withheld.len() == 1 && t.withheld.first() == Some(l))
-            .collect();
+        let mine = single(&trials, l);
         for t in &mine {
             let j = t
                 .ranked_first
@@ -557,11 +554,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 *c += 1;
             }
         }
-        let seen: Vec<&Trial> = mine
-            .iter()
-            .copied()
-            .filter(|t| t.strength >= DETECTABLE)
-            .collect();
+        let seen = detectable(&mine);
         let top1 = mine
             .iter()
             .filter(|t| t.ranked_first.as_deref() == Some(l.as_str()))
