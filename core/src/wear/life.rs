@@ -711,6 +711,18 @@ impl Life {
         if let Some(r) = cfg.roughness.as_mut() {
             r.rms *= inputs.roughness_scale;
         }
+        // Debris acts on the model only through the roughness multiplier
+        // `1 + debris_gain·debris` (`Roughness::step_sigma`). Once the flushing has taken
+        // it below what that multiplier resolves in this number type (or with no
+        // roughness), the model is the one with none, bit for bit; it is passed as 0 so
+        // that successive windows compare equal (the host driver renders equal models
+        // together) instead of differing by a decaying 10⁻⁸⁰.
+        let gain = cfg.roughness.map_or(0.0, |r| r.debris_gain);
+        if let Some(d) = cfg.defect.as_mut() {
+            if 1.0 + gain * d.topography.debris == 1.0 {
+                d.topography.debris = 0.0;
+            }
+        }
         cfg.slip = Some(crate::forces::slip::Slip {
             fraction: inputs.slip,
         });
