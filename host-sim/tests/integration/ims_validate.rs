@@ -7,8 +7,9 @@ use support::{refused, s, wearsim};
 use wearsim_host::io::data_dir;
 use wearsim_host::life::ims::{distance_db, Curve};
 use wearsim_host::life::ims_validate::{
-    medians, over_seeds, read_record, read_records, validate_ensemble, validate_seeds, FloorMode,
-    LifeFigures, Medians, Validation, RECORDS,
+    copy_calibration, copy_calibration_medians, medians, over_seeds, read_record, read_records,
+    validate_ensemble, validate_seeds, FloorMode, LifeFigures, MeasuredRecord, Medians, Validation,
+    RECORDS,
 };
 
 #[test]
@@ -313,6 +314,7 @@ fn medians_over_seeds_take_each_figure_apart() {
         records: vec![],
         folds: vec![],
         leave_one_out: med,
+        leave_one_out_copy: med,
         over_seeds: None,
     };
     let sw = over_seeds(&[
@@ -438,4 +440,68 @@ fn the_measured_floor_is_the_steady_level_less_the_bearing() {
     assert!((f3 - (l3 * l3 - 1.0).sqrt()).abs() < 1e-9, "{f3}");
     // Read in g the level is 0.755 m/s², below the bearing's own: no background.
     assert_eq!(measured_floor(&m(0), &bare, 1.0 / 9.80665), 0.0);
+}
+
+fn measured(v: &[f64]) -> MeasuredRecord {
+    MeasuredRecord {
+        record: RECORDS[0],
+        curve: curve(v),
+        running_h: 100.0,
+        clock_h: 100.0,
+        gaps: 0,
+        dropped: 0,
+        steady: 1.0,
+    }
+}
+
+/// The reference prediction without a model: a life against itself is exact (onset error
+/// 0, end factor 1, 0 dB); against another it is the other's onset, end ratio and curve:
+/// flat at 1, one rising to 3 from snapshot 24 of 40 and one to 6 from snapshot 32.
+#[test]
+fn the_calibration_life_as_the_prediction_gives_its_own_figures() {
+    let step = |at: usize, to: f64| -> Vec<f64> {
+        (0..40).map(|i| if i < at { 1.0 } else { to }).collect()
+    };
+    let (cal, held) = (measured(&step(24, 3.0)), measured(&step(32, 6.0)));
+    let (o, e, d) = copy_calibration(&cal, &cal);
+    assert_eq!((o, e, d), (Some(0.0), 1.0, 0.0));
+    let (o, e, d) = copy_calibration(&cal, &held);
+    assert!((o.unwrap() - 8.0 / 39.0).abs() < 1e-12, "{o:?}");
+    assert!((e - 0.5).abs() < 1e-12, "{e}");
+    assert!((d - distance_db(&cal.curve, &held.curve)).abs() < 1e-12);
+    // 9.54 dB (×3) over about 0.2 of life and 6.02 dB (×2) over the last 0.18, 0 before:
+    // √(0.2·91 + 0.18·36.2) ≈ 5.0 dB RMS.
+    assert!((4.5..5.5).contains(&d), "{d}");
+    // Medians take the end factor symmetrically: ×0.5 and ×2 both count as 2.
+    let m = copy_calibration_medians(&[(&cal, &held), (&held, &cal)]);
+    assert!((m.end_ratio_factor - 2.0).abs() < 1e-9, "{m:?}");
+    assert!((m.onset_error - 8.0 / 39.0).abs() < 1e-12, "{m:?}");
+}
+
+/// The reference prediction on the measured lives, leave-one-life-out (every failed IMS
+/// life predicted by each other one's measured curve, no model): its median trajectory
+/// distance is below issue 14's 3 dB (2.29 dB; the simulated lives give 3.1-6.7 dB), so
+/// that target does not tell a model from none, and its onset error is about 0.2 of life
+/// (0.199), which the model does not beat either (docs/ims-comparison.md).
+#[test]
+fn another_measured_life_predicts_a_held_out_life_within_three_decibels() {
+    let Some(data) = data_dir().expect("data folder required when CI=true") else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return;
+    };
+    let recs = read_records(&data).unwrap();
+    let pairs: Vec<(&MeasuredRecord, &MeasuredRecord)> = recs
+        .iter()
+        .flat_map(|c| {
+            recs.iter()
+                .filter(move |m| m.record.id != c.record.id)
+                .map(move |m| (c, m))
+        })
+        .collect();
+    assert_eq!(pairs.len(), 12);
+    let m = copy_calibration_medians(&pairs);
+    eprintln!("copy-calibration leave-one-life-out: {m:?}");
+    assert!((2.0..2.6).contains(&m.distance_db_rms), "{m:?}");
+    assert!((0.15..0.25).contains(&m.onset_error), "{m:?}");
+    assert!((2.0..3.0).contains(&m.end_ratio_factor), "{m:?}");
 }

@@ -75,6 +75,9 @@ pub struct Fold {
     pub held_out: Vec<LifeFigures>,
     /// Medians over the held-out lives.
     pub median: Medians,
+    /// The same medians for the reference prediction that needs no model: the calibration
+    /// life's own measured curve taken as every held-out life's ([`copy_calibration`]).
+    pub copy_calibration: Medians,
 }
 
 /// Medians over held-out lives and the acceptance of issue 14.
@@ -114,6 +117,35 @@ pub fn medians(h: &[LifeFigures]) -> Medians {
         h.iter().map(|f| f.onset_error.unwrap_or(1.0)).collect(),
         h.iter().map(|f| f.end_ratio_factor).collect(),
         h.iter().map(|f| f.distance_db_rms).collect(),
+    )
+}
+
+/// The figures of the reference prediction that needs no model: the measured curve of the
+/// calibration life `cal` taken as the prediction of held-out life `m` (its onset, its end
+/// ratio, its normalised curve against `m`'s). A model calibrated on `cal` adds something
+/// only where it does better than this on the held-out lives: a persistence baseline, as
+/// forecasts are judged against the forecast "as last observed".
+pub fn copy_calibration(cal: &MeasuredRecord, m: &MeasuredRecord) -> (Option<f64>, f64, f64) {
+    let onset_error = onset(&m.curve)
+        .zip(onset(&cal.curve))
+        .map(|(a, b)| (a - b).abs());
+    let last = |c: &Curve| c.rms.last().copied().unwrap_or(1.0);
+    (
+        onset_error,
+        last(&cal.curve) / last(&m.curve),
+        distance_db(&cal.curve, &m.curve),
+    )
+}
+
+/// [`Medians`] of [`copy_calibration`] over the pairs (calibration life, held-out life)
+/// `pairs`.
+pub fn copy_calibration_medians(pairs: &[(&MeasuredRecord, &MeasuredRecord)]) -> Medians {
+    let v: Vec<(Option<f64>, f64, f64)> =
+        pairs.iter().map(|(c, m)| copy_calibration(c, m)).collect();
+    Medians::of(
+        v.iter().map(|x| x.0.unwrap_or(1.0)).collect(),
+        v.iter().map(|x| x.1).collect(),
+        v.iter().map(|x| x.2).collect(),
     )
 }
 
@@ -205,6 +237,9 @@ pub struct Validation {
     pub folds: Vec<Fold>,
     /// Medians over every held-out figure of every fold (leave-one-life-out).
     pub leave_one_out: Medians,
+    /// The same for the reference prediction of [`copy_calibration`] (no model): what
+    /// `leave_one_out` must beat for the model to add anything to its calibration life.
+    pub leave_one_out_copy: Medians,
     /// With `--seeds N` (N > 1): the validation repeated for seeds `seed .. seed + N`, this
     /// one being the first.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -283,6 +318,7 @@ pub fn validate_records(
     mode: FloorMode,
 ) -> Result<Validation, String> {
     let mut folds = vec![];
+    let mut copies: Vec<(&MeasuredRecord, &MeasuredRecord)> = vec![];
     let n_cal = if all { recs.len() } else { 1 };
     for cal in recs.iter().take(n_cal) {
         let site = cal.record.site;
@@ -315,7 +351,14 @@ pub fn validate_records(
         let mut calibration = figures(cal, &own, "calibration");
         calibration.floor = f;
         let mut held_out = vec![];
-        for m in recs.iter().filter(|m| m.record.id != cal.record.id) {
+        let others: Vec<&MeasuredRecord> = recs
+            .iter()
+            .filter(|m| m.record.id != cal.record.id)
+            .collect();
+        let pairs: Vec<(&MeasuredRecord, &MeasuredRecord)> =
+            others.iter().map(|m| (cal, *m)).collect();
+        copies.extend(pairs.iter().copied());
+        for m in others {
             let (s, f) = run(m)?;
             let mut fig = figures(m, &s, "held-out");
             fig.floor = f;
@@ -327,6 +370,7 @@ pub fn validate_records(
             floor,
             calibration,
             median: medians(&held_out),
+            copy_calibration: copy_calibration_medians(&pairs),
             held_out,
         });
     }
@@ -346,6 +390,7 @@ pub fn validate_records(
             })
             .collect(),
         leave_one_out: medians(&all_held),
+        leave_one_out_copy: copy_calibration_medians(&copies),
         folds,
         over_seeds: None,
     })
