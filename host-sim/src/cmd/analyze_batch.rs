@@ -220,7 +220,7 @@ pub fn render(rows: &[Row], format: &str) -> Result<String, String> {
         }
         "md" => {
             let mut s = format!(
-                "| {} |\n|{}|\n",
+                "| {} |\n|{}\n",
                 HEADER.join(" | "),
                 "---|".repeat(HEADER.len())
             );

@@ -272,8 +272,13 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     } else {
         a.loads.clone()
     };
-    for s in &scales {
+    for (i, s) in scales.iter().enumerate() {
         wearsim_core::error::check_range("loads", *s, 0.05, 20.0).map_err(CliError::input)?;
+        if scales[..i].contains(s) {
+            return Err(CliError::input(format!(
+                "loads: {s} is given twice; each load scale runs once (two or more different ones give the life–load exponent)"
+            )));
+        }
     }
     let threads = match a.threads {
         Some(t) if (1..=256).contains(&t) => t,

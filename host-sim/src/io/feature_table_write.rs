@@ -79,7 +79,7 @@ pub fn write_feature_table(
     let json = serde_json::to_string_pretty(sidecar)
         .map_err(|e| IoError::malformed(&side, e.to_string()))?;
     let put = |suffix: &str, body: &str| -> Result<tempfile::NamedTempFile, IoError> {
-        let mut t = tempfile::Builder::new()
+        let mut t = super::perms::output_builder()
             .prefix(".feature-table.")
             .suffix(suffix)
             .tempfile_in(&dir)

@@ -160,6 +160,27 @@ impl SweepSpec {
         if g.radial_load.as_ref().is_some_and(Vec::is_empty) {
             return err("`grid.radial_load` is empty: give at least one value or leave it out");
         }
+        // A repeated value would generate its grid cells twice under two labels that
+        // cannot be told apart in the index.
+        let text = |v: &[String]| v.to_vec();
+        let num = |v: &[f64]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        let lists = [
+            ("grid.preset", text(&g.preset)),
+            ("grid.rpm", num(&g.rpm)),
+            ("grid.fault", text(&g.fault)),
+            ("grid.stage", text(&g.stage)),
+            (
+                "grid.radial_load",
+                num(g.radial_load.as_deref().unwrap_or(&[])),
+            ),
+        ];
+        for (k, v) in lists {
+            if let Some(d) = first_repeat(&v) {
+                return err(format!(
+                    "`{k}` lists {d} twice: each value is one grid axis point; remove the repeat"
+                ));
+            }
+        }
         for p in &g.preset {
             if wearsim_core::presets::by_name(p).is_none() {
                 return err(format!(
@@ -190,9 +211,23 @@ impl SweepSpec {
         }
         for (i, e) in self.effect.iter().enumerate() {
             check_effect(i, e)?;
+            if let Some(j) = self.effect[..i].iter().position(|o| o.name == e.name) {
+                return err(format!(
+                    "`effect[{i}].name` = \"{}\" repeats `effect[{j}]`: list each effect once, with all its parameters in one [[effect]]",
+                    e.name
+                ));
+            }
         }
         Ok(())
     }
+}
+
+/// The first value of `v` that occurs again later, if any.
+fn first_repeat(v: &[String]) -> Option<&str> {
+    v.iter()
+        .enumerate()
+        .find(|(i, x)| v[i + 1..].contains(x))
+        .map(|(_, x)| x.as_str())
 }
 
 fn check_effect(i: usize, e: &EffectDraw) -> Result<(), SpecError> {

@@ -551,6 +551,7 @@ fn lives_reject_bad_values() {
     for (args, field) in [
         (vec!["--lives", "2"], "lives"),
         (vec!["--lives", "5", "--loads", "1,0"], "loads"),
+        (vec!["--lives", "5", "--loads", "1,1"], "given twice"),
         (vec!["--lives", "5", "--threads", "0"], "threads"),
     ] {
         let dir = tempfile::tempdir().unwrap();

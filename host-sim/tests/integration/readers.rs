@@ -241,7 +241,21 @@ fn many_files_one_table_errors_are_rows() {
     assert!(v[0]["family"].is_string());
     // Markdown to stdout.
     let o = wearsim(&["analyze", &a.to_string_lossy(), "--format", "md"]);
-    assert!(String::from_utf8_lossy(&o.stdout).starts_with("| file | status | family |"));
+    let md = String::from_utf8_lossy(&o.stdout);
+    assert!(md.starts_with("| file | status | family |"));
+    // A GFM table: the delimiter row and every data row have the header's cell count.
+    let cells = |l: &str| l.trim().trim_matches('|').split('|').count();
+    let rows: Vec<&str> = md.lines().collect();
+    assert!(rows.len() >= 3, "{md}");
+    assert!(
+        rows[1]
+            .split('|')
+            .all(|c| c.is_empty() || c.trim() == "---"),
+        "{md}"
+    );
+    for r in &rows[1..] {
+        assert_eq!(cells(r), cells(rows[0]), "{r}");
+    }
     assert_input_error(
         &wearsim(&["analyze", &a.to_string_lossy(), "--format", "xls"]),
         &["--format"],

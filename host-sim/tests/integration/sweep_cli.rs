@@ -185,6 +185,20 @@ fn bad_specs_exit_2_naming_the_field() {
         &["records", "1..="],
     );
     bad(&SPEC.replace("rpm = [1797.0]", "rpm = [-5.0]"), &["rpm"]);
+    // Repeats: an effect listed twice (two parameter sets for one effect, and duplicate
+    // index columns) and a grid value listed twice.
+    bad(
+        &format!("{SPEC}\n[[effect]]\nname = \"sensor\"\nparams = {{ noise = 5.0 }}\n"),
+        &["effect[1].name", "repeats `effect[0]`"],
+    );
+    bad(
+        &SPEC.replace("rpm = [1797.0]", "rpm = [1797.0, 1797.0]"),
+        &["grid.rpm", "1797 twice"],
+    );
+    bad(
+        &SPEC.replace("\"inner\"]", "\"inner\", \"outer\"]"),
+        &["grid.fault", "outer twice"],
+    );
 }
 
 #[test]
