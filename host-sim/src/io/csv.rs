@@ -1,7 +1,10 @@
 //! Generic CSV reader: one or more numeric columns, optional header row.
 //!
-//! Format (RFC 4180 as read by the `csv` crate): comma-separated, or tab-separated when the
-//! first line has tabs and no commas; lines starting with `#` are comments; cells are trimmed.
+//! Format (RFC 4180 as read by the `csv` crate): comma-separated; tab-separated when the
+//! first line has tabs and no commas; semicolon-separated when it has semicolons and no tabs
+//! (spreadsheet exports of locales that write a decimal comma). With tabs or semicolons a
+//! number may use a decimal comma (`-0,125`). Lines starting with `#` are comments; cells are
+//! trimmed.
 //! The first row is a header if any of its cells is not a number. Every data cell of the chosen
 //! column must parse as a finite `f64` (`NaN`/`inf` cells are [`IoError::NonFinite`]).
 //!
@@ -54,10 +57,24 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         return Err(IoError::truncated(path, "empty file (no rows)"));
     }
     let first_line = head.split(|&b| b == b'\n').next().unwrap_or(&[]);
-    let delim = if first_line.contains(&b'\t') && !first_line.contains(&b',') {
+    let has = |b: u8| first_line.contains(&b);
+    let delim = if has(b'\t') && !has(b',') {
         b'\t'
+    } else if has(b';') && !has(b'\t') {
+        b';'
     } else {
         b','
+    };
+    // A decimal comma cannot be told from a separator in a comma-separated file.
+    let decimal_comma = delim != b',';
+    let number = |cell: &str| -> Option<f64> {
+        match cell.parse::<f64>() {
+            Ok(v) => Some(v),
+            Err(_) if decimal_comma && cell.matches(',').count() == 1 && !cell.contains('.') => {
+                cell.replace(',', ".").parse().ok()
+            }
+            Err(_) => None,
+        }
     };
     let mut rdr = ::csv::ReaderBuilder::new()
         .has_headers(false)
@@ -86,7 +103,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         if first {
             first = false;
             ncols = rec.len();
-            let all_numeric = rec.iter().all(|c| c.parse::<f64>().is_ok());
+            let all_numeric = rec.iter().all(|c| number(c).is_some());
             let names: Vec<String> = if all_numeric {
                 (0..ncols).map(|i| format!("col{i}")).collect()
             } else {
@@ -108,7 +125,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         }
         let names = header.as_deref().unwrap_or(&[]);
         let cell = &rec[col];
-        let v: f64 = cell.parse().map_err(|_| {
+        let v: f64 = number(cell).ok_or_else(|| {
             IoError::malformed(
                 path,
                 format!(
@@ -123,7 +140,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         super::record::check_record_size(path, samples.len(), kept * samples.len())?;
         if let Some(t) = time_col {
             let cell = &rec[t];
-            let tv: f64 = cell.parse().map_err(|_| {
+            let tv: f64 = number(cell).ok_or_else(|| {
                 IoError::malformed(
                     path,
                     format!(
@@ -323,6 +340,34 @@ mod tests {
         let r = read_csv(&set.csv, &ReadOptions::default()).unwrap();
         assert!((r.fs - 25600.0).abs() < 1e-6, "{}", r.fs);
         assert_eq!(r.rpm, None);
+    }
+
+    /// Spreadsheet exports of decimal-comma locales: semicolon-separated with `-0,125`,
+    /// tab-separated likewise; the same numbers as the comma-separated file. In a
+    /// comma-separated file `1,5` stays two cells.
+    #[test]
+    fn semicolons_and_decimal_commas() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.csv");
+        let want = vec![0.5, -0.125, 2.0, 1e-3];
+        for text in [
+            "time;acc\n0;0,5\n0,001;-0,125\n0,002;2\n0,003;1e-3\n",
+            "time\tacc\n0\t0,5\n0,001\t-0,125\n0,002\t2\n0,003\t1e-3\n",
+            "time;acc\n0;0.5\n0.001;-0.125\n0.002;2\n0.003;1e-3\n",
+        ] {
+            std::fs::write(&p, text).unwrap();
+            let r = read_csv(&p, &ReadOptions::default()).unwrap();
+            assert_eq!(r.samples, want, "{text:?}");
+            assert_eq!(r.channel, "acc");
+            assert!((r.fs - 1000.0).abs() < 1e-6, "{}", r.fs);
+        }
+        std::fs::write(&p, "a,b\n1,5\n2,5\n").unwrap();
+        let r = read_csv(&p, &opts(Some("b"), Some(10.0))).unwrap();
+        assert_eq!(r.samples, vec![5.0, 5.0]);
+        // A cell that is not a number with either mark is still named.
+        std::fs::write(&p, "a;b\n1,5;2\n1,5,5;3\n").unwrap();
+        let e = read_csv(&p, &opts(Some("a"), Some(10.0))).unwrap_err();
+        assert!(e.to_string().contains("\"1,5,5\" is not a number"), "{e}");
     }
 
     #[test]
