@@ -49,6 +49,22 @@ pub struct Cell {
     pub stage: String,
 }
 
+impl std::fmt::Display for Cell {
+    /// The cell as the spec's keys: `preset = "…", rpm = …, radial_load = …, fault = "…",
+    /// stage = "…"` (the load left out when it is the preset's).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "preset = \"{}\", rpm = {}", self.preset, self.rpm)?;
+        if let Some(l) = self.radial_load {
+            write!(f, ", radial_load = {l}")?;
+        }
+        write!(
+            f,
+            ", fault = \"{}\", stage = \"{}\"",
+            self.fault, self.stage
+        )
+    }
+}
+
 /// The grid's cells in a fixed order: preset, rpm, load, fault, stage (a healthy fault
 /// is one cell, whatever the stages).
 pub fn cells(spec: &SweepSpec) -> Vec<Cell> {

@@ -49,9 +49,9 @@ pub fn scenario(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Scenario, Sw
     let file = rec.scenario_file(spec);
     let (cfg, run) = file
         .resolve()
-        .map_err(|e| SweepError::Input(format!("record {i} ({:?}): {e}", rec.cell)))?;
+        .map_err(|e| SweepError::Input(format!("record {i} (grid cell {}): {e}", rec.cell)))?;
     Scenario::new(cfg, run)
-        .map_err(|e| SweepError::Input(format!("record {i} ({:?}): {e}", rec.cell)))
+        .map_err(|e| SweepError::Input(format!("record {i} (grid cell {}): {e}", rec.cell)))
 }
 
 /// Simulates record `i`, returning its acceleration as float32.

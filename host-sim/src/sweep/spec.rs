@@ -110,8 +110,14 @@ pub const FAULTS: [&str; 4] = ["healthy", "outer", "inner", "ball"];
 impl SweepSpec {
     /// Parses and checks a specification; `origin` names it in messages.
     pub fn parse(text: &str, origin: &str) -> Result<Self, SpecError> {
-        let spec: SweepSpec =
-            toml::from_str(text).map_err(|e| SpecError(format!("{origin}: {e}")))?;
+        let spec: SweepSpec = toml::from_str(text).map_err(|e| {
+            // serde's message for a value no form of `Dist` takes names the Rust type.
+            let m = e.to_string().replace(
+                "data did not match any variant of untagged enum Dist",
+                "a parameter's distribution is a number, { uniform = [lo, hi] } (two numbers) or { choice = [a, b, …] } (numbers)",
+            );
+            SpecError(format!("{origin}: {m}"))
+        })?;
         spec.check()?;
         Ok(spec)
     }

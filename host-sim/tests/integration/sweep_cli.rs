@@ -185,11 +185,20 @@ fn bad_specs_exit_2_naming_the_field() {
         &["records", "1..="],
     );
     bad(&SPEC.replace("rpm = [1797.0]", "rpm = [-5.0]"), &["rpm"]);
+    // A record the core refuses is named by its grid cell in the spec's own terms.
+    bad(
+        &SPEC.replace("duration = 0.05", "duration = -1.0"),
+        &["record 0 (grid cell preset = \"cwru-6205-de\", rpm = 1797"],
+    );
     // Repeats: an effect listed twice (two parameter sets for one effect, and duplicate
     // index columns) and a grid value listed twice.
     bad(
         &format!("{SPEC}\n[[effect]]\nname = \"sensor\"\nparams = {{ noise = 5.0 }}\n"),
         &["effect[1].name", "repeats `effect[0]`"],
+    );
+    bad(
+        &SPEC.replace("[0.01, 0.2]", "[0.01, 0.1, 0.2]"),
+        &["noise", "{ uniform = [lo, hi] } (two numbers)"],
     );
     bad(
         &SPEC.replace("rpm = [1797.0]", "rpm = [1797.0, 1797.0]"),
