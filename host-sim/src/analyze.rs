@@ -36,7 +36,8 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub bearing: Option<String>,
     /// Any bearing: `elements=N,ball=MM,pitch=MM,angle=DEG` (diameters in mm, contact angle in
-    /// degrees, 0 <= angle < 90, pitch > ball, 3..=200 elements); overrides the record's.
+    /// degrees, 0..=45.8, ball 0.1..=500 mm, pitch > 1.5 × ball, 3..=32 elements that fit
+    /// on the pitch circle); overrides the record's.
     #[arg(
         long = "bearing-geometry",
         value_name = "elements=N,ball=MM,pitch=MM,angle=DEG"

@@ -23,12 +23,13 @@ pub struct GeometrySpec {
     pub ball_mm: f64,
     /// Pitch diameter, mm (> ball diameter, ≤ 10 000).
     pub pitch_mm: f64,
-    /// Contact angle, degrees, in [0, 90).
+    /// Contact angle, degrees, 0 to 45.8 (0.8 rad, the core's limit).
     pub angle_deg: f64,
 }
 
-/// Most rolling elements accepted in a `--bearing-geometry`.
-pub const MAX_SPEC_ELEMENTS: u32 = 200;
+/// Most rolling elements accepted in a `--bearing-geometry`: the core's capacity
+/// ([`wearsim_core::bearing::MAX_ELEMENTS`]).
+pub const MAX_SPEC_ELEMENTS: u32 = wearsim_core::bearing::MAX_ELEMENTS as u32;
 
 /// One catalogue bearing: name, description, geometry and where the numbers come from.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,8 +88,58 @@ pub fn catalogue(name: &str) -> Option<&'static CatalogueEntry> {
 
 impl GeometrySpec {
     /// Check every field; the error names the field (`bearing-geometry.pitch`, ...) and its
-    /// allowed range.
+    /// allowed range in the flag's units. The ranges are the core's
+    /// ([`BearingGeometry::new_checked`], which every model of the bearing must pass),
+    /// translated to millimetres and degrees.
     pub fn checked(self) -> Result<Self, String> {
+        self.checked_syntax()?;
+        let Err(e) = BearingGeometry::new_checked(self.bearing()?) else {
+            return Ok(self);
+        };
+        use wearsim_core::error::ConfigError as C;
+        let f = |name: &str, v: f64, range: String| {
+            format!("bearing-geometry.{name} = {v} is impossible (allowed {range})")
+        };
+        Err(match e {
+            C::OutOfRange { field, min, max, .. } => match field {
+                "bearing.element_diameter" => {
+                    f("ball", self.ball_mm, format!("{} ..= {} mm", min * 1e3, max * 1e3))
+                }
+                "bearing.pitch_diameter" => {
+                    f("pitch", self.pitch_mm, format!("{} ..= {} mm", min * 1e3, max * 1e3))
+                }
+                "bearing.contact_angle" => f(
+                    "angle",
+                    self.angle_deg,
+                    format!("0 ..= {:.1} degrees", max.to_degrees()),
+                ),
+                _ => format!("bearing-geometry: {e}"),
+            },
+            C::Inconsistent {
+                field: "bearing.pitch_diameter",
+                ..
+            } => f(
+                "pitch",
+                self.pitch_mm,
+                format!("more than 1.5 × ball = {} mm", 1.5 * self.ball_mm),
+            ),
+            C::Inconsistent {
+                field: "bearing.elements",
+                ..
+            } => format!(
+                "bearing-geometry.elements = {}: {} balls of {} mm do not fit on a pitch circle of {} mm (at most {} fit)",
+                self.elements,
+                self.elements,
+                self.ball_mm,
+                self.pitch_mm,
+                ((std::f64::consts::PI * self.pitch_mm / self.ball_mm).ceil() as u32).saturating_sub(1)
+            ),
+            other => format!("bearing-geometry: {other}"),
+        })
+    }
+
+    /// The checks that need no model: counts, finite values, pitch above ball.
+    fn checked_syntax(self) -> Result<Self, String> {
         let f = |name: &str, v: f64, range: &str| {
             format!("bearing-geometry.{name} = {v} is impossible (allowed {range})")
         };
@@ -100,7 +151,11 @@ impl GeometrySpec {
             ));
         }
         if !(self.ball_mm.is_finite() && self.ball_mm > 0.0 && self.ball_mm <= 1000.0) {
-            return Err(f("ball", self.ball_mm, "0 < ball <= 1000 mm"));
+            return Err(f(
+                "ball",
+                self.ball_mm,
+                "a finite diameter in mm, 0.1 ..= 500",
+            ));
         }
         if !(self.pitch_mm.is_finite() && self.pitch_mm > self.ball_mm && self.pitch_mm <= 10_000.0)
         {
@@ -113,6 +168,7 @@ impl GeometrySpec {
         if !(self.angle_deg.is_finite() && (0.0..90.0).contains(&self.angle_deg)) {
             return Err(f("angle", self.angle_deg, "0 <= angle < 90 degrees"));
         }
+        // The core's limits follow in `checked`.
         Ok(self)
     }
 
@@ -331,9 +387,28 @@ mod tests {
             ("elements=9,ball=nan,pitch=30", "ball"),
             ("elements=9,pitch=30", "ball"),
             ("elements=9,ball=8,pitch=30,size=3", "size"),
+            // The core's limits, in the flag's field names and units.
+            (
+                "elements=9,ball=600,pitch=2000",
+                "bearing-geometry.ball = 600 is impossible (allowed 0.1 ..= 500 mm)",
+            ),
+            (
+                "elements=9,ball=8,pitch=39,angle=60",
+                "bearing-geometry.angle = 60 is impossible (allowed 0 ..= 45.8 degrees)",
+            ),
+            (
+                "elements=40,ball=2,pitch=100",
+                "bearing-geometry.elements = 40 is impossible (allowed 3..=32)",
+            ),
+            (
+                "elements=30,ball=8,pitch=39",
+                "30 balls of 8 mm do not fit on a pitch circle of 39 mm (at most 15 fit)",
+            ),
+            ("elements=9,ball=8,pitch=11", "more than 1.5 × ball = 12 mm"),
         ] {
             let e = GeometrySpec::parse(bad).unwrap_err();
             assert!(e.contains(field), "{bad}: {e}");
+            assert!(e.starts_with("bearing-geometry"), "{bad}: {e}");
         }
         let j = serde_json::json!({"elements": 8, "ball_mm": 7.92, "pitch_mm": 34.55});
         assert_eq!(GeometrySpec::from_json(&j).unwrap(), CATALOGUE[2].geometry);
