@@ -665,6 +665,9 @@ impl FeatureTable {
             hours: h1 - h0,
             dropped: 0,
             preset: self.sidecar.bearing.preset.clone(),
+            failure_mode: self.sidecar.failure_mode.clone(),
+            shared_shaft: false,
+            unit: self.sidecar.unit.clone(),
         }
     }
 }

@@ -277,7 +277,14 @@ fn good_table(dir: &Path, n: usize) -> PathBuf {
     let raw = dir.join("raw");
     ims_folder(&raw, n);
     let out = dir.join("t.csv");
-    let o = wearsim(&["features", s(&raw), "--out", s(&out)]);
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--out",
+        s(&out),
+        "--failure-mode",
+        "outer-race",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     out
 }
@@ -436,7 +443,7 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
 }
 
 /// IMS test 2's shared feature table and its four bearings written in the documented format
-/// (kept alive by the returned temporary folder).
+/// with their failure modes (kept alive by the returned temporary folder).
 fn ims_test2_as_tables(
     data: &Path,
 ) -> Result<(PathBuf, tempfile::TempDir, Vec<PathBuf>), Box<dyn std::error::Error>> {
@@ -444,7 +451,10 @@ fn ims_test2_as_tables(
     let tmp = tempfile::tempdir()?;
     let mut tables = vec![];
     for b in 1..=4 {
-        let (side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
+        let (mut side, rows) = from_ims_features(&ims, b, "IMS test 2 (features_chocho66)")?;
+        // From the IMS readme, as docs/feature-tables.md's example: test 2 ended with an
+        // outer-race failure of bearing 1; its neighbours did not fail.
+        side.failure_mode = if b == 1 { "outer-race" } else { "none" }.into();
         let p = tmp.path().join(format!("test2_b{b}.csv"));
         write_feature_table(&p, &side, &rows, &[])?;
         tables.push(p);
