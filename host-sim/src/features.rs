@@ -18,10 +18,11 @@ use serde::Serialize;
 
 use crate::analysis::octave_bands::{band_levels, band_name, octave_edges};
 use crate::analysis::stats::stats;
-use crate::geometry::{catalogue, GeometrySpec};
+use crate::gap::lifetime::rig::{RigDescription, RPM_TOL};
+use crate::geometry::{catalogue, named_geometry, GeometrySpec};
 use crate::io::feature_table::{
-    median_step, BearingInfo, FeatureRow, FeatureSidecar, FeatureTableError, Geometry,
-    FAILURE_MODES, FORMAT, FORMAT_VERSION,
+    median_step, sidecar_path, BearingInfo, FeatureRow, FeatureSidecar, FeatureTableError,
+    Geometry, FAILURE_MODES, FORMAT, FORMAT_VERSION,
 };
 use crate::io::feature_table_write::write_feature_table;
 use crate::io::ims::{parse_ims_name, read_ims_snapshot, IMS_FS, IMS_RPM};
@@ -32,6 +33,8 @@ use crate::io::{IoError, ReadOptions};
 pub const XJTU_INTERVAL_S: f64 = 60.0;
 /// IMS radial load, N (6000 lbf on the shaft and bearings; IMS readme).
 pub const IMS_LOAD_N: f64 = 6000.0 * 4.448_221_6;
+/// The preset of the IMS layout's bearing (Rexnord ZA-2115 at 2000 rpm, 6000 lbf).
+pub const IMS_PRESET: &str = "ims-za2115";
 /// Most snapshot files of one folder (IMS test 1 has 2 156).
 pub const MAX_FILES: usize = 100_000;
 
@@ -58,7 +61,8 @@ pub struct FeatureOptions {
     pub rpm: Option<f64>,
     /// Radial load, N (IMS: 6000 lbf by default; else required).
     pub load_n: Option<f64>,
-    /// wearsim preset of the bearing (IMS: `ims-za2115` by default).
+    /// wearsim preset of the bearing (IMS: `ims-za2115` by default, unless a geometry,
+    /// speed or load of the user's replaces it).
     pub preset: Option<String>,
     /// Geometry `elements=N,ball=D,pitch=P,angle=DEG` (mm, degrees; XJTU-SY: the
     /// catalogue's LDK UER204 by default).
@@ -158,6 +162,34 @@ fn files(dir: &Path, layout: RawLayout) -> Result<Vec<(PathBuf, u64, Option<f64>
     Ok(out)
 }
 
+/// The error of a folder in which no file has `layout`'s naming: the naming, and a few of
+/// the files seen.
+fn no_file_of(dir: &Path, layout: RawLayout) -> FeaturesError {
+    let naming = match layout {
+        RawLayout::Ims => "files named by time stamp YYYY.MM.DD.hh.mm.ss",
+        RawLayout::Femto => "acc_NNNNN.csv",
+        RawLayout::Xjtu => "N.csv, N = 1, 2, …",
+        RawLayout::Auto => "a known layout",
+    };
+    let mut seen: Vec<String> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    seen.sort();
+    let n = seen.len();
+    let shown: Vec<&str> = seen.iter().take(5).map(String::as_str).collect();
+    FeaturesError::Input(format!(
+        "{}: no file matches layout {} ({naming}); the folder holds {n} entries{}{}",
+        dir.display(),
+        format!("{layout:?}").to_lowercase(),
+        if n > 0 { ": " } else { "" },
+        shown.join(", ") + if n > shown.len() { ", …" } else { "" }
+    ))
+}
+
 /// Recognises the layout of `dir` from the content of its first snapshot file (by the
 /// naming of each layout, the first that names any file).
 pub fn detect(dir: &Path) -> Result<RawLayout, FeaturesError> {
@@ -245,21 +277,51 @@ pub fn convert(
             "--load-n: the FEMTO and XJTU-SY files do not hold the radial load; give it (N)".into(),
         )
     })?;
-    let preset = o.preset.clone().or(ims.then(|| "ims-za2115".to_string()));
-    let geometry = match (&o.geometry, layout) {
-        (Some(g), _) => Some(
+    // Explicit flags override the layout's defaults. The IMS layout's preset stands for
+    // its bearing at its speed and load: a geometry, speed or load of the user's drops it
+    // (the table then names the bearing by its geometry). An explicit --preset replaces
+    // the layout's geometry.
+    let user_geometry = match &o.geometry {
+        Some(g) => Some(
             GeometrySpec::parse(g)
                 .map_err(|e| FeaturesError::Input(format!("--bearing-geometry: {e}")))?,
         ),
+        None => None,
+    };
+    let differs = |a: f64, b: f64| (a - b).abs() > RPM_TOL * b;
+    let overridden = user_geometry.is_some()
+        || o.rpm.is_some_and(|r| differs(r, IMS_RPM))
+        || o.load_n.is_some_and(|l| differs(l, IMS_LOAD_N));
+    let preset = o
+        .preset
+        .clone()
+        .or((ims && !overridden).then(|| IMS_PRESET.to_string()));
+    let geometry = match (user_geometry, layout) {
+        (Some(g), _) => Some(g),
+        (None, _) if o.preset.is_some() => None,
         (None, RawLayout::Xjtu) => catalogue("xjtu-ldk-uer204").map(|e| e.geometry),
+        (None, RawLayout::Ims) if preset.is_none() => named_geometry(IMS_PRESET),
         _ => None,
     };
+    // Contradictory explicit flags are an error.
+    if let (Some(p), Some(g)) = (&o.preset, &geometry) {
+        if let Some(n) = named_geometry(p).filter(|n| !n.same_as(g)) {
+            return Err(FeaturesError::Input(format!(
+                "--preset {p} and --bearing-geometry contradict: {p} is {}, the flag {}; give one of them",
+                n.describe(),
+                g.describe()
+            )));
+        }
+    }
     if preset.is_none() && geometry.is_none() {
         return Err(FeaturesError::Input(
             "--preset or --bearing-geometry: the table's sidecar names its bearing; the FEMTO/PRONOSTIA documentation gives no geometry, pass elements=N,ball=D,pitch=P,angle=DEG (mm, degrees)".into(),
         ));
     }
     let list = files(dir, layout)?;
+    if list.is_empty() {
+        return Err(no_file_of(dir, layout));
+    }
     let mut rows: Vec<FeatureRow> = vec![];
     let mut skipped = vec![];
     let mut fs = match layout {
@@ -406,6 +468,23 @@ pub fn convert(
         n_snapshots: Some(rows.len() as u64),
         notes: skipped.iter().map(|s| format!("skipped: {s}")).collect(),
     };
+    // A sidecar that names a model preset must describe the preset's operating point
+    // (the one check `gap --life` makes): refuse it here rather than write it.
+    if sidecar
+        .bearing
+        .preset
+        .as_deref()
+        .is_some_and(|p| wearsim_core::presets::by_name(p).is_some())
+    {
+        RigDescription::from_sidecar(&sidecar, out).map_err(|e| {
+            let side = format!("{}: ", sidecar_path(out).display());
+            FeaturesError::Input(format!(
+                "--preset {} does not describe this table ({}); leave --preset out and give --bearing-geometry to describe the bearing at its own operating point",
+                sidecar.bearing.preset.as_deref().unwrap_or(""),
+                e.strip_prefix(&side).unwrap_or(&e)
+            ))
+        })?;
+    }
     let band_cols: Vec<(String, Vec<f64>)> =
         bands.into_iter().map(|(b, v)| (band_name(b), v)).collect();
     let side = write_feature_table(out, &sidecar, &rows, &band_cols)?;

@@ -86,7 +86,44 @@ pub fn catalogue(name: &str) -> Option<&'static CatalogueEntry> {
     CATALOGUE.iter().find(|e| e.name == name)
 }
 
+/// The geometry a wearsim preset or a catalogue bearing `name` stands for (mm, degrees).
+pub fn named_geometry(name: &str) -> Option<GeometrySpec> {
+    if let Some(m) = wearsim_core::presets::by_name(name) {
+        let g = m.bearing;
+        return Some(GeometrySpec {
+            elements: u32::from(g.elements),
+            ball_mm: g.element_diameter * 1e3,
+            pitch_mm: g.pitch_diameter * 1e3,
+            angle_deg: g.contact_angle.to_degrees(),
+        });
+    }
+    catalogue(name).map(|e| e.geometry)
+}
+
 impl GeometrySpec {
+    /// The geometry as `--bearing-geometry` takes it, to 4 decimals:
+    /// `elements=16,ball=8.4074,pitch=71.501,angle=15.17`.
+    pub fn describe(&self) -> String {
+        let r = |x: f64| (x * 1e4).round() / 1e4;
+        format!(
+            "elements={},ball={},pitch={},angle={}",
+            self.elements,
+            r(self.ball_mm),
+            r(self.pitch_mm),
+            r(self.angle_deg)
+        )
+    }
+
+    /// Whether `other` is the same bearing: equal element count, diameters within 0.1 %
+    /// and contact angle within 0.1° (a geometry written in mm to a few digits).
+    pub fn same_as(&self, other: &GeometrySpec) -> bool {
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-3 * a.abs().max(b.abs());
+        self.elements == other.elements
+            && close(self.ball_mm, other.ball_mm)
+            && close(self.pitch_mm, other.pitch_mm)
+            && (self.angle_deg - other.angle_deg).abs() <= 0.1
+    }
+
     /// Check every field; the error names the field (`bearing-geometry.pitch`, ...) and its
     /// allowed range in the flag's units. The ranges are the core's
     /// ([`BearingGeometry::new_checked`], which every model of the bearing must pass),

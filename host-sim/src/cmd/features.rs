@@ -30,7 +30,7 @@ pub struct FeaturesArgs {
     /// Radial load, N (IMS: 6000 lbf = 26 689 N; required for FEMTO and XJTU-SY).
     #[arg(long)]
     pub load_n: Option<f64>,
-    /// wearsim preset of the bearing (IMS: ims-za2115); `gap --life` needs one.
+    /// wearsim preset of the bearing (IMS: ims-za2115, dropped by another --bearing-geometry, --rpm or --load-n); refused when it contradicts the geometry or operating point.
     #[arg(long)]
     pub preset: Option<String>,
     /// Bearing geometry `elements=N,ball=D,pitch=P,angle=DEG` (mm, degrees; XJTU-SY: LDK UER204).
@@ -39,7 +39,7 @@ pub struct FeaturesArgs {
     /// Which bearing, free text (default: the folder name).
     #[arg(long)]
     pub bearing_id: Option<String>,
-    /// Failure mode: outer-race, inner-race, rolling-element, cage, none, unknown (default).
+    /// Failure mode: outer-race, inner-race, rolling-element, cage, none, unknown (default); `gap --life` trains only on a life that failed.
     #[arg(long)]
     pub failure_mode: Option<String>,
     /// Machine-readable summary on stdout.

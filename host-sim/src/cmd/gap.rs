@@ -121,7 +121,9 @@ fn run_life(a: &GapArgs) -> Result<(), CliError> {
         lifetime::measured(path, &o)
     }
     .map_err(CliError::input)?;
-    let g = lifetime::diagnose(&m, &o).map_err(CliError::run)?;
+    // A training life the simulated one cannot reach is a problem of the input.
+    let c = lifetime::calibrated(&m, &o).map_err(CliError::input)?;
+    let g = lifetime::diagnose_calibrated(&m, &o, &c).map_err(CliError::run)?;
     let mut out = life_report::output(&g);
     out.files = life_report::write(&a.out, &out, &g)?;
     if a.json {

@@ -59,6 +59,10 @@ pub const FAILURE_MODES: [&str; 6] = [
     "unknown",
 ];
 
+/// Units a sidecar's `unit` may name. `gap --life` compares RMS only as a ratio to each
+/// life's own steady level, so lives in different units compare as they are.
+pub const UNITS: [&str; 3] = ["g", "m/s^2", "unknown"];
+
 /// Rolling-element bearing geometry of a sidecar without a preset: the keys of a record
 /// sidecar's `bearing_geometry` object ([`crate::geometry::GeometrySpec`]; mm, degrees).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -255,13 +259,62 @@ pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
             format!("{} is not \"{FORMAT}\"", v["format"]),
         ));
     }
-    let s: FeatureSidecar = serde_json::from_value(v).map_err(|e| {
+    let s: FeatureSidecar = serde_json::from_value(v.clone()).map_err(|e| {
         let msg = e.to_string();
-        let field = msg.split('`').nth(1).unwrap_or("(see message)").to_string();
+        let field = mistyped_field(&v)
+            .or_else(|| msg.split('`').nth(1).map(String::from))
+            .unwrap_or_else(|| "(the sidecar)".into());
         sidecar_err(path, &field, msg)
     })?;
     check_sidecar(path, &s)?;
     Ok(s)
+}
+
+/// The first sidecar key (dotted for `bearing.*`) whose value has the wrong JSON type:
+/// serde's message for a wrong type names the type, not the key.
+fn mistyped_field(v: &serde_json::Value) -> Option<String> {
+    use serde_json::Value;
+    let num = |x: &Value| x.is_number();
+    let int = |x: &Value| x.is_u64();
+    let string = |x: &Value| x.is_string();
+    type Check = fn(&Value) -> bool;
+    let top: [(&str, Check); 14] = [
+        ("format", string),
+        ("format_version", int),
+        ("source", string),
+        ("bearing", Value::is_object),
+        ("channel", string),
+        ("unit", string),
+        ("rpm", num),
+        ("radial_load_n", num),
+        ("sample_rate_hz", num),
+        ("snapshot_samples", int),
+        ("snapshot_interval_s", num),
+        ("failure_mode", string),
+        ("n_snapshots", int),
+        ("notes", Value::is_array),
+    ];
+    let bearing: [(&str, Check); 3] = [
+        ("bearing.preset", string),
+        ("bearing.geometry", Value::is_object),
+        ("bearing.id", string),
+    ];
+    let geometry: [(&str, Check); 4] = [
+        ("bearing.geometry.elements", int),
+        ("bearing.geometry.ball_mm", num),
+        ("bearing.geometry.pitch_mm", num),
+        ("bearing.geometry.angle_deg", num),
+    ];
+    let get = |key: &str| {
+        key.split('.')
+            .try_fold(v, |x, k| x.get(k))
+            .filter(|x| !x.is_null())
+    };
+    top.iter()
+        .chain(&bearing)
+        .chain(&geometry)
+        .find(|(k, ok)| get(k).is_some_and(|x| !ok(x)))
+        .map(|(k, _)| (*k).to_string())
 }
 
 pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), FeatureTableError> {
@@ -322,6 +375,13 @@ pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), Featu
             ),
         ));
     }
+    if !UNITS.contains(&s.unit.as_str()) {
+        return Err(sidecar_err(
+            path,
+            "unit",
+            format!("{:?} is not one of {}", s.unit, UNITS.join(", ")),
+        ));
+    }
     if s.bearing.preset.is_none() && s.bearing.geometry.is_none() {
         return Err(sidecar_err(
             path,
@@ -355,6 +415,31 @@ pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), Featu
                 "bearing.geometry",
                 format!("{g:?}: need 0 < ball_mm < pitch_mm ≤ 10000, elements 3..=200, 0 ≤ angle_deg < 90"),
             ));
+        }
+        // A preset is a geometry too: both given must be one bearing.
+        let named = s
+            .bearing
+            .preset
+            .as_deref()
+            .and_then(|p| crate::geometry::named_geometry(p).map(|n| (p, n)));
+        if let Some((p, n)) = named {
+            let stated = crate::geometry::GeometrySpec {
+                elements: g.elements,
+                ball_mm: g.ball_mm,
+                pitch_mm: g.pitch_mm,
+                angle_deg: g.angle_deg,
+            };
+            if !n.same_as(&stated) {
+                return Err(sidecar_err(
+                    path,
+                    "bearing.geometry",
+                    format!(
+                        "{} (mm, degrees) contradicts `bearing.preset` {p}, which is {}; give the preset or the geometry of this bearing, not both",
+                        stated.describe(),
+                        n.describe()
+                    ),
+                ));
+            }
         }
     }
     Ok(())
@@ -665,6 +750,9 @@ impl FeatureTable {
             hours: h1 - h0,
             dropped: 0,
             preset: self.sidecar.bearing.preset.clone(),
+            failure_mode: self.sidecar.failure_mode.clone(),
+            shared_shaft: false,
+            unit: self.sidecar.unit.clone(),
         }
     }
 }

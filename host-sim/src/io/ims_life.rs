@@ -63,6 +63,23 @@ pub struct MeasuredLife {
     /// wearsim preset of the bearing, the model its simulated life runs (`ims-za2115` for
     /// an IMS table; a documented feature table's `bearing.preset`).
     pub preset: Option<String>,
+    /// How the life ended, in the feature-table vocabulary
+    /// ([`super::feature_table::FAILURE_MODES`]): a site (`outer-race`, ...), `none` (it
+    /// did not fail) or `unknown` (an IMS table's bearing: the table does not say).
+    pub failure_mode: String,
+    /// The life ran on one shaft with a bearing that failed (the IMS rigs): once that
+    /// neighbour degrades, this life's late stages carry its vibration.
+    pub shared_shaft: bool,
+    /// Unit of the RMS ([`super::feature_table::UNITS`]; `g` for an IMS table).
+    pub unit: String,
+}
+
+impl MeasuredLife {
+    /// Whether the life is stated to have run to failure (a failure site, not `none` or
+    /// `unknown`).
+    pub fn failed(&self) -> bool {
+        !matches!(self.failure_mode.as_str(), "none" | "unknown")
+    }
 }
 
 /// Reads bearing `bearing` (1–4) of an IMS feature table with per-channel `rms`,
@@ -133,5 +150,8 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
         hours: h1 - h0,
         dropped: n - keep.len(),
         preset: Some("ims-za2115".into()),
+        failure_mode: "unknown".into(),
+        shared_shaft: true,
+        unit: "g".into(),
     })
 }

@@ -24,6 +24,19 @@ const GEOMETRY: &str = r#"{ "elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "a
 /// generator; `seed` varies the scatter between bearings. `bearing` is the sidecar's
 /// `bearing` object.
 fn table(dir: &Path, name: &str, seed: u64, bearing: &str, load: &str) -> PathBuf {
+    table_every(dir, name, seed, bearing, load, INTERVAL_S)
+}
+
+/// [`table`] with snapshots `interval` seconds apart; the sidecar says the bearing failed
+/// at the outer race.
+fn table_every(
+    dir: &Path,
+    name: &str,
+    seed: u64,
+    bearing: &str,
+    load: &str,
+    interval: f64,
+) -> PathBuf {
     let mut st = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
     let mut g = move || {
         // Sum of four uniforms: roughly Gaussian, unit variance.
@@ -50,7 +63,7 @@ fn table(dir: &Path, name: &str, seed: u64, bearing: &str, load: &str) -> PathBu
         let crest = 4.5 + 0.2 * g();
         csv.push_str(&format!(
             "{k},{},{rms},{kurt},{crest},{},{}\n",
-            INTERVAL_S * k as f64,
+            interval * k as f64,
             0.02 * g(),
             rms * crest
         ));
@@ -69,8 +82,8 @@ fn table(dir: &Path, name: &str, seed: u64, bearing: &str, load: &str) -> PathBu
   "radial_load_n": {load},
   "sample_rate_hz": 25600.0,
   "snapshot_samples": 2560,
-  "snapshot_interval_s": {INTERVAL_S},
-  "failure_mode": "unknown",
+  "snapshot_interval_s": {interval},
+  "failure_mode": "outer-race",
   "n_snapshots": {N}
 }}"#
     );
@@ -177,5 +190,123 @@ fn sidecars_that_describe_no_simulable_bearing_are_refused() {
         "4000.0",
     );
     refused(&gap(&b, &a, &out), &["`rpm`", "geometry"]);
+    assert!(empty(&out));
+}
+
+/// Sets sidecar key `key` (a string) of table `csv` to `value`.
+fn set_side(csv: &Path, key: &str, value: &str) {
+    let side = csv.with_extension("json");
+    let mut j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&side).unwrap()).unwrap();
+    j[key] = value.into();
+    std::fs::write(&side, j.to_string()).unwrap();
+}
+
+fn findings(j: &serde_json::Value) -> String {
+    j["findings"].to_string()
+}
+
+#[test]
+fn the_failure_mode_decides_how_a_held_out_life_is_judged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table(tmp.path(), "a", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b", 2, &bearing, "4000.0");
+    let run = |mode: &str, unit: &str| {
+        set_side(&b, "failure_mode", mode);
+        set_side(&b, "unit", unit);
+        let out = tmp
+            .path()
+            .join(format!("gap-{mode}-{}", unit.replace('/', "_")));
+        let o = gap(&a, &b, &out);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let stages = |j: &serde_json::Value| -> Vec<String> {
+        j["stages_holdout"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["stage"].as_str().unwrap().to_string())
+            .collect()
+    };
+    // A held-out life that did not fail: only the stages before half its test, and a
+    // finding that says why without the IMS shaft.
+    let none = run("none", "g");
+    assert_eq!(none["holdout_spans"][0]["t_max"], 0.5);
+    for s in none["stages_holdout"].as_array().unwrap() {
+        assert!(s["span"][1].as_f64().unwrap() <= 0.5, "{s}");
+    }
+    let f = findings(&none);
+    assert!(f.contains("did not fail (failure_mode none)"), "{f}");
+    assert!(!f.contains("shaft"), "{f}");
+    // One that failed at the outer race: its whole life, against the outer race.
+    let outer = run("outer-race", "g");
+    assert_eq!(outer["holdout_spans"][0]["t_max"], 1.0);
+    assert_eq!(outer["holdout_spans"][0]["simulated_site"], "outer_race");
+    assert!(stages(&outer).contains(&"end".to_string()));
+    assert!(!findings(&outer).contains("did not fail"));
+    assert_ne!(outer["totals"], none["totals"]);
+    // At the inner race: its whole life against a simulated inner-race life.
+    let inner = run("inner-race", "g");
+    assert_eq!(inner["holdout_spans"][0]["simulated_site"], "inner_race");
+    assert!(stages(&inner).contains(&"end".to_string()));
+    assert_eq!(inner["train_span"]["simulated_site"], "outer_race");
+    // At a site the wear machine does not grow: said so.
+    let cage = run("cage", "g");
+    assert_eq!(cage["holdout_spans"][0]["t_max"], 1.0);
+    assert!(
+        findings(&cage).contains("does not grow"),
+        "{}",
+        findings(&cage)
+    );
+    // Units: the cells are ratios to each life's steady level, so a life in m/s² gives
+    // the same gap, and the report says why.
+    let si = run("outer-race", "m/s^2");
+    assert_eq!(si["totals"], outer["totals"]);
+    assert!(
+        findings(&si).contains("units (g, m/s^2) do not enter the gap"),
+        "{}",
+        findings(&si)
+    );
+}
+
+#[test]
+fn a_training_life_must_have_failed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table(tmp.path(), "a", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b", 2, &bearing, "4000.0");
+    let out = tmp.path().join("gap");
+    for mode in ["none", "unknown"] {
+        set_side(&a, "failure_mode", mode);
+        refused(
+            &gap(&a, &b, &out),
+            &[
+                "`failure_mode`",
+                &format!("{mode:?}"),
+                "calibrates the life factor",
+            ],
+        );
+        assert!(empty(&out));
+    }
+}
+
+#[test]
+fn a_training_life_too_short_to_calibrate_is_refused_with_the_length_it_needs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    // 400 snapshots 10 s apart: 1.1 h, 1.2·10⁵ revolutions at 1800 rpm.
+    let a = table_every(tmp.path(), "a", 1, &bearing, "4000.0", 10.0);
+    let b = table_every(tmp.path(), "b", 2, &bearing, "4000.0", 10.0);
+    let out = tmp.path().join("gap");
+    refused(
+        &gap(&a, &b, &out),
+        &[
+            "training life lasts",
+            "must span at least",
+            "h at this speed",
+        ],
+    );
     assert!(empty(&out));
 }

@@ -3,7 +3,7 @@
 //! lives, and the early-life part again on the early stages alone.
 
 use super::rig::RigDescription;
-use super::sim::{calibrate, LifeSim};
+use super::sim::{calibrate, failure_site, LifeSim};
 use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
 use super::{
     stage_points, LifePoint, LifeReference, MeasuredLife, EARLY_T_MAX, HOLDOUT_T_MAX, STAGES,
@@ -65,13 +65,17 @@ pub struct LifeCell {
 fn life_cells(
     role: &str,
     targets: &[LifeTarget],
-    before: &[LifePoint],
-    after: &[LifePoint],
+    (before, after): (&Effects, &Effects),
+    sims: &std::sync::atomic::AtomicUsize,
 ) -> Vec<LifeCell> {
     let mut out = vec![];
     for t in targets {
         let r = &t.reference;
-        let (Ok(b), Ok(a)) = (r.values(before), r.values(after)) else {
+        // Each life against its own simulated life (its failure site's).
+        let (Ok(pb), Ok(pa)) = (t.sim.points(before, sims), t.sim.points(after, sims)) else {
+            continue;
+        };
+        let (Ok(b), Ok(a)) = (r.values(&pb), r.values(&pa)) else {
             continue;
         };
         let (gb, ga) = (r.residuals(&b), r.residuals(&a));
@@ -108,6 +112,35 @@ pub struct EarlyShrink {
     pub shrink: f64,
 }
 
+/// How one life is compared: over which part of it, against a simulated life of which
+/// wear site.
+#[derive(Debug, Clone, Serialize)]
+pub struct LifeSpan {
+    /// The life (file and bearing).
+    pub life: String,
+    /// Its failure mode as its source states it (`unknown` for an IMS table).
+    pub failure_mode: String,
+    /// Compared on the stages that end by this fraction of its life (1: the whole life).
+    pub t_max: f64,
+    /// Wear site of the simulated life it is compared with (`outer_race`, ...).
+    pub simulated_site: String,
+    /// It ran on one shaft with a failing bearing (IMS).
+    pub shared_shaft: bool,
+    /// Unit of its RMS.
+    pub unit: String,
+}
+
+/// The part of a held-out life it is judged on: a life that did not fail (`none`) only on
+/// the stages before [`HOLDOUT_T_MAX`] of its test (it has no end of life, so its late
+/// stages are not those of a failing bearing); any other the whole life.
+pub fn holdout_t_max(m: &MeasuredLife) -> f64 {
+    if m.failure_mode == "none" {
+        HOLDOUT_T_MAX
+    } else {
+        1.0
+    }
+}
+
 /// The lifetime diagnosis.
 #[derive(Debug, Clone, Serialize)]
 pub struct LifeGap {
@@ -123,6 +156,10 @@ pub struct LifeGap {
     pub life_factor: f64,
     /// Revolutions of the measured (training) life.
     pub measured_revs: f64,
+    /// How the training life is compared (whole life, its failure site).
+    pub train_span: LifeSpan,
+    /// How each held-out life is compared.
+    pub holdout_spans: Vec<LifeSpan>,
     /// Stages ranked by their baseline gap on the training life ("where along life").
     pub stages_train: Vec<StageGap>,
     /// Stages of the held-out lives.
@@ -245,7 +282,8 @@ pub struct MeasuredSet {
     pub train_ref: LifeReference,
     /// Held-out lives.
     pub holdout: Vec<MeasuredLife>,
-    /// Their cells before [`HOLDOUT_T_MAX`].
+    /// Their cells ([`holdout_t_max`]: a life that did not fail before
+    /// [`HOLDOUT_T_MAX`], any other over its whole life).
     pub holdout_ref: Vec<LifeReference>,
     /// The simulated bearing all lives share.
     pub rig: RigDescription,
@@ -264,10 +302,17 @@ fn label(m: &MeasuredLife) -> String {
 /// Reads the training and held-out lives of `path` and builds their cells.
 pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
     let train = read_life(path, o.train)?;
+    // The IMS premise: the held-out bearings are the failed one's neighbours on its
+    // shaft, which did not fail.
     let holdout: Vec<MeasuredLife> = o
         .holdout
         .iter()
-        .map(|b| read_life(path, *b))
+        .map(|b| {
+            read_life(path, *b).map(|m| MeasuredLife {
+                failure_mode: "none".into(),
+                ..m
+            })
+        })
         .collect::<Result<_, _>>()?;
     let rig = RigDescription::preset(train.preset.as_deref().unwrap_or("ims-za2115"))?;
     measured_from(train, holdout, rig)
@@ -287,7 +332,7 @@ pub fn measured_from(
     let train_ref = LifeReference::new(&label(&train), &train.points, 1.0)?;
     let holdout_ref = holdout
         .iter()
-        .map(|m| LifeReference::new(&label(m), &m.points, HOLDOUT_T_MAX))
+        .map(|m| LifeReference::new(&label(m), &m.points, holdout_t_max(m)))
         .collect::<Result<_, _>>()?;
     Ok(MeasuredSet {
         train,
@@ -298,28 +343,94 @@ pub fn measured_from(
     })
 }
 
+/// The life factor of a diagnosis, calibrated on the training life at its failure site.
+#[derive(Debug, Clone, Copy)]
+pub struct Calibration {
+    /// Calibrated life factor.
+    pub factor: f64,
+    /// Revolutions of the calibrated simulated life.
+    pub revs: f64,
+    /// Lives run to calibrate.
+    pub runs: usize,
+    /// Revolutions of the measured training life.
+    pub measured_revs: f64,
+}
+
+/// Calibrates the life factor of `m` on its training life. A failure means the training
+/// life cannot be reached by the simulated one (too short for its crack-to-failure part):
+/// a problem of the input, which the message sizes.
+pub fn calibrated(m: &MeasuredSet, o: &LifeOptions) -> Result<Calibration, String> {
+    let measured_revs = m.train.hours * 3600.0 * m.rig.shaft_hz;
+    let site = failure_site(&m.train.failure_mode);
+    let (factor, revs, runs) = calibrate(&m.rig, o.seed, measured_revs, site)?;
+    Ok(Calibration {
+        factor,
+        revs,
+        runs,
+        measured_revs,
+    })
+}
+
 /// Diagnoses the gap along life of measured lives `m` (see the module docs).
 pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
+    let c = calibrated(m, o)?;
+    diagnose_calibrated(m, o, &c)
+}
+
+fn span(m: &MeasuredLife, t_max: f64, sim: &LifeSim) -> LifeSpan {
+    LifeSpan {
+        life: label(m),
+        failure_mode: m.failure_mode.clone(),
+        t_max,
+        simulated_site: sim.site().name().to_string(),
+        shared_shaft: m.shared_shaft,
+        unit: m.unit.clone(),
+    }
+}
+
+/// [`diagnose`] with the life factor already calibrated ([`calibrated`]). Every life is
+/// compared with a simulated life of its own failure site where the model grows it
+/// ([`failure_site`]); the others (`none`, `unknown`, `cage`) with the training life's.
+pub fn diagnose_calibrated(
+    m: &MeasuredSet,
+    o: &LifeOptions,
+    c: &Calibration,
+) -> Result<LifeGap, String> {
     let t0 = std::time::Instant::now();
     let (train_life, hold_lives) = (&m.train, &m.holdout);
     let kinematics = m.rig.kinematics()?;
-    let measured_revs = train_life.hours * 3600.0 * m.rig.shaft_hz;
-    let (factor, revs, cal_runs) = calibrate(&m.rig, o.seed, measured_revs)?;
-    let sim = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs)?);
+    let (factor, revs, cal_runs, measured_revs) = (c.factor, c.revs, c.runs, c.measured_revs);
+    let train_site = failure_site(&train_life.failure_mode);
+    let sim = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs, train_site)?);
+    let mut sims: Vec<Arc<LifeSim>> = vec![sim.clone()];
     let train = vec![LifeTarget {
         reference: m.train_ref.clone(),
         sim: sim.clone(),
         only: None,
     }];
-    let hold: Vec<LifeTarget> = m
-        .holdout_ref
-        .iter()
-        .map(|r| LifeTarget {
+    let mut hold: Vec<LifeTarget> = vec![];
+    let mut holdout_spans = vec![];
+    for (life, r) in hold_lives.iter().zip(&m.holdout_ref) {
+        let own = match failure_site(&life.failure_mode) {
+            None => sim.clone(),
+            Some(loc) => {
+                let s = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs, Some(loc))?);
+                match sims.iter().find(|x| x.site() == s.site()) {
+                    Some(x) => x.clone(),
+                    None => {
+                        sims.push(s.clone());
+                        s
+                    }
+                }
+            }
+        };
+        holdout_spans.push(span(life, holdout_t_max(life), &own));
+        hold.push(LifeTarget {
             reference: r.clone(),
-            sim: sim.clone(),
+            sim: own,
             only: None,
-        })
-        .collect();
+        });
+    }
     let ev = Evaluator::new(o.jobs);
     let base = sim.points(&Effects::NONE, ev.counter())?;
     let steady = stage_points(&base, &STAGES[STEADY]);
@@ -394,13 +505,21 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     let train_before = ev.residuals(&train, &Effects::NONE)?;
     let train_after = ev.residuals(&train, &at.final_effects)?;
     let fin = sim.points(&at.final_effects, ev.counter())?;
-    let vals = |ts: &[LifeTarget], p: &[LifePoint]| -> Vec<Vec<f64>> {
+    // Each life's baseline values against its own simulated life.
+    let vals = |ts: &[LifeTarget]| -> Vec<Vec<f64>> {
         ts.iter()
-            .map(|t| t.reference.values(p).unwrap_or_default())
+            .map(|t| {
+                t.sim
+                    .points(&Effects::NONE, ev.counter())
+                    .ok()
+                    .and_then(|p| t.reference.values(&p).ok())
+                    .unwrap_or_default()
+            })
             .collect()
     };
-    let mut cells = life_cells("train", &train, &base, &fin);
-    cells.extend(life_cells("holdout", &hold, &base, &fin));
+    let fx = (&Effects::NONE, &at.final_effects);
+    let mut cells = life_cells("train", &train, fx, ev.counter());
+    cells.extend(life_cells("holdout", &hold, fx, ev.counter()));
     cells.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
     let hold_e_final = ev.residuals(&hold_e, &at.final_effects)?;
     let early_after = hold_e_final.total();
@@ -413,13 +532,10 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
         kinematics,
         life_factor: factor,
         measured_revs,
-        stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train, &base)),
-        stages_holdout: stage_gaps(
-            &hold,
-            &at.holdout_before,
-            &at.holdout_after,
-            &vals(&hold, &base),
-        ),
+        train_span: span(train_life, 1.0, &sim),
+        holdout_spans,
+        stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train)),
+        stages_holdout: stage_gaps(&hold, &at.holdout_before, &at.holdout_after, &vals(&hold)),
         early_before,
         early_after,
         early,

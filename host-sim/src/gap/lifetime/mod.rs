@@ -25,10 +25,15 @@
 //! life's revolutions, and the wear responds to the loads they change.
 //!
 //! **Training and held-out.** Effects are fitted on the training bearing's whole life
-//! and judged on held-out bearings of the same test over the stages they share with it
-//! before any failure (t < [`HOLDOUT_T_MAX`]): the bearings ran on one shaft, were new
-//! together and did not fail, so their late stages carry the failing neighbour's
-//! vibration through the shaft rather than their own wear.
+//! (which must have failed: its length calibrates the life factor) and judged on the
+//! held-out lives. A held-out life that failed, or whose end is unknown, is judged over
+//! its whole life, against a simulated life of its own failure site where the wear machine
+//! grows it ([`sim::failure_site`]: outer race, inner race, rolling element). A life that
+//! did not fail (`failure_mode` `none`) has no end of life: its time line is its test's,
+//! not a life's, so it is judged only on the stages before [`HOLDOUT_T_MAX`] of its test.
+//! On IMS tables the held-out bearings are such lives: they ran on one shaft with the
+//! failed one, were new together and did not fail, so their late stages carry the
+//! failing neighbour's vibration through the shaft rather than their own wear.
 //!
 //! **The early-life part** is attributed again on the early stages' cells alone (their
 //! contrasts to the steady stage), so that the steady level, which dominates the total,
@@ -46,8 +51,8 @@ pub mod target;
 
 pub use crate::io::ims_life::{LifePoint, MeasuredLife};
 pub use diagnose::{
-    diagnose, measured, measured_from, EarlyShrink, LifeCell, LifeGap, LifeOptions, MeasuredSet,
-    StageGap,
+    calibrated, diagnose, diagnose_calibrated, holdout_t_max, measured, measured_from, Calibration,
+    EarlyShrink, LifeCell, LifeGap, LifeOptions, LifeSpan, MeasuredSet, StageGap,
 };
 pub use rig::RigDescription;
 pub use sim::{LifeSim, MAX_WINDOWS, SCHEDULE, WINDOW_SAMPLES};
@@ -91,8 +96,8 @@ pub const STEADY: usize = 3;
 /// Stages before this fraction of life are the "early-life part" of the gap.
 pub const EARLY_T_MAX: f64 = 0.1;
 
-/// Held-out bearings are compared on the stages that end at or before this fraction of
-/// the test (see the module docs).
+/// Held-out lives that did not fail are compared on the stages that end at or before
+/// this fraction of the test (see the module docs).
 pub const HOLDOUT_T_MAX: f64 = 0.5;
 
 /// Fewest measured snapshots a stage needs to have a spread.

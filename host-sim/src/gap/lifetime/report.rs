@@ -67,6 +67,11 @@ pub struct LifeGapOutput {
     pub stages_train: Vec<StageGap>,
     /// Stages of the held-out lives.
     pub stages_holdout: Vec<StageGap>,
+    /// How the training life is compared (whole life, simulated wear site).
+    pub train_span: lifetime::LifeSpan,
+    /// How each held-out life is compared: its failure mode, the part of its life judged
+    /// (`t_max`), the simulated wear site.
+    pub holdout_spans: Vec<lifetime::LifeSpan>,
     /// Effects ranked by held-out shrink.
     pub ranking: Vec<Ranked>,
     /// Greedy additions.
@@ -106,15 +111,73 @@ pub struct LifeGapOutput {
     pub files: Vec<PathBuf>,
 }
 
+/// What the failure modes of the lives mean for the comparison: which part of each
+/// held-out life is judged, against which simulated wear site.
+fn span_findings(g: &LifeGap) -> Vec<String> {
+    let mut f = vec![];
+    let t = &g.train_span;
+    let how = if t.failure_mode == "unknown" {
+        "is taken as the life to failure (its table does not state the failure mode)".to_string()
+    } else {
+        format!("failed at {}", t.failure_mode)
+    };
+    f.push(format!(
+        "the training life ({}) {how} and is compared over its whole life with a simulated life wearing at the {}",
+        t.life, t.simulated_site
+    ));
+    for h in &g.holdout_spans {
+        let why = if h.t_max < 1.0 && h.shared_shaft {
+            format!(
+                "it did not fail, and its late stages carry the failing neighbour's vibration through the shaft (IMS: the bearings ran on one shaft); it is compared on the stages before {:.0} % of the test",
+                100.0 * h.t_max
+            )
+        } else if h.t_max < 1.0 {
+            format!(
+                "its sidecar says it did not fail (failure_mode none): it has no end of life, its time line is that of its test, so it is compared only on the stages before {:.0} % of the test, and the late-life part rests on the training life and the lives that failed",
+                100.0 * h.t_max
+            )
+        } else if h.failure_mode == "unknown" {
+            format!(
+                "its failure mode is unknown: it is taken to have run to failure and is compared over its whole life with a simulated life wearing at the {}",
+                h.simulated_site
+            )
+        } else if lifetime::sim::failure_site(&h.failure_mode).is_none() {
+            format!(
+                "it failed at {}, a site the wear machine does not grow: it is compared over its whole life with a simulated life wearing at the {}, which may itself be part of the gap",
+                h.failure_mode, h.simulated_site
+            )
+        } else {
+            format!(
+                "it failed at {} and is compared over its whole life with a simulated life wearing at the {} (same life factor)",
+                h.failure_mode, h.simulated_site
+            )
+        };
+        f.push(format!("held-out life {}: {why}", h.life));
+    }
+    let mut units: Vec<&str> = std::iter::once(t)
+        .chain(&g.holdout_spans)
+        .map(|s| s.unit.as_str())
+        .collect();
+    units.sort_unstable();
+    units.dedup();
+    f.push(format!(
+        "units ({}) do not enter the gap: RMS counts only in dB re each life's own steady level, and kurtosis, crest factor and skewness have none{}",
+        units.join(", "),
+        if units.len() > 1 {
+            "; the lives, in different units, compare as they are"
+        } else {
+            ""
+        }
+    ));
+    f
+}
+
 fn findings(g: &LifeGap) -> Vec<String> {
     let mut f = vec![format!(
         "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not",
         g.life_factor, g.measured_revs
     )];
-    f.push(format!(
-        "held-out lives are compared on the stages before {:.0} % of the test: they did not fail, and their late stages carry the failing neighbour's vibration through the shaft; the late-life part of the diagnosis (stages after that) rests on the training life alone",
-        100.0 * lifetime::HOLDOUT_T_MAX
-    ));
+    f.extend(span_findings(g));
     for a in &g.rig.assumptions {
         f.push(format!(
             "the simulated bearing is not a preset: {a}; this assumption may itself be part of the gap"
@@ -164,6 +227,8 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         where_: g.cells.clone(),
         stages_train: g.stages_train.clone(),
         stages_holdout: g.stages_holdout.clone(),
+        train_span: g.train_span.clone(),
+        holdout_spans: g.holdout_spans.clone(),
         ranking: at.ranking.clone(),
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),

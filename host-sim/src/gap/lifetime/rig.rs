@@ -118,7 +118,7 @@ impl RigDescription {
             .filter(|n| wearsim_core::presets::by_name(n).is_some());
         if let Some(name) = model_preset {
             let d = Self::preset(name)?;
-            let rpm = d.shaft_hz * 60.0;
+            let rpm = (d.shaft_hz * 60.0 * 1e6).round() / 1e6;
             if (s.rpm - rpm).abs() > RPM_TOL * rpm {
                 return Err(field(
                     "rpm",

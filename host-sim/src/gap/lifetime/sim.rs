@@ -13,7 +13,8 @@ use crate::life::{LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
 use wearsim_core::effects::Effects;
-use wearsim_core::wear::LifeConfig;
+use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
+use wearsim_core::wear::{LifeConfig, Site};
 
 /// Window schedule of a simulated life, as fractions of the expected life: blocks of
 /// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
@@ -52,14 +53,29 @@ pub struct LifeSim {
 const CACHE: usize = 1024;
 
 impl LifeSim {
-    /// A simulated life of the bearing `rig` describes with life factor `life_factor`.
+    /// A simulated life of the bearing `rig` describes with life factor `life_factor`,
+    /// wearing at `site` ([`failure_site`]; `None`: the model's own site, the outer race
+    /// of every preset).
     pub fn new(
         rig: &RigDescription,
         life_factor: f64,
         seed: u64,
         expected_revs: f64,
+        site: Option<DefectLocation>,
     ) -> Result<Self, String> {
-        let model = rig.model()?;
+        let mut model = rig.model()?;
+        if let Some(loc) = site {
+            // Only a different site changes the model: the model's own site stays bit for
+            // bit the model.
+            if Site::of(model.defect.as_ref().map(|d| &d.location)) != Site::of(Some(&loc)) {
+                let d = model
+                    .defect
+                    .unwrap_or(wearsim_core::presets::outer_race_defect(
+                        wearsim_core::topography::MEDIUM_DEFECT,
+                    ));
+                model.defect = Some(DefectConfig { location: loc, ..d });
+            }
+        }
         Ok(LifeSim {
             model,
             window_samples: rig.window_samples,
@@ -83,6 +99,11 @@ impl LifeSim {
             .map_or(0.02, |(_, s)| *s);
         let scale = if u < EARLY_T_MAX { e } else { e.max(cycles) };
         (step * scale).max(1.0)
+    }
+
+    /// The surface whose wear ends this life.
+    pub fn site(&self) -> Site {
+        Site::of(self.model.defect.as_ref().map(|d| &d.location))
     }
 
     /// Runs the life with effects `fx`: snapshot statistics on the normalised time line
@@ -142,6 +163,25 @@ impl LifeSim {
     }
 }
 
+/// The wear site the life model grows for a failure mode of the feature-table vocabulary
+/// ([`crate::io::feature_table::FAILURE_MODES`]), as the defect location that selects it
+/// ([`Site::of`]): `outer-race` at the load-zone centre, `inner-race`, `rolling-element`
+/// (element 0). `None` for a mode the model has no site for (`cage`) and for `none` and
+/// `unknown`: the life then wears at the model's own site (the outer race).
+pub fn failure_site(mode: &str) -> Option<DefectLocation> {
+    match mode {
+        "outer-race" => Some(DefectLocation::OuterRace {
+            angle: std::f64::consts::FRAC_PI_2,
+        }),
+        "inner-race" => Some(DefectLocation::InnerRace { angle: 0.0 }),
+        "rolling-element" => Some(DefectLocation::Ball {
+            element: 0,
+            phase: 0.0,
+        }),
+        _ => None,
+    }
+}
+
 /// Calibrates the life factor so that the simulated baseline life lasts `target`
 /// revolutions within 1 % ([`crate::life::calibrate`]): secant steps with no fixed part,
 /// i.e. proportional steps on the whole life (the factor scales the fatigue part, most of
@@ -152,11 +192,14 @@ pub fn calibrate(
     rig: &RigDescription,
     seed: u64,
     target: f64,
+    site: Option<DefectLocation>,
 ) -> Result<(f64, f64, usize), String> {
     // The schedule needs an expected life; every run uses the target.
     let run = |a: f64| -> Result<(f64, ()), String> {
         Ok((
-            LifeSim::new(rig, a, seed, target)?.run(&Effects::NONE)?.1,
+            LifeSim::new(rig, a, seed, target, site)?
+                .run(&Effects::NONE)?
+                .1,
             (),
         ))
     };
@@ -172,7 +215,20 @@ pub fn calibrate(
         min_steps: 0,
         max_steps: 8,
     };
-    let c = calibrate_life(target, first, &step, run).map_err(context)?;
+    let short = |e: String| {
+        // Below the crack-to-failure part: say how long the training life must be.
+        match run(wearsim_core::wear::material::MIN_LIFE_FACTOR) {
+            Ok((floor, ())) if target < floor => format!(
+                "the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {floor:.3e} revolutions at any life factor (its crack-to-failure part does not scale with the factor): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table); {}",
+                target / (3600.0 * rig.shaft_hz),
+                60.0 * rig.shaft_hz,
+                floor / (3600.0 * rig.shaft_hz),
+                context(e)
+            ),
+            _ => context(e),
+        }
+    };
+    let c = calibrate_life(target, first, &step, run).map_err(short)?;
     let (a, life, runs) = (c.factor, c.life, c.steps + 1);
     if (life / target - 1.0).abs() > 0.05 {
         return Err(context(format!(

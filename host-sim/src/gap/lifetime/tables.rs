@@ -4,7 +4,9 @@
 //! [`super::measured_from`]. The simulated bearing is built from each table's sidecar
 //! ([`RigDescription::from_sidecar`]: its preset, or its geometry and operating point);
 //! all lives of one diagnosis must describe the same bearing, or the field that differs
-//! is named.
+//! is named. The training life must have failed (its length calibrates the life
+//! factor); a held-out life is judged over its whole life unless it did not fail
+//! ([`super::diagnose::holdout_t_max`]).
 
 use super::diagnose::{measured_from, LifeOptions, MeasuredSet};
 use super::rig::RigDescription;
@@ -30,6 +32,19 @@ pub fn measured_tables(paths: &[PathBuf], o: &LifeOptions) -> Result<MeasuredSet
         Ok((t.to_life(k), rig))
     };
     let (train, rig) = read(o.train)?;
+    if !train.failed() {
+        return Err(format!(
+            "{}: sidecar field `failure_mode`: {:?}, but the training life must have run to failure ({}): its length calibrates the life factor, and a life that did not fail (or is not known to have) would set it to a life that never ended",
+            sidecar_path(std::path::Path::new(&train.file)).display(),
+            train.failure_mode,
+            crate::io::feature_table::FAILURE_MODES
+                .iter()
+                .filter(|m| !matches!(**m, "none" | "unknown"))
+                .copied()
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     let mut holdout = vec![];
     for k in &o.holdout {
         let (life, r) = read(*k)?;
