@@ -28,7 +28,9 @@ pub struct AnalyzeArgs {
     /// Shaft speed (rpm), 0 < rpm < 1e6; overrides the file / sidecar value.
     #[arg(long)]
     pub rpm: Option<f64>,
-    /// Sample rate (Hz), 1..=1e7; overrides the file / sidecar value.
+    /// Sample rate (Hz), 1..=1e7: for a file that states none; must agree (within 0.1 %)
+    /// with a rate the file or its sidecar states (else exit 2); overrides a layout's or a
+    /// file name's rate.
     #[arg(long)]
     pub fs: Option<f64>,
     /// Bearing preset giving the geometry (see `wearsim presets`) or a catalogue bearing
