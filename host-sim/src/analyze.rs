@@ -398,6 +398,9 @@ pub fn print_analysis(a: &Analysis) {
         kg.kurtosis,
         if a.method.prewhiten { "; envelope of the pre-whitened record" } else { "" }
     );
+    if let Some(why) = &kg.no_content {
+        println!("no demodulation band: {why}");
+    }
     let d = &a.diagnosis;
     println!(
         "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
