@@ -28,7 +28,9 @@ pub struct AnalyzeArgs {
     /// Shaft speed (rpm), 0 < rpm < 1e6; overrides the file / sidecar value.
     #[arg(long)]
     pub rpm: Option<f64>,
-    /// Sample rate (Hz), 1..=1e7; overrides the file / sidecar value.
+    /// Sample rate (Hz), 1..=1e7: for a file that states none; must agree (within 0.1 %)
+    /// with a rate the file or its sidecar states (else exit 2); overrides a layout's or a
+    /// file name's rate.
     #[arg(long)]
     pub fs: Option<f64>,
     /// Bearing preset giving the geometry (see `wearsim presets`) or a catalogue bearing
@@ -397,6 +399,9 @@ pub fn print_analysis(a: &Analysis) {
         kg.kurtosis,
         if a.method.prewhiten { "; envelope of the pre-whitened record" } else { "" }
     );
+    if let Some(why) = &kg.no_content {
+        println!("no demodulation band: {why}");
+    }
     let d = &a.diagnosis;
     println!(
         "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",

@@ -127,6 +127,12 @@ pub struct KurtogramSummary {
     pub unrestricted_band_hz: (f64, f64),
     /// Its kurtosis.
     pub unrestricted_kurtosis: f64,
+    /// Why there is nothing to demodulate, when no candidate band above the fault zone
+    /// holds more than rounding ([`analysis::kurtogram::ROUNDING_FLOOR`] of the record's
+    /// power) or the chosen band's envelope is constant to rounding (its modulation below
+    /// that floor): the call is then `None` (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub no_content: Option<String>,
 }
 
 /// Zone bands and levels (El-Thalji 2016 frequency zones), from a Welch PSD of the raw record.
@@ -186,10 +192,15 @@ fn prewhiten_spectrum(mut spec: Vec<Complex<f64>>, n: usize) -> Vec<f64> {
     if spec.len() != n / 2 + 1 {
         return vec![0.0; n];
     }
+    // A bin holding nothing but rounding stays (numerically) zero: whitened, it would be
+    // raised to the magnitude of every real line.
+    let mean_power =
+        spec.iter().skip(1).map(|c| c.norm_sqr()).sum::<f64>() / (spec.len() - 1).max(1) as f64;
+    let floor = analysis::kurtogram::ROUNDING_FLOOR * mean_power;
     for (k, c) in spec.iter_mut().enumerate() {
         let m = c.norm();
         // DC and (even n) Nyquist must stay real for the inverse real FFT.
-        if k == 0 || m == 0.0 || !m.is_finite() {
+        if k == 0 || m == 0.0 || !m.is_finite() || c.norm_sqr() < floor {
             *c = Complex::new(0.0, 0.0);
         } else {
             *c /= m;
@@ -256,6 +267,11 @@ pub fn analyze_signal(
     )?;
     let level = kg.levels;
     let lowest = top.min(span - min_band_hz).max(0.0);
+    // A cell holding nothing but rounding is not admissible (its kurtosis is round-off's).
+    let floor = analysis::kurtogram::ROUNDING_FLOOR
+        * spec.iter().skip(1).map(|c| c.norm_sqr()).sum::<f64>();
+    let holds_content =
+        |band: (f64, f64)| analysis::kurtogram::band_power(&spec, x.len(), fs, band) > floor;
     let mut admissible: Vec<(f64, usize, usize)> = Vec::new();
     let mut best: Option<(f64, usize, usize)> = None;
     for (r, row) in kg.grid.iter().enumerate() {
@@ -265,7 +281,7 @@ pub fn analyze_signal(
         }
         for (i, &k) in row.iter().enumerate() {
             // The carrier band must lie above the fault harmonics it is to reveal.
-            if (i as f64) * width + 1e-9 < lowest {
+            if (i as f64) * width + 1e-9 < lowest || !holds_content(kurtogram_band(&kg, r, i)) {
                 continue;
             }
             admissible.push((k, r, i));
@@ -276,6 +292,12 @@ pub fn analyze_signal(
     }
     // No grid cell fits above the fault zone: the band (lowest, span), as without the kurtogram.
     let fallback = best.is_none();
+    let no_content = (fallback && !holds_content((lowest, span))).then(|| {
+        format!(
+            "no band above the fault zone ({lowest:.0}-{span:.0} Hz) holds more than rounding (power below {:e} of the record's): nothing to demodulate, so no call",
+            analysis::kurtogram::ROUNDING_FLOOR
+        )
+    });
     let fallback_kurtosis = if fallback {
         analysis::kurtogram::band_kurtosis(&spec, x.len(), fs, (lowest, span))
     } else {
@@ -338,6 +360,25 @@ pub fn analyze_signal(
     if fallback {
         kurtosis = fallback_kurtosis;
     }
+    let (env, modulation) = analysis::envelope::envelope_spectrum_and_modulation(
+        &yspec,
+        y.len(),
+        fs,
+        band,
+        method.squared_envelope,
+    )?;
+    // An envelope constant to rounding (a band holding one pure line, or nothing) carries
+    // no fault lines: what the detector would find in it is round-off.
+    let no_content = no_content.or_else(|| {
+        (modulation <= analysis::kurtogram::ROUNDING_FLOOR).then(|| {
+            format!(
+                "the envelope in {:.0}-{:.0} Hz is constant to rounding (its modulation is {modulation:.1e} of its power, below {:e}): no fault lines, so no call",
+                band.0,
+                band.1,
+                analysis::kurtogram::ROUNDING_FLOOR
+            )
+        })
+    });
     let summary = KurtogramSummary {
         max_level: level,
         min_band_hz,
@@ -351,9 +392,22 @@ pub fn analyze_signal(
         span_hz: span,
         unrestricted_band_hz: kg.best_band,
         unrestricted_kurtosis: kg.best_kurtosis,
+        no_content: no_content.clone(),
     };
-    let env = env_of(band)?;
-    let diagnosis = detect_fault(&env, kin, &method.detect);
+    let mut diagnosis = detect_fault(&env, kin, &method.detect);
+    if no_content.is_some() {
+        // Round-off is no evidence: the call is None, with the confidence of no evidence.
+        let (_, confidence) =
+            super::diagnose::call::<FaultFamily>(None, 0.0, &super::diagnose::CALIBRATION);
+        diagnosis = FaultDiagnosis {
+            family: FaultFamily::None,
+            candidate: FaultFamily::None,
+            confidence,
+            margin_db: 0.0,
+            score: 0.0,
+            ..diagnosis
+        };
+    }
     let spectrum = analysis::amplitude_spectrum(raw, fs, Window::Hann)?;
     let zones = zones(raw, fs, kin);
     Ok(SignalAnalysis {
@@ -461,6 +515,36 @@ mod tests {
         assert!(margins[1] + 1e-9 >= margins[0], "{margins:?}");
         Ok(())
     }
+    /// A record with energy only at DC and Nyquist (`1, 0, 1, 0, …`), and a pure tone
+    /// below the fault zone with a whole number of periods: above the fault zone they hold
+    /// nothing but rounding, which the kurtogram once rated (kurtosis 1336 in a 4-8 kHz cell
+    /// of round-off) and the detector called inner race with confidence 1.00. No band is
+    /// demodulated, the call is None and the summary says why.
+    #[test]
+    fn a_record_of_rounding_only_gets_no_call() -> Result<(), analysis::AnalysisError> {
+        let ff = cwru();
+        let nyquist: Vec<f64> = (0..51_200).map(|i| f64::from(i % 2 == 0)).collect();
+        let tone: Vec<f64> = (0..48_000)
+            .map(|i| (2.0 * PI * 100.0 * i as f64 / FS).sin())
+            .collect();
+        for (name, x, fs) in [("nyquist", nyquist, 25_600.0), ("tone", tone, FS)] {
+            for rule in [BandRule::Kurtosis, BandRule::Evidence, BandRule::Protrugram] {
+                let m = Method {
+                    band_rule: rule,
+                    ..Method::default()
+                };
+                let a = analyze_signal(&x, fs, &ff, &m)?;
+                let d = &a.diagnosis;
+                assert_eq!(d.family, FaultFamily::None, "{name} {rule:?}: {d:?}");
+                assert_eq!(d.candidate, FaultFamily::None, "{name} {rule:?}");
+                assert!(d.confidence.is_finite() && d.margin_db.is_finite());
+                let why = a.kurtogram.no_content.as_deref().unwrap_or("");
+                assert!(why.contains("rounding"), "{name} {rule:?}: {why:?}");
+            }
+        }
+        Ok(())
+    }
+
     #[test]
     fn noise_is_healthy_under_every_band_rule() -> Result<(), analysis::AnalysisError> {
         let ff = cwru();

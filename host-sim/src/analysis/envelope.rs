@@ -65,6 +65,20 @@ pub(crate) fn envelope_spectrum_of_spectrum(
     band: (f64, f64),
     squared: bool,
 ) -> Result<Spectrum, AnalysisError> {
+    envelope_spectrum_and_modulation(spec, n, fs, band, squared).map(|(s, _)| s)
+}
+
+/// [`envelope_spectrum_of_spectrum`] and the envelope's modulation: the power of the
+/// (squared) envelope about its mean over its mean-square, `var / E[e²]` (0 for a constant
+/// envelope, about 0.27 for the envelope of Gaussian noise); 0 for an envelope of zeros.
+#[cfg_attr(not(feature = "app"), allow(dead_code))]
+pub(crate) fn envelope_spectrum_and_modulation(
+    spec: &[realfft::num_complex::Complex<f64>],
+    n: usize,
+    fs: f64,
+    band: (f64, f64),
+    squared: bool,
+) -> Result<(Spectrum, f64), AnalysisError> {
     check_fs(fs)?;
     check_band(band, fs)?;
     if n < 4 || spec.len() != n / 2 + 1 {
@@ -87,8 +101,18 @@ pub(crate) fn envelope_spectrum_of_spectrum(
         })
         .collect();
     let m = env.iter().sum::<f64>() / env.len() as f64;
+    let mean_square = env.iter().map(|v| v * v).sum::<f64>() / env.len() as f64;
     env.iter_mut().for_each(|v| *v -= m);
-    Ok(amplitude_spectrum_unchecked(&env, fs, Window::Hann))
+    let var = env.iter().map(|v| v * v).sum::<f64>() / env.len() as f64;
+    let modulation = if mean_square > 0.0 {
+        var / mean_square
+    } else {
+        0.0
+    };
+    Ok((
+        amplitude_spectrum_unchecked(&env, fs, Window::Hann),
+        modulation,
+    ))
 }
 
 /// FFT bins `(k0, k1)` (inclusive, DC excluded) of a record of `n` samples

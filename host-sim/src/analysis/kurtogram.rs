@@ -143,6 +143,25 @@ pub const GRID_BASE_HZ: [f64; 2] = [1000.0, 1500.0];
 /// CWRU baseline's FE channel shows a band kurtosis of 1484, an artefact) are so excluded.
 pub const MAX_BAND_HZ: f64 = 20_000.0;
 
+/// Power below this fraction of a reference (the whole record's, for a band; the mean bin's,
+/// for one bin) is nothing but rounding (-120 dB: double-precision FFT round-off lies near
+/// -300 dB, float32 storage near -140 dB, any real acquisition's noise far above). A
+/// kurtogram cell holding no more is not admissible (its kurtosis is that of round-off),
+/// and cepstral pre-whitening sets such a bin to zero instead of raising it to unit
+/// magnitude.
+pub const ROUNDING_FLOOR: f64 = 1e-12;
+
+/// Power `Σ|X_k|²` of the bins of `band` (Hz) in `spec`, the one-sided spectrum of `n`
+/// samples at `fs` Hz (0 if the band holds no bin).
+pub(crate) fn band_power(spec: &[Complex<f64>], n: usize, fs: f64, band: (f64, f64)) -> f64 {
+    match band_bins(band, fs, n) {
+        Ok((k0, k1)) => spec
+            .get(k0..=k1.min(spec.len().saturating_sub(1)))
+            .map_or(0.0, |b| b.iter().map(Complex::norm_sqr).sum()),
+        Err(_) => 0.0,
+    }
+}
+
 /// Width of the chunks in which [`content_edge_hz`] measures the spectrum, Hz.
 const CONTENT_CHUNK_HZ: f64 = 100.0;
 /// A chunk whose mean power is below this fraction of the largest chunk's (-80 dB) holds

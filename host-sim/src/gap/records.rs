@@ -143,6 +143,15 @@ pub struct RealRecord {
     pub base: ModelConfig,
     /// Defect (None: healthy).
     pub defect: Option<DefectSpec>,
+    /// Where the defect came from: `argument` (`--defect`), `label` (a CWRU file name),
+    /// `sidecar` (the model of a wearsim sidecar: the record is wearsim's own output) or
+    /// `none` (nothing said; simulated healthy, with a warning).
+    pub defect_source: &'static str,
+    /// The defect exactly as a wearsim sidecar's model holds it (location with its angle,
+    /// formulation, whole topography), when [`defect_source`](Self::defect_source) is
+    /// `sidecar`: the matched simulations use it as it is, not the summary in `defect`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub defect_model: Option<DefectConfig>,
     /// Unit of the file and the factor to m/s².
     pub unit: String,
     /// Upper edge (Hz) of what the record holds when it ends well below fs/2 (an
@@ -263,9 +272,11 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             ));
         }
     }
-    // Defect: argument or label; both and different is a contradiction.
+    // Defect: argument, else label, else a wearsim sidecar's own model; argument and label
+    // different is a contradiction, argument and sidecar different a warning.
     let labelled = cwru_defect(path);
-    let defect = match (o.defect, labelled) {
+    let simulated = sidecar_model(&rec).map(|m| m.defect);
+    let (defect, defect_model, defect_source) = match (o.defect, labelled) {
         (Some(a), Some(l)) if a.map(|d| d.location) != l.map(|d| d.location) => {
             return Err(format!(
                 "{p}: --defect {} contradicts the file's label ({}); remove one",
@@ -273,12 +284,28 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
                 l.map_or("none", |d| d.location)
             ))
         }
-        (Some(a), _) => a,
-        (None, Some(l)) => l,
-        (None, None) => {
-            warnings.push("no defect given and none in the file's label: simulated healthy".into());
-            None
+        (Some(a), _) => {
+            if let Some(s) = simulated {
+                let from_model = s.as_ref().map(defect_spec_of);
+                if !same_defect(a, from_model) {
+                    warnings.push(format!(
+                        "--defect {} differs from the defect the file's sidecar model simulated ({}): the argument is used",
+                        describe_defect(a),
+                        describe_defect(from_model)
+                    ));
+                }
+            }
+            (a, None, "argument")
         }
+        (None, Some(l)) => (l, None, "label"),
+        (None, None) => match simulated {
+            Some(s) => (s.as_ref().map(defect_spec_of), s, "sidecar"),
+            None => {
+                warnings
+                    .push("no defect given and none in the file's label: simulated healthy".into());
+                (None, None, "none")
+            }
+        },
     };
     let content_hz = analysis::content_band::content_edge(&accel, fs);
     if let Some(e) = content_hz {
@@ -298,6 +325,8 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         bearing,
         base,
         defect,
+        defect_source,
+        defect_model,
         unit: rec.unit,
         warnings,
     })
@@ -373,11 +402,7 @@ pub fn base_model(
     {
         return Ok(named);
     }
-    let file_model = rec
-        .meta
-        .get("sidecar")
-        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
-    match (file_model, rec.bearing.as_deref()) {
+    match (sidecar_model(rec), rec.bearing.as_deref()) {
         (Some(mut m), label) => {
             m.effects = wearsim_core::effects::Effects::NONE;
             Ok((label.unwrap_or("custom").to_string(), m))
@@ -391,6 +416,72 @@ pub fn base_model(
             bearing_choices()
         )),
     }
+}
+
+/// The structured model of a wearsim sidecar next to `rec` (None: no sidecar, or not one of
+/// wearsim's own with a `model`).
+fn sidecar_model(rec: &Record) -> Option<ModelConfig> {
+    rec.meta
+        .get("sidecar")
+        .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten())
+}
+
+/// The [`DefectSpec`] summary of a model's defect: its location by name (an outer-race
+/// defect by the nearest of the 3, 6 and 12 o'clock positions the model's angle gives), its
+/// size along the track and its depth.
+#[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
+pub fn defect_spec_of(d: &DefectConfig) -> DefectSpec {
+    use core::f64::consts::{FRAC_PI_2, PI};
+    let location = match d.location {
+        DefectLocation::InnerRace { .. } => "inner",
+        DefectLocation::Ball { .. } => "ball",
+        DefectLocation::OuterRace { angle } => {
+            // Distance on the circle from the angle to each named position.
+            let dist = |c: f64| {
+                let r = (angle as f64 - c).rem_euclid(2.0 * PI);
+                r.min(2.0 * PI - r)
+            };
+            [
+                ("outer@3", 0.0),
+                ("outer@6", FRAC_PI_2),
+                ("outer@12", -FRAC_PI_2),
+            ]
+            .into_iter()
+            .min_by(|a, b| dist(a.1).total_cmp(&dist(b.1)))
+            .map_or("outer@6", |(n, _)| n)
+        }
+    };
+    DefectSpec {
+        location,
+        size: d.topography.length as f64,
+        depth: d.topography.depth as f64,
+    }
+}
+
+/// Whether two defects are the same to the gap: both healthy, or the same location with
+/// size and depth within 1 %.
+fn same_defect(a: Option<DefectSpec>, b: Option<DefectSpec>) -> bool {
+    let close = |x: f64, y: f64| (x - y).abs() <= 0.01 * x.abs().max(y.abs());
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => {
+            a.location == b.location && close(a.size, b.size) && close(a.depth, b.depth)
+        }
+        _ => false,
+    }
+}
+
+/// A defect in words, for messages and the report: `outer@6 0.178 mm × 0.279 mm deep`, or
+/// `none`.
+pub fn describe_defect(d: Option<DefectSpec>) -> String {
+    d.map_or("none".to_string(), |d| {
+        format!(
+            "{} {:.3} mm × {:.3} mm deep",
+            d.location,
+            1e3 * d.size,
+            1e3 * d.depth
+        )
+    })
 }
 
 /// The bearing preset holding the defect of a CWRU record, from its file name's label
@@ -424,9 +515,10 @@ pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
     let mut cfg = r.base.clone();
     cfg.speed = SpeedProfile::Constant((r.rpm / 60.0) as Real);
     cfg.output_rate = r.fs as Real;
-    cfg.defect = match r.defect {
-        None => None,
-        Some(d) => {
+    cfg.defect = match (r.defect_model, r.defect) {
+        (Some(exact), _) => Some(exact),
+        (None, None) => None,
+        (None, Some(d)) => {
             let location = match d.location {
                 "inner" => DefectLocation::InnerRace { angle: 0.0 },
                 "ball" => DefectLocation::Ball {

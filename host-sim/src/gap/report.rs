@@ -44,14 +44,7 @@ pub fn markdown(o: &GapOutput) -> String {
     let _ = writeln!(s, "| role | part | rpm (source) | bearing | defect |");
     let _ = writeln!(s, "|---|---|---|---|---|");
     for r in &o.records {
-        let d = r.meta.defect.map_or("none".to_string(), |d| {
-            format!(
-                "{} {:.3} mm × {:.3} mm deep",
-                d.location,
-                1e3 * d.size,
-                1e3 * d.depth
-            )
-        });
+        let d = super::records::describe_defect(r.meta.defect);
         let _ = writeln!(
             s,
             "| {} | {} | {:.0} ({}) | {} | {} |",

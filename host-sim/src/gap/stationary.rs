@@ -68,7 +68,8 @@ pub struct GapArgs {
     /// Channel (CWRU: DE, FE, BA).
     #[arg(long)]
     pub channel: Option<String>,
-    /// Sample rate (Hz), overriding the file.
+    /// Sample rate (Hz): for a file that states none; must agree (within 0.1 %) with a
+    /// rate the file or its sidecar states (else exit 2).
     #[arg(long)]
     pub fs: Option<f64>,
     /// Mains frequency (Hz) of the hum candidate, 40..=70.

@@ -12,7 +12,8 @@
 //! zero-based index. Default: the sidecar's first column, else the first column that is not a
 //! time column (`time_s`, `time`, `t`), else column 0.
 //!
-//! Sample rate: argument, else sidecar `fs` (see [`crate::io::sidecar`]), else derived from a time
+//! Sample rate: argument (which must agree within 0.1 % with a sidecar `fs` and a time column),
+//! else sidecar `fs` (see [`crate::io::sidecar`]), else derived from a time
 //! column in seconds (uniform spacing required); a sidecar and a time column that disagree by more
 //! than 1 ppm are a contradiction. The CSV written by [`crate::io::write_outputs`] reads back
 //! exactly.

@@ -408,13 +408,13 @@ mod tests {
         let q = dir.path().join("b.npy");
         std::fs::write(&q, write_npy(&[3], false, &[1.0f64, 2.0, 3.0])).unwrap();
         for (side, unit) in [
-            (r#"{"fs": 48000, "unit": "g"}"#, "g"),
-            (r#"{"fs": 48000, "units": "m/s^2"}"#, "m/s^2"),
+            (r#"{"fs": 1000, "unit": "g"}"#, "g"),
+            (r#"{"fs": 1000, "units": "m/s^2"}"#, "m/s^2"),
             (
-                r#"{"fs": 48000, "unit": "g", "units": {"col0": "m/s^2"}}"#,
+                r#"{"fs": 1000, "unit": "g", "units": {"col0": "m/s^2"}}"#,
                 "m/s^2",
             ),
-            (r#"{"fs": 48000}"#, "unknown"),
+            (r#"{"fs": 1000}"#, "unknown"),
         ] {
             std::fs::write(dir.path().join("b.json"), side).unwrap();
             let r = read_npy(&q, &o(None)).unwrap();

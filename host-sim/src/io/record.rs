@@ -114,6 +114,29 @@ pub fn check_fs(path: &std::path::Path, fs: f64) -> Result<f64, IoError> {
     }
 }
 
+/// Relative difference above which a sample rate stored in a file (or its sidecar) and `--fs`
+/// contradict each other.
+pub const FS_AGREEMENT: f64 = 1e-3;
+
+/// An explicit `--fs` against a rate the file or its sidecar states (`where_`, e.g. `"the file
+/// (file:bearing.sr)"`): they must agree within [`FS_AGREEMENT`], else the `--fs` is refused
+/// (exit 2, `field fs`, both values named) rather than silently analysing at another rate.
+/// Returns the checked argument. `path` is the file holding the stated rate.
+pub fn check_fs_argument(
+    path: &std::path::Path,
+    arg: f64,
+    stated: f64,
+    where_: &str,
+) -> Result<f64, IoError> {
+    if (arg - stated).abs() > FS_AGREEMENT * stated.abs().max(arg.abs()) {
+        return Err(IoError::contradiction(
+            path,
+            format!("field fs: --fs {arg} Hz contradicts the sample rate {stated} Hz stored in {where_}; drop --fs or fix the file"),
+        ));
+    }
+    check_fs(path, arg)
+}
+
 /// Check that every sample is finite; the error names `path`, `channel` and the first bad index.
 pub fn check_finite(path: &std::path::Path, channel: &str, samples: &[f64]) -> Result<(), IoError> {
     match samples.iter().position(|x| !x.is_finite()) {

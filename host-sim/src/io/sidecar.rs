@@ -25,7 +25,7 @@ use wearsim_core::bearing::BearingGeometry;
 use wearsim_core::ModelConfig;
 
 use super::error::IoError;
-use super::record::{check_fs, check_rpm};
+use super::record::{check_fs, check_fs_argument, check_rpm};
 
 /// Largest sidecar accepted, bytes (a sidecar is metadata, not data).
 pub const MAX_SIDECAR_BYTES: u64 = 16 << 20;
@@ -305,9 +305,11 @@ impl FsSource {
     }
 }
 
-/// Decide the sample rate of `data`: an explicit argument wins; otherwise the sidecar and the
-/// file's own value (`intrinsic`, e.g. a WAV header rate, with its name for messages) must agree
-/// (`agree(sidecar_fs, intrinsic_fs)`), and the sidecar's exact value is used.
+/// Decide the sample rate of `data`: an explicit argument must agree with every rate the
+/// sidecar and the file state ([`check_fs_argument`], the rule the MAT reader applies) and is
+/// then used; it is the only rate of a file that states none. Without it, the sidecar and the
+/// file's own value (`intrinsic`, e.g. a WAV header rate, with its name for messages) must
+/// agree (`agree(sidecar_fs, intrinsic_fs)`), and the sidecar's exact value is used.
 pub(crate) fn resolve_fs(
     data: &Path,
     arg: Option<f64>,
@@ -315,10 +317,16 @@ pub(crate) fn resolve_fs(
     intrinsic: Option<(f64, &str)>,
     agree: &dyn Fn(f64, f64) -> bool,
 ) -> Result<(f64, FsSource), IoError> {
+    let side = sidecar.and_then(|s| s.fs.map(|f| (f, &s.path)));
     if let Some(f) = arg {
+        if let Some((sf, sp)) = side {
+            check_fs_argument(sp, f, sf, &format!("the sidecar {}", sp.display()))?;
+        }
+        if let Some((inf, what)) = intrinsic {
+            check_fs_argument(data, f, inf, &format!("the file ({what})"))?;
+        }
         return Ok((check_fs(data, f)?, FsSource::Argument));
     }
-    let side = sidecar.and_then(|s| s.fs.map(|f| (f, &s.path)));
     match (side, intrinsic) {
         (Some((sf, sp)), Some((inf, what))) => {
             if agree(sf, inf) {

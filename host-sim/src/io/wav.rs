@@ -7,7 +7,8 @@
 //!   `"unknown"`. The float WAV written by [`crate::io::write_outputs`] holds physical units.
 //! * Sample rate: the header rate, cross-checked against a sidecar `fs` when both exist (they must
 //!   agree after rounding the sidecar rate to an integer, since WAV stores integer Hz; the exact
-//!   sidecar value is then used). An explicit rate argument overrides both.
+//!   sidecar value is then used). An explicit rate argument must agree with both within 0.1 %
+//!   (else a contradiction naming the field `fs`) and is then used.
 //! * Channel: [`ReadOptions::channel`] as a zero-based index (or the sidecar's `wav.column` name);
 //!   default 0.
 //!
@@ -273,19 +274,36 @@ mod tests {
             IoError::Contradiction { path, .. } => assert_eq!(path, side),
             e => panic!("{e:?}"),
         }
-        // An explicit rate wins.
-        assert_eq!(
+        // An explicit rate must agree with the header and the sidecar: against the
+        // contradicting sidecar, then against the header, it is refused naming the field.
+        let at = |fs: f64| {
             read_wav(
                 &set.wav,
                 &ReadOptions {
-                    fs: Some(1000.0),
+                    fs: Some(fs),
                     ..Default::default()
-                }
+                },
             )
-            .unwrap()
-            .fs,
-            1000.0
-        );
+        };
+        match at(44_100.0).unwrap_err() {
+            IoError::Contradiction { path, detail } => {
+                assert_eq!(path, set.wav);
+                assert!(detail.contains("field fs") && detail.contains("WAV header"));
+            }
+            e => panic!("{e:?}"),
+        }
+        std::fs::remove_file(&side).unwrap();
+        match at(1000.0).unwrap_err() {
+            IoError::Contradiction { detail, .. } => {
+                assert!(
+                    detail.contains("field fs") && detail.contains("20480.5"),
+                    "{detail}"
+                );
+            }
+            e => panic!("{e:?}"),
+        }
+        // Agreeing within 0.1 %, it is used as given.
+        assert_eq!(at(20_481.0).unwrap().fs, 20_481.0);
     }
 
     #[test]

@@ -440,3 +440,36 @@ fn gap_matches_the_faulty_bearing_whatever_the_channel() {
         assert_eq!(r.defect.map(|d| d.location), Some("inner"));
     }
 }
+
+/// `gap --fs` against a record whose sidecar states another rate is refused like
+/// `analyze`'s (it was once used silently, matching the record at the wrong rate).
+#[test]
+fn gap_refuses_an_fs_contradicting_the_sidecar() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let rec = csv(dir.path(), "rec.csv", 24_000);
+    std::fs::write(
+        dir.path().join("rec.json"),
+        r#"{"fs": 12000, "units": "m/s^2"}"#,
+    )
+    .unwrap();
+    let o = out.display().to_string();
+    let args = [
+        "gap",
+        "--real",
+        &rec,
+        "--bearing",
+        "cwru-6205-de",
+        "--defect",
+        "inner:0.007in",
+        "--fs",
+        "48000",
+        "--out",
+        &o,
+    ];
+    bad(
+        &args,
+        "field fs: --fs 48000 Hz contradicts the sample rate 12000 Hz",
+        &out,
+    );
+}

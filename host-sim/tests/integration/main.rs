@@ -20,6 +20,7 @@ mod gap_cells;
 mod gap_cli;
 mod gap_cwru;
 mod gap_life;
+mod gap_own_output;
 mod gap_validate;
 mod hostile_inputs;
 mod ims_compare;

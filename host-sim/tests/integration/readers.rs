@@ -261,3 +261,82 @@ fn many_files_one_table_errors_are_rows() {
         &["--format"],
     );
 }
+
+/// `--fs` against a rate a sidecar or the file states (a CSV's time column, a WAV header)
+/// is held to the rule of a rate stored in a MAT file: agreeing within 0.1 % it is used,
+/// contradicting it is refused naming the field and both rates (it once silently won);
+/// a file that states no rate takes it.
+#[test]
+fn an_fs_contradicting_a_sidecar_or_header_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("sim");
+    let o = wearsim(&[
+        "simulate",
+        "--preset",
+        "cwru-6205-de",
+        "--fs",
+        "25600",
+        "--duration",
+        "2",
+        "--out",
+        &out.to_string_lossy(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = out.join("simulate.csv").to_string_lossy().into_owned();
+    let wav = out.join("simulate.wav").to_string_lossy().into_owned();
+    for (f, src) in [(&csv, "simulate.json"), (&wav, "simulate.json")] {
+        assert_input_error(
+            &wearsim(&["analyze", f, "--fs", "48828"]),
+            &["field fs", "48828", "25600", src],
+        );
+        let ok = wearsim(&["analyze", f, "--fs", "25600", "--json"]);
+        assert!(ok.status.success(), "{f}: {}", stderr(&ok));
+    }
+    // Without the sidecar: the CSV's time column and the WAV header still state the rate.
+    let bare = dir.path().join("bare");
+    std::fs::create_dir(&bare).unwrap();
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let timed = bare.join("timed.csv");
+    std::fs::write(&timed, &text).unwrap();
+    let bare_wav = bare.join("rec.wav");
+    std::fs::copy(&wav, &bare_wav).unwrap();
+    for (f, src) in [(&timed, "time column"), (&bare_wav, "WAV header")] {
+        assert_input_error(
+            &wearsim(&[
+                "analyze",
+                &f.to_string_lossy(),
+                "--fs",
+                "48828",
+                "--bearing",
+                "cwru-6205-de",
+                "--rpm",
+                "1797",
+            ]),
+            &["field fs", "48828", "25600", src],
+        );
+    }
+    // A file that states no rate: --fs is the rate.
+    let plain = bare.join("plain.csv");
+    let column: String = text
+        .lines()
+        .skip(1)
+        .map(|l| format!("{}\n", l.split(',').nth(1).unwrap_or("")))
+        .collect();
+    std::fs::write(&plain, format!("x\n{column}")).unwrap();
+    let ok = wearsim(&[
+        "analyze",
+        &plain.to_string_lossy(),
+        "--fs",
+        "48828",
+        "--bearing",
+        "cwru-6205-de",
+        "--rpm",
+        "1797",
+        "--json",
+    ]);
+    assert!(ok.status.success(), "{}", stderr(&ok));
+    let v: serde_json::Value = serde_json::from_slice(&ok.stdout).unwrap();
+    assert_eq!(v["fs"].as_f64(), Some(48828.0));
+    assert_eq!(v["fs_source"], "argument");
+}

@@ -20,13 +20,12 @@ use serde_json::json;
 use super::cwru::{cwru_bearing_preset, parse_cwru_name, pick_by_record};
 use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode, MatValue};
 use crate::io::error::IoError;
-use crate::io::record::{check_finite, check_fs, check_rpm, Record};
+use crate::io::record::{check_finite, check_fs, check_fs_argument, check_rpm, Record};
 use crate::io::ReadOptions;
 
 /// Paderborn (KAt data center) vibration sample rate, Hz (Lessmeier et al. 2016: 64 kHz).
 pub const PADERBORN_FS: f64 = 64_000.0;
-/// Relative difference above which a stated sample rate and `--fs` contradict each other.
-pub const FS_AGREEMENT: f64 = 1e-3;
+pub use crate::io::record::FS_AGREEMENT;
 
 /// The recognised layout of a MAT file.
 #[derive(Debug, Clone, PartialEq)]
@@ -390,15 +389,10 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         _ => None,
     };
     let (fs, fs_source) = match (opts.fs, stated, implied) {
-        (Some(a), Some((s, src)), _) => {
-            if (a - s).abs() > FS_AGREEMENT * s.abs().max(a.abs()) {
-                return Err(IoError::contradiction(
-                    path,
-                    format!("field fs: --fs {a} Hz contradicts the sample rate {s} Hz stored in the file ({src}); drop --fs or fix the file"),
-                ));
-            }
-            (a, "argument".to_string())
-        }
+        (Some(a), Some((s, src)), _) => (
+            check_fs_argument(path, a, s, &format!("the file ({src})"))?,
+            "argument".to_string(),
+        ),
         (Some(a), None, _) => (a, "argument".to_string()),
         (None, Some(s), _) | (None, None, Some(s)) => s,
         (None, None, None) => {
