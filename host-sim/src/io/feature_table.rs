@@ -67,7 +67,8 @@ pub const UNITS: [&str; 3] = ["g", "m/s^2", "unknown"];
 /// sidecar's `bearing_geometry` object ([`crate::geometry::GeometrySpec`]; mm, degrees).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Geometry {
-    /// Rolling elements per row (3..=200).
+    /// Rolling elements per row (3..=32, fitting on the pitch circle: the limits of
+    /// [`crate::geometry::GeometrySpec::checked`]).
     pub elements: u32,
     /// Rolling-element diameter, mm.
     pub ball_mm: f64,
@@ -402,19 +403,15 @@ pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), Featu
         }
     }
     if let Some(g) = &s.bearing.geometry {
-        let ok = g.pitch_mm.is_finite()
-            && g.ball_mm.is_finite()
-            && g.ball_mm > 0.0
-            && g.ball_mm < g.pitch_mm
-            && g.pitch_mm <= 10_000.0
-            && (3..=200).contains(&g.elements)
-            && (0.0..90.0).contains(&g.angle_deg);
-        if !ok {
-            return Err(sidecar_err(
-                path,
-                "bearing.geometry",
-                format!("{g:?}: need 0 < ball_mm < pitch_mm ≤ 10000, elements 3..=200, 0 ≤ angle_deg < 90"),
-            ));
+        // The limits of `--bearing-geometry` (the core's, in mm and degrees).
+        let spec = crate::geometry::GeometrySpec {
+            elements: g.elements,
+            ball_mm: g.ball_mm,
+            pitch_mm: g.pitch_mm,
+            angle_deg: g.angle_deg,
+        };
+        if let Err(m) = spec.checked() {
+            return Err(sidecar_err(path, "bearing.geometry", m));
         }
         // A preset is a geometry too: both given must be one bearing.
         let named = s
