@@ -418,6 +418,15 @@ pub fn base_model(
     }
 }
 
+/// The named outer-race defect positions and their angles in the model (rad): 3 o'clock at
+/// 0, 6 o'clock (the load zone's centre) at π/2, 12 o'clock at −π/2. One table for reading a
+/// name into an angle and an angle back into the nearest name.
+const OUTER_POSITIONS: [(&str, f64); 3] = [
+    ("outer@3", 0.0),
+    ("outer@6", core::f64::consts::FRAC_PI_2),
+    ("outer@12", -core::f64::consts::FRAC_PI_2),
+];
+
 /// The structured model of a wearsim sidecar next to `rec` (None: no sidecar, or not one of
 /// wearsim's own with a `model`).
 fn sidecar_model(rec: &Record) -> Option<ModelConfig> {
@@ -431,7 +440,7 @@ fn sidecar_model(rec: &Record) -> Option<ModelConfig> {
 /// size along the track and its depth.
 #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
 pub fn defect_spec_of(d: &DefectConfig) -> DefectSpec {
-    use core::f64::consts::{FRAC_PI_2, PI};
+    use core::f64::consts::PI;
     let location = match d.location {
         DefectLocation::InnerRace { .. } => "inner",
         DefectLocation::Ball { .. } => "ball",
@@ -441,14 +450,10 @@ pub fn defect_spec_of(d: &DefectConfig) -> DefectSpec {
                 let r = (angle as f64 - c).rem_euclid(2.0 * PI);
                 r.min(2.0 * PI - r)
             };
-            [
-                ("outer@3", 0.0),
-                ("outer@6", FRAC_PI_2),
-                ("outer@12", -FRAC_PI_2),
-            ]
-            .into_iter()
-            .min_by(|a, b| dist(a.1).total_cmp(&dist(b.1)))
-            .map_or("outer@6", |(n, _)| n)
+            OUTER_POSITIONS
+                .into_iter()
+                .min_by(|a, b| dist(a.1).total_cmp(&dist(b.1)))
+                .map_or("outer@6", |(n, _)| n)
         }
     };
     DefectSpec {
@@ -525,12 +530,13 @@ pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
                     element: 0,
                     phase: 0.0,
                 },
-                "outer@3" => DefectLocation::OuterRace { angle: 0.0 },
-                "outer@12" => DefectLocation::OuterRace {
-                    angle: -core::f64::consts::FRAC_PI_2 as Real,
-                },
-                _ => DefectLocation::OuterRace {
-                    angle: core::f64::consts::FRAC_PI_2 as Real,
+                // outer@6 for an unnamed position, as `defect_spec_of` reads it back.
+                outer => DefectLocation::OuterRace {
+                    angle: OUTER_POSITIONS
+                        .iter()
+                        .find(|(n, _)| *n == outer)
+                        .map_or(core::f64::consts::FRAC_PI_2, |(_, a)| *a)
+                        as Real,
                 },
             };
             let asperity = cfg.defect.map_or(5e-6, |d| d.topography.asperity_height);
