@@ -10,8 +10,12 @@
 //! header's shape (a panic with overflow checks on for a hostile header) and trusts it for
 //! reading; here the count is a checked product and must match the bytes actually present.
 //!
-//! For a 2-D array of shape `(n, m)` the samples run along axis 0 and [`ReadOptions::channel`]
-//! picks the column (zero-based index, or a name from the sidecar's `columns`); default 0.
+//! For a 2-D array the samples run along the longer axis (a record holds far more samples than
+//! channels, so `(N, channels)` as pandas writes it and `(channels, N)` as signal-processing
+//! code does are both read as meant); a sidecar whose `columns` count matches exactly one axis
+//! makes that axis the channels. [`ReadOptions::channel`] picks the channel (zero-based index,
+//! or a name from the sidecar's `columns`); default 0. The JSON `meta.sample_axis` says which
+//! axis was taken.
 //! Integers are converted as they are (no full-scale normalisation); the unit comes from the
 //! sidecar (`units`), else `"unknown"`. Sample rate and rpm: argument, else sidecar.
 
@@ -196,7 +200,16 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let numel = n.checked_mul(m).ok_or_else(|| {
         IoError::contradiction(path, format!("npy shape {:?} overflows", h.shape))
     })?;
-    super::record::check_record_size(path, n, numel)?;
+    let columns = sidecar.as_ref().map_or(0, |s| s.columns.len());
+    let channels_first = h.shape.len() == 2
+        && if columns > 0 && (columns == n) != (columns == m) {
+            columns == n
+        } else {
+            m > n
+        };
+    // (samples, channels) whatever the layout on disk.
+    let (len, m) = if channels_first { (m, n) } else { (n, m) };
+    super::record::check_record_size(path, len, numel)?;
     let need = numel.checked_mul(width).ok_or_else(|| {
         IoError::contradiction(path, format!("npy shape {:?} overflows", h.shape))
     })?;
@@ -271,12 +284,15 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             _ => b[0] as f64,
         }
     };
-    let samples: Vec<f64> = (0..n)
+    // Element [i, col] of the logical (samples, channels) array: the flat index of the axis
+    // order on disk (C: last axis fastest; Fortran: first axis fastest).
+    let samples: Vec<f64> = (0..len)
         .map(|i| {
-            get(if h.fortran_order {
-                col * n + i
-            } else {
-                i * m + col
+            get(match (channels_first, h.fortran_order) {
+                (false, false) => i * m + col,
+                (false, true) => col * len + i,
+                (true, false) => col * len + i,
+                (true, true) => i * m + col,
             })
         })
         .collect();
@@ -304,6 +320,7 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "shape": h.shape,
             "fortran_order": h.fortran_order,
             "column_index": col,
+            "sample_axis": usize::from(channels_first),
             "fs_source": fs_source.name(),
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
@@ -384,6 +401,30 @@ mod tests {
             read_npy(&p, &o(Some("2"))),
             Err(IoError::UnknownChannel { .. })
         ));
+        // Channels first, (2 channels x 3 samples), in both orders: the longer axis holds the
+        // samples, so the same two channels come out.
+        std::fs::write(&p, write_npy(&[2, 3], false, &[1i32, 2, 3, 10, 20, 30])).unwrap();
+        let r = read_npy(&p, &o(Some("1"))).unwrap();
+        assert_eq!(
+            (r.samples, &r.meta["sample_axis"]),
+            (vec![10.0, 20.0, 30.0], &json!(1))
+        );
+        std::fs::write(&p, write_npy(&[2, 3], true, &[1i32, 10, 2, 20, 3, 30])).unwrap();
+        assert_eq!(read_npy(&p, &o(None)).unwrap().samples, vec![1.0, 2.0, 3.0]);
+        assert_eq!(
+            read_npy(&p, &o(Some("1"))).unwrap().samples,
+            vec![10.0, 20.0, 30.0]
+        );
+        // A sidecar naming three columns makes the axis of length 3 the channels.
+        let c = dir.path().join("c.npy");
+        std::fs::write(&c, write_npy(&[2, 3], false, &[1i32, 2, 3, 10, 20, 30])).unwrap();
+        std::fs::write(dir.path().join("c.json"), r#"{"columns": ["a", "b", "z"]}"#).unwrap();
+        assert_eq!(
+            read_npy(&c, &o(Some("z"))).unwrap().samples,
+            vec![3.0, 30.0]
+        );
+        // Back to (3 samples x 2 channels) in Fortran order for the sidecar checks.
+        std::fs::write(&p, write_npy(&[3, 2], true, &[1i32, 2, 3, 10, 20, 30])).unwrap();
         // Sidecar names, rate and unit.
         std::fs::write(
             dir.path().join("a.json"),

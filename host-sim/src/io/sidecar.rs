@@ -145,11 +145,78 @@ fn string(path: &Path, v: &Value, key: &str) -> Result<Option<String>, IoError> 
     }
 }
 
+/// Top-level keys a sidecar is read for, and those wearsim's own sidecars add (see the module
+/// doc and [`crate::io::write::SIDECAR_FORMAT`]).
+const READ_KEYS: &[&str] = &[
+    "fs",
+    "rpm",
+    "n_samples",
+    "columns",
+    "units",
+    "unit",
+    "bearing",
+    "wav",
+    "complete",
+    "model",
+    "format",
+    "format_version",
+    "time_column",
+    "files",
+];
+
+/// The key a hand-written sidecar most likely meant by `key`, for the warning about keys that
+/// are not read (names other tools and data sets use for the rate and the speed).
+fn meant(key: &str) -> Option<&'static str> {
+    let k = key.to_ascii_lowercase().replace(['-', ' '], "_");
+    match k.as_str() {
+        "sample_rate" | "sample_rate_hz" | "samplerate" | "sampling_rate"
+        | "sampling_frequency" | "fs_hz" | "sr" | "rate" => Some("fs (Hz)"),
+        "speed" | "speed_rpm" | "shaft_rpm" | "shaft_speed" | "rpm_" | "rotational_speed" => {
+            Some("rpm")
+        }
+        "channels" | "column" | "column_names" => Some("columns"),
+        "samples" | "length" | "num_samples" => Some("n_samples"),
+        _ => None,
+    }
+}
+
+/// Warn on stderr about the top-level keys of a hand-written sidecar that are not read, so a
+/// misspelt rate or speed is not lost silently. wearsim's own sidecars (`format` =
+/// [`crate::io::write::SIDECAR_FORMAT`]) carry the scenario's metadata as further keys and
+/// are not warned about.
+fn warn_unread_keys(path: &Path, raw: &Map<String, Value>) {
+    let unread = unread_keys(raw);
+    if !unread.is_empty() {
+        eprintln!(
+            "wearsim: warning: {}: sidecar keys not read: {} (read: {})",
+            path.display(),
+            unread.join(", "),
+            READ_KEYS[..9].join(", ")
+        );
+    }
+}
+
+/// The unread top-level keys of a hand-written sidecar, each with the key it most likely
+/// meant (see [`warn_unread_keys`]); none for wearsim's own sidecars.
+fn unread_keys(raw: &Map<String, Value>) -> Vec<String> {
+    if raw.get("format").and_then(Value::as_str) == Some(super::write::SIDECAR_FORMAT) {
+        return Vec::new();
+    }
+    raw.keys()
+        .filter(|k| !READ_KEYS.contains(&k.as_str()))
+        .map(|k| match meant(k) {
+            Some(m) => format!("{k:?} (did you mean {m}?)"),
+            None => format!("{k:?}"),
+        })
+        .collect()
+}
+
 /// Validate a sidecar JSON value read from `path`.
 pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
-    if !raw.is_object() {
+    let Some(obj) = raw.as_object() else {
         return Err(IoError::malformed(path, "sidecar must be a JSON object"));
-    }
+    };
+    warn_unread_keys(path, obj);
     if raw.get("complete") == Some(&Value::Bool(false)) {
         return Err(IoError::contradiction(
             path,
@@ -385,5 +452,30 @@ pub(crate) fn resolve_rpm(
     match arg {
         Some(r) => Ok(Some(check_rpm(data, r)?)),
         None => Ok(sidecar.and_then(|s| s.rpm)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unread_keys_of_hand_written_sidecars_are_named_with_what_they_likely_meant() {
+        let raw = json!({"sample_rate": 12000, "rpm": 1797, "Speed": 1800, "operator": "x"});
+        let mut u = unread_keys(raw.as_object().unwrap());
+        u.sort();
+        assert_eq!(
+            u,
+            vec![
+                "\"Speed\" (did you mean rpm?)".to_string(),
+                "\"operator\"".to_string(),
+                "\"sample_rate\" (did you mean fs (Hz)?)".to_string(),
+            ]
+        );
+        // wearsim's own sidecars carry the scenario's metadata: no warning.
+        let own = json!({"format": crate::io::write::SIDECAR_FORMAT, "scenario": "x"});
+        assert!(unread_keys(own.as_object().unwrap()).is_empty());
+        let known = json!({"fs": 1, "units": "g", "wav": {}, "complete": true});
+        assert!(unread_keys(known.as_object().unwrap()).is_empty());
     }
 }

@@ -1,4 +1,6 @@
-//! WAV reader (RIFF/WAVE PCM integer 8/16/24/32-bit and IEEE float 32-bit, via `hound`).
+//! WAV reader (RIFF/WAVE PCM integer 8/16/24/32-bit and IEEE float 32-bit via `hound`; IEEE
+//! float 64-bit, which `hound` refuses but numpy/scipy write for float64 arrays, by
+//! [`decode_float64`]).
 //!
 //! * Integer samples are scaled to ±1 full scale (divided by 2^(bits-1)), unit `"FS"`, unless a
 //!   sidecar gives `wav.scale` (multiplied after normalisation) and a unit (`wav.unit` or
@@ -167,6 +169,9 @@ fn hound_err(path: &Path, e: hound::Error) -> IoError {
 }
 
 fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
+    if let Some(d) = decode_float64(path, file_len)? {
+        return Ok(d);
+    }
     let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
     let mut r = hound::WavReader::new(BufReader::new(f)).map_err(|e| hound_err(path, e))?;
     let spec = r.spec();
@@ -202,19 +207,119 @@ fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
                 out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
             }
         }
-        (fmt, bits) => {
-            return Err(IoError::unsupported(
-                path,
-                format!(
-                    "{bits}-bit {fmt:?} WAV samples (supported: 8/16/24/32-bit int, 32-bit float)"
-                ),
-            ))
-        }
+        (fmt, bits) => return Err(IoError::unsupported(
+            path,
+            format!(
+                "{bits}-bit {fmt:?} WAV samples (supported: 8/16/24/32-bit int, 32/64-bit float)"
+            ),
+        )),
     }
     Ok(Decoded {
         spec,
         interleaved: out,
     })
+}
+
+/// WAVE format tags (Microsoft `mmreg.h`): IEEE float, and the extensible header whose
+/// sub-format GUID starts with the tag it wraps.
+const WAVE_FORMAT_IEEE_FLOAT: u16 = 3;
+const WAVE_FORMAT_EXTENSIBLE: u16 = 0xFFFE;
+
+/// Decode a 64-bit IEEE float WAV (format tag 3, or the extensible header with the float
+/// sub-format), little-endian as RIFF requires. `Ok(None)` for any other file, including one
+/// that is not RIFF/WAVE at all: `hound` then reads it or names what is wrong. The chunk walk
+/// is bounded by the file's length and the data size is checked against it before any buffer
+/// is sized.
+fn decode_float64(path: &Path, file_len: u64) -> Result<Option<Decoded>, IoError> {
+    use std::io::{Read, Seek, SeekFrom};
+    let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let mut r = BufReader::new(f);
+    let mut head = [0u8; 12];
+    if r.read_exact(&mut head).is_err() || &head[0..4] != b"RIFF" || &head[8..12] != b"WAVE" {
+        return Ok(None);
+    }
+    let mut pos = 12u64;
+    let mut fmt: Option<(u16, u32, u16)> = None; // channels, rate, bits of a float format
+    loop {
+        let mut ch = [0u8; 8];
+        if pos + 8 > file_len || r.read_exact(&mut ch).is_err() {
+            return Ok(None);
+        }
+        let size = u64::from(u32::from_le_bytes([ch[4], ch[5], ch[6], ch[7]]));
+        pos += 8;
+        match &ch[0..4] {
+            b"fmt " => {
+                let mut b = [0u8; 40];
+                let n = size.min(40) as usize;
+                if n < 16 || r.read_exact(&mut b[..n]).is_err() {
+                    return Ok(None);
+                }
+                let u16_at = |i: usize| u16::from_le_bytes([b[i], b[i + 1]]);
+                let tag = u16_at(0);
+                let float = tag == WAVE_FORMAT_IEEE_FLOAT
+                    || (tag == WAVE_FORMAT_EXTENSIBLE
+                        && n >= 26
+                        && u16_at(24) == WAVE_FORMAT_IEEE_FLOAT);
+                let bits = u16_at(14);
+                if !float || bits != 64 {
+                    return Ok(None);
+                }
+                let rate = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
+                fmt = Some((u16_at(2), rate, bits));
+                r.seek(SeekFrom::Start(pos + size + (size & 1)))
+                    .map_err(|e| IoError::io(path, "seek", e))?;
+            }
+            b"data" => {
+                let Some((channels, sample_rate, bits)) = fmt else {
+                    return Ok(None);
+                };
+                if channels == 0 {
+                    return Err(IoError::malformed(path, "WAV header declares 0 channels"));
+                }
+                if size > file_len - pos {
+                    return Err(IoError::truncated(
+                        path,
+                        format!(
+                            "data chunk claims {size} bytes of 64-bit float samples, {} remain in the file",
+                            file_len - pos
+                        ),
+                    ));
+                }
+                let claimed = size / 8;
+                let frames = claimed / u64::from(channels);
+                super::record::check_record_size(
+                    path,
+                    usize::try_from(frames).unwrap_or(usize::MAX),
+                    usize::try_from(claimed).unwrap_or(usize::MAX),
+                )?;
+                let n = usize::try_from(frames * u64::from(channels)).unwrap_or(0);
+                let mut interleaved = Vec::with_capacity(n);
+                let mut w = [0u8; 8];
+                for _ in 0..n {
+                    r.read_exact(&mut w)
+                        .map_err(|e| IoError::truncated(path, format!("WAV ends early: {e}")))?;
+                    interleaved.push(f64::from_le_bytes(w));
+                }
+                let spec = hound::WavSpec {
+                    channels,
+                    sample_rate,
+                    bits_per_sample: bits,
+                    sample_format: hound::SampleFormat::Float,
+                };
+                return Ok(Some(Decoded { spec, interleaved }));
+            }
+            _ => {
+                pos = pos.saturating_add(size + (size & 1));
+                if pos > file_len {
+                    return Ok(None);
+                }
+                r.seek(SeekFrom::Start(pos))
+                    .map_err(|e| IoError::io(path, "seek", e))?;
+                continue;
+            }
+        }
+        pos += size + (size & 1);
+    }
 }
 
 #[cfg(test)]
@@ -383,5 +488,82 @@ mod tests {
         zero[24..28].copy_from_slice(&0u32.to_le_bytes());
         std::fs::write(&p, &zero).unwrap();
         assert!(read_wav(&p, &ReadOptions::default()).is_err());
+    }
+
+    /// A 64-bit float WAV as scipy writes it (format tag 3), or with the extensible header and
+    /// an odd-sized chunk before `fmt ` (RIFF pads it to even).
+    fn float64_wav(extensible: bool, data: &[f64], channels: u16, rate: u32) -> Vec<u8> {
+        let mut fmt = Vec::new();
+        let tag: u16 = if extensible { 0xFFFE } else { 3 };
+        fmt.extend_from_slice(&tag.to_le_bytes());
+        fmt.extend_from_slice(&channels.to_le_bytes());
+        fmt.extend_from_slice(&rate.to_le_bytes());
+        fmt.extend_from_slice(&(rate * 8 * u32::from(channels)).to_le_bytes());
+        fmt.extend_from_slice(&(8 * channels).to_le_bytes());
+        fmt.extend_from_slice(&64u16.to_le_bytes());
+        if extensible {
+            fmt.extend_from_slice(&22u16.to_le_bytes());
+            fmt.extend_from_slice(&64u16.to_le_bytes());
+            fmt.extend_from_slice(&0u32.to_le_bytes());
+            fmt.extend_from_slice(&[
+                3, 0, 0, 0, 0, 0, 0x10, 0, 0x80, 0, 0, 0xAA, 0, 0x38, 0x9B, 0x71,
+            ]);
+        }
+        let mut body = b"WAVE".to_vec();
+        if extensible {
+            body.extend_from_slice(b"LIST");
+            body.extend_from_slice(&3u32.to_le_bytes());
+            body.extend_from_slice(&[1, 2, 3, 0]);
+        }
+        body.extend_from_slice(b"fmt ");
+        body.extend_from_slice(&(fmt.len() as u32).to_le_bytes());
+        body.extend_from_slice(&fmt);
+        body.extend_from_slice(b"data");
+        body.extend_from_slice(&((data.len() * 8) as u32).to_le_bytes());
+        for x in data {
+            body.extend_from_slice(&x.to_le_bytes());
+        }
+        let mut out = b"RIFF".to_vec();
+        out.extend_from_slice(&(body.len() as u32).to_le_bytes());
+        out.extend_from_slice(&body);
+        out
+    }
+
+    #[test]
+    fn float64_wavs_are_read_exactly() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("f64.wav");
+        let data = [0.1, -2.5e-3, 1.0 / 3.0, 7.25, -0.0, 1e-300];
+        for ext in [false, true] {
+            std::fs::write(&p, float64_wav(ext, &data, 2, 25_600)).unwrap();
+            let r = read_wav(&p, &ReadOptions::default()).unwrap();
+            assert_eq!(r.samples, vec![0.1, 1.0 / 3.0, -0.0], "extensible {ext}");
+            assert_eq!((r.fs, r.unit.as_str()), (25_600.0, "unknown"));
+            assert_eq!(r.meta["bits_per_sample"], 64);
+            let ch1 = ReadOptions {
+                channel: Some("1".into()),
+                ..Default::default()
+            };
+            assert_eq!(
+                read_wav(&p, &ch1).unwrap().samples,
+                vec![-2.5e-3, 7.25, 1e-300]
+            );
+        }
+        // A data chunk claiming more than the file holds, a NaN sample, a cut file.
+        let mut bad = float64_wav(false, &data, 1, 8000);
+        let at = bad.len() - data.len() * 8 - 4;
+        bad[at..at + 4].copy_from_slice(&4000u32.to_le_bytes());
+        std::fs::write(&p, &bad).unwrap();
+        assert!(matches!(
+            read_wav(&p, &ReadOptions::default()),
+            Err(IoError::Truncated { .. })
+        ));
+        std::fs::write(&p, float64_wav(false, &[1.0, f64::NAN], 1, 8000)).unwrap();
+        assert!(read_wav(&p, &ReadOptions::default()).is_err());
+        let good = float64_wav(true, &data, 1, 8000);
+        for len in [13, 30, 60, good.len() - 3] {
+            std::fs::write(&p, &good[..len]).unwrap();
+            assert!(read_wav(&p, &ReadOptions::default()).is_err(), "{len}");
+        }
     }
 }

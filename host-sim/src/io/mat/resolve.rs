@@ -8,7 +8,7 @@
 //!
 //! | layout | recognised by | channel default | fs | speed |
 //! |---|---|---|---|---|
-//! | `cwru` | a variable `X<n>_(DE\|FE\|BA)_time` | `DE` (`_DE_time`) | file name (`12k_`/`48k_`) | `X<n>RPM` |
+//! | `cwru` | a variable `X<n>_(DE\|FE\|BA)_time` | the faulted end's: `FE` for a fan-end fault file (`12k_Fan_End_…`), else `DE` | file name (`12k_`/`48k_`) | `X<n>RPM` |
 //! | `mfpt` | a struct with fields `gs` and `sr` | `<struct>.gs` | `<struct>.sr` | `<struct>.rate` (Hz) × 60 |
 //! | `paderborn` | a struct with a struct array `Y` of `Name`/`Data` | `vibration_1` | 64 kHz (layout) | `N<nn>` of the variable name × 100 rpm |
 //! | `generic` | anything else | the only long numeric vector | a scalar `fs`/`sr`/`sample_rate` | a scalar `rpm` |
@@ -155,6 +155,7 @@ fn channel_path(
     layout: &MatLayout,
     requested: Option<&str>,
     record_no: Option<u32>,
+    cwru_default: &str,
 ) -> Result<(String, String), IoError> {
     let arrays = numeric_arrays(nodes);
     if arrays.is_empty() {
@@ -165,7 +166,7 @@ fn channel_path(
     }
     let req = match (requested, layout) {
         (Some(r), _) => r.to_string(),
-        (None, MatLayout::Cwru) => "DE".into(),
+        (None, MatLayout::Cwru) => cwru_default.into(),
         (None, MatLayout::Mfpt(s)) => format!("{s}.gs"),
         (None, MatLayout::Paderborn(_)) => "vibration_1".into(),
         (None, MatLayout::Generic) => {
@@ -322,8 +323,20 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         .as_ref()
         .map(|l| l.record)
         .or_else(|| file_name.strip_suffix(".mat").and_then(|s| s.parse().ok()));
-    let (chan_path, chan_name) =
-        channel_path(path, &listing, &layout, opts.channel.as_deref(), record_no)?;
+    // A CWRU fan-end fault file is analysed on the accelerometer at the faulted bearing (and so
+    // with its geometry, `cwru-6203-fe`), as the data center's own file naming says.
+    let cwru_default = match label.as_ref().and_then(|l| l.fault_end.as_deref()) {
+        Some("FE") => "FE",
+        _ => "DE",
+    };
+    let (chan_path, chan_name) = channel_path(
+        path,
+        &listing,
+        &layout,
+        opts.channel.as_deref(),
+        record_no,
+        cwru_default,
+    )?;
     let mut all = Vec::new();
     walk(&listing, &mut all);
     let fs_node = find_scalar(&all, &chan_path, FS_NAMES).map(|n| n.path.clone());

@@ -86,6 +86,38 @@ fn reads_synthetic_file_plain_and_compressed() {
 }
 
 #[test]
+fn a_fan_end_fault_file_is_read_on_its_own_accelerometer_by_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let de = [1.0; 300];
+    let fe = [2.0; 300];
+    let bytes = mat5_bytes(&[
+        ("X294_DE_time", &de),
+        ("X294_FE_time", &fe),
+        ("X294RPM", &[1797.0]),
+    ]);
+    for (name, want, bearing) in [
+        ("12k_Fan_End_OR007@6_0_294.mat", 2.0, "cwru-6203-fe"),
+        ("12k_Drive_End_OR007@6_0_294.mat", 1.0, "cwru-6205-de"),
+        ("normal_0_294.mat", 1.0, "cwru-6205-de"),
+    ] {
+        let p = tmp_file(dir.path(), name, &bytes);
+        let r = read_mat_record(&p, &crate::io::ReadOptions::default()).unwrap();
+        assert_eq!(
+            (r.samples[0], r.bearing.as_deref()),
+            (want, Some(bearing)),
+            "{name}"
+        );
+    }
+    // An explicit channel still wins.
+    let p = dir.path().join("12k_Fan_End_OR007@6_0_294.mat");
+    let de_opts = crate::io::ReadOptions {
+        channel: Some("DE".into()),
+        ..Default::default()
+    };
+    assert_eq!(read_mat_record(&p, &de_opts).unwrap().samples[0], 1.0);
+}
+
+#[test]
 fn rejects_corrupt_files() {
     let dir = tempfile::tempdir().unwrap();
     let good = mat5_bytes(&[("X105_DE_time", &[1.0, 2.0, 3.0])]);
