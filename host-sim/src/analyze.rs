@@ -404,11 +404,16 @@ pub fn print_analysis(a: &Analysis) {
     }
     let d = &a.diagnosis;
     println!(
-        "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
+        "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB{}; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
         family_name(d.family),
         d.confidence,
         family_name(d.candidate),
         d.margin_db,
+        if d.candidate == d.margin_family {
+            String::new()
+        } else {
+            format!(" of the best partial family, {}", family_name(d.margin_family))
+        },
         d.score
     );
     for e in &d.evidence {

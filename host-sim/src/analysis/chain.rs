@@ -404,6 +404,7 @@ pub fn analyze_signal(
             candidate: FaultFamily::None,
             confidence,
             margin_db: 0.0,
+            margin_family: FaultFamily::None,
             score: 0.0,
             ..diagnosis
         };

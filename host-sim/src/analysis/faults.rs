@@ -138,9 +138,13 @@ pub struct FaultDiagnosis {
     /// Leading family before the confidence gate: the family of highest `exclusive_score`
     /// among those with at least `min_harmonics` harmonics found, or `None`.
     pub candidate: FaultFamily,
-    /// Evidence margin of the candidate: its exclusive score minus the best other family's,
-    /// dB per searched harmonic (see `leading`).
+    /// Evidence margin of `margin_family`: its exclusive score minus the best other family's,
+    /// dB per searched harmonic (see `leading`). The confidence is computed from it.
     pub margin_db: f64,
+    /// Family whose margin `margin_db` is: the candidate, or, when no family has
+    /// `min_harmonics` found (candidate `None`), the family of highest exclusive score (the
+    /// best partial one); `None` when no family has any exclusive evidence.
+    pub margin_family: FaultFamily,
     /// Exclusive score of the diagnosed family (0 for `None`).
     pub score: f64,
     /// Evidence for every family (inner, outer, ball).
@@ -339,7 +343,7 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
     mark_shared(&mut evidence, env.df, p);
-    let (candidate, margin_db) = leading(&evidence, p.min_harmonics);
+    let (candidate, margin_family, margin_db) = leading(&evidence, p.min_harmonics);
     let lead = (candidate != FaultFamily::None).then_some(candidate);
     let (family, confidence) =
         super::diagnose::call(lead, margin_db, &super::diagnose::CALIBRATION);
@@ -353,6 +357,7 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         confidence,
         candidate,
         margin_db,
+        margin_family,
         score,
         evidence,
     }
@@ -363,7 +368,10 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
 /// score minus the highest exclusive score of the other families (dB per harmonic). With no
 /// leading family the margin is the largest exclusive score of any family minus the second
 /// (the strength of the best partial evidence).
-fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, f64) {
+fn leading(
+    evidence: &[FamilyEvidence],
+    min_harmonics: usize,
+) -> (FaultFamily, FaultFamily, f64) {
     let lead = evidence
         .iter()
         .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
@@ -376,13 +384,16 @@ fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, f
             .fold(0.0_f64, f64::max)
     };
     match lead {
-        Some(l) => (l.family, l.exclusive_score - top(Some(l.family))),
+        Some(l) => (l.family, l.family, l.exclusive_score - top(Some(l.family))),
         None => {
             let best = evidence
                 .iter()
+                .filter(|e| e.exclusive_score > 0.0)
                 .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
-            let m = best.map_or(0.0, |b| b.exclusive_score - top(Some(b.family)));
-            (FaultFamily::None, m)
+            match best {
+                Some(b) => (FaultFamily::None, b.family, b.exclusive_score - top(Some(b.family))),
+                None => (FaultFamily::None, FaultFamily::None, 0.0),
+            }
         }
     }
 }
@@ -656,5 +667,29 @@ mod tests {
             let d = detect_fault(&env, &ff, &DetectParams::default());
             prop_assert!(d.score.is_finite());
         }
+    }
+
+    #[test]
+    fn the_margin_names_whose_it_is() {
+        let ev = |family, found, exclusive_score| FamilyEvidence {
+            family,
+            base_hz: 100.0,
+            fundamental_hz: 100.0,
+            sideband_hz: None,
+            harmonics: vec![],
+            found,
+            score: exclusive_score,
+            exclusive_score,
+        };
+        // A candidate: its own margin over the next family.
+        let e = [ev(FaultFamily::InnerRace, 3, 9.0), ev(FaultFamily::Ball, 1, 4.0)];
+        assert_eq!(leading(&e, 2), (FaultFamily::InnerRace, FaultFamily::InnerRace, 5.0));
+        // No candidate (ball has one harmonic of two needed): the margin is the best
+        // partial family's, and it says so.
+        let e = [ev(FaultFamily::InnerRace, 0, 0.0), ev(FaultFamily::Ball, 1, 4.0)];
+        assert_eq!(leading(&e, 2), (FaultFamily::None, FaultFamily::Ball, 4.0));
+        // No exclusive evidence at all.
+        let e = [ev(FaultFamily::InnerRace, 0, 0.0), ev(FaultFamily::Ball, 0, 0.0)];
+        assert_eq!(leading(&e, 2), (FaultFamily::None, FaultFamily::None, 0.0));
     }
 }

@@ -104,23 +104,53 @@ pub fn sidecar_for(data: &Path) -> Result<Option<Sidecar>, IoError> {
                 );
                 continue;
             }
-            return read_sidecar(&c).map(Some);
+            let raw = read_json(&c)?;
+            if let Some(kind) = report_kind(&raw) {
+                eprintln!(
+                    "wearsim: warning: {}: a wearsim {kind} report, not read as a sidecar",
+                    c.display()
+                );
+                continue;
+            }
+            return parse_sidecar(&c, raw).map(Some);
         }
     }
     Ok(None)
 }
 
-/// Read and validate one sidecar file.
-pub fn read_sidecar(path: &Path) -> Result<Sidecar, IoError> {
+/// The command whose `--json` report `raw` is (`analyze`: a `diagnosis`; `gap`: a
+/// `ranking`), if it is one: `wearsim analyze rec.npy --json > rec.json` writes exactly the
+/// name the reader looks for next to `rec.npy`, and its `fs`, `rpm` and `bearing` must not
+/// become the record's on the next run.
+fn report_kind(raw: &Value) -> Option<&'static str> {
+    let has = |k: &str| raw.get(k).is_some();
+    if has("format") {
+        return None;
+    }
+    if has("diagnosis") && has("kurtogram") {
+        Some("analyze")
+    } else if has("ranking") && has("totals") {
+        Some("gap")
+    } else {
+        None
+    }
+}
+
+/// The JSON value of a sidecar file, at most [`MAX_SIDECAR_BYTES`].
+fn read_json(path: &Path) -> Result<Value, IoError> {
     let bytes = super::record::read_capped(
         path,
         MAX_SIDECAR_BYTES,
         "sidecar",
         &format!("{MAX_SIDECAR_BYTES} bytes per sidecar"),
     )?;
-    let raw: Value = serde_json::from_slice(&bytes)
-        .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))?;
-    parse_sidecar(path, raw)
+    serde_json::from_slice(&bytes)
+        .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))
+}
+
+/// Read and validate one sidecar file.
+pub fn read_sidecar(path: &Path) -> Result<Sidecar, IoError> {
+    parse_sidecar(path, read_json(path)?)
 }
 
 fn num(path: &Path, v: &Value, key: &str) -> Result<Option<f64>, IoError> {
@@ -477,5 +507,20 @@ mod tests {
         assert!(unread_keys(own.as_object().unwrap()).is_empty());
         let known = json!({"fs": 1, "units": "g", "wav": {}, "complete": true});
         assert!(unread_keys(known.as_object().unwrap()).is_empty());
+    }
+
+    #[test]
+    fn an_analyze_report_saved_beside_its_record_is_not_its_sidecar() {
+        let dir = tempfile::tempdir().unwrap();
+        let rec = dir.path().join("rec.npy");
+        std::fs::write(&rec, b"").unwrap();
+        let report = json!({"fs": 12000, "rpm": 1797, "bearing": {"elements": 9},
+            "diagnosis": {"family": "None"}, "kurtogram": {}});
+        std::fs::write(dir.path().join("rec.json"), report.to_string()).unwrap();
+        assert!(sidecar_for(&rec).unwrap().is_none());
+        assert_eq!(report_kind(&json!({"ranking": [], "totals": {}})), Some("gap"));
+        // A sidecar stays a sidecar.
+        std::fs::write(dir.path().join("rec.json"), r#"{"fs": 12000}"#).unwrap();
+        assert_eq!(sidecar_for(&rec).unwrap().unwrap().fs, Some(12000.0));
     }
 }
