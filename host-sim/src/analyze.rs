@@ -117,8 +117,15 @@ pub struct Analysis {
     pub duration_s: f64,
     /// Shaft speed used, rpm.
     pub rpm: f64,
-    /// Where the speed came from: `argument`, `file` or `config` (the `--config` scenario's speed).
+    /// Where the speed came from: `argument`, `file`, `config` (the `--config` scenario's
+    /// speed), or `file speed profile` / `config speed profile` when the model's speed
+    /// profile gives it over the record's span (its mean when order-tracked).
     pub rpm_source: String,
+    /// Set when the record was taken at a varying shaft speed that its wearsim sidecar's
+    /// (or `--config` scenario's) speed profile states: the record was resampled to equal
+    /// shaft-angle steps before the analysis and `rpm` is the mean speed (see
+    /// [`crate::analysis::order_tracking`]). `None` at constant speed or with `--rpm`.
+    pub order_tracking: Option<OrderTracking>,
     /// Bearing preset used for the geometry (`custom`: the geometry of a wearsim
     /// sidecar's structured model that is no preset's).
     pub bearing: String,
@@ -138,6 +145,58 @@ pub struct Analysis {
     pub zones: Option<Zones>,
     /// Why the zones are missing, if they are.
     pub zones_note: Option<String>,
+}
+
+/// How a record taken at a varying speed was order-tracked (see [`Analysis::order_tracking`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct OrderTracking {
+    /// Lowest shaft frequency over the record, Hz.
+    pub min_hz: f64,
+    /// Highest shaft frequency over the record, Hz.
+    pub max_hz: f64,
+    /// Mean shaft frequency, Hz (revolutions / duration); `rpm` is 60 times it.
+    pub mean_hz: f64,
+    /// Shaft revolutions over the record.
+    pub revolutions: f64,
+    /// Model time of the record's first sample, s (the sidecar's `settle_s`).
+    pub start_s: f64,
+}
+
+/// An order-tracked record's samples and how it was tracked.
+type Tracked = (Vec<f64>, OrderTracking);
+
+/// The shaft speed over the record from a model's speed profile, when the profile is not
+/// constant: the record's first sample is at model time `settle_s` (a wearsim sidecar's key;
+/// 0 without one). Constant over the record: that speed and the record unchanged; varying:
+/// the order-tracked record at its mean speed.
+fn speed_from_profile(
+    rec: &Record,
+    model: &ModelConfig,
+) -> Option<(f64, Option<Tracked>)> {
+    if model.speed.is_constant() {
+        return None;
+    }
+    let start_s = rec
+        .meta
+        .get("sidecar")
+        .and_then(|s| s.get("settle_s"))
+        .and_then(serde_json::Value::as_f64)
+        .filter(|t| t.is_finite() && *t >= 0.0)
+        .unwrap_or(0.0);
+    let o = crate::analysis::order_tracking::order_track(&rec.samples, rec.fs, start_s, |t| {
+        model.speed.shaft_hz(t)
+    })?;
+    if o.max_hz - o.min_hz <= 1e-9 * o.max_hz {
+        return Some((60.0 * o.min_hz, None));
+    }
+    let info = OrderTracking {
+        min_hz: o.min_hz,
+        max_hz: o.max_hz,
+        mean_hz: o.mean_hz,
+        revolutions: o.revolutions,
+        start_s,
+    };
+    Some((60.0 * o.mean_hz, Some((o.samples, info))))
 }
 
 /// Read `args.file` and analyse it; errors name the file (exit 2 for bad input).
@@ -167,7 +226,7 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
         args.rpm.is_some(),
         &Method::default(),
     )?;
-    if rpm_from_config {
+    if rpm_from_config && a.rpm_source == "file" {
         a.rpm_source = "config".into();
     }
     Ok((a, spectra))
@@ -258,7 +317,23 @@ fn analyze_chosen(
             )))
             }
         };
-    let Some(rpm) = rec.rpm else {
+    // A model whose speed varies gives the speed over the record (and order-tracks it),
+    // unless `--rpm` says otherwise.
+    let profile = file_model.as_ref().and_then(|m| speed_from_profile(rec, m));
+    if let (true, Some((_, Some((_, o))))) = (rpm_from_argument, &profile) {
+        eprintln!(
+            "wearsim: warning: {file}: the model's shaft speed varies over the record ({:.3}-{:.3} Hz); --rpm analyses it as constant, without order tracking",
+            o.min_hz, o.max_hz
+        );
+    }
+    let profile = profile.filter(|_| !rpm_from_argument);
+    let from_profile = profile.is_some();
+    let (rpm, tracked) = match profile {
+        Some((rpm, tracked)) => (Some(rpm), tracked),
+        None => (rec.rpm, None),
+    };
+    let samples: &[f64] = tracked.as_ref().map_or(&rec.samples, |t| &t.0);
+    let Some(rpm) = rpm else {
         return Err(AnalyzeError::input(format!(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
@@ -285,13 +360,13 @@ fn analyze_chosen(
     }
     .map_err(AnalyzeError::input)?;
     crate::resolvable::check_resolvable(
-        rec.samples.len(),
+        samples.len(),
         rec.fs,
         kin.shaft_hz,
         [kin.bpfo, kin.bpfi, 2.0 * kin.bsf],
     )
     .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
-    let a = analyze_signal(&rec.samples, rec.fs, &kin, method)
+    let a = analyze_signal(samples, rec.fs, &kin, method)
         .map_err(|e| AnalyzeError::input(format!("{file}: channel {}: {e}", rec.channel)))?;
     let (zones, zones_note) = match a.zones {
         Ok(z) => (Some(z), None),
@@ -312,12 +387,12 @@ fn analyze_chosen(
         samples: rec.samples.len(),
         duration_s: rec.duration_s(),
         rpm,
-        rpm_source: if rpm_from_argument {
-            "argument"
-        } else {
-            "file"
-        }
-        .into(),
+        rpm_source: match (rpm_from_argument, from_profile) {
+            (true, _) => "argument".into(),
+            (false, true) => format!("{bearing_source} speed profile"),
+            (false, false) => "file".into(),
+        },
+        order_tracking: tracked.map(|t| t.1),
         bearing,
         bearing_source: bearing_source.into(),
         kinematics: kin,
@@ -374,6 +449,12 @@ pub fn print_analysis(a: &Analysis) {
         a.bearing,
         a.bearing_source
     );
+    if let Some(o) = &a.order_tracking {
+        println!(
+            "order-tracked: the shaft speed varies {:.3}-{:.3} Hz over the record (model time from {:.3} s); resampled to equal shaft angle, {:.1} revolutions, analysed at the mean {:.3} Hz",
+            o.min_hz, o.max_hz, o.start_s, o.revolutions, o.mean_hz
+        );
+    }
     println!(
         "kinematics: 1x {:.2} Hz  FTF {:.2}  BPFO {:.2}  BPFI {:.2}  BSF {:.2} (2xBSF {:.2})  natural {:.0} Hz",
         k.shaft_hz,

@@ -368,10 +368,7 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
 /// score minus the highest exclusive score of the other families (dB per harmonic). With no
 /// leading family the margin is the largest exclusive score of any family minus the second
 /// (the strength of the best partial evidence).
-fn leading(
-    evidence: &[FamilyEvidence],
-    min_harmonics: usize,
-) -> (FaultFamily, FaultFamily, f64) {
+fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, FaultFamily, f64) {
     let lead = evidence
         .iter()
         .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
@@ -391,7 +388,11 @@ fn leading(
                 .filter(|e| e.exclusive_score > 0.0)
                 .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
             match best {
-                Some(b) => (FaultFamily::None, b.family, b.exclusive_score - top(Some(b.family))),
+                Some(b) => (
+                    FaultFamily::None,
+                    b.family,
+                    b.exclusive_score - top(Some(b.family)),
+                ),
                 None => (FaultFamily::None, FaultFamily::None, 0.0),
             }
         }
@@ -682,14 +683,26 @@ mod tests {
             exclusive_score,
         };
         // A candidate: its own margin over the next family.
-        let e = [ev(FaultFamily::InnerRace, 3, 9.0), ev(FaultFamily::Ball, 1, 4.0)];
-        assert_eq!(leading(&e, 2), (FaultFamily::InnerRace, FaultFamily::InnerRace, 5.0));
+        let e = [
+            ev(FaultFamily::InnerRace, 3, 9.0),
+            ev(FaultFamily::Ball, 1, 4.0),
+        ];
+        assert_eq!(
+            leading(&e, 2),
+            (FaultFamily::InnerRace, FaultFamily::InnerRace, 5.0)
+        );
         // No candidate (ball has one harmonic of two needed): the margin is the best
         // partial family's, and it says so.
-        let e = [ev(FaultFamily::InnerRace, 0, 0.0), ev(FaultFamily::Ball, 1, 4.0)];
+        let e = [
+            ev(FaultFamily::InnerRace, 0, 0.0),
+            ev(FaultFamily::Ball, 1, 4.0),
+        ];
         assert_eq!(leading(&e, 2), (FaultFamily::None, FaultFamily::Ball, 4.0));
         // No exclusive evidence at all.
-        let e = [ev(FaultFamily::InnerRace, 0, 0.0), ev(FaultFamily::Ball, 0, 0.0)];
+        let e = [
+            ev(FaultFamily::InnerRace, 0, 0.0),
+            ev(FaultFamily::Ball, 0, 0.0),
+        ];
         assert_eq!(leading(&e, 2), (FaultFamily::None, FaultFamily::None, 0.0));
     }
 }

@@ -9,6 +9,7 @@
 //! - [`peaks`]: spectral peaks, noise floor, peak-over-floor in dB.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
 //! - [`diagnose`]: calibrated confidence and the call / no-call decision.
+//! - [`order_tracking`]: computed order tracking of records taken at a varying speed.
 //! - [`zones`]: band levels of the four El-Thalji frequency zones.
 //! - [`synth`]: seeded synthetic signals with known answers.
 //!
@@ -27,6 +28,7 @@ pub(crate) mod fft;
 pub mod finite;
 pub mod kurtogram;
 pub mod octave_bands;
+pub mod order_tracking;
 pub mod peaks;
 pub mod spectrum;
 pub mod stats;

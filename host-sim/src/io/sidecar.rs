@@ -518,7 +518,10 @@ mod tests {
             "diagnosis": {"family": "None"}, "kurtogram": {}});
         std::fs::write(dir.path().join("rec.json"), report.to_string()).unwrap();
         assert!(sidecar_for(&rec).unwrap().is_none());
-        assert_eq!(report_kind(&json!({"ranking": [], "totals": {}})), Some("gap"));
+        assert_eq!(
+            report_kind(&json!({"ranking": [], "totals": {}})),
+            Some("gap")
+        );
         // A sidecar stays a sidecar.
         std::fs::write(dir.path().join("rec.json"), r#"{"fs": 12000}"#).unwrap();
         assert_eq!(sidecar_for(&rec).unwrap().unwrap().fs, Some(12000.0));

@@ -467,3 +467,76 @@ fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
     let o = with_scenario("range.toml", negative, &[]);
     assert_input_error(&o, &["speed.shaft_hz", "allowed"]);
 }
+
+/// A run-up recorded by `simulate` (20 -> 30 Hz over the record, inner-race defect): the
+/// sidecar's model states the speed profile, so `analyze` order-tracks the record and finds
+/// the inner race at the mean speed; analysed at the start speed (what the sidecar's `rpm`
+/// says) the harmonics of a line sweeping over ±20 % smear into nothing, which is what the
+/// analysis did before. `--rpm` keeps the constant-speed analysis, with a warning.
+#[test]
+fn a_run_up_is_order_tracked_from_the_sidecar_speed_profile() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cfg = dir.path().join("ramp.toml");
+    std::fs::write(
+        &cfg,
+        format!(
+            "preset = \"{BEARING}\"\n[speed]\nfrom_hz = 20.0\nto_hz = 30.0\nramp_duration = 2.0\n[defect]\nlocation = \"inner\"\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("ramp");
+    let o = wearsim(&[
+        "simulate",
+        "--config",
+        &cfg.to_string_lossy(),
+        "--duration",
+        "2",
+        "--fs",
+        "20000",
+        "--out",
+        &out.to_string_lossy(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "simulate failed: {}", stderr(&o));
+    let side: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap()).unwrap();
+    let settle = side["settle_s"].as_f64().expect("settle_s in the sidecar");
+    let csv = out.join("simulate.csv");
+    let v = json_of(&wearsim(&["analyze", &csv.to_string_lossy(), "--json"]));
+    let o = &v["order_tracking"];
+    let at = |t: f64| 20.0 + 5.0 * t.min(2.0);
+    assert_eq!(o["start_s"].as_f64(), Some(settle));
+    assert!(
+        (o["min_hz"].as_f64().unwrap() - at(settle)).abs() < 1e-9,
+        "{o}"
+    );
+    assert!((o["max_hz"].as_f64().unwrap() - 30.0).abs() < 1e-3, "{o}");
+    // Mean over the record: the ramp from `settle` to 2 s, then 30 Hz.
+    let end = settle + 39_999.0 / 20_000.0;
+    let revs = (2.0 - settle) * (at(settle) + 30.0) / 2.0 + (end - 2.0) * 30.0;
+    let mean = revs / (end - settle);
+    assert!(
+        (o["mean_hz"].as_f64().unwrap() - mean).abs() < 1e-6 * mean,
+        "{o} vs {mean}"
+    );
+    assert!((v["rpm"].as_f64().unwrap() - 60.0 * mean).abs() < 1e-4);
+    assert_eq!(v["rpm_source"], "file speed profile");
+    assert_eq!(v["diagnosis"]["family"], "InnerRace", "{}", v["diagnosis"]);
+    // The start speed as a constant: no inner race (the smeared lines), and a warning.
+    let start_rpm = format!("{}", 60.0 * at(settle));
+    let o = wearsim(&[
+        "analyze",
+        &csv.to_string_lossy(),
+        "--rpm",
+        &start_rpm,
+        "--json",
+    ]);
+    assert!(
+        stderr(&o).contains("varies over the record"),
+        "{}",
+        stderr(&o)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["order_tracking"].is_null());
+    assert_ne!(v["diagnosis"]["family"], "InnerRace", "{}", v["diagnosis"]);
+}
