@@ -159,17 +159,17 @@ fn sidecars_that_describe_no_simulable_bearing_are_refused() {
     // No preset and no geometry.
     let b = table(tmp.path(), "b", 2, r#"{ "id": "B2" }"#, "4000.0");
     refused(&gap(&a, &b, &out), &["`bearing`", "geometry"]);
-    assert!(empty(&out));
+    assert!(!out.exists(), "nothing written, not even the directory");
     // No load that could wear the bearing.
     let b = table(tmp.path(), "b", 2, &good, "0.0");
     refused(&gap(&b, &a, &out), &["`radial_load_n`"]);
-    assert!(empty(&out));
+    assert!(!out.exists(), "nothing written, not even the directory");
     // No rpm at all.
     let side = tmp.path().join("b.json");
     let t = std::fs::read_to_string(&side).unwrap();
     std::fs::write(&side, t.replace("  \"rpm\": 1800.0,\n", "")).unwrap();
     refused(&gap(&b, &a, &out), &["rpm"]);
-    assert!(empty(&out));
+    assert!(!out.exists(), "nothing written, not even the directory");
     // Two lives of different bearings: the field that differs is named.
     let b = table(tmp.path(), "b", 2, &good, "5000.0");
     refused(&gap(&a, &b, &out), &["`radial_load_n`", "differs"]);
@@ -190,7 +190,7 @@ fn sidecars_that_describe_no_simulable_bearing_are_refused() {
         "4000.0",
     );
     refused(&gap(&b, &a, &out), &["`rpm`", "geometry"]);
-    assert!(empty(&out));
+    assert!(!out.exists(), "nothing written, not even the directory");
 }
 
 /// Sets sidecar key `key` (a string) of table `csv` to `value`.
@@ -288,7 +288,7 @@ fn a_training_life_must_have_failed() {
                 "calibrates the life factor",
             ],
         );
-        assert!(empty(&out));
+        assert!(!out.exists(), "nothing written, not even the directory");
     }
 }
 
@@ -308,5 +308,5 @@ fn a_training_life_too_short_to_calibrate_is_refused_with_the_length_it_needs() 
             "h at this speed",
         ],
     );
-    assert!(empty(&out));
+    assert!(!out.exists(), "nothing written, not even the directory");
 }
