@@ -310,3 +310,34 @@ fn a_training_life_too_short_to_calibrate_is_refused_with_the_length_it_needs() 
     );
     assert!(!out.exists(), "nothing written, not even the directory");
 }
+
+/// A table whose header repeats a column is refused naming it: the first copy used to win
+/// silently (a constant `kurtosis` column put in front gave kurtosis gaps of 0).
+#[test]
+fn a_repeated_column_is_refused_naming_it() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table(tmp.path(), "a", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b", 2, &bearing, "4000.0");
+    let text = std::fs::read_to_string(&a).unwrap();
+    let dup: String = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match i {
+            0 => format!("kurtosis,{l}\n"),
+            _ => format!("3.0,{l}\n"),
+        })
+        .collect();
+    std::fs::write(&a, dup).unwrap();
+    let out = tmp.path().join("gap");
+    refused(
+        &gap(&a, &b, &out),
+        &[
+            "a.csv",
+            "column `kurtosis`",
+            "more than once",
+            "columns 1 and 5",
+        ],
+    );
+    assert!(!out.exists());
+}
