@@ -341,3 +341,22 @@ fn a_repeated_column_is_refused_naming_it() {
     );
     assert!(!out.exists());
 }
+
+/// A table without its sidecar is refused naming the sidecar looked for, given alone or
+/// next to a valid table (it was called "not a lifetime record" or "cannot be mixed with
+/// IMS tables").
+#[test]
+fn a_table_without_its_sidecar_is_refused_naming_the_sidecar() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table(tmp.path(), "a", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b", 2, &bearing, "4000.0");
+    let side = a.with_extension("json");
+    std::fs::remove_file(&side).unwrap();
+    let out = tmp.path().join("gap");
+    refused(&gap(&a, &b, &out), &[s(&side), "missing"]);
+    refused(&gap(&b, &a, &out), &[s(&side), "missing"]);
+    let alone = wearsim(&["gap", "--life", "--real", s(&a), "--out", s(&out)]);
+    refused(&alone, &[s(&side), "missing"]);
+    assert!(!out.exists());
+}
