@@ -201,6 +201,9 @@ fn speed_from_profile(
 
 /// Read `args.file` and analyse it; errors name the file (exit 2 for bad input).
 pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> {
+    if let Some(r) = args.rpm {
+        io::record::check_rpm_argument(r).map_err(AnalyzeError::input)?;
+    }
     let opts = ReadOptions {
         channel: args.channel.clone(),
         fs: args.fs,

@@ -12,7 +12,7 @@ use wearsim_core::forces::imbalance::Imbalance;
 use wearsim_core::forces::slip::Slip;
 use wearsim_core::forces::surface::{Roughness, Waviness};
 use wearsim_core::integrate::IntegratorKind;
-use wearsim_core::speed::{SpeedPoint, SpeedProfile, MAX_SPEED_POINTS};
+use wearsim_core::speed::{SpeedPoint, SpeedProfile, MAX_SHAFT_HZ, MAX_SPEED_POINTS};
 use wearsim_core::topography::{self, Topography};
 use wearsim_core::{presets, Channels, ModelConfig, Structure};
 
@@ -673,6 +673,25 @@ fn section<T, F: FnOnce() -> Result<T, ConfigFileError>>(
     }
 }
 
+/// Slowest shaft speed a simulation runs at, rpm (the core's 0.001 Hz).
+pub const MIN_SIM_RPM: f64 = 0.06;
+/// Fastest shaft speed a simulation runs at, rpm (the core's `MAX_SHAFT_HZ`).
+#[allow(clippy::unnecessary_cast)] // `Real` is f32 in the f32 build of the core.
+pub const MAX_SIM_RPM: f64 = 60.0 * MAX_SHAFT_HZ as f64;
+
+/// Checks a shaft speed given in rpm against the simulation's range, in rpm, so that a
+/// user who typed rpm is not answered in Hz; `what` names where it came from (`--rpm`,
+/// `speed.rpm`, a file).
+pub fn check_sim_rpm(what: &str, rpm: f64) -> Result<f64, String> {
+    if rpm.is_finite() && (MIN_SIM_RPM..=MAX_SIM_RPM).contains(&rpm) {
+        Ok(rpm)
+    } else {
+        Err(format!(
+            "{what} = {rpm} rpm is out of range: allowed {MIN_SIM_RPM}..={MAX_SIM_RPM} rpm (shaft speed 0.001..={MAX_SHAFT_HZ} Hz)"
+        ))
+    }
+}
+
 fn speed_from(sp: &SpeedSection) -> Result<SpeedProfile, ConfigFileError> {
     let kinds = [
         sp.shaft_hz.is_some(),
@@ -691,6 +710,7 @@ fn speed_from(sp: &SpeedSection) -> Result<SpeedProfile, ConfigFileError> {
         return Ok(SpeedProfile::Constant(f));
     }
     if let Some(r) = sp.rpm {
+        let r = check_sim_rpm("speed.rpm", r).map_err(ConfigFileError::Limit)?;
         return Ok(SpeedProfile::Constant(r / 60.0));
     }
     if let Some(table) = &sp.table {

@@ -272,6 +272,9 @@ pub fn convert(
             "--rpm: the FEMTO and XJTU-SY files do not hold the shaft speed; give it (rpm)".into(),
         )
     })?;
+    if o.rpm.is_some() {
+        crate::io::record::check_rpm_argument(rpm).map_err(FeaturesError::Input)?;
+    }
     let load_n = o.load_n.or(ims.then_some(IMS_LOAD_N)).ok_or_else(|| {
         FeaturesError::Input(
             "--load-n: the FEMTO and XJTU-SY files do not hold the radial load; give it (N)".into(),

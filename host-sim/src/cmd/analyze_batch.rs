@@ -241,6 +241,9 @@ pub fn render(rows: &[Row], format: &str) -> Result<String, String> {
 
 /// Run a batch: collect the inputs, analyse each with a progress line on stderr, write the table.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
+    if let Some(r) = args.rpm {
+        crate::io::record::check_rpm_argument(r).map_err(CliError::input)?;
+    }
     let format = match (&args.format, &args.out) {
         (Some(f), _) => f.to_ascii_lowercase(),
         (None, Some(o)) => match o

@@ -83,6 +83,7 @@ impl SimulateArgs {
             file.seed = Some(s);
         }
         if let Some(r) = self.rpm {
+            config::check_sim_rpm("--rpm", r).map_err(CliError::input)?;
             file.speed = Some(config::SpeedSection {
                 rpm: Some(r),
                 ..Default::default()

@@ -8,7 +8,8 @@ use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
 use crate::gap::stationary::{diagnose, prepare, stability, where_cells, GapArgs, GapOutput};
-use crate::io::feature_table::is_feature_table;
+use crate::io::feature_table::{is_feature_table, sidecar_path, FORMAT};
+use std::path::Path;
 
 /// `wearsim gap`: `--life` selects the lifetime diagnosis. A lifetime table given without
 /// it is refused with the invocation to use, rather than switching mode on a file name.
@@ -109,12 +110,6 @@ fn run_life(a: &GapArgs) -> Result<(), CliError> {
         .real
         .first()
         .ok_or_else(|| CliError::input("--real: no file"))?;
-    if path.is_file() && !is_life_table(path) && !is_feature_table(path) {
-        return Err(CliError::input(format!(
-            "--life --real {}: not a lifetime record; --life needs an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns (e.g. test2_timefeatures.csv) or documented feature tables with their sidecars (docs/feature-tables.md)",
-            path.display()
-        )));
-    }
     let m = if is_feature_table(path) {
         lifetime::measured_tables(&a.real, &o)
     } else {
@@ -137,6 +132,36 @@ fn run_life(a: &GapArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Why `p`, which is no IMS lifetime table, is not read as a documented feature table
+/// either: the sidecar path looked for and what is wrong with it.
+fn why_not_table(p: &Path) -> String {
+    if !p.exists() {
+        return "no such file".into();
+    }
+    if !p.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv")) {
+        return "a feature table is a .csv file".into();
+    }
+    let side = sidecar_path(p);
+    let text = match std::fs::read_to_string(&side) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return format!(
+                "its sidecar {} is missing (a feature table is NAME.csv with NAME.json next to it)",
+                side.display()
+            )
+        }
+        Err(e) => return format!("its sidecar {} cannot be read: {e}", side.display()),
+    };
+    match serde_json::from_str::<serde_json::Value>(&text) {
+        Err(e) => format!("its sidecar {} is not JSON: {e}", side.display()),
+        Ok(v) => format!(
+            "its sidecar {} has `format` {} (a feature table's is {FORMAT:?})",
+            side.display(),
+            v["format"]
+        ),
+    }
+}
+
 fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
     let mut out = vec![];
     for item in spec.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -156,6 +181,28 @@ fn bearings(spec: &str, what: &str) -> Result<Vec<usize>, CliError> {
 /// Lifetime options from the arguments; options that only make sense for raw records
 /// are refused rather than ignored.
 fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
+    // Without an IMS table among them, a file that is neither kind is refused first,
+    // saying why it is not a feature table (usually its sidecar is missing), rather than
+    // as a mix of kinds.
+    let ims = a.real.iter().any(|p| is_life_table(p));
+    let bad: Vec<String> = a
+        .real
+        .iter()
+        .filter(|p| !ims && (p.is_file() || !p.exists()) && !is_feature_table(p))
+        .map(|p| {
+            format!(
+                "--life --real {}: not a lifetime record: {}",
+                p.display(),
+                why_not_table(p)
+            )
+        })
+        .collect();
+    if !bad.is_empty() {
+        return Err(CliError::input(format!(
+            "{}; --life needs an IMS feature table with per-bearing B<k>_rms and B<k>_kurtosis columns (e.g. test2_timefeatures.csv) or documented feature tables, each with its JSON sidecar (docs/feature-tables.md)",
+            bad.join("; ")
+        )));
+    }
     let tables = a.real.iter().filter(|p| is_feature_table(p)).count();
     if tables > 0 && tables != a.real.len() {
         return Err(CliError::input(

@@ -259,9 +259,12 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             }
         },
     };
-    if !(rpm.is_finite() && (1.0..=1.0e6).contains(&rpm)) {
-        return Err(format!("{p}: rpm {rpm} is out of range 1..=1e6"));
-    }
+    // The record is simulated at this speed: the simulation's range, in rpm.
+    let what = match rpm_source {
+        "argument" => "--rpm".to_string(),
+        src => format!("{p}: the shaft speed from the {src}"),
+    };
+    crate::config::check_sim_rpm(&what, rpm)?;
     if let (Some(f), false) = (from_spectrum, rpm_source == "spectrum") {
         let rel = (60.0 * f / rpm - 1.0).abs();
         if rel > 0.05 {

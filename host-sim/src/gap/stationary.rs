@@ -252,6 +252,10 @@ impl GapArgs {
         if self.jobs == Some(0) {
             return Err(GapError::input("--jobs 0: give at least 1"));
         }
+        if let Some(r) = self.rpm {
+            // Every record is simulated at this speed.
+            crate::config::check_sim_rpm("--rpm", r).map_err(GapError::input)?;
+        }
         if let Some(g) = self.significant_gap {
             if !(g.is_finite() && (0.05..=100.0).contains(&g)) {
                 return Err(GapError::input(format!(

@@ -10,7 +10,10 @@
 //!
 //! Column choice ([`ReadOptions::channel`]): a header name (exact, then case-insensitive) or a
 //! zero-based index. Default: the sidecar's first column, else the first column that is not a
-//! time column (`time_s`, `time`, `t`), else column 0.
+//! time column (`time_s`, `time`, `t`), else column 0. A column taken by its name (the
+//! requested, the sidecar's, the default or the time column) whose name appears more than
+//! once in the header is refused naming both positions: which one was meant is not known
+//! (select it by its index instead).
 //!
 //! Sample rate: argument (which must agree within 0.1 % with a sidecar `fs` and a time column),
 //! else sidecar `fs` (see [`crate::io::sidecar`]), else derived from a time
@@ -114,10 +117,11 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             time_col = if all_numeric {
                 None
             } else {
-                names
-                    .iter()
-                    .position(|n| is_time_name(n))
-                    .filter(|&t| t != col)
+                let t = names.iter().position(|n| is_time_name(n));
+                if let Some(t) = t {
+                    unique(path, &names, t)?;
+                }
+                t.filter(|&t| t != col)
             };
             header = Some(names);
             if !all_numeric {
@@ -217,6 +221,24 @@ fn csv_err(path: &Path, e: ::csv::Error) -> IoError {
     }
 }
 
+/// `i`, unless the name of column `i` appears again in the header: then which column the
+/// name means is not known, and the record is refused naming both 0-based positions.
+fn unique(path: &Path, names: &[String], i: usize) -> Result<usize, IoError> {
+    match (0..names.len()).find(|&j| j != i && names[j] == names[i]) {
+        None => Ok(i),
+        Some(j) => Err(IoError::malformed(
+            path,
+            format!(
+                "column name {:?} appears more than once in the header (columns {} and {}, counted from 0); rename one, or select the column by its index (--channel {})",
+                names[i],
+                i.min(j),
+                i.max(j),
+                i.min(j)
+            ),
+        )),
+    }
+}
+
 fn choose_column(
     path: &Path,
     names: &[String],
@@ -231,10 +253,26 @@ fn choose_column(
     };
     if let Some(req) = opts.channel.as_deref() {
         if let Some(i) = names.iter().position(|n| n == req) {
-            return Ok(i);
+            return unique(path, names, i);
         }
-        if let Some(i) = names.iter().position(|n| n.eq_ignore_ascii_case(req)) {
-            return Ok(i);
+        let folded: Vec<usize> = (0..names.len())
+            .filter(|&i| names[i].eq_ignore_ascii_case(req))
+            .collect();
+        match folded.as_slice() {
+            [i] => return Ok(*i),
+            [a, b, ..] => {
+                return Err(IoError::malformed(
+                    path,
+                    format!(
+                        "--channel {req:?} matches columns {} ({:?}) and {} ({:?}) when case is ignored; give the exact name or the 0-based index",
+                        a,
+                        names[*a],
+                        b,
+                        names[*b]
+                    ),
+                ))
+            }
+            [] => {}
         }
         if let Ok(i) = req.parse::<usize>() {
             if i < names.len() {
@@ -246,11 +284,11 @@ fn choose_column(
     if has_header {
         if let Some(first) = sidecar.and_then(|s| s.columns.first()) {
             if let Some(i) = names.iter().position(|n| n == first) {
-                return Ok(i);
+                return unique(path, names, i);
             }
         }
         if let Some(i) = names.iter().position(|n| !is_time_name(n)) {
-            return Ok(i);
+            return unique(path, names, i);
         }
     }
     if names.is_empty() {
@@ -448,5 +486,41 @@ mod tests {
         std::fs::remove_file(&side).unwrap();
         let r = read_csv(&p, &ReadOptions::default()).unwrap();
         assert_eq!((r.fs, r.samples.len(), r.channel.as_str()), (2.0, 3, "v"));
+    }
+
+    /// A repeated column name taken by name is refused (the first one used to win
+    /// silently); by index it is unambiguous, and a repeat of a column not taken is fine.
+    #[test]
+    fn repeated_column_names_are_refused_when_taken_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("x.csv");
+        std::fs::write(&p, "t,acc,acc\n0,1,5\n0.5,2,6\n1.0,3,7\n").unwrap();
+        for ch in [None, Some("acc"), Some("ACC")] {
+            let e = read_csv(&p, &opts(ch, None)).unwrap_err().to_string();
+            let named = e.contains("more than once") || e.contains("case is ignored");
+            assert!(e.contains("\"acc\"") && named, "{e}");
+        }
+        let r = read_csv(&p, &opts(Some("2"), None)).unwrap();
+        assert_eq!(r.samples, vec![5.0, 6.0, 7.0]);
+        // Two names equal when case is ignored: the exact one is taken, a folded request
+        // is ambiguous.
+        std::fs::write(&p, "t,Acc,ACC\n0,1,5\n0.5,2,6\n1.0,3,7\n").unwrap();
+        assert_eq!(
+            read_csv(&p, &opts(Some("ACC"), None)).unwrap().samples[0],
+            5.0
+        );
+        let e = read_csv(&p, &opts(Some("acc"), None))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("case is ignored"), "{e}");
+        // A repeated time column.
+        std::fs::write(&p, "t,t,acc\n0,0,1\n0.5,0.5,2\n1.0,1.0,3\n").unwrap();
+        let e = read_csv(&p, &opts(Some("acc"), None))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("\"t\""), "{e}");
+        // A repeat of a column nobody takes by name.
+        std::fs::write(&p, "t,acc,x,x\n0,1,0,0\n0.5,2,0,0\n1.0,3,0,0\n").unwrap();
+        assert_eq!(read_csv(&p, &opts(None, None)).unwrap().channel, "acc");
     }
 }

@@ -108,7 +108,7 @@ pub enum IoError {
 
     /// No sample rate is known: the format does not store one and neither a sidecar nor an
     /// argument gave one.
-    #[error("{}: sample rate unknown: {detail}", path.display())]
+    #[error("{}: sample rate unknown: {detail}; pass `--fs HZ`, or write a sidecar with `\"fs\": HZ` (`<file>.json`)", path.display())]
     MissingSampleRate {
         /// Data file without a known rate.
         path: PathBuf,

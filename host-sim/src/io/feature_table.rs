@@ -175,6 +175,19 @@ pub enum FeatureTableError {
         /// The column.
         column: String,
     },
+    /// A column name appears more than once in the header: which one a reader would take
+    /// is not defined, so the table is refused.
+    #[error("{}: column `{column}` appears more than once in the header (columns {first} and {second}); each column may appear once", path.display())]
+    DuplicateColumn {
+        /// The CSV.
+        path: PathBuf,
+        /// The repeated name.
+        column: String,
+        /// 1-based position of its first occurrence.
+        first: usize,
+        /// 1-based position of the repeat.
+        second: usize,
+    },
     /// A cell is not a finite number (or out of its allowed range).
     #[error("{}: column `{column}`, row {row}: {detail}", path.display())]
     BadValue {
@@ -482,6 +495,16 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
         .split(',')
         .map(|c| c.trim().trim_matches('"').to_string())
         .collect();
+    for (j, h) in header.iter().enumerate() {
+        if let Some(i) = header[..j].iter().position(|g| g == h) {
+            return Err(FeatureTableError::DuplicateColumn {
+                path: path.to_path_buf(),
+                column: h.clone(),
+                first: i + 1,
+                second: j + 1,
+            });
+        }
+    }
     let find = |c: &str| header.iter().position(|h| h == c);
     let mut req = [0usize; 7];
     for (k, c) in REQUIRED.iter().enumerate() {

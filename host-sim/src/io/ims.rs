@@ -431,6 +431,18 @@ pub fn read_ims_features(path: impl AsRef<Path>) -> Result<ImsFeatures, IoError>
             out.timestamps = (0..t).map(|k| ts(k * cpb).to_string()).collect();
         }
     }
+    // Columns are looked up by canonical name: a repeat would silently lose to the first.
+    for (j, (name, _)) in out.columns.iter().enumerate() {
+        if let Some(i) = out.columns[..j].iter().position(|(n, _)| n == name) {
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "columns {:?} and {:?} are both {name}; each column may appear once",
+                    out.original_names[i], out.original_names[j]
+                ),
+            ));
+        }
+    }
     for (i, s) in out.timestamps.iter().enumerate() {
         let u = parse_feature_timestamp(s).ok_or_else(|| {
             IoError::malformed(
@@ -546,6 +558,10 @@ mod tests {
             read_ims_features(&p),
             Err(IoError::Contradiction { .. })
         ));
+        // A repeated feature column is refused rather than the first one taken.
+        std::fs::write(&p, s.replacen("form factor", "RMS", 1)).unwrap();
+        let e = read_ims_features(&p).unwrap_err().to_string();
+        assert!(e.contains("both B1_x_rms"), "{e}");
     }
 
     #[test]

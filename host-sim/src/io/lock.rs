@@ -9,6 +9,12 @@
 //! itself is removed when the lock is released normally. Taking the lock also proves that
 //! the directory can be created and written, before the work starts.
 //!
+//! A run that fails leaves no directory behind that it created: when the last holder
+//! releases the lock of a directory that did not exist before the lock was taken, the
+//! directory (and the parents created with it) is removed if it is still empty, so a
+//! failing command with `--out NEW` writes nothing, not even `NEW/` (docs: "nothing
+//! written"). A directory that existed before is never removed.
+//!
 //! A process may take the lock of a directory it already holds (e.g. the dense life driver
 //! and the writer of the life set): the registry below counts the holders, and the lock is
 //! released with the last one.
@@ -30,6 +36,38 @@ struct Held {
     file: File,
     path: PathBuf,
     count: usize,
+    /// The outermost directory this lock created (canonical), if it created any: removed
+    /// with the empty directories below it, down to the locked one, on release.
+    created: Option<PathBuf>,
+}
+
+/// The outermost ancestor of `dir` (itself included) that does not exist, if any.
+fn missing_top(dir: &Path) -> Option<PathBuf> {
+    let mut top = None;
+    let mut p = Some(dir);
+    while let Some(d) = p {
+        if d.as_os_str().is_empty() || d.exists() {
+            break;
+        }
+        top = Some(d.to_path_buf());
+        p = d.parent();
+    }
+    top
+}
+
+/// Removes the empty directories from `dir` up to and including `top` (both canonical);
+/// stops at the first that is not empty (or not removable), so nothing written is lost.
+fn remove_empty(dir: &Path, top: &Path) {
+    let mut d = Some(dir);
+    while let Some(p) = d {
+        if !p.starts_with(top) || std::fs::remove_dir(p).is_err() {
+            break;
+        }
+        if p == top {
+            break;
+        }
+        d = p.parent();
+    }
 }
 
 fn registry() -> &'static Mutex<HashMap<PathBuf, Held>> {
@@ -52,8 +90,10 @@ impl DirLock {
             let path = path.to_path_buf();
             move |source| IoError::Io { path, op, source }
         };
+        let top = missing_top(dir);
         std::fs::create_dir_all(dir).map_err(io("create directory", dir))?;
         let key = std::fs::canonicalize(dir).map_err(io("resolve directory", dir))?;
+        let created = top.and_then(|t| std::fs::canonicalize(t).ok());
         let mut reg = registry().lock().unwrap_or_else(|e| e.into_inner());
         if let Some(h) = reg.get_mut(&key) {
             h.count += 1;
@@ -63,13 +103,25 @@ impl DirLock {
         // Retry when the lock file was removed (released) between our open and our flock:
         // the lock must be on the file the path names.
         for _ in 0..100 {
-            let mut file = OpenOptions::new()
+            let opened = OpenOptions::new()
                 .create(true)
                 .truncate(false)
                 .read(true)
                 .write(true)
-                .open(&path)
-                .map_err(io("create lock file (is the directory writable?)", &path))?;
+                .open(&path);
+            let mut file = match opened {
+                Ok(f) => f,
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                    // A run that failed removed the directory it had created: make it again.
+                    std::fs::create_dir_all(&key).map_err(io("create directory", dir))?;
+                    continue;
+                }
+                Err(e) => {
+                    return Err(io("create lock file (is the directory writable?)", &path)(
+                        e,
+                    ))
+                }
+            };
             // SAFETY: flock on a file descriptor we own; no memory is passed.
             let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
             if rc != 0 {
@@ -98,6 +150,7 @@ impl DirLock {
                     file,
                     path,
                     count: 1,
+                    created,
                 },
             );
             return Ok(DirLock { key });
@@ -125,7 +178,42 @@ impl Drop for DirLock {
                 // the old file sees it is gone and retries on a fresh one.
                 let _ = std::fs::remove_file(&h.path);
                 drop(h.file);
+                if let Some(top) = &h.created {
+                    remove_empty(&self.key, top);
+                }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_run_leaves_no_directory_it_created() {
+        let tmp = tempfile::tempdir().unwrap();
+        // Nothing written: the directory and the parent created with it are removed.
+        let dir = tmp.path().join("new/out");
+        drop(DirLock::try_acquire(&dir).unwrap());
+        assert!(!tmp.path().join("new").exists());
+        // Written to: kept, with its output, without the lock file.
+        let lock = DirLock::try_acquire(&dir).unwrap();
+        std::fs::write(dir.join("x.json"), "{}").unwrap();
+        drop(lock);
+        assert!(dir.join("x.json").exists());
+        assert!(!dir.join(LOCK_FILE).exists());
+        // A directory that existed before is never removed, even empty.
+        let old = tmp.path().join("old");
+        std::fs::create_dir(&old).unwrap();
+        drop(DirLock::try_acquire(&old).unwrap());
+        assert!(old.is_dir());
+        // A nested holder does not remove it before the outer one releases.
+        let dir2 = tmp.path().join("nested");
+        let outer = DirLock::try_acquire(&dir2).unwrap();
+        drop(DirLock::try_acquire(&dir2).unwrap());
+        assert!(dir2.is_dir());
+        drop(outer);
+        assert!(!dir2.exists());
     }
 }

@@ -502,9 +502,10 @@ mod tests {
         ));
         // No rate.
         std::fs::write(&p, &good).unwrap();
-        assert!(matches!(
-            read_npy(&p, &ReadOptions::default()),
-            Err(IoError::MissingSampleRate { .. })
-        ));
+        let e = read_npy(&p, &ReadOptions::default()).unwrap_err();
+        assert!(matches!(e, IoError::MissingSampleRate { .. }));
+        // The message says how to give one: the flag and the sidecar key.
+        let msg = e.to_string();
+        assert!(msg.contains("--fs HZ") && msg.contains("\"fs\""), "{msg}");
     }
 }

@@ -150,6 +150,18 @@ pub fn check_finite(path: &std::path::Path, channel: &str, samples: &[f64]) -> R
     }
 }
 
+/// Check a shaft speed given as `--rpm` (the analysis's range, (0, 1e6) rpm), naming the
+/// flag rather than a file: the value is the user's, not the file's.
+pub fn check_rpm_argument(rpm: f64) -> Result<f64, String> {
+    if rpm.is_finite() && rpm > 0.0 && rpm < 1.0e6 {
+        Ok(rpm)
+    } else {
+        Err(format!(
+            "--rpm {rpm} is out of range: allowed 0 < rpm < 1e6 (shaft speed in revolutions per minute)"
+        ))
+    }
+}
+
 /// Check a shaft speed in rpm: finite and in (0, 1e6).
 pub fn check_rpm(path: &std::path::Path, rpm: f64) -> Result<f64, IoError> {
     if rpm.is_finite() && rpm > 0.0 && rpm < 1.0e6 {

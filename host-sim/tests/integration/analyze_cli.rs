@@ -465,7 +465,8 @@ fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
     assert_input_error(&o, &["--config", "balls"]);
     let negative = format!("preset = \"{BEARING}\"\n[speed]\nrpm = -5\n");
     let o = with_scenario("range.toml", negative, &[]);
-    assert_input_error(&o, &["speed.shaft_hz", "allowed"]);
+    // A speed given in rpm is answered in rpm.
+    assert_input_error(&o, &["speed.rpm = -5 rpm", "allowed 0.06..=60000 rpm"]);
 }
 
 /// A run-up recorded by `simulate` (20 -> 30 Hz over the record, inner-race defect): the

@@ -157,6 +157,11 @@ fn bad_inputs_are_named_and_leave_nothing() {
             vec!["preset = \"cwru-6205-de\"\n[defect]\nlocation = \"cage\"\n"],
             "outer, inner, ball, none",
         ),
+        (
+            "rpm out of range",
+            vec!["preset = \"thesis-61810\"\n[speed]\nrpm = 1e9\n"],
+            "speed.rpm = 1000000000 rpm is out of range: allowed 0.06..=60000 rpm",
+        ),
     ];
     for (what, text, needle) in cases {
         let cfg = write_config(dir.path(), text[0]);
@@ -178,6 +183,8 @@ fn bad_inputs_are_named_and_leave_nothing() {
         );
     }
     // Bad arguments.
+    let gap_out = dir.path().join("gap-out");
+    let gap_out = gap_out.to_str().unwrap();
     for (args, needle) in [
         (vec!["simulate", "--fs", "abc"], "invalid value"),
         (
@@ -187,6 +194,31 @@ fn bad_inputs_are_named_and_leave_nothing() {
         (vec!["simulate", "--preset", "x"], "preset"),
         (vec!["simulate", "--duration", "-1"], "duration"),
         (vec!["frobnicate"], "unrecognized subcommand"),
+        // A speed typed in rpm is checked in rpm, naming the flag (it was answered with
+        // `speed.shaft_hz = 16666666.67 … 0.001 ..= 1000`).
+        (
+            vec!["simulate", "--rpm", "1e9"],
+            "--rpm = 1000000000 rpm is out of range: allowed 0.06..=60000 rpm",
+        ),
+        (vec!["simulate", "--rpm", "0.01"], "--rpm = 0.01 rpm"),
+        (
+            vec![
+                "gap",
+                "--real",
+                "x.csv",
+                "--rpm",
+                "100000",
+                "--bearing",
+                "cwru-6205-de",
+                "--out",
+                gap_out,
+            ],
+            "--rpm = 100000 rpm is out of range: allowed 0.06..=60000 rpm",
+        ),
+        (
+            vec!["analyze", "x.wav", "--rpm", "1e9"],
+            "--rpm 1000000000 is out of range",
+        ),
     ] {
         let o = wearsim(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));

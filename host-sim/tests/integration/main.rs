@@ -29,6 +29,7 @@ mod io_fuzz;
 mod life;
 mod life_ball;
 mod life_sites;
+mod out_dirs;
 mod readers;
 mod reference_hashes;
 mod rig_tables;

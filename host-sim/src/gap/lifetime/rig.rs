@@ -173,8 +173,9 @@ impl RigDescription {
                 "missing: a life gap simulates the sidecar's bearing, give `bearing.preset` (a preset or catalogue bearing) or `bearing.geometry` (elements, ball_mm, pitch_mm, angle_deg)".into(),
             )),
         };
-        if !(s.rpm.is_finite() && s.rpm > 0.0) {
-            return Err(field("rpm", format!("{} (allowed (0, 10^6] rpm)", s.rpm)));
+        // The bearing is simulated at this speed: the simulation's range, in rpm.
+        if let Err(e) = crate::config::check_sim_rpm("rpm", s.rpm) {
+            return Err(field("rpm", e));
         }
         if !(s.radial_load_n.is_finite() && s.radial_load_n > 0.0) {
             return Err(field(

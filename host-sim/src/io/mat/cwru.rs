@@ -281,7 +281,7 @@ pub fn read_cwru(
             return Err(IoError::MissingSampleRate {
                 path: path.to_path_buf(),
                 detail: "CWRU files do not store it and the file name is not of the form \
-                         12k_Drive_End_IR007_0_105.mat / normal_0_97.mat; pass it explicitly"
+                         12k_Drive_End_IR007_0_105.mat / normal_0_97.mat"
                     .into(),
             })
         }

@@ -412,7 +412,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             return Err(IoError::MissingSampleRate {
                 path: path.to_path_buf(),
                 detail: format!(
-                    "the {} layout stores none (no scalar named {}) and the file name does not give one; pass --fs HZ",
+                    "the {} layout stores none (no scalar named {}) and the file name does not give one",
                     layout.name(),
                     FS_NAMES.join("/")
                 ),
