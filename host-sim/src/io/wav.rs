@@ -207,12 +207,14 @@ fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
                 out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
             }
         }
-        (fmt, bits) => return Err(IoError::unsupported(
-            path,
-            format!(
+        (fmt, bits) => {
+            return Err(IoError::unsupported(
+                path,
+                format!(
                 "{bits}-bit {fmt:?} WAV samples (supported: 8/16/24/32-bit int, 32/64-bit float)"
             ),
-        )),
+            ))
+        }
     }
     Ok(Decoded {
         spec,
