@@ -9,7 +9,7 @@
 //! | layout | files | time |
 //! |---|---|---|
 //! | `ims` | named by time stamp `YYYY.MM.DD.hh.mm.ss` | the name, less the first |
-//! | `femto` | `acc_NNNNN.csv` (others, e.g. `temp_*.csv`, ignored) | first row's hour, minute, s, µs (a wrap past midnight adds a day) |
+//! | `femto` | `acc_NNNNN.csv` (others, e.g. `temp_*.csv`, ignored) | first row's hour, minute, s, µs (a wrap past midnight adds a day, [`FEMTO_MAX_WRAP_STEP_S`]) |
 //! | `xjtu` | `N.csv`, N = 1, 2, ... (one a minute, Wang et al. 2020) | (N − 1) · 60 s |
 
 use std::path::{Path, PathBuf};
@@ -21,13 +21,17 @@ use crate::analysis::stats::stats;
 use crate::gap::lifetime::rig::{RigDescription, RPM_TOL};
 use crate::geometry::{catalogue, named_geometry, GeometrySpec};
 use crate::io::feature_table::{
-    median_step, sidecar_path, BearingInfo, FeatureRow, FeatureSidecar, FeatureTableError,
-    Geometry, FAILURE_MODES, FORMAT, FORMAT_VERSION,
+    check_against_table, check_rows, check_sidecar, median_step, sidecar_path, BearingInfo,
+    FeatureRow, FeatureSidecar, FeatureTableError, Geometry, FAILURE_MODES, FORMAT, FORMAT_VERSION,
+    MIN_SNAPSHOTS,
 };
 use crate::io::feature_table_write::write_feature_table;
-use crate::io::ims::{parse_ims_name, read_ims_snapshot, IMS_FS, IMS_RPM};
+use crate::io::ims::{read_ims_snapshot, IMS_FS, IMS_RPM};
 use crate::io::layout::{read_femto, read_layout, sniff_text, TextLayout, FEMTO_FS, XJTU_FS};
 use crate::io::{IoError, ReadOptions};
+
+mod files;
+pub use files::FEMTO_MAX_WRAP_STEP_S;
 
 /// Interval between XJTU-SY snapshots, s (one 1.28-s record a minute; Wang et al. 2020).
 pub const XJTU_INTERVAL_S: f64 = 60.0;
@@ -101,8 +105,13 @@ pub struct FeaturesSummary {
     pub sidecar: PathBuf,
     /// Snapshots in the table.
     pub snapshots: usize,
-    /// Snapshot files skipped (constant signal: a stopped machine), with the reason.
+    /// Snapshot files not in the table, with the reason: a constant signal (a stopped
+    /// machine), or a name outside the layout's numbering (XJTU-SY `0.csv`).
     pub skipped: Vec<String>,
+    /// Gaps in the layout's file numbering 1, 2, … (FEMTO, XJTU-SY): a file name, or a
+    /// range `first … last (n files)`. The table keeps each file's number as its snapshot
+    /// index, so the rows show the gaps too.
+    pub missing: Vec<String>,
     /// Span of the table, h.
     pub hours: f64,
     /// RMS of the first and the last snapshot (record unit).
@@ -111,94 +120,15 @@ pub struct FeaturesSummary {
     pub meta: FeatureSidecar,
 }
 
-fn femto_index(name: &str) -> Option<u64> {
-    name.strip_prefix("acc_")?
-        .strip_suffix(".csv")?
-        .parse()
-        .ok()
-}
-
-fn xjtu_index(name: &str) -> Option<u64> {
-    name.strip_suffix(".csv")?.parse().ok().filter(|k| *k >= 1)
-}
-
-/// The snapshot files of `dir` for `layout`, ordered, with their time since the start of
-/// the test where the name carries it.
-fn files(dir: &Path, layout: RawLayout) -> Result<Vec<(PathBuf, u64, Option<f64>)>, FeaturesError> {
-    let rd = std::fs::read_dir(dir).map_err(|e| IoError::io(dir, "read directory", e))?;
-    let mut out = vec![];
-    for e in rd {
-        let e = e.map_err(|e| IoError::io(dir, "read directory", e))?;
-        let p = e.path();
-        if !p.is_file() {
-            continue;
-        }
-        let name = e.file_name().to_string_lossy().into_owned();
-        let item = match layout {
-            RawLayout::Ims => parse_ims_name(name.strip_suffix(".txt").unwrap_or(&name))
-                .map(|u| (p.clone(), u as u64, Some(u as f64))),
-            RawLayout::Femto => femto_index(&name).map(|k| (p.clone(), k, None)),
-            RawLayout::Xjtu => {
-                xjtu_index(&name).map(|k| (p.clone(), k, Some((k - 1) as f64 * XJTU_INTERVAL_S)))
-            }
-            RawLayout::Auto => None,
-        };
-        if let Some(i) = item {
-            out.push(i);
-        }
-        if out.len() > MAX_FILES {
-            return Err(FeaturesError::Input(format!(
-                "{}: more than {MAX_FILES} snapshot files",
-                dir.display()
-            )));
-        }
-    }
-    out.sort_by_key(|(_, k, _)| *k);
-    if let (RawLayout::Ims, Some(&(_, _, Some(t0)))) = (layout, out.first()) {
-        for f in &mut out {
-            f.2 = f.2.map(|t| t - t0);
-        }
-    }
-    Ok(out)
-}
-
-/// The error of a folder in which no file has `layout`'s naming: the naming, and a few of
-/// the files seen.
-fn no_file_of(dir: &Path, layout: RawLayout) -> FeaturesError {
-    let naming = match layout {
-        RawLayout::Ims => "files named by time stamp YYYY.MM.DD.hh.mm.ss",
-        RawLayout::Femto => "acc_NNNNN.csv",
-        RawLayout::Xjtu => "N.csv, N = 1, 2, …",
-        RawLayout::Auto => "a known layout",
-    };
-    let mut seen: Vec<String> = std::fs::read_dir(dir)
-        .map(|rd| {
-            rd.filter_map(|e| e.ok())
-                .map(|e| e.file_name().to_string_lossy().into_owned())
-                .collect()
-        })
-        .unwrap_or_default();
-    seen.sort();
-    let n = seen.len();
-    let shown: Vec<&str> = seen.iter().take(5).map(String::as_str).collect();
-    FeaturesError::Input(format!(
-        "{}: no file matches layout {} ({naming}); the folder holds {n} entries{}{}",
-        dir.display(),
-        format!("{layout:?}").to_lowercase(),
-        if n > 0 { ": " } else { "" },
-        shown.join(", ") + if n > shown.len() { ", …" } else { "" }
-    ))
-}
-
 /// Recognises the layout of `dir` from the content of its first snapshot file (by the
 /// naming of each layout, the first that names any file).
 pub fn detect(dir: &Path) -> Result<RawLayout, FeaturesError> {
     for l in [RawLayout::Ims, RawLayout::Femto, RawLayout::Xjtu] {
-        let f = files(dir, l)?;
-        let Some((p, _, _)) = f.first() else {
+        let f = files::list(dir, l)?;
+        let Some(first) = f.files.first() else {
             continue;
         };
-        let found = sniff_text(p)?;
+        let found = sniff_text(&first.path)?;
         let ok = matches!(
             (l, found),
             (RawLayout::Ims, Some(TextLayout::Ims(_)))
@@ -215,28 +145,44 @@ pub fn detect(dir: &Path) -> Result<RawLayout, FeaturesError> {
     )))
 }
 
-/// FEMTO clock of a snapshot's first row, s since midnight.
-fn femto_clock(path: &Path) -> Result<f64, FeaturesError> {
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read", e))?;
-    let first = text.lines().next().unwrap_or("");
-    let sep = if first.contains(';') { ';' } else { ',' };
-    let c: Vec<f64> = first
-        .split(sep)
-        .take(4)
-        .map(|x| x.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| {
-            FeaturesError::Input(format!(
-                "{}: row 1: hour, minute, second, µs are not numbers",
-                path.display()
-            ))
-        })?;
-    match c.as_slice() {
-        [h, m, s, us] => Ok(h * 3600.0 + m * 60.0 + s + us * 1e-6),
-        _ => Err(FeaturesError::Input(format!(
-            "{}: row 1: fewer than 4 time cells",
-            path.display()
-        ))),
+/// The sidecar's notes: files not read (with the reason) and gaps in the layout's numbering.
+fn notes(layout: RawLayout, skipped: &[String], missing: &[String]) -> Vec<String> {
+    let mut n: Vec<String> = skipped.iter().map(|s| format!("skipped: {s}")).collect();
+    if !missing.is_empty() {
+        n.push(format!(
+            "missing: {} (no such file; the layout numbers its files from 1 and each row's snapshot index is its file's number{})",
+            missing.join(", "),
+            if layout == RawLayout::Xjtu {
+                ", its time (N − 1) · 60 s"
+            } else {
+                ""
+            }
+        ));
+    }
+    n
+}
+
+/// A check of the table made from folder `dir` failed: the error names the flag whose
+/// value the sidecar field holds, or else the folder.
+fn about_input(dir: &Path, e: FeatureTableError) -> FeaturesError {
+    match e {
+        FeatureTableError::Sidecar { field, detail, .. } => {
+            let flag = match field.as_str() {
+                "rpm" => Some("--rpm"),
+                "radial_load_n" => Some("--load-n"),
+                "bearing.geometry" => Some("--bearing-geometry"),
+                "bearing.preset" => Some("--preset"),
+                _ => None,
+            };
+            FeaturesError::Input(match flag {
+                Some(f) => format!("{f}: {detail}"),
+                None => format!(
+                    "{}: `{field}` of the table made from this folder: {detail}",
+                    dir.display()
+                ),
+            })
+        }
+        e => FeaturesError::Input(e.to_string()),
     }
 }
 
@@ -321,12 +267,12 @@ pub fn convert(
             "--preset or --bearing-geometry: the table's sidecar names its bearing; the FEMTO/PRONOSTIA documentation gives no geometry, pass elements=N,ball=D,pitch=P,angle=DEG (mm, degrees)".into(),
         ));
     }
-    let list = files(dir, layout)?;
-    if list.is_empty() {
-        return Err(no_file_of(dir, layout));
+    let listing = files::list(dir, layout)?;
+    if listing.files.is_empty() {
+        return Err(files::no_file_of(dir, layout));
     }
     let mut rows: Vec<FeatureRow> = vec![];
-    let mut skipped = vec![];
+    let mut skipped = listing.skipped.clone();
     let mut fs = match layout {
         RawLayout::Femto => FEMTO_FS,
         RawLayout::Xjtu => XJTU_FS,
@@ -335,11 +281,11 @@ pub fn convert(
     let mut samples_per = None;
     let mut unit = String::from("unknown");
     let mut channel = String::new();
-    let mut clock0: Option<(f64, f64)> = None; // (first clock, days added)
-                                               // Octave band levels (analysis::octave_bands), at the first snapshot's sample rate.
+    let mut clock = files::FemtoClock::default();
+    // Octave band levels (analysis::octave_bands), at the first snapshot's sample rate.
     let mut bands: Vec<((f64, f64), Vec<f64>)> = vec![];
-    let mut last_clock = 0.0;
-    for (k, (path, _, named_t)) in list.iter().enumerate() {
+    for f in &listing.files {
+        let path = &f.path;
         let rec =
             match layout {
                 RawLayout::Ims => {
@@ -393,18 +339,9 @@ pub fn convert(
             }
             _ => {}
         }
-        let time_s = match named_t {
-            Some(t) => *t,
-            None => {
-                let c = femto_clock(path)?;
-                let (c0, mut days) = clock0.unwrap_or((c, 0.0));
-                if k > 0 && c < last_clock {
-                    days += 86_400.0;
-                }
-                clock0 = Some((c0, days));
-                last_clock = c;
-                c + days - c0
-            }
+        let time_s = match f.time_s {
+            Some(t) => t,
+            None => clock.time(dir, path, files::femto_clock(path)?)?,
         };
         let s = match stats(&rec.samples) {
             Ok(s) => s,
@@ -427,7 +364,7 @@ pub fn convert(
             col.push(v);
         }
         rows.push(FeatureRow {
-            snapshot: k as u64,
+            snapshot: f.index,
             time_s,
             rms: s.rms,
             kurtosis: s.kurtosis,
@@ -469,8 +406,28 @@ pub fn convert(
         snapshot_interval_s: median_step(&rows),
         failure_mode,
         n_snapshots: Some(rows.len() as u64),
-        notes: skipped.iter().map(|s| format!("skipped: {s}")).collect(),
+        notes: notes(layout, &skipped, &listing.missing),
     };
+    // The table's own checks, made here on the input so that a refusal names the folder
+    // (and the flag or the files at fault), not the table that was never written.
+    if rows.len() < MIN_SNAPSHOTS {
+        return Err(FeaturesError::Input(format!(
+            "{}: {} snapshots ({} files of layout {}{}); a life needs at least {MIN_SNAPSHOTS}",
+            dir.display(),
+            rows.len(),
+            listing.files.len(),
+            format!("{layout:?}").to_lowercase(),
+            if skipped.is_empty() {
+                String::new()
+            } else {
+                format!(", {} skipped: {}", skipped.len(), skipped.join("; "))
+            }
+        )));
+    }
+    check_rows(dir, &rows)
+        .and_then(|()| check_sidecar(dir, &sidecar))
+        .and_then(|()| check_against_table(dir, &sidecar, &rows))
+        .map_err(|e| about_input(dir, e))?;
     // A sidecar that names a model preset must describe the preset's operating point
     // (the one check `gap --life` makes): refuse it here rather than write it.
     if sidecar
@@ -499,6 +456,7 @@ pub fn convert(
         sidecar: side,
         snapshots: rows.len(),
         skipped,
+        missing: listing.missing,
         hours: rows.last().map_or(0.0, |r| r.time_s) / 3600.0,
         rms_first_last: (first, last),
         meta: sidecar,

@@ -82,7 +82,7 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
         );
     } else {
         println!(
-            "{} snapshots ({:?} layout) over {:.2} h: RMS {:.4} -> {:.4} {} (x{:.2}); {} skipped",
+            "{} snapshots ({:?} layout) over {:.2} h: RMS {:.4} -> {:.4} {} (x{:.2}); {} skipped{}",
             s.snapshots,
             s.layout,
             s.hours,
@@ -90,7 +90,12 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
             s.rms_first_last.1,
             s.meta.unit,
             s.rms_first_last.1 / s.rms_first_last.0,
-            s.skipped.len()
+            s.skipped.len(),
+            if s.missing.is_empty() {
+                String::new()
+            } else {
+                format!("; missing from the numbering: {}", s.missing.join(", "))
+            }
         );
         println!("wrote {} and {}", s.csv.display(), s.sidecar.display());
     }

@@ -32,29 +32,63 @@ pub const IMS_ROWS: usize = 20_480;
 pub const MAX_SNAPSHOT_BYTES: u64 = 64 << 20;
 
 /// Time stamp of an IMS file name `YYYY.MM.DD.hh.mm.ss`, as seconds since 1970-01-01 (the
-/// clock of the test rig, time zone unknown). `None` if the name has another form.
+/// clock of the test rig, time zone unknown). `None` if the name has another form or is not
+/// a calendar date and time ([`check_ims_name`] tells the two apart).
 pub fn parse_ims_name(name: &str) -> Option<i64> {
-    let base = name.rsplit(['/', '\\']).next()?;
+    check_ims_name(name).ok().flatten()
+}
+
+/// Like [`parse_ims_name`], but a name of the snapshot pattern (four digits, then five
+/// two-digit fields, dot-separated) that is no calendar date and time (30 February, minute
+/// 70) is an error saying which field is wrong: `Ok(None)` only for names of another form.
+pub fn check_ims_name(name: &str) -> Result<Option<i64>, String> {
+    let Some(base) = name.rsplit(['/', '\\']).next() else {
+        return Ok(None);
+    };
     let parts: Vec<&str> = base.split('.').collect();
     if parts.len() != 6 {
-        return None;
+        return Ok(None);
     }
     let mut v = [0i64; 6];
     for (i, p) in parts.iter().enumerate() {
         let want = if i == 0 { 4 } else { 2 };
         if p.len() != want || !p.bytes().all(|b| b.is_ascii_digit()) {
-            return None;
+            return Ok(None);
         }
-        v[i] = p.parse().ok()?;
+        v[i] = p.parse().map_err(|_| format!("{p:?} is not a number"))?;
     }
-    civil_to_unix(v[0], v[1], v[2], v[3], v[4], v[5])
+    civil_to_unix(v[0], v[1], v[2], v[3], v[4], v[5]).map(Some)
 }
 
-/// Seconds since 1970-01-01 00:00:00 for a proleptic-Gregorian civil time; `None` if a field is
-/// out of range.
-fn civil_to_unix(y: i64, mo: i64, d: i64, h: i64, mi: i64, s: i64) -> Option<i64> {
-    if !(1..=12).contains(&mo) || !(1..=31).contains(&d) || h > 23 || mi > 59 || s > 60 {
-        return None;
+/// Days of month `mo` (1..=12) of year `y`, proleptic Gregorian.
+fn days_in_month(y: i64, mo: i64) -> i64 {
+    match mo {
+        2 if (y % 4 == 0 && y % 100 != 0) || y % 400 == 0 => 29,
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
+}
+
+/// Seconds since 1970-01-01 00:00:00 for a proleptic-Gregorian civil time; an error naming
+/// the field if one is out of range (a day the month does not have, hour 24, minute 60;
+/// second 60 is a leap second and allowed).
+fn civil_to_unix(y: i64, mo: i64, d: i64, h: i64, mi: i64, s: i64) -> Result<i64, String> {
+    if !(1..=12).contains(&mo) {
+        return Err(format!("month {mo} is not 1..12"));
+    }
+    let dim = days_in_month(y, mo);
+    if !(1..=dim).contains(&d) {
+        return Err(format!("day {d}: {y}-{mo:02} has days 1..{dim}"));
+    }
+    if !(0..=23).contains(&h) {
+        return Err(format!("hour {h} is not 0..23"));
+    }
+    if !(0..=59).contains(&mi) {
+        return Err(format!("minute {mi} is not 0..59"));
+    }
+    if !(0..=60).contains(&s) {
+        return Err(format!("second {s} is not 0..60"));
     }
     // Howard Hinnant's days_from_civil.
     let y = if mo <= 2 { y - 1 } else { y };
@@ -64,7 +98,7 @@ fn civil_to_unix(y: i64, mo: i64, d: i64, h: i64, mi: i64, s: i64) -> Option<i64
     let doy = (153 * mp + 2) / 5 + d - 1;
     let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
     let days = era * 146_097 + doe - 719_468;
-    Some(days * 86_400 + h * 3600 + mi * 60 + s)
+    Ok(days * 86_400 + h * 3600 + mi * 60 + s)
 }
 
 /// Parse `YYYY-MM-DD hh:mm:ss` (the feature tables' time stamps) to Unix seconds.
@@ -82,7 +116,7 @@ pub fn parse_feature_timestamp(s: &str) -> Option<i64> {
             x.parse().ok()
         }
     };
-    civil_to_unix(n(d[0])?, n(d[1])?, n(d[2])?, n(t[0])?, n(t[1])?, n(t[2])?)
+    civil_to_unix(n(d[0])?, n(d[1])?, n(d[2])?, n(t[0])?, n(t[1])?, n(t[2])?).ok()
 }
 
 /// Read one channel (numbered from 1) of a raw IMS ASCII snapshot.
@@ -478,6 +512,24 @@ mod tests {
         assert!(parse_ims_name("2004.02.12.10.32").is_none());
         assert!(parse_ims_name("2004.13.12.10.32.39").is_none());
         assert!(parse_ims_name("x.mat").is_none());
+    }
+
+    #[test]
+    fn names_of_the_pattern_that_are_no_date_are_errors() {
+        // 30 February used to be read as 1 March, minute 70 as no snapshot name at all.
+        let e = check_ims_name("2004.02.30.11.50.39").unwrap_err();
+        assert!(e.contains("day 30") && e.contains("2004-02"), "{e}");
+        let e = check_ims_name("2004.02.12.11.70.39").unwrap_err();
+        assert!(e.contains("minute 70"), "{e}");
+        assert!(check_ims_name("2004.02.12.24.00.00").is_err());
+        assert!(check_ims_name("2003.02.29.00.00.00").is_err());
+        assert!(check_ims_name("2004.02.29.00.00.00").unwrap().is_some());
+        assert!(check_ims_name("2000.02.29.00.00.00").unwrap().is_some());
+        assert!(check_ims_name("1900.02.29.00.00.00").is_err());
+        assert_eq!(check_ims_name("2004.02.12.11.50").unwrap(), None);
+        assert_eq!(check_ims_name("acc_00001.csv").unwrap(), None);
+        assert!(parse_ims_name("2004.02.30.11.50.39").is_none());
+        assert!(parse_feature_timestamp("2004-02-30 11:50:39").is_none());
     }
 
     #[test]

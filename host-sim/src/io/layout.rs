@@ -139,6 +139,7 @@ pub fn read_layout(path: &Path, layout: TextLayout, opts: &ReadOptions) -> Resul
         }
         TextLayout::Femto(sep) => read_femto(path, sep, opts.channel.as_deref())?,
         TextLayout::XjtuSy => {
+            check_xjtu_header(path)?;
             let o = ReadOptions {
                 channel: Some(
                     opts.channel
@@ -217,9 +218,9 @@ pub fn read_femto(path: &Path, sep: u8, channel: Option<&str>) -> Result<Record,
             ));
         }
         let cell = cells.get(col).map_or("", |c| c.trim());
-        let v: f64 = cell.parse().map_err(|_| {
-            IoError::malformed(path, format!("line {}: {cell:?} is not a number", i + 1))
-        })?;
+        let v: f64 = cell
+            .parse()
+            .map_err(|_| femto_not_a_number(path, i + 1, &cells, samples.is_empty()))?;
         samples.push(v);
     }
     if samples.is_empty() {
@@ -242,6 +243,70 @@ pub fn read_femto(path: &Path, sep: u8, channel: Option<&str>) -> Result<Record,
             "rows_note": "a PRONOSTIA snapshot has 2560 rows (0.1 s at 25.6 kHz); the speed (1800/1650/1500 rpm by operating condition) is not in the file: pass --rpm",
         }),
     })
+}
+
+/// The FEMTO columns, in file order.
+const FEMTO_COLUMNS: [&str; 6] = ["hour", "minute", "second", "µs", "horiz", "vert"];
+
+/// The error of a FEMTO row whose channel cell is not a number: the first cell of the row
+/// that is not a number, its column, and, for the first row of the file, that the layout
+/// has no header row.
+fn femto_not_a_number(path: &Path, line: usize, cells: &[&str], first_row: bool) -> IoError {
+    let (k, cell) = cells
+        .iter()
+        .map(|c| c.trim())
+        .enumerate()
+        .find(|(_, c)| c.parse::<f64>().is_err())
+        .unwrap_or((0, ""));
+    let header = if first_row {
+        "; a header row? FEMTO files have none: every row is hour, minute, second, µs, horiz, vert, all numbers"
+    } else {
+        ""
+    };
+    IoError::malformed(
+        path,
+        format!(
+            "line {line}: {cell:?} ({}, column {}) is not a number{header}",
+            FEMTO_COLUMNS.get(k).copied().unwrap_or("?"),
+            k + 1
+        ),
+    )
+}
+
+/// Refuses an XJTU-SY file whose first line is not its header row
+/// `Horizontal_vibration_signals,Vertical_vibration_signals` (the channels are named by it),
+/// saying whether the row is missing or another one.
+fn check_xjtu_header(path: &Path) -> Result<(), IoError> {
+    if sniff_text(path)? == Some(TextLayout::XjtuSy) {
+        return Ok(());
+    }
+    let head = {
+        use std::io::Read;
+        let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+        let mut buf = Vec::with_capacity(4096);
+        f.take(4096)
+            .read_to_end(&mut buf)
+            .map_err(|e| IoError::io(path, "read", e))?;
+        buf
+    };
+    let text = String::from_utf8_lossy(&head);
+    let first = text.lines().next().unwrap_or("").trim();
+    let numbers = !first.is_empty()
+        && first
+            .split(',')
+            .all(|c| c.trim().parse::<f64>().is_ok_and(f64::is_finite));
+    let shown: String = first.chars().take(80).collect();
+    let header = XJTU_HEADER.join(",");
+    Err(IoError::malformed(
+        path,
+        if numbers {
+            format!("the file lacks the XJTU-SY header row `{header}` (its first line is data: {shown:?}); the layout names its two channels by it")
+        } else if first.is_empty() {
+            format!("the first line is empty, not the XJTU-SY header row `{header}`")
+        } else {
+            format!("the first line {shown:?} is not the XJTU-SY header row `{header}`")
+        },
+    ))
 }
 
 #[cfg(test)]
@@ -306,5 +371,51 @@ mod tests {
         let short: String = ims.lines().skip(1).map(|l| format!("{l}\n")).collect();
         std::fs::write(&p, &short).unwrap();
         assert!(sniff_text(&p).unwrap().is_none());
+    }
+
+    #[test]
+    fn a_femto_header_row_is_named_as_such() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("acc_00001.csv");
+        std::fs::write(&p, "hour,min,sec,usec,horiz,vert\n9,0,0,0.0,0.5,0.25\n").unwrap();
+        let e = read_femto(&p, b',', None).unwrap_err().to_string();
+        // The first cell that is not a number is `hour`, not the channel's `horiz`.
+        assert!(
+            e.contains("line 1: \"hour\" (hour, column 1) is not a number"),
+            "{e}"
+        );
+        assert!(
+            e.contains("header row") && e.contains("FEMTO files have none"),
+            "{e}"
+        );
+        // A bad cell further down is not called a header.
+        std::fs::write(&p, "9,0,0,0.0,0.5,0.25\n9,0,0,39.0,x,0.25\n").unwrap();
+        let e = read_femto(&p, b',', None).unwrap_err().to_string();
+        assert!(
+            e.contains("line 2: \"x\" (horiz, column 5)") && !e.contains("header"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn an_xjtu_file_without_its_header_row_says_so() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("3.csv");
+        std::fs::write(&p, "0.5,0.25\n-0.5,0.125\n").unwrap();
+        let e = read_layout(&p, TextLayout::XjtuSy, &opts(None))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("lacks the XJTU-SY header row `Horizontal_vibration_signals,Vertical_vibration_signals`"),
+            "{e}"
+        );
+        std::fs::write(&p, "horizontal,vertical\n-0.5,0.125\n").unwrap();
+        let e = read_layout(&p, TextLayout::XjtuSy, &opts(None))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("\"horizontal,vertical\" is not the XJTU-SY header row"),
+            "{e}"
+        );
     }
 }

@@ -14,6 +14,7 @@ mod cwru_benchmark;
 mod dense_faults;
 mod diagnosis_invariance;
 mod effects_cli;
+mod feature_folders;
 mod feature_tables;
 mod firmware_qemu;
 mod gap_cells;

@@ -1,0 +1,253 @@
+//! `wearsim features` on raw folders that are not quite right (the black-box probe's
+//! findings): FEMTO clocks that step back without a midnight, IMS names that are no date,
+//! missing and unread snapshot files (the table keeps each file's number and the sidecar
+//! lists them), errors that name the input rather than the table never written, and the
+//! messages for header rows the layout does not have (or lacks).
+
+use crate::support;
+use std::path::{Path, PathBuf};
+use support::{refused, s, wearsim};
+
+use wearsim_host::io::feature_table::{read_feature_table, sidecar_path};
+
+/// FEMTO flags the files do not hold.
+const FEMTO_FLAGS: [&str; 6] = [
+    "--rpm",
+    "1800",
+    "--load-n",
+    "4000",
+    "--bearing-geometry",
+    "elements=13,ball=3.5,pitch=25.6,angle=0",
+];
+
+/// FEMTO file `acc_{number}.csv` whose first row is at `clock` s since midnight, 256 rows
+/// of a ±a square wave.
+fn femto_file(dir: &Path, number: usize, clock: usize, a: f64) {
+    let (h, m, sec) = (clock / 3600, (clock / 60) % 60, clock % 60);
+    let text: String = (0..256)
+        .map(|i| {
+            let v = if i % 2 == 0 { a } else { -a };
+            format!("{h},{m},{sec},{},{v},0.5\n", 39 * i)
+        })
+        .collect();
+    std::fs::write(dir.join(format!("acc_{number:05}.csv")), text).unwrap();
+}
+
+/// FEMTO files 1..=n from 09:00:00, 10 s apart, except those in `leave_out`.
+fn femto_folder(dir: &Path, n: usize, leave_out: &[usize]) {
+    std::fs::create_dir_all(dir).unwrap();
+    for k in 1..=n {
+        if !leave_out.contains(&k) {
+            femto_file(dir, k, 9 * 3600 + 10 * (k - 1), 0.1 * k as f64);
+        }
+    }
+}
+
+fn femto(raw: &Path, out: &Path, json: bool) -> std::process::Output {
+    let mut args = vec!["features", s(raw), "--layout", "femto", "--out", s(out)];
+    args.extend(FEMTO_FLAGS);
+    if json {
+        args.push("--json");
+    }
+    wearsim(&args)
+}
+
+/// XJTU-SY file `name` (header row unless `header` is false), 200 rows.
+fn xjtu_file(dir: &Path, name: &str, a: f64, header: bool) {
+    let mut text = String::new();
+    if header {
+        text.push_str("Horizontal_vibration_signals,Vertical_vibration_signals\n");
+    }
+    for i in 0..200 {
+        let v = if i % 2 == 0 { a } else { -a };
+        text.push_str(&format!("{v},0.25\n"));
+    }
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+fn xjtu(raw: &Path, out: &Path) -> std::process::Output {
+    wearsim(&[
+        "features",
+        s(raw),
+        "--layout",
+        "xjtu",
+        "--out",
+        s(out),
+        "--rpm",
+        "2100",
+        "--load-n",
+        "12000",
+        "--json",
+    ])
+}
+
+fn nothing_written(out: &Path) {
+    assert!(!out.exists() && !sidecar_path(out).exists());
+}
+
+#[test]
+fn a_femto_clock_that_steps_back_at_9_am_is_refused_not_a_midnight() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("swap");
+    femto_folder(&raw, 12, &[]);
+    // Files 4 and 5 swapped: 09:00:30 then 09:00:40 then 09:00:30 … used to add a day.
+    femto_file(&raw, 4, 9 * 3600 + 40, 0.4);
+    femto_file(&raw, 5, 9 * 3600 + 30, 0.5);
+    let out = tmp.path().join("o/swap.csv");
+    refused(
+        &femto(&raw, &out, false),
+        &[
+            s(&raw),
+            "acc_00005.csv starts at 09:00:30.000000",
+            "acc_00004.csv at 09:00:40.000000",
+            "under 12 h",
+        ],
+    );
+    nothing_written(&out);
+    // A step back from late in the day to early is a wrap past midnight.
+    let raw = tmp.path().join("midnight");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 1..=12 {
+        femto_file(
+            &raw,
+            k,
+            (86_400 - 30 + 10 * (k - 1)) % 86_400,
+            0.1 * k as f64,
+        );
+    }
+    let out = tmp.path().join("o/midnight.csv");
+    assert!(femto(&raw, &out, false).status.success());
+    let t = read_feature_table(&out).unwrap();
+    let times: Vec<f64> = t.rows.iter().map(|r| r.time_s).collect();
+    assert_eq!(times, (0..12).map(|k| 10.0 * k as f64).collect::<Vec<_>>());
+}
+
+#[test]
+fn ims_names_of_the_pattern_that_are_no_date_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    for bad in ["2004.02.30.11.50.39", "2004.02.12.11.70.39"] {
+        let raw = tmp.path().join(format!("ims_{bad}"));
+        std::fs::create_dir_all(&raw).unwrap();
+        for k in 0..11 {
+            let name = format!("2004.02.12.10.{:02}.39", 5 * k);
+            std::fs::write(raw.join(name), "0.1\t0.2\t0.3\t0.4\n").unwrap();
+        }
+        std::fs::write(raw.join(bad), "0.1\t0.2\t0.3\t0.4\n").unwrap();
+        let out = tmp.path().join("o/ims.csv");
+        let o = wearsim(&["features", s(&raw), "--layout", "ims", "--out", s(&out)]);
+        refused(&o, &[bad, "not a date and time"]);
+        nothing_written(&out);
+    }
+}
+
+#[test]
+fn missing_and_unread_files_keep_their_numbers_and_are_listed() {
+    let tmp = tempfile::tempdir().unwrap();
+    // FEMTO without acc_00005.csv: row 4 is file 6, at its own time.
+    let raw = tmp.path().join("femto");
+    femto_folder(&raw, 12, &[5]);
+    let out = tmp.path().join("o/femto.csv");
+    let o = femto(&raw, &out, true);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    let index: Vec<u64> = t.rows.iter().map(|r| r.snapshot).collect();
+    assert_eq!(index, [1, 2, 3, 4, 6, 7, 8, 9, 10, 11, 12]);
+    assert_eq!(t.rows[4].time_s, 50.0);
+    assert!(
+        t.sidecar
+            .notes
+            .iter()
+            .any(|n| n.starts_with("missing: acc_00005.csv")),
+        "{:?}",
+        t.sidecar.notes
+    );
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["missing"], serde_json::json!(["acc_00005.csv"]));
+    // XJTU-SY without 5.csv, with a 0.csv (the numbering starts at 1: not read, listed).
+    let raw = tmp.path().join("xjtu");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in (0..=12).filter(|k| *k != 5) {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * (k + 1) as f64, true);
+    }
+    let out = tmp.path().join("o/xjtu.csv");
+    let o = xjtu(&raw, &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    let index: Vec<u64> = t.rows.iter().map(|r| r.snapshot).collect();
+    assert_eq!(index, [1, 2, 3, 4, 6, 7, 8, 9, 10, 11, 12]);
+    assert_eq!(t.rows[4].time_s, 300.0);
+    let notes = t.sidecar.notes.join("\n");
+    assert!(
+        notes.contains("missing: 5.csv") && notes.contains("0.csv: not read"),
+        "{notes}"
+    );
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["missing"], serde_json::json!(["5.csv"]));
+    assert!(j["skipped"][0].as_str().unwrap().contains("0.csv"));
+    // Two files of one number are refused, naming both.
+    xjtu_file(&raw, "03.csv", 0.3, true);
+    refused(
+        &xjtu(&raw, &out),
+        &["03.csv and 3.csv", "same snapshot number"],
+    );
+}
+
+#[test]
+fn refusals_name_the_input_folder_and_files_not_the_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Two FEMTO files at one time.
+    let raw = tmp.path().join("dup");
+    femto_folder(&raw, 12, &[]);
+    femto_file(&raw, 11, 9 * 3600 + 90, 1.1);
+    let out = tmp.path().join("o/dup.csv");
+    let o = femto(&raw, &out, false);
+    refused(
+        &o,
+        &[
+            s(&raw),
+            "acc_00010.csv and acc_00011.csv both start at 09:01:30",
+        ],
+    );
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("dup.csv"));
+    nothing_written(&out);
+    // Too few snapshots.
+    let raw = tmp.path().join("few");
+    femto_folder(&raw, 3, &[]);
+    let out = tmp.path().join("o/few.csv");
+    let o = femto(&raw, &out, false);
+    refused(&o, &[s(&raw), "3 snapshots", "at least 10"]);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("few.csv"));
+    nothing_written(&out);
+}
+
+#[test]
+fn header_rows_are_named_in_the_messages() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A FEMTO file with a header row: `hour` is its first non-number.
+    let raw = tmp.path().join("fh");
+    femto_folder(&raw, 12, &[]);
+    let p = raw.join("acc_00003.csv");
+    let body = std::fs::read_to_string(&p).unwrap();
+    std::fs::write(&p, format!("hour,min,sec,usec,horiz,vert\n{body}")).unwrap();
+    let out: PathBuf = tmp.path().join("o/fh.csv");
+    refused(
+        &femto(&raw, &out, false),
+        &["acc_00003.csv", "\"hour\"", "FEMTO files have none"],
+    );
+    nothing_written(&out);
+    // An XJTU-SY file without its header row.
+    let raw = tmp.path().join("xh");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 1..=12 {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * k as f64, k != 3);
+    }
+    let out = tmp.path().join("o/xh.csv");
+    refused(
+        &xjtu(&raw, &out),
+        &[
+            "3.csv",
+            "lacks the XJTU-SY header row `Horizontal_vibration_signals,Vertical_vibration_signals`",
+        ],
+    );
+    nothing_written(&out);
+}
