@@ -169,10 +169,7 @@ type Tracked = (Vec<f64>, OrderTracking);
 /// constant: the record's first sample is at model time `settle_s` (a wearsim sidecar's key;
 /// 0 without one). Constant over the record: that speed and the record unchanged; varying:
 /// the order-tracked record at its mean speed.
-fn speed_from_profile(
-    rec: &Record,
-    model: &ModelConfig,
-) -> Option<(f64, Option<Tracked>)> {
+fn speed_from_profile(rec: &Record, model: &ModelConfig) -> Option<(f64, Option<Tracked>)> {
     if model.speed.is_constant() {
         return None;
     }
