@@ -62,21 +62,24 @@ fn femto_time(cells: &[&str]) -> bool {
             .all(|c| c.trim().parse::<f64>().is_ok_and(f64::is_finite))
 }
 
+/// The first 4096 bytes of `path` (what the layout is recognised from).
+fn read_head(path: &Path) -> Result<Vec<u8>, IoError> {
+    use std::io::Read;
+    let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let mut buf = Vec::with_capacity(4096);
+    f.take(4096)
+        .read_to_end(&mut buf)
+        .map_err(|e| IoError::io(path, "read", e))?;
+    Ok(buf)
+}
+
 /// Recognise the layout of a text file from its content: the first line and, for IMS, the
 /// number of rows. `None` if it is none of the layouts (the generic CSV reader applies then).
 pub fn sniff_text(path: &Path) -> Result<Option<TextLayout>, IoError> {
     let len = std::fs::metadata(path)
         .map_err(|e| IoError::io(path, "stat", e))?
         .len();
-    let head = {
-        use std::io::Read;
-        let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
-        let mut buf = Vec::with_capacity(4096);
-        f.take(4096)
-            .read_to_end(&mut buf)
-            .map_err(|e| IoError::io(path, "read", e))?;
-        buf
-    };
+    let head = read_head(path)?;
     let text = String::from_utf8_lossy(&head);
     let Some(first) = text.lines().next().map(str::trim) else {
         return Ok(None);
@@ -280,15 +283,7 @@ fn check_xjtu_header(path: &Path) -> Result<(), IoError> {
     if sniff_text(path)? == Some(TextLayout::XjtuSy) {
         return Ok(());
     }
-    let head = {
-        use std::io::Read;
-        let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
-        let mut buf = Vec::with_capacity(4096);
-        f.take(4096)
-            .read_to_end(&mut buf)
-            .map_err(|e| IoError::io(path, "read", e))?;
-        buf
-    };
+    let head = read_head(path)?;
     let text = String::from_utf8_lossy(&head);
     let first = text.lines().next().unwrap_or("").trim();
     let numbers = !first.is_empty()

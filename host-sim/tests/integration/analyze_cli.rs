@@ -72,6 +72,27 @@ fn write_wav(path: &Path, x: &[f64]) {
     w.finalize().expect("finalize wav");
 }
 
+/// `wearsim simulate --config` of scenario text `toml` (plus `extra` arguments) into
+/// `dir/name`; the output folder and its sidecar.
+fn simulate_scenario(
+    dir: &Path,
+    name: &str,
+    toml: &str,
+    extra: &[&str],
+) -> (PathBuf, serde_json::Value) {
+    let cfg = dir.join(format!("{name}.toml"));
+    std::fs::write(&cfg, toml).unwrap();
+    let out = dir.join(name);
+    let (cfg_s, out_s) = (cfg.to_string_lossy(), out.to_string_lossy());
+    let mut args = vec!["simulate", "--config", &cfg_s, "--out", &out_s, "--json"];
+    args.extend_from_slice(extra);
+    let o = wearsim(&args);
+    assert!(o.status.success(), "simulate failed: {}", stderr(&o));
+    let side = serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap())
+        .expect("sidecar JSON");
+    (out, side)
+}
+
 fn json_of(o: &Output) -> serde_json::Value {
     assert!(o.status.success(), "failed: {}", stderr(o));
     serde_json::from_slice(&o.stdout).expect("stdout is one JSON object")
@@ -320,24 +341,12 @@ fn bad_input_exits_2_naming_the_problem() {
 #[test]
 fn simulate_output_with_a_bearing_override_is_analysed_with_its_geometry() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let cfg = dir.path().join("scenario.toml");
-    std::fs::write(
-        &cfg,
-        format!("preset = \"{BEARING}\"\nduration = 1.0\n[bearing]\nelements = 12\n"),
-    )
-    .unwrap();
-    let out = dir.path().join("sim");
-    let o = wearsim(&[
-        "simulate",
-        "--config",
-        &cfg.to_string_lossy(),
-        "--out",
-        &out.to_string_lossy(),
-        "--json",
-    ]);
-    assert!(o.status.success(), "simulate failed: {}", stderr(&o));
-    let side: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap()).unwrap();
+    let (out, side) = simulate_scenario(
+        dir.path(),
+        "sim",
+        &format!("preset = \"{BEARING}\"\nduration = 1.0\n[bearing]\nelements = 12\n"),
+        &[],
+    );
     assert_eq!(side["bearing"], "custom");
     assert_eq!(side["model"]["bearing"]["elements"], 12);
     let model: wearsim_core::ModelConfig =
@@ -477,30 +486,14 @@ fn a_scenario_file_describes_the_bearing_and_speed_of_a_plain_record() {
 #[test]
 fn a_run_up_is_order_tracked_from_the_sidecar_speed_profile() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let cfg = dir.path().join("ramp.toml");
-    std::fs::write(
-        &cfg,
-        format!(
+    let (out, side) = simulate_scenario(
+        dir.path(),
+        "ramp",
+        &format!(
             "preset = \"{BEARING}\"\n[speed]\nfrom_hz = 20.0\nto_hz = 30.0\nramp_duration = 2.0\n[defect]\nlocation = \"inner\"\n"
         ),
-    )
-    .unwrap();
-    let out = dir.path().join("ramp");
-    let o = wearsim(&[
-        "simulate",
-        "--config",
-        &cfg.to_string_lossy(),
-        "--duration",
-        "2",
-        "--fs",
-        "20000",
-        "--out",
-        &out.to_string_lossy(),
-        "--json",
-    ]);
-    assert!(o.status.success(), "simulate failed: {}", stderr(&o));
-    let side: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap()).unwrap();
+        &["--duration", "2", "--fs", "20000"],
+    );
     let settle = side["settle_s"].as_f64().expect("settle_s in the sidecar");
     let csv = out.join("simulate.csv");
     let v = json_of(&wearsim(&["analyze", &csv.to_string_lossy(), "--json"]));
