@@ -1,6 +1,6 @@
 //! WAV reader (RIFF/WAVE PCM integer 8/16/24/32-bit and IEEE float 32-bit via `hound`; IEEE
 //! float 64-bit, which `hound` refuses but numpy/scipy write for float64 arrays, by
-//! [`decode_float64`]).
+//! `decode_float64`).
 //!
 //! * Integer samples are scaled to ±1 full scale (divided by 2^(bits-1)), unit `"FS"`, unless a
 //!   sidecar gives `wav.scale` (multiplied after normalisation) and a unit (`wav.unit` or
