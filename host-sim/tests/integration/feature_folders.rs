@@ -6,19 +6,9 @@
 
 use crate::support;
 use std::path::{Path, PathBuf};
-use support::{refused, s, wearsim};
+use support::{refused, s, wearsim, FEMTO_FLAGS};
 
 use wearsim_host::io::feature_table::{read_feature_table, sidecar_path};
-
-/// FEMTO flags the files do not hold.
-const FEMTO_FLAGS: [&str; 6] = [
-    "--rpm",
-    "1800",
-    "--load-n",
-    "4000",
-    "--bearing-geometry",
-    "elements=13,ball=3.5,pitch=25.6,angle=0",
-];
 
 /// FEMTO file `acc_{number}.csv` whose first row is at `clock` s since midnight, 256 rows
 /// of a ±a square wave.

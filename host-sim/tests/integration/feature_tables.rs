@@ -6,7 +6,7 @@
 
 use crate::support;
 use std::path::{Path, PathBuf};
-use support::{refused, s, wearsim};
+use support::{refused, s, wearsim, FEMTO_FLAGS};
 
 use wearsim_host::gap::lifetime::{measured, measured_tables, LifeOptions};
 use wearsim_host::io::feature_table::{read_feature_table, sidecar_path, FeatureTableError};
@@ -172,20 +172,10 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
         "4000",
     ]);
     refused(&o, &["--bearing-geometry"]);
-    let o = wearsim(&[
-        "features",
-        s(&raw),
-        "--out",
-        s(&out),
-        "--rpm",
-        "1800",
-        "--load-n",
-        "4000",
-        "--bearing-geometry",
-        "elements=13,ball=3.5,pitch=25.6,angle=0",
-        "--failure-mode",
-        "outer-race",
-    ]);
+    let mut args = vec!["features", s(&raw), "--out", s(&out)];
+    args.extend(FEMTO_FLAGS);
+    args.extend(["--failure-mode", "outer-race"]);
+    let o = wearsim(&args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let t = read_feature_table(&out).unwrap();
     assert_eq!(t.rows.len(), 12);

@@ -71,3 +71,14 @@ pub fn thesis_life(
             .expect("summary JSON");
     (stdout, summary, out)
 }
+
+/// `features` flags for a FEMTO (PRONOSTIA) folder that its files do not hold: speed, load
+/// and the bearing's geometry (13 balls of 3.5 mm on a 25.6 mm pitch).
+pub const FEMTO_FLAGS: [&str; 6] = [
+    "--rpm",
+    "1800",
+    "--load-n",
+    "4000",
+    "--bearing-geometry",
+    "elements=13,ball=3.5,pitch=25.6,angle=0",
+];
