@@ -205,18 +205,9 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
     // A NaN in one snapshot: exit 2 naming it, the earlier table is left as it was.
     let before = std::fs::read(&out).unwrap();
     femto_folder(&raw, 12, Some(4));
-    let o = wearsim(&[
-        "features",
-        s(&raw),
-        "--out",
-        s(&out),
-        "--rpm",
-        "1800",
-        "--load-n",
-        "4000",
-        "--bearing-geometry",
-        "elements=13,ball=3.5,pitch=25.6,angle=0",
-    ]);
+    let mut args = vec!["features", s(&raw), "--out", s(&out)];
+    args.extend(FEMTO_FLAGS);
+    let o = wearsim(&args);
     refused(&o, &["acc_00005.csv"]);
     assert_eq!(std::fs::read(&out).unwrap(), before);
 }
