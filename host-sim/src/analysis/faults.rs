@@ -3,6 +3,7 @@
 //! sidebands (Randall & Antoni 2011, section 3).
 
 use super::peaks::{noise_floor, peak_near, ratio_db, top_peaks, Peak};
+use super::shaft_comb::{mark_shaft_lines, ShaftComb};
 use super::spectrum::Spectrum;
 use serde::{Deserialize, Serialize};
 
@@ -95,6 +96,11 @@ pub struct HarmonicEvidence {
     /// Whether another family also claims this peak as one of its found harmonics (then it
     /// does not count in [`FamilyEvidence::exclusive_score`]).
     pub shared: bool,
+    /// Whether the shaft explains this peak as well: it lies on a shaft order and the
+    /// envelope's comb of shaft orders explains the family
+    /// ([`super::shaft_comb::ShaftComb::explains`]; then it does not count in
+    /// [`FamilyEvidence::exclusive_score`] nor in [`FamilyEvidence::bearing_lines`]).
+    pub shaft: bool,
     /// Heights above floor (dB) of the lower and upper sidebands around the
     /// harmonic, for the families that have them (0 where none is found).
     pub sidebands_db: Option<[f64; 2]>,
@@ -125,6 +131,16 @@ pub struct FamilyEvidence {
     pub exclusive_score: f64,
 }
 
+impl FamilyEvidence {
+    /// Found harmonics the shaft does not explain ([`HarmonicEvidence::shaft`]): the lines
+    /// that are evidence of a bearing fault at all. A family needs `min_harmonics` of them to
+    /// lead.
+    pub fn bearing_lines(&self) -> usize {
+        let shaft = self.harmonics.iter().filter(|h| h.found && h.shaft).count();
+        self.found.saturating_sub(shaft)
+    }
+}
+
 /// Result of [`detect_fault`].
 #[derive(Debug, Clone, Serialize)]
 pub struct FaultDiagnosis {
@@ -136,7 +152,7 @@ pub struct FaultDiagnosis {
     /// data, [`super::diagnose::CALIBRATION`]); for `None`, one minus that probability.
     pub confidence: f64,
     /// Leading family before the confidence gate: the family of highest `exclusive_score`
-    /// among those with at least `min_harmonics` harmonics found, or `None`.
+    /// among those with at least `min_harmonics` harmonics found that the shaft does not explain, or `None`.
     pub candidate: FaultFamily,
     /// Evidence margin of `margin_family`: its exclusive score minus the best other family's,
     /// dB per searched harmonic (see `leading`). The confidence is computed from it.
@@ -149,6 +165,9 @@ pub struct FaultDiagnosis {
     pub score: f64,
     /// Evidence for every family (inner, outer, ball).
     pub evidence: Vec<FamilyEvidence>,
+    /// The envelope's comb of shaft orders, which explains the lines of a family whose
+    /// fundamental lies on a shaft order ([`super::shaft_comb`]).
+    pub shaft_comb: ShaftComb,
 }
 
 /// Look for one peak near `f` Hz; returns the peak and its dB over `floor`.
@@ -233,6 +252,7 @@ fn evidence_at(
                 threshold_db,
                 found: is_found,
                 shared: false,
+                shaft: false,
                 sidebands_db,
             }
         })
@@ -248,7 +268,7 @@ fn evidence_at(
 /// harmonics are then looked for within `harmonic_tol` of `order × candidate`, and the
 /// candidate with the highest score is kept. Noise floors are medians around the kinematic
 /// harmonic and sideband frequencies.
-fn family_evidence(
+pub(super) fn family_evidence(
     env: &Spectrum,
     family: FaultFamily,
     base_hz: f64,
@@ -332,7 +352,7 @@ fn family_evidence(
 /// `harmonic_tol`; each peak is rated in dB above the median noise floor
 /// around it. A line found by two families (e.g. 2×BPFI and 3×BPFO, 0.7 %
 /// apart on a 6205) counts for neither, and the family with the highest
-/// exclusive score among those with at least `min_harmonics` harmonics found
+/// exclusive score among those with at least `min_harmonics` harmonics found (not counting lines the shaft explains, [`super::shaft_comb`])
 /// is the candidate (Randall & Antoni 2011); it is called when its calibrated confidence
 /// ([`super::diagnose`]) is at least one half, otherwise the call is `None`.
 /// Non-positive or non-finite characteristic frequencies yield no evidence.
@@ -342,6 +362,7 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::OuterRace, ff.bpfo, None, p),
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
+    let shaft_comb = mark_shaft_lines(env, ff.shaft_hz, &mut evidence, p);
     mark_shared(&mut evidence, env.df, p);
     let (candidate, margin_family, margin_db) = leading(&evidence, p.min_harmonics);
     let lead = (candidate != FaultFamily::None).then_some(candidate);
@@ -360,18 +381,19 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         margin_family,
         score,
         evidence,
+        shaft_comb,
     }
 }
 
 /// The leading family of the evidence and its margin: the family of highest exclusive score
-/// among those with at least `min_harmonics` harmonics found (or `None`), and its exclusive
+/// among those with at least `min_harmonics` [`FamilyEvidence::bearing_lines`] (or `None`), and its exclusive
 /// score minus the highest exclusive score of the other families (dB per harmonic). With no
 /// leading family the margin is the largest exclusive score of any family minus the second
 /// (the strength of the best partial evidence).
 fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, FaultFamily, f64) {
     let lead = evidence
         .iter()
-        .filter(|e| e.found >= min_harmonics.max(1) && e.exclusive_score > 0.0)
+        .filter(|e| e.bearing_lines() >= min_harmonics.max(1) && e.exclusive_score > 0.0)
         .max_by(|a, b| a.exclusive_score.total_cmp(&b.exclusive_score));
     let top = |skip: Option<FaultFamily>| {
         evidence
@@ -402,8 +424,9 @@ fn leading(evidence: &[FamilyEvidence], min_harmonics: usize) -> (FaultFamily, F
 /// Mark the found harmonics that another family also claims (a found harmonic of another
 /// family, or an order `H+1..=2H` of the fitted fundamental of another family with at least
 /// `min_harmonics` found, within `max(2 bins, harmonic_tol × f)`) and compute every family's
-/// `exclusive_score`: its score without those harmonics and without sidebands that fall on
-/// another family's found harmonics. A line that two families explain is evidence for
+/// `exclusive_score`: its score without those harmonics, without the harmonics the shaft
+/// explains ([`HarmonicEvidence::shaft`]) and without sidebands that fall on another
+/// family's found harmonics. A line that two families explain is evidence for
 /// neither; the decision rests on the lines only one family explains.
 fn mark_shared(evidence: &mut [FamilyEvidence], df: f64, p: &DetectParams) {
     let mut claimed: Vec<(usize, f64)> = evidence
@@ -435,7 +458,7 @@ fn mark_shared(evidence: &mut [FamilyEvidence], df: f64, p: &DetectParams) {
         for h in e.harmonics.iter_mut().filter(|h| h.found) {
             let f = h.peak.map_or(h.expected_hz, |q| q.freq);
             h.shared = near_other(i, f);
-            if !h.shared {
+            if !h.shared && !h.shaft {
                 score += h.over_floor_db;
             }
             if let Some(sb) = h.sidebands_db {

@@ -8,6 +8,7 @@
 //!   (Antoni 2007) to choose the demodulation band.
 //! - [`peaks`]: spectral peaks, noise floor, peak-over-floor in dB.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
+//! - [`shaft_comb`]: envelope lines at shaft orders, which explain a family on them.
 //! - [`diagnose`]: calibrated confidence and the call / no-call decision.
 //! - [`order_tracking`]: computed order tracking of records taken at a varying speed.
 //! - [`zones`]: band levels of the four El-Thalji frequency zones.
@@ -30,6 +31,7 @@ pub mod kurtogram;
 pub mod octave_bands;
 pub mod order_tracking;
 pub mod peaks;
+pub mod shaft_comb;
 pub mod spectrum;
 pub mod stats;
 pub mod synth;
