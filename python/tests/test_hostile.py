@@ -31,3 +31,31 @@ def test_sweep_of_a_full_lane_group_does_not_overflow_the_worker_stack(tmp_path)
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "True"
 
+
+@pytest.mark.parametrize(
+    "source, overrides, field",
+    [
+        ('preset = "cwru-6205-de"\nduration = nan\n', {}, "duration"),
+        ('preset = "cwru-6205-de"\nduration = 0.1\nfs = inf\n', {}, "fs"),
+        ({"preset": "cwru-6205-de", "duration": float("nan")}, {}, "duration"),
+        ("cwru-6205-de", {"duration": float("inf")}, "duration"),
+        ("cwru-6205-de", {"duration": 0.1, "speed": {"rpm": float("nan")}}, "speed.rpm"),
+        ("cwru-6205-de", {"duration": 0.1, "effect": [{"name": "sensor", "params": {"noise": float("nan")}}]}, "noise"),
+        ("cwru-6205-de", {"duration": 0.1, "effect": [{"name": "sensor", "params": {"noise": -float("inf")}}]}, "noise"),
+    ],
+)
+def test_simulate_refuses_non_finite_values_naming_the_field(source, overrides, field):
+    # TOML's nan once became "absent" (the default duration) on its way through JSON, and
+    # a Python NaN was a JSON syntax error naming no field.
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.simulate(source, **overrides)
+
+
+def test_simulate_takes_numpy_scalars_and_names_a_bad_type():
+    x, meta = wearsim.simulate("cwru-6205-de", duration=np.float32(0.05), seed=np.int64(3))
+    assert meta["seed"] == 3 and x.shape == (round(0.05 * meta["fs"]),)
+    with pytest.raises(wearsim.ConfigError, match="duration"):
+        wearsim.simulate("cwru-6205-de", duration={1, 2})
+    with pytest.raises(wearsim.ConfigError, match="seed"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, seed=2**70)
+

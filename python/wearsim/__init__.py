@@ -47,13 +47,7 @@ def simulate(
     the metadata, whose ``"config"`` is the resolved model configuration and
     ``"scenario"`` the scenario file that produced it.
     """
-    if isinstance(preset_or_config, dict):
-        src, is_json = json.dumps(preset_or_config), True
-    elif isinstance(preset_or_config, str):
-        src, is_json = preset_or_config, False
-    else:
-        raise ConfigError("preset_or_config: expected a preset name, TOML text or a dict")
-    x, meta = _wearsim.simulate(src, is_json, json.dumps(overrides))
+    x, meta = _wearsim.simulate(preset_or_config, overrides)
     return x, json.loads(meta)
 
 
