@@ -205,6 +205,9 @@ fn analyze(
     py.detach(move || {
         let dir = tempfile::tempdir().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let path = dir.path().join("signal.npy");
+        // The temporary file is this call's detail: messages and the result name the
+        // argument, `signal`, instead.
+        let tmp = path.display().to_string();
         write_npy_f64(&path, &x).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let args = wearsim_host::analyze::AnalyzeArgs {
             rpm,
@@ -213,10 +216,12 @@ fn analyze(
             json: true,
             ..wearsim_host::analyze::AnalyzeArgs::for_file(path)
         };
-        let (a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
-            wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(m),
-            wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(m),
+        let named = |m: String| m.replace(&tmp, "signal");
+        let (mut a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
+            wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(named(m)),
+            wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(named(m)),
         })?;
+        a.file = PathBuf::from("signal");
         serde_json::to_string(&a).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     })
 }

@@ -59,3 +59,62 @@ def test_simulate_takes_numpy_scalars_and_names_a_bad_type():
     with pytest.raises(wearsim.ConfigError, match="seed"):
         wearsim.simulate("cwru-6205-de", duration=0.05, seed=2**70)
 
+
+@pytest.fixture(scope="module")
+def signal():
+    x, meta = wearsim.simulate("cwru-6205-de", duration=0.5)
+    return x, meta["fs"]
+
+
+@pytest.mark.parametrize(
+    "make, field",
+    [
+        # Two channels were once concatenated into one signal of twice the length.
+        (lambda x: np.vstack([x, x]), "signal"),
+        (lambda x: np.stack([x, x], axis=1), "signal"),
+        (lambda x: x.astype(complex), "signal"),
+        (lambda x: None, "signal"),
+        (lambda x: ["a", "b"], "signal"),
+        (lambda x: 3.0, "signal"),
+    ],
+)
+def test_analyze_refuses_a_signal_that_is_not_one_real_channel(signal, make, field):
+    x, fs = signal
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.analyze(make(x), fs, bearing="cwru-6205-de", rpm=1797)
+
+
+def test_analyze_accepts_any_real_one_channel_layout(signal):
+    x, fs = signal
+    ref = wearsim.analyze(x, fs, bearing="cwru-6205-de", rpm=1797)
+    for y in [x.reshape(-1, 1), x.reshape(1, -1), np.repeat(x, 2)[::2], list(x)]:
+        assert wearsim.analyze(y, fs, bearing="cwru-6205-de", rpm=1797) == ref
+    assert ref["file"] == "signal"
+
+
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"fs": None}, "fs"),
+        ({"fs": "12000"}, "fs"),
+        ({"rpm": "fast"}, "rpm"),
+        ({"bearing": 5}, "bearing"),
+        ({"bearing": {"elements": 9}}, "bearing"),
+    ],
+)
+def test_analyze_names_an_argument_of_the_wrong_type(signal, kwargs, field):
+    x, fs = signal
+    args = {"fs": fs, "bearing": "cwru-6205-de", "rpm": 1797.0, **kwargs}
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.analyze(x, **args)
+
+
+def test_analyze_errors_name_the_signal_not_a_temporary_file(signal):
+    x, fs = signal
+    y = x.copy()
+    y[100] = np.nan
+    with pytest.raises(wearsim.ConfigError) as e:
+        wearsim.analyze(y, fs, bearing="cwru-6205-de", rpm=1797)
+    assert "index 100" in str(e.value) and "signal" in str(e.value)
+    assert "/tmp" not in str(e.value) and ".npy" not in str(e.value)
+
