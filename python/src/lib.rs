@@ -267,10 +267,23 @@ fn cli(py: Python<'_>, argv: Vec<String>) -> (u8, String) {
     })
 }
 
-/// sweep_plan(spec_toml) -> JSON {shards, records, samples}: parses and validates a spec.
+/// Checks `part = (I, N)`: 0 <= I < N.
+fn check_part(part: Option<(u64, u64)>) -> PyResult<()> {
+    match part {
+        Some((i, n)) if n == 0 || i >= n => {
+            Err(cfg_err(format!("part = ({i}, {n}): expected 0 <= I < N")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// sweep_plan(spec_toml, part) -> JSON {shards, records, samples}: parses and validates a
+/// spec and `part`.
 #[pyfunction]
-fn sweep_plan(spec: &str) -> PyResult<String> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+#[pyo3(signature = (spec, part=None))]
+fn sweep_plan(spec: &str, part: Option<(u64, u64)>) -> PyResult<String> {
+    check_part(part)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     sweep::validate(&s).map_err(sweep_err)?;
     Ok(serde_json::json!({
         "shards": s.shards(), "records": s.records, "samples_per_record": s.samples(),
@@ -281,7 +294,7 @@ fn sweep_plan(spec: &str) -> PyResult<String> {
 /// sweep_prepare(spec_toml, out): creates or checks the data set directory.
 #[pyfunction]
 fn sweep_prepare(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<()> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| {
         sweep::validate(&s)?;
         sweep::prepare_dir(&s, &out)
@@ -292,7 +305,7 @@ fn sweep_prepare(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<()> {
 /// sweep_shard(spec_toml, out, s) -> records generated (0 when already complete).
 #[pyfunction]
 fn sweep_shard(py: Python<'_>, spec: &str, out: PathBuf, shard: u64) -> PyResult<u64> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| sweep::shard::run_shard(&s, &out, shard))
         .map_err(sweep_err)
 }
@@ -300,7 +313,7 @@ fn sweep_shard(py: Python<'_>, spec: &str, out: PathBuf, shard: u64) -> PyResult
 /// sweep_finalize(spec_toml, out) -> (complete, bytes).
 #[pyfunction]
 fn sweep_finalize(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<(bool, u64)> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| sweep::finalize(&s, &out)).map_err(sweep_err)
 }
 
@@ -314,12 +327,8 @@ fn sweep_run(
     threads: usize,
     part: Option<(u64, u64)>,
 ) -> PyResult<String> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
-    if let Some((i, n)) = part {
-        if n == 0 || i >= n {
-            return Err(cfg_err(format!("part = ({i}, {n}): expected 0 <= I < N")));
-        }
-    }
+    check_part(part)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
     let r = py
         .detach(|| sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {}))

@@ -118,3 +118,31 @@ def test_analyze_errors_name_the_signal_not_a_temporary_file(signal):
     assert "index 100" in str(e.value) and "signal" in str(e.value)
     assert "/tmp" not in str(e.value) and ".npy" not in str(e.value)
 
+
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"part": (-1, 2)}, "part"),
+        ({"part": (0,)}, "part"),
+        ({"part": "0/2"}, "part"),
+        ({"part": (2, 2)}, "part"),
+        ({"threads": -1}, "threads"),
+        ({"threads": 1.5}, "threads"),
+    ],
+)
+def test_sweep_names_a_bad_part_or_thread_count(tmp_path, kwargs, field):
+    # These were OverflowError, TypeError or a plain ValueError naming nothing.
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.sweep(ONE_CELL, tmp_path / "set", **kwargs)
+    assert not (tmp_path / "set").exists()
+
+
+def test_sweep_names_a_spec_file_that_does_not_exist(tmp_path):
+    # A missing path was parsed as TOML text ("invalid key").
+    missing = tmp_path / "nope" / "spec.toml"
+    for spec in [missing, str(missing)]:
+        with pytest.raises(wearsim.ConfigError, match="no such file"):
+            wearsim.sweep(spec, tmp_path / "set")
+    with pytest.raises(wearsim.ConfigError, match="spec"):
+        wearsim.sweep(None, tmp_path / "set")
+
