@@ -146,3 +146,12 @@ def test_sweep_names_a_spec_file_that_does_not_exist(tmp_path):
     with pytest.raises(wearsim.ConfigError, match="spec"):
         wearsim.sweep(None, tmp_path / "set")
 
+
+def test_sweep_refuses_a_shard_too_large_for_memory_before_writing(tmp_path):
+    # 100 000 records of 30 s at 1 MHz in one shard: 3e12 samples held in memory, once
+    # accepted (each record alone is under the per-record limit).
+    spec = ONE_CELL.replace("records = 16", "records = 100000").replace("records_per_shard = 16", "records_per_shard = 100000")
+    spec = spec.replace("duration = 0.25", "duration = 30.0").replace("fs = 12000.0", "fs = 1000000.0")
+    with pytest.raises(wearsim.ConfigError, match="records_per_shard.*limit"):
+        wearsim.sweep(spec, tmp_path / "set")
+    assert not (tmp_path / "set").exists()
