@@ -155,3 +155,11 @@ def test_sweep_refuses_a_shard_too_large_for_memory_before_writing(tmp_path):
     with pytest.raises(wearsim.ConfigError, match="records_per_shard.*limit"):
         wearsim.sweep(spec, tmp_path / "set")
     assert not (tmp_path / "set").exists()
+
+
+@pytest.mark.parametrize("angle", [100.0, 90.0, -5.0, float("nan")])
+def test_contact_angle_is_refused_in_the_degrees_it_was_given(angle):
+    # Was `bearing.contact_angle = 1.745... allowed 0 ..= 0.8`: radians, and a key the
+    # scenario file does not have.
+    with pytest.raises(wearsim.ConfigError, match=r"bearing\.contact_angle_deg = .* allowed 0 \.\.= 45\.8"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, bearing={"contact_angle_deg": angle})
