@@ -65,6 +65,25 @@ impl From<wearsim_core::ConfigError> for ConfigFileError {
     }
 }
 
+/// A core geometry error in the file's terms: the core checks the contact angle in radians
+/// under `bearing.contact_angle`, the file gives `bearing.contact_angle_deg` in degrees.
+fn in_degrees(e: wearsim_core::ConfigError) -> ConfigFileError {
+    match e {
+        wearsim_core::ConfigError::OutOfRange {
+            field: "bearing.contact_angle",
+            value,
+            min,
+            max,
+        } => ConfigFileError::Core(wearsim_core::ConfigError::OutOfRange {
+            field: "bearing.contact_angle_deg",
+            value: value.to_degrees(),
+            min: min.to_degrees(),
+            max: max.to_degrees(),
+        }),
+        other => ConfigFileError::Core(other),
+    }
+}
+
 /// The whole file. Every field is optional at this level; see the module docs.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -405,6 +424,7 @@ impl ScenarioFile {
             poisson: bs.poisson.or(b0.map(|b| b.poisson)).unwrap_or(0.3),
             density: bs.density.or(b0.map(|b| b.density)).unwrap_or(7830.0),
         };
+        BearingGeometry::new_checked(bearing).map_err(in_degrees)?;
         let s0 = base.as_ref().map(|c| c.structure);
         let ss = self.structure.clone().unwrap_or_default();
         let structure = Structure {

@@ -113,6 +113,23 @@ fn fill_observed_avx2<const K: usize, const NB: usize>(
 /// `docs/python.md`).
 pub const MAX_LANES: usize = 16;
 
+/// Stack size of a worker thread that may run lane groups (16 MiB). A
+/// `LaneGroup<16, _>` is built on the stack before it is boxed, and in a less optimised
+/// build (the Python extension's CI build is `opt-level = 1`) that needs more than std's
+/// 2 MiB thread default: a 16-record sweep killed its Python process with SIGSEGV.
+pub const WORKER_STACK: usize = 16 << 20;
+
+/// Spawns `f` on a scoped worker thread with a [`WORKER_STACK`] stack: every thread that
+/// runs simulations (sweeps, lives, the gap's fits) starts through here.
+pub fn spawn_worker<'scope, T: Send + 'scope>(
+    scope: &'scope std::thread::Scope<'scope, '_>,
+    f: impl FnOnce() -> T + Send + 'scope,
+) -> std::io::Result<std::thread::ScopedJoinHandle<'scope, T>> {
+    std::thread::Builder::new()
+        .stack_size(WORKER_STACK)
+        .spawn_scoped(scope, f)
+}
+
 /// Whether [`plan`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
 /// variable forces the scalar step for every run, to measure the lanes' gain; the output
 /// is the same bits either way).

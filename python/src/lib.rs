@@ -31,13 +31,13 @@ fn sweep_err(e: SweepError) -> PyErr {
     }
 }
 
-/// Merges `over` into `base` (objects recursively, anything else replaced).
-fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
+/// Merges `over` into `base` (tables recursively, anything else replaced).
+fn merge(base: &mut toml::Value, over: toml::Value) {
     match (base, over) {
-        (serde_json::Value::Object(b), serde_json::Value::Object(o)) => {
+        (toml::Value::Table(b), toml::Value::Table(o)) => {
             for (k, v) in o {
                 match b.get_mut(&k) {
-                    Some(slot) if slot.is_object() && v.is_object() => merge(slot, v),
+                    Some(slot) if slot.is_table() && v.is_table() => merge(slot, v),
                     _ => {
                         b.insert(k, v);
                     }
@@ -48,37 +48,114 @@ fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
     }
 }
 
-/// The scenario file of `source` (a preset name, TOML text, or JSON text of a dict when
-/// `is_json`) with the JSON object `overrides` merged over it.
-fn scenario_file(source: &str, is_json: bool, overrides: &str) -> PyResult<ScenarioFile> {
-    let mut v: serde_json::Value = if is_json {
-        serde_json::from_str(source).map_err(cfg_err)?
-    } else if wearsim_core::presets::by_name(source.trim()).is_some() {
-        serde_json::json!({ "preset": source.trim() })
-    } else if source.contains('=') || source.contains('[') {
-        let t: toml::Value =
-            toml::from_str(source).map_err(|e| cfg_err(format!("configuration TOML: {e}")))?;
-        serde_json::to_value(t).map_err(cfg_err)?
-    } else {
-        return Err(cfg_err(format!(
-            "`preset` = \"{source}\" is not a preset; use one of: {} (or pass TOML text or a dict)",
-            wearsim_core::presets::NAMES.join(", ")
-        )));
+/// `obj` (a dict with string keys, list, tuple, str, bool, int, float, or a numpy scalar)
+/// as a TOML value, `None` for Python's `None` (an absent key: the default). TOML rather
+/// than JSON, because TOML holds NaN and infinities: they reach the field's own range check,
+/// which names the field. `field` names `obj` in errors (`speed.rpm`, `effect[0]`).
+fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>> {
+    use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
+    let bad = |what: String| match field {
+        "" => cfg_err(what),
+        _ => cfg_err(format!("{field}: {what}")),
     };
-    let o: serde_json::Value = serde_json::from_str(overrides).map_err(cfg_err)?;
-    merge(&mut v, o);
-    serde_json::from_value(v).map_err(|e| cfg_err(format!("configuration: {e}")))
+    if obj.is_none() {
+        return Ok(None);
+    }
+    if obj.is_instance_of::<PyBool>() {
+        return Ok(Some(toml::Value::Boolean(obj.extract()?)));
+    }
+    if obj.is_instance_of::<PyString>() {
+        return Ok(Some(toml::Value::String(obj.extract()?)));
+    }
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let mut t = toml::map::Map::new();
+        for (k, v) in d.iter() {
+            let k: String = k
+                .extract()
+                .map_err(|_| bad(format!("keys must be strings, got {k}")))?;
+            let name = if field.is_empty() {
+                k.clone()
+            } else {
+                format!("{field}.{k}")
+            };
+            if let Some(v) = to_toml(&v, &name)? {
+                t.insert(k, v);
+            }
+        }
+        return Ok(Some(toml::Value::Table(t)));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut a = Vec::new();
+        for (i, v) in obj.try_iter()?.enumerate() {
+            let name = format!("{field}[{i}]");
+            match to_toml(&v?, &name)? {
+                Some(v) => a.push(v),
+                None => return Err(cfg_err(format!("{name}: None is not allowed in a list"))),
+            }
+        }
+        return Ok(Some(toml::Value::Array(a)));
+    }
+    // Python and numpy integers (anything with `__index__`), then anything with `__float__`.
+    if !obj.is_instance_of::<PyFloat>() && obj.hasattr("__index__")? {
+        return match obj.extract::<i64>() {
+            Ok(i) => Ok(Some(toml::Value::Integer(i))),
+            Err(_) => Err(bad(format!("{obj} is out of the 64-bit integer range"))),
+        };
+    }
+    match obj.extract::<f64>() {
+        Ok(x) => Ok(Some(toml::Value::Float(x))),
+        Err(_) => Err(bad(format!(
+            "expected a number, string, bool, list or dict, got {}",
+            obj.get_type().name()?
+        ))),
+    }
 }
 
-/// simulate(source, is_json, overrides_json) -> (accel ndarray, meta JSON)
+/// The scenario file of `source` (a preset name, TOML text, or a dict) with the dict
+/// `overrides` merged over it.
+fn scenario_file(
+    source: &Bound<'_, PyAny>,
+    overrides: &Bound<'_, PyAny>,
+) -> PyResult<ScenarioFile> {
+    let mut v = if let Ok(text) = source.extract::<String>() {
+        if wearsim_core::presets::by_name(text.trim()).is_some() {
+            toml::Value::Table(toml::map::Map::from_iter([(
+                "preset".to_string(),
+                toml::Value::String(text.trim().to_string()),
+            )]))
+        } else if text.contains('=') || text.contains('[') {
+            toml::from_str(&text).map_err(|e| cfg_err(format!("configuration TOML: {e}")))?
+        } else {
+            return Err(cfg_err(format!(
+                "`preset` = \"{text}\" is not a preset; use one of: {} (or pass TOML text or a dict)",
+                wearsim_core::presets::NAMES.join(", ")
+            )));
+        }
+    } else {
+        match to_toml(source, "")? {
+            Some(t @ toml::Value::Table(_)) => t,
+            _ => {
+                return Err(cfg_err(
+                    "preset_or_config: expected a preset name, TOML text or a dict",
+                ))
+            }
+        }
+    };
+    if let Some(o) = to_toml(overrides, "")? {
+        merge(&mut v, o);
+    }
+    v.try_into()
+        .map_err(|e| cfg_err(format!("configuration: {e}")))
+}
+
+/// simulate(source, overrides) -> (accel ndarray, meta JSON)
 #[pyfunction]
 fn simulate<'py>(
     py: Python<'py>,
-    source: &str,
-    is_json: bool,
-    overrides: &str,
+    source: &Bound<'py, PyAny>,
+    overrides: &Bound<'py, PyAny>,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, String)> {
-    let file = scenario_file(source, is_json, overrides)?;
+    let file = scenario_file(source, overrides)?;
     let (cfg, run) = file.resolve().map_err(cfg_err)?;
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
     let out = py
@@ -128,6 +205,9 @@ fn analyze(
     py.detach(move || {
         let dir = tempfile::tempdir().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let path = dir.path().join("signal.npy");
+        // The temporary file is this call's detail: messages and the result name the
+        // argument, `signal`, instead.
+        let tmp = path.display().to_string();
         write_npy_f64(&path, &x).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let args = wearsim_host::analyze::AnalyzeArgs {
             rpm,
@@ -136,10 +216,12 @@ fn analyze(
             json: true,
             ..wearsim_host::analyze::AnalyzeArgs::for_file(path)
         };
-        let (a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
-            wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(m),
-            wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(m),
+        let named = |m: String| m.replace(&tmp, "signal");
+        let (mut a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
+            wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(named(m)),
+            wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(named(m)),
         })?;
+        a.file = PathBuf::from("signal");
         serde_json::to_string(&a).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     })
 }
@@ -185,10 +267,23 @@ fn cli(py: Python<'_>, argv: Vec<String>) -> (u8, String) {
     })
 }
 
-/// sweep_plan(spec_toml) -> JSON {shards, records, samples}: parses and validates a spec.
+/// Checks `part = (I, N)`: 0 <= I < N.
+fn check_part(part: Option<(u64, u64)>) -> PyResult<()> {
+    match part {
+        Some((i, n)) if n == 0 || i >= n => {
+            Err(cfg_err(format!("part = ({i}, {n}): expected 0 <= I < N")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// sweep_plan(spec_toml, part) -> JSON {shards, records, samples}: parses and validates a
+/// spec and `part`.
 #[pyfunction]
-fn sweep_plan(spec: &str) -> PyResult<String> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+#[pyo3(signature = (spec, part=None))]
+fn sweep_plan(spec: &str, part: Option<(u64, u64)>) -> PyResult<String> {
+    check_part(part)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     sweep::validate(&s).map_err(sweep_err)?;
     Ok(serde_json::json!({
         "shards": s.shards(), "records": s.records, "samples_per_record": s.samples(),
@@ -199,7 +294,7 @@ fn sweep_plan(spec: &str) -> PyResult<String> {
 /// sweep_prepare(spec_toml, out): creates or checks the data set directory.
 #[pyfunction]
 fn sweep_prepare(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<()> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| {
         sweep::validate(&s)?;
         sweep::prepare_dir(&s, &out)
@@ -210,7 +305,7 @@ fn sweep_prepare(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<()> {
 /// sweep_shard(spec_toml, out, s) -> records generated (0 when already complete).
 #[pyfunction]
 fn sweep_shard(py: Python<'_>, spec: &str, out: PathBuf, shard: u64) -> PyResult<u64> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| sweep::shard::run_shard(&s, &out, shard))
         .map_err(sweep_err)
 }
@@ -218,7 +313,7 @@ fn sweep_shard(py: Python<'_>, spec: &str, out: PathBuf, shard: u64) -> PyResult
 /// sweep_finalize(spec_toml, out) -> (complete, bytes).
 #[pyfunction]
 fn sweep_finalize(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<(bool, u64)> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     py.detach(|| sweep::finalize(&s, &out)).map_err(sweep_err)
 }
 
@@ -232,12 +327,8 @@ fn sweep_run(
     threads: usize,
     part: Option<(u64, u64)>,
 ) -> PyResult<String> {
-    let s = SweepSpec::parse(spec, "sweep spec").map_err(cfg_err)?;
-    if let Some((i, n)) = part {
-        if n == 0 || i >= n {
-            return Err(cfg_err(format!("part = ({i}, {n}): expected 0 <= I < N")));
-        }
-    }
+    check_part(part)?;
+    let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
     let r = py
         .detach(|| sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {}))

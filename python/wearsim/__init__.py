@@ -9,6 +9,7 @@ its allowed range; a failed run raises ``RuntimeError``. See docs/python.md.
 from __future__ import annotations
 
 import json
+import numbers
 import os
 import tempfile
 from pathlib import Path
@@ -47,13 +48,7 @@ def simulate(
     the metadata, whose ``"config"`` is the resolved model configuration and
     ``"scenario"`` the scenario file that produced it.
     """
-    if isinstance(preset_or_config, dict):
-        src, is_json = json.dumps(preset_or_config), True
-    elif isinstance(preset_or_config, str):
-        src, is_json = preset_or_config, False
-    else:
-        raise ConfigError("preset_or_config: expected a preset name, TOML text or a dict")
-    x, meta = _wearsim.simulate(src, is_json, json.dumps(overrides))
+    x, meta = _wearsim.simulate(preset_or_config, overrides)
     return x, json.loads(meta)
 
 
@@ -73,8 +68,31 @@ def analyze(
     """Analyse a signal like ``wearsim analyze --json``: statistics, kurtogram band,
     envelope-spectrum fault family, zones. ``bearing`` is a preset name giving the
     geometry, ``rpm`` the shaft speed."""
-    x = np.ascontiguousarray(np.asarray(signal, dtype=np.float64).ravel())
-    return json.loads(_wearsim.analyze(x, float(fs), bearing, None if rpm is None else float(rpm)))
+    if bearing is not None and not isinstance(bearing, str):
+        raise ConfigError(f"bearing: expected a preset name (see presets()), got {type(bearing).__name__}")
+    x = _one_channel(signal)
+    return json.loads(_wearsim.analyze(x, _number("fs", fs), bearing, None if rpm is None else _number("rpm", rpm)))
+
+
+def _one_channel(signal: Any) -> np.ndarray:
+    """``signal`` as a contiguous 1-D float64 array: real numbers, 1-D or a single row or
+    column (several channels are refused rather than run together into one)."""
+    try:
+        a = np.asarray(signal)
+    except (TypeError, ValueError) as e:
+        raise ConfigError(f"signal: not an array of numbers ({e})") from None
+    if a.dtype.kind not in "biuf":
+        raise ConfigError(f"signal: expected real numbers, got an array of dtype {a.dtype}")
+    if a.ndim != 1 and not (a.ndim == 2 and 1 in a.shape):
+        raise ConfigError(f"signal: expected one channel (a 1-D array), got shape {a.shape}; pass one, e.g. signal[:, 0]")
+    return np.ascontiguousarray(a, dtype=np.float64).ravel()
+
+
+def _number(field: str, v: Any) -> float:
+    """``v`` as a float if it is a real number (not a string or a bool), else ConfigError."""
+    if isinstance(v, (bool, np.bool_)) or not isinstance(v, numbers.Real):
+        raise ConfigError(f"{field}: expected a number, got {type(v).__name__}")
+    return float(v)
 
 
 def read_record(path: Union[str, os.PathLike], channel: Optional[str] = None) -> Tuple[np.ndarray, Dict[str, Any]]:

@@ -5,6 +5,7 @@ each shard is a pure function of the spec and its number."""
 from __future__ import annotations
 
 import json
+import numbers
 import os
 from pathlib import Path
 from typing import Any, Dict, Optional, Tuple, Union
@@ -12,13 +13,36 @@ from typing import Any, Dict, Optional, Tuple, Union
 import numpy as np
 
 from . import _wearsim
+from ._wearsim import ConfigError
 
 
 def _spec_text(spec: Union[str, os.PathLike]) -> str:
-    s = str(spec)
-    if "\n" not in s and "=" not in s and Path(s).is_file():
+    """The TOML text of ``spec``: a path (``PathLike``, or a one-line string with no ``=``)
+    is read; anything else is the text itself."""
+    if not isinstance(spec, (str, os.PathLike)):
+        raise ConfigError(f"spec: expected a TOML file path or TOML text, got {type(spec).__name__}")
+    s = os.fspath(spec)
+    if isinstance(spec, os.PathLike) or ("\n" not in s and "=" not in s):
+        if not Path(s).is_file():
+            raise ConfigError(f"spec: {s}: no such file (pass a TOML file path or TOML text)")
         return Path(s).read_text()
     return s
+
+
+def _count(field: str, v: Any) -> int:
+    """``v`` as an int if it is an integer >= 0 (not a bool), else ConfigError."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral) or v < 0:
+        raise ConfigError(f"{field} = {v!r}: expected an integer >= 0")
+    return int(v)
+
+
+def _part(part: Any) -> Optional[Tuple[int, int]]:
+    """``part=(I, N)`` as two integers >= 0 (the native side checks I < N)."""
+    if part is None:
+        return None
+    if not isinstance(part, tuple) or len(part) != 2:
+        raise ConfigError(f"part = {part!r}: expected a tuple (I, N) with 0 <= I < N")
+    return _count("part[0]", part[0]), _count("part[1]", part[1])  # 0 <= I < N: checked natively
 
 
 def _shard_task(spec_text: str, out: str, shard: int) -> int:
@@ -46,12 +70,13 @@ def sweep(
     """
     text = _spec_text(spec)
     out = str(out)
+    part = _part(part)
     if cluster is None:
-        n = threads if threads is not None else (os.cpu_count() or 1)
-        return json.loads(_wearsim.sweep_run(text, out, int(n), part))
+        n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
+        return json.loads(_wearsim.sweep_run(text, out, n, part))
     from dask.distributed import Client
 
-    plan = json.loads(_wearsim.sweep_plan(text))
+    plan = json.loads(_wearsim.sweep_plan(text, part))
     _wearsim.sweep_prepare(text, out)
     client = cluster if isinstance(cluster, Client) else Client(cluster)
     shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]

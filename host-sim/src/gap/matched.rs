@@ -286,12 +286,17 @@ impl Evaluator {
                 .chunks(chunk)
                 .map(|c| {
                     let f = &f;
-                    s.spawn(move || c.iter().map(f).collect::<Vec<R>>())
+                    let h = crate::lanes::spawn_worker(s, move || c.iter().map(f).collect());
+                    (c, h)
                 })
                 .collect();
             handles
                 .into_iter()
-                .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+                .flat_map(|(c, h)| match h {
+                    Ok(h) => h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)),
+                    // No thread could start for this chunk: it runs here.
+                    Err(_) => c.iter().map(&f).collect::<Vec<R>>(),
+                })
                 .collect()
         })
     }

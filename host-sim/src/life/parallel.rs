@@ -26,7 +26,8 @@ pub fn map_indexed<R: Send>(
     let out: Mutex<Vec<Option<R>>> = Mutex::new((0..n).map(|_| None).collect());
     std::thread::scope(|s| {
         for _ in 0..threads.clamp(1, n.max(1)) {
-            s.spawn(|| loop {
+            // A job no thread takes (none could start) comes back as `lost()`.
+            let worker = crate::lanes::spawn_worker(s, || loop {
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 if i >= n {
                     break;
@@ -41,6 +42,9 @@ pub fn map_indexed<R: Send>(
                 }
                 done(finished.fetch_add(1, Ordering::Relaxed) + 1);
             });
+            if worker.is_err() {
+                break;
+            }
         }
     });
     let o = out.into_inner().unwrap_or_default();

@@ -141,7 +141,7 @@ pub fn run(
     let first_err: std::sync::Mutex<Option<SweepError>> = std::sync::Mutex::new(None);
     std::thread::scope(|sc| {
         for _ in 0..threads {
-            sc.spawn(|| loop {
+            let worker = crate::lanes::spawn_worker(sc, || loop {
                 if first_err.lock().map(|e| e.is_some()).unwrap_or(true) {
                     return;
                 }
@@ -165,6 +165,13 @@ pub fn run(
                     return;
                 }
             });
+            if let Err(e) = worker {
+                if let Ok(mut g) = first_err.lock() {
+                    g.get_or_insert(SweepError::Run(format!(
+                        "cannot start a worker thread: {e}"
+                    )));
+                }
+            }
         }
     });
     if let Some(e) = first_err.into_inner().ok().flatten() {

@@ -13,6 +13,9 @@ pub const MAX_RECORDS: u64 = 10_000_000;
 pub const MAX_RECORDS_PER_SHARD: u64 = 100_000;
 /// Default number of records per shard.
 pub const DEFAULT_RECORDS_PER_SHARD: u64 = 256;
+/// Most samples one shard may hold (2^27: 512 MiB as float32, twice that as f64 while its
+/// records are simulated): a shard is generated whole in memory, then written.
+pub const MAX_SHARD_SAMPLES: u64 = 1 << 27;
 
 /// A sweep specification problem (always names the key); exit code 2.
 #[derive(Debug, thiserror::Error)]
@@ -149,6 +152,16 @@ impl SweepSpec {
             return err(format!(
                 "`records_per_shard` = {} is outside 1..={MAX_RECORDS_PER_SHARD}",
                 self.per_shard()
+            ));
+        }
+        // Infinite or NaN sizes are left to the scenario checks, which name `duration`/`fs`.
+        let shard_samples = self.per_shard() as f64 * self.duration * self.fs;
+        if shard_samples.is_finite() && shard_samples > MAX_SHARD_SAMPLES as f64 {
+            return err(format!(
+                "`records_per_shard` × duration × fs = {} × {} s × {} Hz = {shard_samples:.0} samples exceeds the limit of {MAX_SHARD_SAMPLES} samples per shard (2^27: a shard is held in memory until it is written); lower `records_per_shard`",
+                self.per_shard(),
+                self.duration,
+                self.fs
             ));
         }
         let g = &self.grid;

@@ -1,0 +1,165 @@
+"""Hostile input from Python, as a demanding outside user tries it: every bad value is a
+ConfigError naming the field (never a crash, a silent default or another exception type)."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import wearsim
+
+ONE_CELL = """seed = 1
+records = 16
+records_per_shard = 16
+duration = 0.25
+fs = 12000.0
+[grid]
+preset = ["cwru-6205-de"]
+rpm = [1797.0]
+fault = ["outer"]
+stage = ["mild-defect"]
+"""
+
+
+def test_sweep_of_a_full_lane_group_does_not_overflow_the_worker_stack(tmp_path):
+    # 16 records of one cell form one 16-lane group, built on a sweep worker thread: with
+    # std's 2 MiB thread stack an opt-level 1 extension died of SIGSEGV here. In a
+    # subprocess, so that a crash fails this test instead of killing pytest.
+    code = "import sys, wearsim; print(wearsim.sweep(sys.argv[1], sys.argv[2], threads=1)['complete'])"
+    p = subprocess.run([sys.executable, "-c", code, ONE_CELL, str(tmp_path / "set")], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "True"
+
+
+@pytest.mark.parametrize(
+    "source, overrides, field",
+    [
+        ('preset = "cwru-6205-de"\nduration = nan\n', {}, "duration"),
+        ('preset = "cwru-6205-de"\nduration = 0.1\nfs = inf\n', {}, "fs"),
+        ({"preset": "cwru-6205-de", "duration": float("nan")}, {}, "duration"),
+        ("cwru-6205-de", {"duration": float("inf")}, "duration"),
+        ("cwru-6205-de", {"duration": 0.1, "speed": {"rpm": float("nan")}}, "speed.rpm"),
+        ("cwru-6205-de", {"duration": 0.1, "effect": [{"name": "sensor", "params": {"noise": float("nan")}}]}, "noise"),
+        ("cwru-6205-de", {"duration": 0.1, "effect": [{"name": "sensor", "params": {"noise": -float("inf")}}]}, "noise"),
+    ],
+)
+def test_simulate_refuses_non_finite_values_naming_the_field(source, overrides, field):
+    # TOML's nan once became "absent" (the default duration) on its way through JSON, and
+    # a Python NaN was a JSON syntax error naming no field.
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.simulate(source, **overrides)
+
+
+def test_simulate_takes_numpy_scalars_and_names_a_bad_type():
+    x, meta = wearsim.simulate("cwru-6205-de", duration=np.float32(0.05), seed=np.int64(3))
+    assert meta["seed"] == 3 and x.shape == (round(0.05 * meta["fs"]),)
+    with pytest.raises(wearsim.ConfigError, match="duration"):
+        wearsim.simulate("cwru-6205-de", duration={1, 2})
+    with pytest.raises(wearsim.ConfigError, match="seed"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, seed=2**70)
+
+
+@pytest.fixture(scope="module")
+def signal():
+    x, meta = wearsim.simulate("cwru-6205-de", duration=0.5)
+    return x, meta["fs"]
+
+
+@pytest.mark.parametrize(
+    "make, field",
+    [
+        # Two channels were once concatenated into one signal of twice the length.
+        (lambda x: np.vstack([x, x]), "signal"),
+        (lambda x: np.stack([x, x], axis=1), "signal"),
+        (lambda x: x.astype(complex), "signal"),
+        (lambda x: None, "signal"),
+        (lambda x: ["a", "b"], "signal"),
+        (lambda x: 3.0, "signal"),
+    ],
+)
+def test_analyze_refuses_a_signal_that_is_not_one_real_channel(signal, make, field):
+    x, fs = signal
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.analyze(make(x), fs, bearing="cwru-6205-de", rpm=1797)
+
+
+def test_analyze_accepts_any_real_one_channel_layout(signal):
+    x, fs = signal
+    ref = wearsim.analyze(x, fs, bearing="cwru-6205-de", rpm=1797)
+    for y in [x.reshape(-1, 1), x.reshape(1, -1), np.repeat(x, 2)[::2], list(x)]:
+        assert wearsim.analyze(y, fs, bearing="cwru-6205-de", rpm=1797) == ref
+    assert ref["file"] == "signal"
+
+
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"fs": None}, "fs"),
+        ({"fs": "12000"}, "fs"),
+        ({"rpm": "fast"}, "rpm"),
+        ({"bearing": 5}, "bearing"),
+        ({"bearing": {"elements": 9}}, "bearing"),
+    ],
+)
+def test_analyze_names_an_argument_of_the_wrong_type(signal, kwargs, field):
+    x, fs = signal
+    args = {"fs": fs, "bearing": "cwru-6205-de", "rpm": 1797.0, **kwargs}
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.analyze(x, **args)
+
+
+def test_analyze_errors_name_the_signal_not_a_temporary_file(signal):
+    x, fs = signal
+    y = x.copy()
+    y[100] = np.nan
+    with pytest.raises(wearsim.ConfigError) as e:
+        wearsim.analyze(y, fs, bearing="cwru-6205-de", rpm=1797)
+    assert "index 100" in str(e.value) and "signal" in str(e.value)
+    assert "/tmp" not in str(e.value) and ".npy" not in str(e.value)
+
+
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"part": (-1, 2)}, "part"),
+        ({"part": (0,)}, "part"),
+        ({"part": "0/2"}, "part"),
+        ({"part": (2, 2)}, "part"),
+        ({"threads": -1}, "threads"),
+        ({"threads": 1.5}, "threads"),
+    ],
+)
+def test_sweep_names_a_bad_part_or_thread_count(tmp_path, kwargs, field):
+    # These were OverflowError, TypeError or a plain ValueError naming nothing.
+    with pytest.raises(wearsim.ConfigError, match=field):
+        wearsim.sweep(ONE_CELL, tmp_path / "set", **kwargs)
+    assert not (tmp_path / "set").exists()
+
+
+def test_sweep_names_a_spec_file_that_does_not_exist(tmp_path):
+    # A missing path was parsed as TOML text ("invalid key").
+    missing = tmp_path / "nope" / "spec.toml"
+    for spec in [missing, str(missing)]:
+        with pytest.raises(wearsim.ConfigError, match="no such file"):
+            wearsim.sweep(spec, tmp_path / "set")
+    with pytest.raises(wearsim.ConfigError, match="spec"):
+        wearsim.sweep(None, tmp_path / "set")
+
+
+def test_sweep_refuses_a_shard_too_large_for_memory_before_writing(tmp_path):
+    # 100 000 records of 30 s at 1 MHz in one shard: 3e12 samples held in memory, once
+    # accepted (each record alone is under the per-record limit).
+    spec = ONE_CELL.replace("records = 16", "records = 100000").replace("records_per_shard = 16", "records_per_shard = 100000")
+    spec = spec.replace("duration = 0.25", "duration = 30.0").replace("fs = 12000.0", "fs = 1000000.0")
+    with pytest.raises(wearsim.ConfigError, match="records_per_shard.*limit"):
+        wearsim.sweep(spec, tmp_path / "set")
+    assert not (tmp_path / "set").exists()
+
+
+@pytest.mark.parametrize("angle", [100.0, 90.0, -5.0, float("nan")])
+def test_contact_angle_is_refused_in_the_degrees_it_was_given(angle):
+    # Was `bearing.contact_angle = 1.745... allowed 0 ..= 0.8`: radians, and a key the
+    # scenario file does not have.
+    with pytest.raises(wearsim.ConfigError, match=r"bearing\.contact_angle_deg = .* allowed 0 \.\.= 45\.8"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, bearing={"contact_angle_deg": angle})
