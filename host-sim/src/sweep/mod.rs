@@ -192,6 +192,25 @@ pub fn run(
     })
 }
 
+/// Writes the index of `spec` to `path` through a temporary file and a rename (row group
+/// by row group, [`index::write_parquet`]); returns its size in bytes.
+fn write_index(spec: &SweepSpec, path: &Path) -> Result<u64, SweepError> {
+    let tmp = shard::tmp_path(path);
+    let io = |e: std::io::Error| SweepError::Run(format!("cannot write {}: {e}", path.display()));
+    let written = std::fs::File::create(&tmp).map_err(io).and_then(|f| {
+        let mut out = std::io::BufWriter::new(f);
+        index::write_parquet(spec, &mut out)?;
+        std::io::Write::flush(&mut out).map_err(io)?;
+        Ok(())
+    });
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e);
+    }
+    std::fs::rename(&tmp, path).map_err(io)?;
+    Ok(std::fs::metadata(path).map(|m| m.len()).unwrap_or(0))
+}
+
 /// When every shard is complete, writes `index.parquet` and then `manifest.json` (each
 /// through a temporary file and a rename); returns whether the set is complete and its
 /// size in bytes.
@@ -199,10 +218,7 @@ pub fn finalize(spec: &SweepSpec, dir: &Path) -> Result<(bool, u64), SweepError>
     if !(0..spec.shards()).all(|s| shard::is_done(dir, s)) {
         return Ok((false, 0));
     }
-    let cols = index::columns(spec)?;
-    let pq = index::parquet_bytes(&cols)?;
-    shard::write_atomic(&dir.join(INDEX), &pq)?;
-    let mut bytes = pq.len() as u64;
+    let mut bytes = write_index(spec, &dir.join(INDEX))?;
     for s in 0..spec.shards() {
         bytes += std::fs::metadata(dir.join("shards").join(shard::npy_name(s)))
             .map(|m| m.len())

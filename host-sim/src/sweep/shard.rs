@@ -94,7 +94,7 @@ pub fn simulate_records(
     }
 }
 
-fn tmp_path(final_path: &Path) -> PathBuf {
+pub(super) fn tmp_path(final_path: &Path) -> PathBuf {
     let name = final_path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
