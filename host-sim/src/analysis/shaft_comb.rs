@@ -87,13 +87,14 @@ pub fn mark_shaft_lines(
         let shaft_sidebands = e
             .sideband_hz
             .is_some_and(|s| (s - shaft_hz).abs() <= 2.0 * env.df);
-        // A ball's defect strikes a race once per spin: its comb is 2×BSF's, but lines at
-        // odd multiples of BSF itself are common too (Randall & Antoni 2011, §2.1).
+        // A ball's defect strikes each race once per spin: its comb is 2×BSF's, with lines
+        // at odd multiples of BSF itself when the two strikes differ (Randall & Antoni 2011).
         let spin = (e.family == FaultFamily::Ball && n % 2 == 0).then_some(n / 2);
         let own = |j: usize| {
-            j % n == 0
-                || spin.is_some_and(|m| j % m == 0)
-                || (shaft_sidebands && ((j + 1) % n == 0 || (j > n && (j - 1) % n == 0)))
+            j.is_multiple_of(n)
+                || spin.is_some_and(|m| j.is_multiple_of(m))
+                || (shaft_sidebands
+                    && ((j + 1).is_multiple_of(n) || (j > n && (j - 1).is_multiple_of(n))))
         };
         let shaft_own: Vec<f64> = found.iter().filter(|o| !own(o.0)).map(|o| o.1).collect();
         if shaft_own.len() < p.min_harmonics.max(1) {
