@@ -67,11 +67,13 @@ pub struct BearingGeometry {
 impl BearingGeometry {
     /// Validates every field and returns the geometry, or the first bad field.
     pub fn new_checked(g: BearingGeometry) -> Result<Self, ConfigError> {
+        // Too few elements is a range error, not a capacity one: both ends are named.
         if g.elements < 3 || g.elements as usize > MAX_ELEMENTS {
-            return Err(ConfigError::TooMany {
+            return Err(ConfigError::OutOfRange {
                 field: "bearing.elements",
-                count: g.elements as usize,
-                max: MAX_ELEMENTS,
+                value: g.elements as f64,
+                min: 3.0,
+                max: MAX_ELEMENTS as f64,
             });
         }
         check_range(

@@ -112,6 +112,13 @@ fn bad_values_name_their_field() {
         }),
         "bearing.elements"
     );
+    // Too few elements names both ends of the range (it once said "at most 32").
+    b.elements = 2;
+    let e = wearsim_core::bearing::BearingGeometry::new_checked(b).expect_err("two elements");
+    assert_eq!(
+        e.to_string(),
+        "bearing.elements = 2 is out of range: allowed 3 ..= 32 (finite)"
+    );
     assert_eq!(
         field_of(ModelConfig {
             slip: Some(Slip { fraction: 0.5 }),
