@@ -191,15 +191,17 @@ fn presets() -> PyResult<String> {
     Ok(serde_json::Value::Array(rows).to_string())
 }
 
-/// analyze(signal, fs, bearing, rpm) -> JSON of `wearsim analyze --json`.
+/// analyze(signal, fs, bearing, rpm, geometry) -> JSON of `wearsim analyze --json`;
+/// `geometry` is `--bearing-geometry`'s `elements=N,ball=MM,pitch=MM,angle=DEG`.
 #[pyfunction]
-#[pyo3(signature = (signal, fs, bearing=None, rpm=None))]
+#[pyo3(signature = (signal, fs, bearing=None, rpm=None, geometry=None))]
 fn analyze(
     py: Python<'_>,
     signal: PyReadonlyArray1<'_, f64>,
     fs: f64,
     bearing: Option<String>,
     rpm: Option<f64>,
+    geometry: Option<String>,
 ) -> PyResult<String> {
     let x: Vec<f64> = signal.as_array().iter().copied().collect();
     py.detach(move || {
@@ -213,6 +215,7 @@ fn analyze(
             rpm,
             fs: Some(fs),
             bearing,
+            bearing_geometry: geometry,
             json: true,
             ..wearsim_host::analyze::AnalyzeArgs::for_file(path)
         };

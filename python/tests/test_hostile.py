@@ -163,3 +163,30 @@ def test_contact_angle_is_refused_in_the_degrees_it_was_given(angle):
     # scenario file does not have.
     with pytest.raises(wearsim.ConfigError, match=r"bearing\.contact_angle_deg = .* allowed 0 \.\.= 45\.8"):
         wearsim.simulate("cwru-6205-de", duration=0.05, bearing={"contact_angle_deg": angle})
+
+
+def test_analyze_takes_any_bearing_as_a_geometry_dict():
+    # The preset's own geometry given as a dict (mm, degrees) gives the preset's
+    # kinematics and the same call; a geometry that cannot exist or a key that is not one
+    # of the four is a ConfigError naming it.
+    p = next(r for r in wearsim.presets() if r["name"] == "cwru-6205-de")
+    g = {
+        "elements": p["elements"],
+        "ball": p["element_diameter_m"] * 1e3,
+        "pitch": p["pitch_diameter_m"] * 1e3,
+        "angle": p["contact_angle_deg"],
+    }
+    x, meta = wearsim.simulate("cwru-6205-de", duration=1.0)
+    by_name = wearsim.analyze(x, meta["fs"], bearing="cwru-6205-de", rpm=1797)
+    by_geometry = wearsim.analyze(x, meta["fs"], bearing=g, rpm=1797)
+    bpfo = by_name["kinematics"]["bpfo"]
+    assert abs(by_geometry["kinematics"]["bpfo"] - bpfo) < 1e-9 * bpfo
+    assert by_geometry["diagnosis"]["family"] == by_name["diagnosis"]["family"]
+    with pytest.raises(wearsim.ConfigError, match="pitch"):
+        wearsim.analyze(x, meta["fs"], bearing=dict(g, pitch=g["ball"] * 0.5), rpm=1797)
+    with pytest.raises(wearsim.ConfigError, match="angle"):
+        wearsim.analyze(x, meta["fs"], bearing=dict(g, angle=95.0), rpm=1797)
+    with pytest.raises(wearsim.ConfigError, match="'balls'"):
+        wearsim.analyze(x, meta["fs"], bearing={"balls": 9}, rpm=1797)
+    with pytest.raises(wearsim.ConfigError, match="bearing.ball"):
+        wearsim.analyze(x, meta["fs"], bearing=dict(g, ball="7.9"), rpm=1797)

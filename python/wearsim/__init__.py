@@ -62,16 +62,46 @@ def presets() -> List[Dict[str, Any]]:
     return json.loads(_wearsim.presets())
 
 
+_GEOMETRY_KEYS = ("elements", "ball", "pitch", "angle")
+
+
 def analyze(
-    signal: Any, fs: float, bearing: Optional[str] = None, rpm: Optional[float] = None
+    signal: Any,
+    fs: float,
+    bearing: Union[str, Dict[str, float], None] = None,
+    rpm: Optional[float] = None,
 ) -> Dict[str, Any]:
     """Analyse a signal like ``wearsim analyze --json``: statistics, kurtogram band,
-    envelope-spectrum fault family, zones. ``bearing`` is a preset name giving the
-    geometry, ``rpm`` the shaft speed."""
-    if bearing is not None and not isinstance(bearing, str):
-        raise ConfigError(f"bearing: expected a preset name (see presets()), got {type(bearing).__name__}")
+    envelope-spectrum fault family, zones. ``bearing`` is a preset or catalogue name
+    (see ``presets()``) or any bearing's geometry as a dict like ``--bearing-geometry``:
+    ``{"elements": 9, "ball": 7.94, "pitch": 39.04, "angle": 0}`` (diameters in mm,
+    contact angle in degrees; ``angle`` may be left out for 0). ``rpm`` is the shaft
+    speed."""
+    geometry = None
+    if isinstance(bearing, dict):
+        geometry = _geometry(bearing)
+        bearing = None
+    elif bearing is not None and not isinstance(bearing, str):
+        raise ConfigError(
+            f"bearing: expected a preset name (see presets()) or a geometry dict with keys "
+            f"{', '.join(_GEOMETRY_KEYS)}, got {type(bearing).__name__}"
+        )
     x = _one_channel(signal)
-    return json.loads(_wearsim.analyze(x, _number("fs", fs), bearing, None if rpm is None else _number("rpm", rpm)))
+    rpm_v = None if rpm is None else _number("rpm", rpm)
+    return json.loads(_wearsim.analyze(x, _number("fs", fs), bearing, rpm_v, geometry))
+
+
+def _geometry(g: Dict[str, Any]) -> str:
+    """A geometry dict as ``--bearing-geometry`` text; unknown keys and non-numbers are
+    ConfigErrors naming them (the ranges are checked natively, naming the field)."""
+    unknown = [k for k in g if k not in _GEOMETRY_KEYS]
+    if unknown:
+        raise ConfigError(f"bearing: unknown geometry key {unknown[0]!r}; expected {', '.join(_GEOMETRY_KEYS)}")
+    parts = []
+    for k in _GEOMETRY_KEYS:
+        if k in g:
+            parts.append(f"{k}={_number(f'bearing.{k}', g[k])!r}")
+    return ",".join(parts)
 
 
 def _one_channel(signal: Any) -> np.ndarray:
