@@ -190,3 +190,19 @@ def test_analyze_takes_any_bearing_as_a_geometry_dict():
         wearsim.analyze(x, meta["fs"], bearing={"balls": 9}, rpm=1797)
     with pytest.raises(wearsim.ConfigError, match="bearing.ball"):
         wearsim.analyze(x, meta["fs"], bearing=dict(g, ball="7.9"), rpm=1797)
+
+
+def test_gap_records_and_dataset_shards_of_the_wrong_kind_are_config_errors(tmp_path):
+    for bad in (5, None, [], [3]):
+        with pytest.raises(wearsim.ConfigError, match="records"):
+            wearsim.gap(bad)
+    spec = ONE_CELL.replace("records = 16", "records = 3").replace("records_per_shard = 16", "records_per_shard = 2")
+    assert wearsim.sweep(spec, str(tmp_path / "set"), threads=1)["complete"]
+    index, signals = wearsim.load_dataset(tmp_path / "set")
+    assert signals(1).shape[0] == 1 and len(index) == 3
+    for bad in (-1, 2, 99):
+        with pytest.raises(wearsim.ConfigError, match=r"shards 0..=1"):
+            signals(bad)
+    for bad in ("0", 1.0, True):
+        with pytest.raises(wearsim.ConfigError, match="shard"):
+            signals(bad)

@@ -184,7 +184,14 @@ def life(out: Optional[str] = None, **kwargs: Any) -> Dict[str, Any]:
 def gap(records: Union[str, List[str]], out: Optional[str] = None, **kwargs: Any) -> Dict[str, Any]:
     """Diagnose the sim-to-real gap of measured records like ``wearsim gap`` (keyword
     arguments are its options). File level, like :func:`life`."""
-    files = [records] if isinstance(records, (str, os.PathLike)) else list(records)
+    if isinstance(records, (str, os.PathLike)):
+        files = [records]
+    elif isinstance(records, (list, tuple)) and all(isinstance(f, (str, os.PathLike)) for f in records):
+        files = list(records)
+    else:
+        raise ConfigError(f"records: expected a path or a list of paths, got {type(records).__name__}")
+    if not files:
+        raise ConfigError("records: at least one record is needed")
     return _run_cli("gap", [str(f) for f in files], kwargs, out)
 
 

@@ -101,11 +101,16 @@ def load_dataset(path: Union[str, os.PathLike], mmap: bool = True):
     manifest = p / "manifest.json"
     if not manifest.is_file() or not json.loads(manifest.read_text()).get("complete"):
         raise RuntimeError(f"{p}: not a complete wearsim data set (no manifest.json)")
+    shards = int(json.loads(manifest.read_text()).get("shards", 0))
     table = pq.read_table(p / "index.parquet")
     index = table.to_pandas() if _has_pandas() else table
 
     def signals(shard: int) -> np.ndarray:
-        return np.load(p / "shards" / f"shard-{shard:05d}.npy", mmap_mode="r" if mmap else None)
+        if isinstance(shard, (bool, np.bool_)) or not isinstance(shard, (int, np.integer)):
+            raise ConfigError(f"shard: expected an integer 0..={shards - 1}, got {type(shard).__name__}")
+        if not 0 <= shard < shards:
+            raise ConfigError(f"shard = {shard} is out of range: this data set has shards 0..={shards - 1}")
+        return np.load(p / "shards" / f"shard-{int(shard):05d}.npy", mmap_mode="r" if mmap else None)
 
     return index, signals
 
