@@ -7,6 +7,7 @@
 //! - [`kurtogram`]: spectral kurtosis (Antoni 2006) and fast kurtogram
 //!   (Antoni 2007) to choose the demodulation band.
 //! - [`peaks`]: spectral peaks, noise floor, peak-over-floor in dB.
+//! - [`evidence`]: a harmonic family's evidence in an envelope spectrum; fault families.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
 //! - [`shaft_comb`]: envelope lines at shaft orders, which explain a family on them.
 //! - [`diagnose`]: calibrated confidence and the call / no-call decision.
@@ -24,6 +25,7 @@ pub mod content_band;
 pub mod diagnose;
 pub mod envelope;
 pub mod error;
+pub mod evidence;
 pub mod faults;
 pub(crate) mod fft;
 pub mod finite;

@@ -16,7 +16,7 @@
 //! (the 6205's BPFI is 5.415 orders, its 5th harmonic 27.08): its own comb, not the
 //! shaft's, places that line.
 
-use super::faults::{DetectParams, FamilyEvidence, FaultFamily};
+use super::evidence::{family_evidence, DetectParams, FamilyEvidence, FaultFamily};
 use super::spectrum::Spectrum;
 use super::stats::median;
 use serde::Serialize;
@@ -56,7 +56,7 @@ fn order_of(f: f64, shaft_hz: f64, df: f64, p: &DetectParams) -> Option<usize> {
 
 /// Search the shaft-order comb of `env` and, in every bearing family of `evidence` that the
 /// comb explains ([`ShaftComb::explains`]), mark the found harmonics on shaft orders as
-/// explained by the shaft ([`super::faults::HarmonicEvidence::shaft`]). Returns the comb.
+/// explained by the shaft ([`super::evidence::HarmonicEvidence::shaft`]). Returns the comb.
 pub fn mark_shaft_lines(
     env: &Spectrum,
     shaft_hz: f64,
@@ -70,7 +70,7 @@ pub fn mark_shaft_lines(
         harmonics: 2 * p.harmonics,
         ..*p
     };
-    let comb = super::faults::family_evidence(env, FaultFamily::None, shaft_hz, None, &exact);
+    let comb = family_evidence(env, FaultFamily::None, shaft_hz, None, &exact);
     let found: Vec<(usize, f64)> = comb
         .harmonics
         .iter()
