@@ -485,7 +485,7 @@ pub fn print_analysis(a: &Analysis) {
     }
     let d = &a.diagnosis;
     println!(
-        "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB{}; exclusive score {:.1} dB per searched harmonic; +found =shared [sidebands dB])",
+        "diagnosis: {} (confidence {:.2}; leading family {}, margin {:.1} dB{}; exclusive score {:.1} dB per searched harmonic; +found =shared ~shaft [sidebands dB])",
         family_name(d.family),
         d.confidence,
         family_name(d.candidate),
@@ -504,9 +504,10 @@ pub fn print_analysis(a: &Analysis) {
                 "{}x {:.1}Hz:{}{:.1}dB",
                 h.order,
                 h.peak.map_or(h.expected_hz, |p| p.freq),
-                match (h.found, h.shared) {
-                    (true, true) => "=",
-                    (true, false) => "+",
+                match (h.found, h.shared, h.shaft) {
+                    (true, _, true) => "~",
+                    (true, true, false) => "=",
+                    (true, false, false) => "+",
                     _ => "",
                 },
                 h.over_floor_db
@@ -527,6 +528,15 @@ pub fn print_analysis(a: &Analysis) {
             e.exclusive_score,
         );
         println!("    {}", parts.join("  "));
+    }
+    let comb = &d.shaft_comb;
+    if !comb.explains.is_empty() {
+        let names: Vec<&str> = comb.explains.iter().map(|f| family_name(*f)).collect();
+        println!(
+            "  shaft orders {:?} found; they explain the lines marked ~ of {} (fundamental on a shaft order)",
+            comb.orders,
+            names.join(", ")
+        );
     }
     match (&a.zones, &a.zones_note) {
         (Some(z), _) => {
