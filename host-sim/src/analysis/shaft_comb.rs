@@ -36,11 +36,14 @@ pub struct ShaftComb {
     /// shaft order `n`; the shaft has evidence of its own — at least `min_harmonics` found
     /// orders that the family's comb does not place a line on (multiples of `n`; `k n ± 1`
     /// for a family with shaft sidebands; for the ball family, whose `n` is 2×BSF,
-    /// multiples of BSF), the rule a bearing family must meet to be diagnosed (noise alone,
+    /// multiples of BSF, when its lines carry the cage modulation below), the rule a bearing
+    /// family must meet to be diagnosed (noise alone,
     /// at the false-alarm rate of each order's search, puts three of ten orders over their
     /// thresholds in about 1 % of records); and those orders are as strong as the family's
     /// lines on the comb (median dB over floor at least theirs): the shaft explains them as
-    /// well as the family does. A fault whose lines stand above a weaker comb keeps them.
+    /// well as the family does — or, for the ball family, its lines on the comb lack the
+    /// cage (FTF) sidebands of a ball defect (fewer than half carry one). A fault whose
+    /// lines stand above a weaker comb, or a ball whose lines are cage-modulated, keeps them.
     pub explains: Vec<FaultFamily>,
 }
 
@@ -87,9 +90,21 @@ pub fn mark_shaft_lines(
         let shaft_sidebands = e
             .sideband_hz
             .is_some_and(|s| (s - shaft_hz).abs() <= 2.0 * env.df);
+        let on_comb: Vec<usize> = (0..e.harmonics.len())
+            .filter(|&i| {
+                let h = &e.harmonics[i];
+                let f = h.peak.map_or(h.expected_hz, |q| q.freq);
+                h.found && order_of(f, shaft_hz, env.df, p).is_some()
+            })
+            .collect();
+        // A ball's lines are the ball's only with the cage modulation a ball defect carries
+        // (`cage_modulated`); without it the shaft explains them whenever it has lines of
+        // its own.
+        let modulated = e.family != FaultFamily::Ball || cage_modulated(e, &on_comb);
         // A ball's defect strikes each race once per spin: its comb is 2×BSF's, with lines
-        // at odd multiples of BSF itself when the two strikes differ (Randall & Antoni 2011).
-        let spin = (e.family == FaultFamily::Ball && n % 2 == 0).then_some(n / 2);
+        // at odd multiples of BSF itself when the two strikes differ (Randall & Antoni 2011)
+        // — modulated at FTF as well, so unmodulated lines there are the shaft's.
+        let spin = (e.family == FaultFamily::Ball && n % 2 == 0 && modulated).then_some(n / 2);
         let own = |j: usize| {
             j.is_multiple_of(n)
                 || spin.is_some_and(|m| j.is_multiple_of(m))
@@ -100,21 +115,18 @@ pub fn mark_shaft_lines(
         if shaft_own.len() < p.min_harmonics.max(1) {
             continue;
         }
-        let on_comb: Vec<usize> = (0..e.harmonics.len())
-            .filter(|&i| {
-                let h = &e.harmonics[i];
-                let f = h.peak.map_or(h.expected_hz, |q| q.freq);
-                h.found && order_of(f, shaft_hz, env.df, p).is_some()
-            })
-            .collect();
         let family_db: Vec<f64> = on_comb
             .iter()
             .map(|&i| e.harmonics[i].over_floor_db)
             .collect();
-        // The shaft explains the lines when its own lines are as strong as them (medians).
-        match (median(shaft_own), median(family_db)) {
-            (Some(shaft), Some(family)) if shaft >= family => {}
-            _ => continue,
+        // The shaft explains the lines when its own lines are as strong as them (medians),
+        // or when they are a ball's without its cage modulation.
+        let as_strong = matches!(
+            (median(shaft_own), median(family_db)),
+            (Some(shaft), Some(family)) if shaft >= family
+        );
+        if modulated && !as_strong {
+            continue;
         }
         explains.push(e.family);
         for i in on_comb {
@@ -127,6 +139,23 @@ pub fn mark_shaft_lines(
         orders_db,
         explains,
     }
+}
+
+/// Whether a ball family's found lines on the shaft comb (`on_comb`, indices into its
+/// harmonics) carry the cage modulation of a ball defect: at least half of them with an FTF
+/// sideband found on either side. A defective ball enters and leaves the load zone once per
+/// cage revolution, so its 2×BSF lines are modulated at FTF (Randall & Antoni 2011), and
+/// FTF sidebands (0.38 orders on the 6203) never fall on a shaft order: the one piece of a
+/// ball's signature that a shaft comb cannot supply. A real ball fault can lack them (the
+/// CWRU fan-end B014 record at 1 hp has one on four found lines), so the test decides only
+/// where the comb already has lines of its own ([`ShaftComb::explains`]).
+fn cage_modulated(e: &FamilyEvidence, on_comb: &[usize]) -> bool {
+    let with_sidebands = on_comb
+        .iter()
+        .filter_map(|&i| e.harmonics.get(i))
+        .filter(|h| h.sidebands_db.is_some_and(|s| s.iter().any(|db| *db > 0.0)))
+        .count();
+    2 * with_sidebands >= on_comb.len()
 }
 
 #[cfg(test)]
@@ -178,11 +207,18 @@ mod tests {
         assert!((outer.fundamental_hz - 75.0).abs() < 0.1, "{outer:#?}");
         assert!(outer.found >= 3 && outer.bearing_lines() == 0, "{outer:#?}");
         // The outer-race comb alone (its own orders 3, 6, 9 found, nothing else): the shaft
-        // has no evidence of its own and the outer-race call stands.
+        // has no evidence of its own against the outer race and the outer-race call stands.
+        // (The ball family's one line, at 12×, has no cage sidebands: orders 3, 6, 9 explain
+        // it, which changes no call.)
         let alone: Vec<(f64, f64)> = (1..=4).map(|k| (k as f64 * 75.0, 1.0)).collect();
         let d = detect_fault(&spectrum(&alone), &ff, &DetectParams::default());
         assert_eq!(d.shaft_comb.orders, vec![3, 6, 9], "{:?}", d.shaft_comb);
-        assert!(d.shaft_comb.explains.is_empty(), "{:?}", d.shaft_comb);
+        assert_eq!(
+            d.shaft_comb.explains,
+            vec![FaultFamily::Ball],
+            "{:?}",
+            d.shaft_comb
+        );
         assert_eq!(d.family, FaultFamily::OuterRace, "{d:#?}");
     }
 
@@ -225,6 +261,58 @@ mod tests {
         let inner = &d.evidence[0];
         assert_eq!(inner.bearing_lines(), 5, "{inner:#?}");
         assert!(inner.harmonics[4].found && !inner.harmonics[4].shaft);
+    }
+
+    /// A ball family at 4× on the 6203 (2×BSF 3.99 orders) with a comb of shaft orders
+    /// weaker than its lines: without cage sidebands the comb explains it and nothing is
+    /// called; the same lines with FTF sidebands are a ball defect's and the call stands.
+    #[test]
+    fn ball_lines_on_a_shaft_comb_need_their_cage_sidebands() {
+        let ff = fe_6203();
+        let fr = ff.shaft_hz;
+        assert!((2.0 * ff.bsf / fr - 3.99).abs() < 0.01, "{ff:?}");
+        let mut lines: Vec<(f64, f64)> = (1..=12)
+            .filter(|k| k % 2 == 1)
+            .map(|k| (k as f64 * fr, 0.3))
+            .collect();
+        lines.extend((1..=5).map(|k| (k as f64 * 4.0 * fr, 1.0)));
+        let d = detect_fault(&spectrum(&lines), &ff, &DetectParams::default());
+        assert!(
+            d.shaft_comb.explains.contains(&FaultFamily::Ball),
+            "{:?}",
+            d.shaft_comb
+        );
+        assert_eq!(d.family, FaultFamily::None, "{d:#?}");
+        let mut modulated = lines.clone();
+        modulated.extend((1..=5).flat_map(|k| {
+            let f = k as f64 * 4.0 * fr;
+            [(f - ff.ftf, 0.5), (f + ff.ftf, 0.5)]
+        }));
+        let d = detect_fault(&spectrum(&modulated), &ff, &DetectParams::default());
+        assert!(
+            !d.shaft_comb.explains.contains(&FaultFamily::Ball),
+            "{:?}",
+            d.shaft_comb
+        );
+        assert_eq!(d.family, FaultFamily::Ball, "{d:#?}");
+        // A comb of even orders only (a 2× force): every order is a multiple of BSF (2
+        // orders), the ball's own comb when modulated; unmodulated, orders 2, 6 and 10 are
+        // the shaft's own and explain the ball's lines on 4, 8, ….
+        let mut even: Vec<(f64, f64)> = (1..=6).map(|k| (2.0 * k as f64 * fr, 0.3)).collect();
+        even.extend((1..=5).map(|k| (k as f64 * 4.0 * fr, 1.0)));
+        let d = detect_fault(&spectrum(&even), &ff, &DetectParams::default());
+        assert_eq!(
+            d.shaft_comb.orders,
+            vec![2, 4, 6, 8, 10],
+            "{:?}",
+            d.shaft_comb
+        );
+        assert!(
+            d.shaft_comb.explains.contains(&FaultFamily::Ball),
+            "{:?}",
+            d.shaft_comb
+        );
+        assert_eq!(d.family, FaultFamily::None, "{d:#?}");
     }
 
     /// The order test: within the harmonic tolerance of an integer order, not between
