@@ -226,6 +226,12 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let scale = match rec.unit.as_str() {
         "g" | "G" => G,
         "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => 1.0,
+        "FS" => {
+            return Err(format!(
+                "{p}: integer WAV samples in unit `FS` (full scale, channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with the physical value of full scale, `\"wav\": {{\"scale\": G_AT_FULL_SCALE, \"unit\": \"g\"}}`",
+                rec.channel
+            ))
+        }
         u => {
             return Err(format!(
                 "{p}: samples in unit `{u}` (channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `\"units\": {{\"{}\": \"g\"}}` or `\"units\": \"g\"`",

@@ -2,6 +2,7 @@
 //! tables the project's own tests did not have (other sample rates, other labs' layouts,
 //! hand-written tables); one test per defect, each named after what must hold.
 
+use crate::support::{refused, s, wearsim};
 use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_host::gap::space::{space, Context};
 
@@ -34,4 +35,85 @@ fn fit_space_ends_stay_inside_the_catalogue_bounds_at_any_level() {
             }
         }
     }
+}
+
+/// A broadband test signal of `n` samples (deterministic), peak about 0.5.
+fn noise(n: usize) -> Vec<f64> {
+    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect()
+}
+
+/// A float WAV's unit came only from `wav.unit` or `units[wav.column]`: a sidecar with
+/// `"units": "g"` or `"units": {"0": "g"}` (what the gap's own error asks for) left it
+/// `unknown`, so `gap` refused the record with advice that did not work.
+#[test]
+fn a_float_wav_takes_the_unit_its_sidecar_gives_the_file_or_the_channel() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(60_000);
+    for (name, side) in [
+        ("whole", r#"{"fs": 25600, "rpm": 1797, "units": "g"}"#),
+        ("chan", r#"{"fs": 25600, "rpm": 1797, "units": {"0": "g"}}"#),
+    ] {
+        let wav = dir.path().join(format!("{name}.wav"));
+        let spec = hound::WavSpec {
+            channels: 1,
+            sample_rate: 25_600,
+            bits_per_sample: 32,
+            sample_format: hound::SampleFormat::Float,
+        };
+        let mut w = hound::WavWriter::create(&wav, spec).expect("create wav");
+        for v in &x {
+            w.write_sample(*v as f32).expect("sample");
+        }
+        w.finalize().expect("finalize");
+        std::fs::write(dir.path().join(format!("{name}.json")), side).expect("sidecar");
+        let o = wearsim(&["analyze", s(&wav), "--bearing", "cwru-6205-de", "--json"]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            out.contains(r#""unit": "g""#),
+            "{name}: unit not g in {out}"
+        );
+    }
+    // An integer WAV without `wav.scale` stays full scale, and the gap says how to scale it.
+    let wav = dir.path().join("int.wav");
+    let spec = hound::WavSpec {
+        channels: 1,
+        sample_rate: 25_600,
+        bits_per_sample: 16,
+        sample_format: hound::SampleFormat::Int,
+    };
+    let mut w = hound::WavWriter::create(&wav, spec).expect("create wav");
+    for v in &x {
+        w.write_sample((v * 30_000.0) as i16).expect("sample");
+    }
+    w.finalize().expect("finalize");
+    std::fs::write(
+        dir.path().join("int.json"),
+        r#"{"fs": 25600, "rpm": 1797, "units": "g"}"#,
+    )
+    .expect("sidecar");
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--real",
+        s(&wav),
+        "--bearing",
+        "cwru-6205-de",
+        "--out",
+        s(&out),
+    ]);
+    refused(&o, &["int.wav", "FS", "wav", "scale"]);
 }
