@@ -117,3 +117,38 @@ fn a_float_wav_takes_the_unit_its_sidecar_gives_the_file_or_the_channel() {
     ]);
     refused(&o, &["int.wav", "FS", "wav", "scale"]);
 }
+
+/// A MAT file of no known layout (or Paderborn's) had unit `unknown` and no way to set
+/// it: `gap` asked for a sidecar that the MAT reader never read. Its sidecar now gives the
+/// unit (only the unit; other keys are named in a warning).
+#[test]
+fn a_generic_mat_file_takes_its_unit_from_a_sidecar() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(60_000);
+    let bytes =
+        wearsim_host::io::mat::mat5_bytes(&[("acc", &x), ("fs", &[25_600.0]), ("rpm", &[1797.0])]);
+    let mat = dir.path().join("lab.mat");
+    std::fs::write(&mat, bytes).expect("write mat");
+    let args = ["analyze", s(&mat), "--bearing", "cwru-6205-de", "--json"];
+    let o = wearsim(&args);
+    assert!(String::from_utf8_lossy(&o.stdout).contains(r#""unit": "unknown""#));
+    std::fs::write(
+        dir.path().join("lab.json"),
+        r#"{"units": {"acc": "m/s^2"}, "fs": 1}"#,
+    )
+    .expect("sidecar");
+    let o = wearsim(&args);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.contains(r#""unit": "m/s^2""#), "{out}");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("`units`/`unit` only") && err.contains("`fs`"),
+        "{err}"
+    );
+}
