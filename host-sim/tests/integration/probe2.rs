@@ -152,3 +152,47 @@ fn a_generic_mat_file_takes_its_unit_from_a_sidecar() {
         "{err}"
     );
 }
+
+/// At a rate that is no whole number of Hz (48 828.125 Hz, a common DAQ rate) a record of
+/// exactly 1.5 s holds 73 242 samples, and `gap` refused it: "1.500 s is too short …
+/// one record must hold at least 1.5 s (73243 samples)". Lengths are counted to the
+/// nearest sample.
+#[test]
+fn a_record_of_exactly_the_minimum_length_passes_at_a_fractional_rate() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fs = 48_828.125;
+    let x = noise((1.5 * fs) as usize);
+    assert_eq!(x.len(), 73_242);
+    let mut csv = String::from("accel\n");
+    for v in &x {
+        csv.push_str(&format!("{v}\n"));
+    }
+    let rec = dir.path().join("rec.csv");
+    std::fs::write(&rec, csv).expect("csv");
+    std::fs::write(
+        dir.path().join("rec.json"),
+        format!(r#"{{"fs": {fs}, "rpm": 1797, "units": "g"}}"#),
+    )
+    .expect("sidecar");
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--real",
+        s(&rec),
+        "--bearing",
+        "cwru-6205-de",
+        "--defect",
+        "none",
+        "--effects",
+        "sensor",
+        "--no-calibration",
+        "--jobs",
+        "1",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("too short"), "{err}");
+    assert_eq!(o.status.code(), Some(0), "{err}");
+}
