@@ -196,3 +196,58 @@ fn a_record_of_exactly_the_minimum_length_passes_at_a_fractional_rate() {
     assert!(!err.contains("too short"), "{err}");
     assert_eq!(o.status.code(), Some(0), "{err}");
 }
+
+/// Writes a documented feature table `name.csv` of `n` rows and its sidecar `name.json`
+/// (the worked example's rig, 13 balls, 3600 s apart) with `rate` Hz, `bom` before both.
+fn bom_table(
+    dir: &std::path::Path,
+    name: &str,
+    n: usize,
+    rate: f64,
+    bom: bool,
+) -> std::path::PathBuf {
+    let b = if bom { "\u{feff}" } else { "" };
+    let mut csv = format!("{b}snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak\n");
+    for k in 0..n {
+        let rms = 0.5 + 0.001 * (k % 7) as f64;
+        csv.push_str(&format!(
+            "{k},{},{rms},3.0,4.5,0.0,{}\n",
+            3600.0 * k as f64,
+            4.5 * rms
+        ));
+    }
+    let p = dir.join(format!("{name}.csv"));
+    std::fs::write(&p, csv).expect("table");
+    let side = format!(
+        r#"{b}{{"format": "wearsim-feature-table", "format_version": 1, "source": "probe",
+ "bearing": {{"geometry": {{"elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "angle_deg": 0.0}}, "id": "b1"}},
+ "channel": "horiz", "unit": "g", "rpm": 1800.0, "radial_load_n": 4000.0,
+ "sample_rate_hz": {rate}, "snapshot_samples": 64, "snapshot_interval_s": 3600.0,
+ "failure_mode": "outer-race", "n_snapshots": {n}}}"#
+    );
+    std::fs::write(dir.join(format!("{name}.json")), side).expect("sidecar");
+    p
+}
+
+/// A feature table saved by a spreadsheet as "CSV UTF-8" starts with a byte order mark:
+/// it was refused as "missing column `snapshot`" (the column was there), and a sidecar
+/// with one as "expected value at line 1 column 1".
+#[test]
+fn a_feature_table_and_sidecar_with_a_byte_order_mark_are_read() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let a = bom_table(dir.path(), "a", 12, 25_600.0, true);
+    let b = bom_table(dir.path(), "b", 12, 25_600.0, true);
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--life",
+        "--real",
+        s(&a),
+        "--real",
+        s(&b),
+        "--out",
+        s(&out),
+    ]);
+    // Read through to the life's own check: 12 snapshots are too few for its stages.
+    refused(&o, &["running-in stage"]);
+}
