@@ -251,3 +251,47 @@ fn a_feature_table_and_sidecar_with_a_byte_order_mark_are_read() {
     // Read through to the life's own check: 12 snapshots are too few for its stages.
     refused(&o, &["running-in stage"]);
 }
+
+/// A table's `sample_rate_hz` that the simulator cannot render was refused naming `fs`
+/// ("fs = 50 is out of range", "fs: internal step too large … use an internal rate of at
+/// least 89824 Hz"), neither the sidecar nor its field, nor a rate a table could have.
+#[test]
+fn a_table_rate_the_simulator_cannot_render_is_refused_naming_the_sidecar_field() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("gap");
+    for (rate, needles) in [
+        (
+            50.0,
+            vec![
+                "sidecar field `sample_rate_hz`",
+                "50 Hz",
+                "100..=1000000 Hz",
+            ],
+        ),
+        (
+            1000.0,
+            vec![
+                "sidecar field `sample_rate_hz`",
+                "1000 Hz is too low",
+                "at least",
+            ],
+        ),
+    ] {
+        let a = bom_table(dir.path(), "a", 400, rate, false);
+        let b = bom_table(dir.path(), "b", 400, rate, false);
+        let o = wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&a),
+            "--real",
+            s(&b),
+            "--out",
+            s(&out),
+        ]);
+        let mut n = needles.clone();
+        n.push("a.json");
+        refused(&o, &n);
+        assert!(!out.exists(), "{rate} Hz: an output was written");
+    }
+}
