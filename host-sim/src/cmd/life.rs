@@ -320,7 +320,15 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         }
         let done0 = gi * n;
         let lives =
-            run_lives(specs, threads, &|d| bar.update(done0 + d, total)).map_err(life_error)?;
+            run_lives(specs, threads, &|d| bar.update(done0 + d, total)).map_err(|(seed, e)| {
+                // Which of the lives: a cap that one load scale or one seed's scatter does
+                // not reach is otherwise not told from the others.
+                let c = life_error(e);
+                CliError {
+                    message: format!("load scale {scale}, seed {seed}: {}", c.message),
+                    ..c
+                }
+            })?;
         groups.push(summarise(*scale, iso.0, iso.1, lives));
     }
     bar.finish();

@@ -295,3 +295,22 @@ fn a_table_rate_the_simulator_cannot_render_is_refused_naming_the_sidecar_field(
         assert!(!out.exists(), "{rate} Hz: an output was written");
     }
 }
+
+/// `life --lives` over load scales where one life runs into the cycle cap said only "the
+/// bearing did not fail within the cycle cap", not which load scale or seed.
+#[test]
+fn a_life_statistics_run_names_the_load_scale_and_seed_of_a_life_that_did_not_fail() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("lives");
+    let o = wearsim(&[
+        "life",
+        "--lives",
+        "3",
+        "--loads",
+        "0.05,1",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    refused(&o, &["load scale 0.05", "seed 1", "cycle cap"]);
+}
