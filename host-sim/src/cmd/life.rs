@@ -256,6 +256,10 @@ fn life_error(e: crate::life::LifeError) -> CliError {
         crate::life::LifeError::CapReached { .. }
         | crate::life::LifeError::Config(_)
         | crate::life::LifeError::SnapshotInterval { .. } => CliError::input(e),
+        crate::life::LifeError::WindowCap { .. } => CliError::input(format!(
+            "{e}: --snapshot-every is too small for this life (at most {} windows per life); raise it",
+            crate::life::MAX_LIFE_WINDOWS
+        )),
         other => CliError::run(other),
     }
 }

@@ -120,7 +120,7 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
     let mut pts: Vec<(f64, f64)> = vec![];
     let d = run.drive(
         |_| every,
-        u64::MAX,
+        super::MAX_LIFE_WINDOWS,
         |w| {
             // The onset is read as a periodic measurement would: transition windows left out.
             if w.scheduled {

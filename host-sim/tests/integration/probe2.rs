@@ -314,3 +314,24 @@ fn a_life_statistics_run_names_the_load_scale_and_seed_of_a_life_that_did_not_fa
     ]);
     refused(&o, &["load scale 0.05", "seed 1", "cycle cap"]);
 }
+
+/// `life --snapshot-every 1` rendered and kept a window per revolution for the whole life
+/// (tens of millions, growing memory for hours); a life is now bounded to
+/// `MAX_LIFE_WINDOWS` windows and refused (exit 2) naming the flag to raise.
+#[test]
+fn a_life_needing_more_windows_than_the_bound_is_refused_naming_snapshot_every() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("life");
+    let o = wearsim(&[
+        "life",
+        "--snapshot-every",
+        "1",
+        "--window",
+        "0.02",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    refused(&o, &["100000 windows", "--snapshot-every"]);
+    assert!(!out.join("life-summary.json").exists());
+}
