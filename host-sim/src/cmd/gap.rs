@@ -142,18 +142,14 @@ fn why_not_table(p: &Path) -> String {
         return "a feature table is a .csv file".into();
     }
     let side = sidecar_path(p);
-    let text = match std::fs::read_to_string(&side) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            return format!(
-                "its sidecar {} is missing (a feature table is NAME.csv with NAME.json next to it)",
-                side.display()
-            )
-        }
-        Err(e) => return format!("its sidecar {} cannot be read: {e}", side.display()),
-    };
-    match serde_json::from_str::<serde_json::Value>(&text) {
-        Err(e) => format!("its sidecar {} is not JSON: {e}", side.display()),
+    if !side.exists() {
+        return format!(
+            "its sidecar {} is missing (a feature table is NAME.csv with NAME.json next to it)",
+            side.display()
+        );
+    }
+    match crate::io::feature_table::sidecar_json(&side) {
+        Err(e) => format!("its sidecar cannot be read: {e}"),
         Ok(v) => format!(
             "its sidecar {} has `format` {} (a feature table's is {FORMAT:?})",
             side.display(),

@@ -256,6 +256,10 @@ fn life_error(e: crate::life::LifeError) -> CliError {
         crate::life::LifeError::CapReached { .. }
         | crate::life::LifeError::Config(_)
         | crate::life::LifeError::SnapshotInterval { .. } => CliError::input(e),
+        crate::life::LifeError::WindowCap { .. } => CliError::input(format!(
+            "{e}: --snapshot-every is too small for this life (at most {} windows per life); raise it",
+            crate::life::MAX_LIFE_WINDOWS
+        )),
         other => CliError::run(other),
     }
 }
@@ -320,7 +324,15 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         }
         let done0 = gi * n;
         let lives =
-            run_lives(specs, threads, &|d| bar.update(done0 + d, total)).map_err(life_error)?;
+            run_lives(specs, threads, &|d| bar.update(done0 + d, total)).map_err(|(seed, e)| {
+                // Which of the lives: a cap that one load scale or one seed's scatter does
+                // not reach is otherwise not told from the others.
+                let c = life_error(e);
+                CliError {
+                    message: format!("load scale {scale}, seed {seed}: {}", c.message),
+                    ..c
+                }
+            })?;
         groups.push(summarise(*scale, iso.0, iso.1, lives));
     }
     bar.finish();

@@ -24,6 +24,12 @@ pub const DEFAULT_DEPTH: f64 = 0.011 * 0.0254;
 /// at least 0.0625 s, i.e. ≥ 5 periods of a 100 Hz fault frequency per segment.
 pub const MIN_PART_S: f64 = 0.5;
 
+/// Samples of `seconds` at `fs`, to the nearest sample: the fewest a record of that
+/// duration holds (a part of [`MIN_PART_S`] is 24 414 samples at 48 828.125 Hz).
+pub fn min_samples(seconds: f64, fs: f64) -> usize {
+    (seconds * fs).round() as usize
+}
+
 /// A defect as the command line or a label gives it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DefectSpec {
@@ -226,6 +232,12 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let scale = match rec.unit.as_str() {
         "g" | "G" => G,
         "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => 1.0,
+        "FS" => {
+            return Err(format!(
+                "{p}: integer WAV samples in unit `FS` (full scale, channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with the physical value of full scale, `\"wav\": {{\"scale\": G_AT_FULL_SCALE, \"unit\": \"g\"}}`",
+                rec.channel
+            ))
+        }
         u => {
             return Err(format!(
                 "{p}: samples in unit `{u}` (channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `\"units\": {{\"{}\": \"g\"}}` or `\"units\": \"g\"`",
@@ -236,9 +248,12 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let accel: Vec<f64> = rec.samples.iter().map(|v| v * scale).collect();
     let fs = rec.fs;
     let need = 2.0 * MIN_PART_S;
-    if rec.duration_s() < need {
+    // Counted in whole samples: at a rate that is no whole number of Hz (48 828.125) a
+    // record of exactly 1 s holds the rounded number of samples, not one more.
+    let need_samples = min_samples(need, fs);
+    if accel.len() < need_samples {
         return Err(format!(
-            "{p}: {} samples at {fs} Hz are {:.3} s; the gap needs at least {need} s (a training and a held-out part of {MIN_PART_S} s) — is the sample rate right?",
+            "{p}: {} samples at {fs} Hz are {:.4} s; the gap needs at least {need} s ({need_samples} samples: a training and a held-out part of {MIN_PART_S} s) — is the sample rate right?",
             accel.len(),
             rec.duration_s()
         ));

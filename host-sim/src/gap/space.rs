@@ -30,13 +30,24 @@ pub struct FitParam {
 }
 
 impl FitParam {
-    /// Value at normalised coordinate `u` ∈ [0, 1].
+    /// Value at normalised coordinate `u` ∈ [0, 1], inside `[lo, hi]`: `lo·(hi/lo)^u`
+    /// can round one ulp past `hi` at `u = 1` (a noise floor of 100.00000000000001 where
+    /// the catalogue allows 100), which the effect's own range check then refuses.
     pub fn value(&self, u: f64) -> f64 {
         let u = u.clamp(0.0, 1.0);
-        if self.log {
+        let v = if self.log {
             self.lo * (self.hi / self.lo).powf(u)
         } else {
             self.lo + (self.hi - self.lo) * u
+        };
+        // Not `f64::clamp`, which panics on a NaN bound.
+        let (a, b) = (self.lo.min(self.hi), self.lo.max(self.hi));
+        if v > b {
+            b
+        } else if v < a {
+            a
+        } else {
+            v
         }
     }
 

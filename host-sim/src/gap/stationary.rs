@@ -336,10 +336,10 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         let Some(r) = recs.first() else {
             return Err(GapError::input("--real: no file"));
         };
-        let need = (3.0 * MIN_PART_S * r.fs).ceil() as usize;
+        let need = records::min_samples(3.0 * MIN_PART_S, r.fs);
         if r.accel.len() < need {
             return Err(GapError::input(format!(
-                "{}: {:.3} s is too short for three disjoint parts (training, validation, test); one record must hold at least {:.1} s ({} samples at {} Hz), or give several records",
+                "{}: {:.4} s is too short for three disjoint parts (training, validation, test); one record must hold at least {:.1} s ({} samples at {} Hz), or give several records",
                 r.file.display(),
                 r.accel.len() as f64 / r.fs,
                 3.0 * MIN_PART_S,

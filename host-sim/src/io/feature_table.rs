@@ -255,17 +255,30 @@ pub fn is_feature_table(path: &Path) -> bool {
     let side = sidecar_path(path);
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
-        && std::fs::read_to_string(side)
-            .ok()
-            .and_then(|s| serde_json::from_str::<serde_json::Value>(&s).ok())
-            .is_some_and(|v| v["format"] == FORMAT)
+        && sidecar_json(&side).is_ok_and(|v| v["format"] == FORMAT)
+}
+
+/// The JSON of a sidecar file: at most [`super::sidecar::MAX_SIDECAR_BYTES`], UTF-8, a
+/// byte order mark (spreadsheets' "CSV UTF-8", Windows editors) skipped.
+pub fn sidecar_json(path: &Path) -> Result<serde_json::Value, IoError> {
+    let max = super::sidecar::MAX_SIDECAR_BYTES;
+    let bytes =
+        super::record::read_capped(path, max, "sidecar", &format!("{max} bytes per sidecar"))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|e| IoError::malformed(path, format!("sidecar is not UTF-8 text: {e}")))?;
+    serde_json::from_str(without_bom(&text))
+        .map_err(|e| IoError::malformed(path, format!("sidecar is not JSON: {e}")))
+}
+
+/// `text` without the UTF-8 byte order mark that spreadsheet programs (Excel's "CSV UTF-8")
+/// and Windows editors put first: it is no part of the first column's name or the JSON.
+pub fn without_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
 /// Reads and checks a sidecar on its own (ranges of every field).
 pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read sidecar", e))?;
-    let v: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| IoError::malformed(path, format!("sidecar is not JSON: {e}")))?;
+    let v = sidecar_json(path)?;
     if v["format"] != FORMAT {
         return Err(sidecar_err(
             path,
@@ -488,7 +501,7 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
     )?;
     let text = String::from_utf8(bytes)
         .map_err(|e| IoError::malformed(path, format!("feature table is not UTF-8 text: {e}")))?;
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let mut lines = without_bom(&text).lines().filter(|l| !l.trim().is_empty());
     let header: Vec<String> = lines
         .next()
         .ok_or_else(|| IoError::truncated(path, "no header row"))?

@@ -144,8 +144,9 @@ fn read_json(path: &Path) -> Result<Value, IoError> {
         "sidecar",
         &format!("{MAX_SIDECAR_BYTES} bytes per sidecar"),
     )?;
-    serde_json::from_slice(&bytes)
-        .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))
+    // A UTF-8 byte order mark (Windows editors) is no part of the JSON.
+    let body = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
+    serde_json::from_slice(body).map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))
 }
 
 /// Read and validate one sidecar file.

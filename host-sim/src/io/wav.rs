@@ -5,8 +5,9 @@
 //! * Integer samples are scaled to ±1 full scale (divided by 2^(bits-1)), unit `"FS"`, unless a
 //!   sidecar gives `wav.scale` (multiplied after normalisation) and a unit (`wav.unit` or
 //!   `units[wav.column]`).
-//! * Float samples are taken as they are (times `wav.scale` if given); unit from the sidecar, else
-//!   `"unknown"`. The float WAV written by [`crate::io::write_outputs`] holds physical units.
+//! * Float samples are taken as they are (times `wav.scale` if given); unit from the sidecar
+//!   (`wav.unit`, `units[wav.column]`, else `units[channel]` or the file-wide `units`/`unit`),
+//!   else `"unknown"`. The float WAV written by [`crate::io::write_outputs`] holds physical units.
 //! * Sample rate: the header rate, cross-checked against a sidecar `fs` when both exist (they must
 //!   agree after rounding the sidecar rate to an integer, since WAV stores integer Hz; the exact
 //!   sidecar value is then used). An explicit rate argument must agree with both within 0.1 %
@@ -108,17 +109,28 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         &|side, head| side.round() == head,
     )?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let full_scale_units = int && scale == 1.0;
     let unit = sidecar
         .as_ref()
         .and_then(|s| {
-            s.wav_unit.clone().or_else(|| {
-                s.wav_column
-                    .as_deref()
-                    .and_then(|c| s.unit_of(c))
-                    .map(str::to_string)
-            })
+            s.wav_unit
+                .clone()
+                .or_else(|| {
+                    s.wav_column
+                        .as_deref()
+                        .and_then(|c| s.unit_of(c))
+                        .map(str::to_string)
+                })
+                // The unit the sidecar gives the channel by its name here (`"units":
+                // {"0": "g"}`) or the whole file (`"units": "g"`), as for CSV and NPY; not
+                // for integer samples without `wav.scale`, which stay full scale.
+                .or_else(|| {
+                    (!full_scale_units)
+                        .then(|| s.unit_of(&channel).map(str::to_string))
+                        .flatten()
+                })
         })
-        .unwrap_or_else(|| if int && scale == 1.0 { "FS" } else { "unknown" }.to_string());
+        .unwrap_or_else(|| if full_scale_units { "FS" } else { "unknown" }.to_string());
     Ok(Record {
         samples,
         fs,

@@ -85,12 +85,15 @@ pub struct LoadGroup {
     pub stage_onsets: Vec<(String, f64)>,
 }
 
-/// Runs the lives of `specs` (one spec per seed) on `threads` threads.
+/// Runs the lives of `specs` (one spec per seed) on `threads` threads. An error comes
+/// with the seed of the life that failed (of several, the first in `specs`' order), so
+/// that a message can say which of the lives it is about.
 pub fn run_lives(
     specs: Vec<LifeSpec>,
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
-) -> Result<Vec<LifeOutcome>, LifeError> {
+) -> Result<Vec<LifeOutcome>, (u64, LifeError)> {
+    let seed = |i: usize| specs.get(i).map_or(0, |s| s.seed);
     let lives = super::parallel::map_indexed(
         specs.len(),
         threads,
@@ -101,7 +104,11 @@ pub fn run_lives(
         progress,
         || Err(LifeError::NonFinite { cycles: f64::NAN }),
     );
-    lives.into_iter().collect()
+    lives
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| r.map_err(|e| (seed(i), e)))
+        .collect()
 }
 
 /// One life through the driver, recording the window RMS.
@@ -113,7 +120,7 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
     let mut pts: Vec<(f64, f64)> = vec![];
     let d = run.drive(
         |_| every,
-        u64::MAX,
+        super::MAX_LIFE_WINDOWS,
         |w| {
             // The onset is read as a periodic measurement would: transition windows left out.
             if w.scheduled {

@@ -27,6 +27,12 @@ use wearsim_core::{Model, ModelConfig, Sample, State};
 /// Capacity of the dynamic state.
 pub const CAPACITY: usize = wearsim_core::bearing::MAX_ELEMENTS;
 
+/// Most windows of one life in snapshot mode and in `life --lives` (a window every
+/// `--snapshot-every` revolutions and at every transition): each keeps its snapshot in
+/// memory, so `--snapshot-every 1` would otherwise grow the run with the life, to
+/// gigabytes and days. A default run has a few thousand.
+pub const MAX_LIFE_WINDOWS: u64 = 100_000;
+
 /// A life-run configuration (validated by [`LifeRun::new`]).
 #[derive(Debug, Clone)]
 pub struct LifeSpec {
@@ -388,7 +394,7 @@ impl LifeRun {
         let cap = self.spec.life.cycle_cap;
         let d = self.drive(
             |_| every,
-            u64::MAX,
+            MAX_LIFE_WINDOWS,
             |w| {
                 snapshots.push(self.snapshot(w.state, &w.samples, w.loads)?);
                 if let Some(stage) = w.entered {

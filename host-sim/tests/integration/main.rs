@@ -31,6 +31,7 @@ mod life;
 mod life_ball;
 mod life_sites;
 mod out_dirs;
+mod probe2;
 mod readers;
 mod reference_hashes;
 mod rig_tables;

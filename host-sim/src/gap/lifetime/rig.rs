@@ -198,13 +198,45 @@ impl RigDescription {
                     ),
                 )
             })?;
-        Self::scaled(
+        let d = Self::scaled(
             spec,
             s.rpm / 60.0,
             s.radial_load_n,
             s.sample_rate_hz,
             window,
-        )
+        )?;
+        d.check_rate().map_err(|e| field("sample_rate_hz", e))?;
+        Ok(d)
+    }
+
+    /// Whether the bearing can be simulated at the description's sample rate (the
+    /// simulated windows' rate): inside the simulator's output range, and high enough for
+    /// its step to resolve the stiffest contact mode (at most
+    /// [`wearsim_core::model::MAX_OVERSAMPLE`] internal steps per sample). The message
+    /// states the rate that would be accepted; the model's other fields are the
+    /// description's and checked where they are set.
+    #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
+    fn check_rate(&self) -> Result<(), String> {
+        let (lo, hi) = wearsim_core::model::OUTPUT_RATE_RANGE;
+        let (lo, hi) = (lo as f64, hi as f64);
+        let fs = self.sample_rate_hz;
+        if !(fs.is_finite() && (lo..=hi).contains(&fs)) {
+            return Err(format!(
+                "{fs} Hz: the simulated windows are rendered at the table's rate, allowed {lo}..={hi} Hz"
+            ));
+        }
+        match wearsim_core::Model::new_checked(self.model()?) {
+            Err(wearsim_core::ConfigError::StepTooLarge {
+                field: "fs",
+                min_internal_rate_hz,
+                ..
+            }) => Err(format!(
+                "{fs} Hz is too low to simulate this bearing: its stiffest contact mode needs a sample rate of at least {:.0} Hz ({} internal steps per sample at most), allowed up to {hi} Hz",
+                (min_internal_rate_hz / f64::from(wearsim_core::model::MAX_OVERSAMPLE)).ceil(),
+                wearsim_core::model::MAX_OVERSAMPLE
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// A bearing of geometry `g` at `shaft_hz`, `load_n`, rendered at `rate_hz` in

@@ -446,16 +446,16 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         (None, None) => (None, None),
     };
     let load = from_file(&load_node, 1.0);
-    let unit = match layout {
-        MatLayout::Cwru | MatLayout::Mfpt(_) => "g",
-        MatLayout::Paderborn(_) | MatLayout::Generic => "unknown",
-    };
     let channel = match layout {
         MatLayout::Cwru => ["DE", "FE", "BA"]
             .into_iter()
             .find(|c| chan_path.ends_with(&format!("_{c}_time")))
             .map_or(chan_name, str::to_string),
         _ => chan_name,
+    };
+    let (unit, unit_source) = match layout {
+        MatLayout::Cwru | MatLayout::Mfpt(_) => ("g".to_string(), "layout".to_string()),
+        MatLayout::Paderborn(_) | MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
     };
     let meta = json!({
         "format": if layout == MatLayout::Cwru { "cwru-mat5" } else { "mat5" },
@@ -471,6 +471,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             MatLayout::Mfpt(_) => "MFPT stores acceleration in g (field gs)",
             _ => "the file does not state units",
         },
+        "unit_source": unit_source,
         "label": if layout == MatLayout::Cwru { json!(label) } else { json!(null) },
     });
     Ok(Record {
@@ -479,8 +480,50 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         rpm,
         bearing: layout_bearing(&layout, &channel),
         channel,
-        unit: unit.into(),
+        unit,
         source: PathBuf::from(path),
         meta,
+    })
+}
+
+/// The unit of a MAT file whose layout states none (Paderborn, generic): the one its JSON
+/// sidecar (`<file>.json`, else `<stem>.json`) gives the channel (`"units": {"acc": "g"}`
+/// by its name or its path in the file) or the whole file (`"units": "g"`), else
+/// `unknown`; with the sidecar that gave it. Only the unit is read from a MAT file's
+/// sidecar (the file and the flags give the rate and the speed): a sidecar that also
+/// states other keys gets a warning that they are not read.
+fn sidecar_unit(path: &Path, channel: &str, chan_path: &str) -> Result<(String, String), IoError> {
+    let Some(side) = crate::io::sidecar::sidecar_for(path)? else {
+        return Ok(("unknown".into(), "none".into()));
+    };
+    let ignored: Vec<&String> = side
+        .raw
+        .as_object()
+        .map(|o| {
+            o.keys()
+                .filter(|k| !matches!(k.as_str(), "units" | "unit"))
+                .collect()
+        })
+        .unwrap_or_default();
+    if !ignored.is_empty() {
+        eprintln!(
+            "wearsim: warning: {}: a MAT file's sidecar is read for `units`/`unit` only; not read: {}",
+            side.path.display(),
+            ignored
+                .iter()
+                .map(|k| format!("`{k}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    let unit = side
+        .units
+        .get(channel)
+        .or_else(|| side.units.get(chan_path))
+        .or(side.unit.as_ref())
+        .cloned();
+    Ok(match unit {
+        Some(u) => (u, format!("sidecar:{}", side.path.display())),
+        None => ("unknown".into(), "none".into()),
     })
 }

@@ -1,0 +1,337 @@
+//! Defects found by an outside review that ran `gap`, `features` and `life` on records and
+//! tables the project's own tests did not have (other sample rates, other labs' layouts,
+//! hand-written tables); one test per defect, each named after what must hold.
+
+use crate::support::{refused, s, wearsim};
+use wearsim_core::effects::{EffectKind, Effects};
+use wearsim_host::gap::space::{space, Context};
+
+/// A record of `m/s^2` at 51.2 kHz with a DC offset made `gap` exit 1 with
+/// "sensor.noise = 100.00000000000001 is out of range": the fitted range was clamped to
+/// the catalogue's 100, but `lo·(hi/lo)^1` rounded one ulp above it. Every effect's fit
+/// space, at both ends, must give values its own range check accepts, whatever the
+/// record's level and rate.
+#[test]
+fn fit_space_ends_stay_inside_the_catalogue_bounds_at_any_level() {
+    for fs in [12_000.0, 25_600.0, 48_828.125, 51_200.0, 97_656.25] {
+        for k in 0..400 {
+            let rms = 10f64.powf(-3.0 + 7.0 * f64::from(k) / 400.0) * 1.000_001_3;
+            let ctx = Context {
+                fs,
+                shaft_hz: 29.95,
+                rms,
+                mains_hz: 50.0,
+                preload_max: 0.5,
+            };
+            for kind in EffectKind::ALL {
+                let sp = space(kind, &ctx);
+                for u in [0.0, 1.0] {
+                    let coords = vec![u; sp.fitted.len()];
+                    let mut fx = Effects::NONE;
+                    if let Err(e) = sp.apply(&mut fx, &coords) {
+                        panic!("fs {fs}, rms {rms}, u {u}: {e}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A broadband test signal of `n` samples (deterministic), peak about 0.5.
+fn noise(n: usize) -> Vec<f64> {
+    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect()
+}
+
+/// A float WAV's unit came only from `wav.unit` or `units[wav.column]`: a sidecar with
+/// `"units": "g"` or `"units": {"0": "g"}` (what the gap's own error asks for) left it
+/// `unknown`, so `gap` refused the record with advice that did not work.
+#[test]
+fn a_float_wav_takes_the_unit_its_sidecar_gives_the_file_or_the_channel() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(60_000);
+    for (name, side) in [
+        ("whole", r#"{"fs": 25600, "rpm": 1797, "units": "g"}"#),
+        ("chan", r#"{"fs": 25600, "rpm": 1797, "units": {"0": "g"}}"#),
+    ] {
+        let wav = dir.path().join(format!("{name}.wav"));
+        let spec = hound::WavSpec {
+            channels: 1,
+            sample_rate: 25_600,
+            bits_per_sample: 32,
+            sample_format: hound::SampleFormat::Float,
+        };
+        let mut w = hound::WavWriter::create(&wav, spec).expect("create wav");
+        for v in &x {
+            w.write_sample(*v as f32).expect("sample");
+        }
+        w.finalize().expect("finalize");
+        std::fs::write(dir.path().join(format!("{name}.json")), side).expect("sidecar");
+        let o = wearsim(&["analyze", s(&wav), "--bearing", "cwru-6205-de", "--json"]);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            out.contains(r#""unit": "g""#),
+            "{name}: unit not g in {out}"
+        );
+    }
+    // An integer WAV without `wav.scale` stays full scale, and the gap says how to scale it.
+    let wav = dir.path().join("int.wav");
+    let spec = hound::WavSpec {
+        channels: 1,
+        sample_rate: 25_600,
+        bits_per_sample: 16,
+        sample_format: hound::SampleFormat::Int,
+    };
+    let mut w = hound::WavWriter::create(&wav, spec).expect("create wav");
+    for v in &x {
+        w.write_sample((v * 30_000.0) as i16).expect("sample");
+    }
+    w.finalize().expect("finalize");
+    std::fs::write(
+        dir.path().join("int.json"),
+        r#"{"fs": 25600, "rpm": 1797, "units": "g"}"#,
+    )
+    .expect("sidecar");
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--real",
+        s(&wav),
+        "--bearing",
+        "cwru-6205-de",
+        "--out",
+        s(&out),
+    ]);
+    refused(&o, &["int.wav", "FS", "wav", "scale"]);
+}
+
+/// A MAT file of no known layout (or Paderborn's) had unit `unknown` and no way to set
+/// it: `gap` asked for a sidecar that the MAT reader never read. Its sidecar now gives the
+/// unit (only the unit; other keys are named in a warning).
+#[test]
+fn a_generic_mat_file_takes_its_unit_from_a_sidecar() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(60_000);
+    let bytes =
+        wearsim_host::io::mat::mat5_bytes(&[("acc", &x), ("fs", &[25_600.0]), ("rpm", &[1797.0])]);
+    let mat = dir.path().join("lab.mat");
+    std::fs::write(&mat, bytes).expect("write mat");
+    let args = ["analyze", s(&mat), "--bearing", "cwru-6205-de", "--json"];
+    let o = wearsim(&args);
+    assert!(String::from_utf8_lossy(&o.stdout).contains(r#""unit": "unknown""#));
+    std::fs::write(
+        dir.path().join("lab.json"),
+        r#"{"units": {"acc": "m/s^2"}, "fs": 1}"#,
+    )
+    .expect("sidecar");
+    let o = wearsim(&args);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.contains(r#""unit": "m/s^2""#), "{out}");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("`units`/`unit` only") && err.contains("`fs`"),
+        "{err}"
+    );
+}
+
+/// At a rate that is no whole number of Hz (48 828.125 Hz, a common DAQ rate) a record of
+/// exactly 1.5 s holds 73 242 samples, and `gap` refused it: "1.500 s is too short …
+/// one record must hold at least 1.5 s (73243 samples)". Lengths are counted to the
+/// nearest sample.
+#[test]
+fn a_record_of_exactly_the_minimum_length_passes_at_a_fractional_rate() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let fs = 48_828.125;
+    let x = noise((1.5 * fs) as usize);
+    assert_eq!(x.len(), 73_242);
+    let mut csv = String::from("accel\n");
+    for v in &x {
+        csv.push_str(&format!("{v}\n"));
+    }
+    let rec = dir.path().join("rec.csv");
+    std::fs::write(&rec, csv).expect("csv");
+    std::fs::write(
+        dir.path().join("rec.json"),
+        format!(r#"{{"fs": {fs}, "rpm": 1797, "units": "g"}}"#),
+    )
+    .expect("sidecar");
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--real",
+        s(&rec),
+        "--bearing",
+        "cwru-6205-de",
+        "--defect",
+        "none",
+        "--effects",
+        "sensor",
+        "--no-calibration",
+        "--jobs",
+        "1",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("too short"), "{err}");
+    assert_eq!(o.status.code(), Some(0), "{err}");
+}
+
+/// Writes a documented feature table `name.csv` of `n` rows and its sidecar `name.json`
+/// (the worked example's rig, 13 balls, 3600 s apart) with `rate` Hz, `bom` before both.
+fn bom_table(
+    dir: &std::path::Path,
+    name: &str,
+    n: usize,
+    rate: f64,
+    bom: bool,
+) -> std::path::PathBuf {
+    let b = if bom { "\u{feff}" } else { "" };
+    let mut csv = format!("{b}snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak\n");
+    for k in 0..n {
+        let rms = 0.5 + 0.001 * (k % 7) as f64;
+        csv.push_str(&format!(
+            "{k},{},{rms},3.0,4.5,0.0,{}\n",
+            3600.0 * k as f64,
+            4.5 * rms
+        ));
+    }
+    let p = dir.join(format!("{name}.csv"));
+    std::fs::write(&p, csv).expect("table");
+    let side = format!(
+        r#"{b}{{"format": "wearsim-feature-table", "format_version": 1, "source": "probe",
+ "bearing": {{"geometry": {{"elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "angle_deg": 0.0}}, "id": "b1"}},
+ "channel": "horiz", "unit": "g", "rpm": 1800.0, "radial_load_n": 4000.0,
+ "sample_rate_hz": {rate}, "snapshot_samples": 64, "snapshot_interval_s": 3600.0,
+ "failure_mode": "outer-race", "n_snapshots": {n}}}"#
+    );
+    std::fs::write(dir.join(format!("{name}.json")), side).expect("sidecar");
+    p
+}
+
+/// A feature table saved by a spreadsheet as "CSV UTF-8" starts with a byte order mark:
+/// it was refused as "missing column `snapshot`" (the column was there), and a sidecar
+/// with one as "expected value at line 1 column 1".
+#[test]
+fn a_feature_table_and_sidecar_with_a_byte_order_mark_are_read() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let a = bom_table(dir.path(), "a", 12, 25_600.0, true);
+    let b = bom_table(dir.path(), "b", 12, 25_600.0, true);
+    let out = dir.path().join("gap");
+    let o = wearsim(&[
+        "gap",
+        "--life",
+        "--real",
+        s(&a),
+        "--real",
+        s(&b),
+        "--out",
+        s(&out),
+    ]);
+    // Read through to the life's own check: 12 snapshots are too few for its stages.
+    refused(&o, &["running-in stage"]);
+}
+
+/// A table's `sample_rate_hz` that the simulator cannot render was refused naming `fs`
+/// ("fs = 50 is out of range", "fs: internal step too large … use an internal rate of at
+/// least 89824 Hz"), neither the sidecar nor its field, nor a rate a table could have.
+#[test]
+fn a_table_rate_the_simulator_cannot_render_is_refused_naming_the_sidecar_field() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("gap");
+    for (rate, needles) in [
+        (
+            50.0,
+            vec![
+                "sidecar field `sample_rate_hz`",
+                "50 Hz",
+                "100..=1000000 Hz",
+            ],
+        ),
+        (
+            1000.0,
+            vec![
+                "sidecar field `sample_rate_hz`",
+                "1000 Hz is too low",
+                "at least",
+            ],
+        ),
+    ] {
+        let a = bom_table(dir.path(), "a", 400, rate, false);
+        let b = bom_table(dir.path(), "b", 400, rate, false);
+        let o = wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&a),
+            "--real",
+            s(&b),
+            "--out",
+            s(&out),
+        ]);
+        let mut n = needles.clone();
+        n.push("a.json");
+        refused(&o, &n);
+        assert!(!out.exists(), "{rate} Hz: an output was written");
+    }
+}
+
+/// `life --lives` over load scales where one life runs into the cycle cap said only "the
+/// bearing did not fail within the cycle cap", not which load scale or seed.
+#[test]
+fn a_life_statistics_run_names_the_load_scale_and_seed_of_a_life_that_did_not_fail() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("lives");
+    let o = wearsim(&[
+        "life",
+        "--lives",
+        "3",
+        "--loads",
+        "0.05,1",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    refused(&o, &["load scale 0.05", "seed 1", "cycle cap"]);
+}
+
+/// `life --snapshot-every 1` rendered and kept a window per revolution for the whole life
+/// (tens of millions, growing memory for hours); a life is now bounded to
+/// `MAX_LIFE_WINDOWS` windows and refused (exit 2) naming the flag to raise.
+#[test]
+fn a_life_needing_more_windows_than_the_bound_is_refused_naming_snapshot_every() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("life");
+    let o = wearsim(&[
+        "life",
+        "--snapshot-every",
+        "1",
+        "--window",
+        "0.02",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    refused(&o, &["100000 windows", "--snapshot-every"]);
+    assert!(!out.join("life-summary.json").exists());
+}
