@@ -303,13 +303,7 @@ pub fn convert(
                     read_ims_snapshot(path, ch)?
                 }
                 RawLayout::Femto => {
-                    let sep = if std::fs::read_to_string(path)
-                        .map_err(|e| IoError::io(path, "read", e))?
-                        .lines()
-                        .next()
-                        .unwrap_or("")
-                        .contains(';')
-                    {
+                    let sep = if crate::io::layout::first_line(path)?.contains(';') {
                         b';'
                     } else {
                         b','

@@ -148,7 +148,7 @@ fn why_not_table(p: &Path) -> String {
             side.display()
         );
     }
-    match crate::io::feature_table::sidecar_json(&side) {
+    match crate::io::sidecar::read_json(&side) {
         Err(e) => format!("its sidecar cannot be read: {e}"),
         Ok(v) => format!(
             "its sidecar {} has `format` {} (a feature table's is {FORMAT:?})",

@@ -206,8 +206,7 @@ pub(crate) fn no_file_of(dir: &Path, layout: RawLayout) -> FeaturesError {
 
 /// FEMTO clock of a snapshot's first row, s since midnight.
 pub(crate) fn femto_clock(path: &Path) -> Result<f64, FeaturesError> {
-    let text = std::fs::read_to_string(path).map_err(|e| IoError::io(path, "read", e))?;
-    let first = text.lines().next().unwrap_or("");
+    let first = crate::io::layout::first_line(path)?;
     let sep = if first.contains(';') { ';' } else { ',' };
     let c: Vec<f64> = first
         .split(sep)

@@ -255,19 +255,7 @@ pub fn is_feature_table(path: &Path) -> bool {
     let side = sidecar_path(path);
     path.extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
-        && sidecar_json(&side).is_ok_and(|v| v["format"] == FORMAT)
-}
-
-/// The JSON of a sidecar file: at most [`super::sidecar::MAX_SIDECAR_BYTES`], UTF-8, a
-/// byte order mark (spreadsheets' "CSV UTF-8", Windows editors) skipped.
-pub fn sidecar_json(path: &Path) -> Result<serde_json::Value, IoError> {
-    let max = super::sidecar::MAX_SIDECAR_BYTES;
-    let bytes =
-        super::record::read_capped(path, max, "sidecar", &format!("{max} bytes per sidecar"))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|e| IoError::malformed(path, format!("sidecar is not UTF-8 text: {e}")))?;
-    serde_json::from_str(without_bom(&text))
-        .map_err(|e| IoError::malformed(path, format!("sidecar is not JSON: {e}")))
+        && super::sidecar::read_json(&side).is_ok_and(|v| v["format"] == FORMAT)
 }
 
 /// `text` without the UTF-8 byte order mark that spreadsheet programs (Excel's "CSV UTF-8")
@@ -278,7 +266,7 @@ pub fn without_bom(text: &str) -> &str {
 
 /// Reads and checks a sidecar on its own (ranges of every field).
 pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
-    let v = sidecar_json(path)?;
+    let v = super::sidecar::read_json(path)?;
     if v["format"] != FORMAT {
         return Err(sidecar_err(
             path,
@@ -289,12 +277,22 @@ pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
     let s: FeatureSidecar = serde_json::from_value(v.clone()).map_err(|e| {
         let msg = e.to_string();
         let field = mistyped_field(&v)
-            .or_else(|| msg.split('`').nth(1).map(String::from))
+            .or_else(|| msg.split('`').nth(1).map(dotted_key))
             .unwrap_or_else(|| "(the sidecar)".into());
         sidecar_err(path, &field, msg)
     })?;
     check_sidecar(path, &s)?;
     Ok(s)
+}
+
+/// A key serde names without its place (a missing `id` of `bearing`), dotted as the
+/// documentation names it: the keys of `bearing` and of its `geometry` are no top-level keys.
+fn dotted_key(key: &str) -> String {
+    match key {
+        "preset" | "geometry" | "id" => format!("bearing.{key}"),
+        "elements" | "ball_mm" | "pitch_mm" | "angle_deg" => format!("bearing.geometry.{key}"),
+        _ => key.to_string(),
+    }
 }
 
 /// The first sidecar key (dotted for `bearing.*`) whose value has the wrong JSON type:

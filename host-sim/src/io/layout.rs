@@ -73,17 +73,25 @@ fn read_head(path: &Path) -> Result<Vec<u8>, IoError> {
     Ok(buf)
 }
 
+/// The first line of `path` (trimmed), read from its first 4096 bytes only: what a text
+/// layout is recognised from, and what a FEMTO snapshot's clock and separator are taken
+/// from, without reading a file of any size whole. Empty for an empty file.
+pub fn first_line(path: &Path) -> Result<String, IoError> {
+    let head = read_head(path)?;
+    let text = String::from_utf8_lossy(&head);
+    Ok(text.lines().next().map(str::trim).unwrap_or("").to_string())
+}
+
 /// Recognise the layout of a text file from its content: the first line and, for IMS, the
 /// number of rows. `None` if it is none of the layouts (the generic CSV reader applies then).
 pub fn sniff_text(path: &Path) -> Result<Option<TextLayout>, IoError> {
     let len = std::fs::metadata(path)
         .map_err(|e| IoError::io(path, "stat", e))?
         .len();
-    let head = read_head(path)?;
-    let text = String::from_utf8_lossy(&head);
-    let Some(first) = text.lines().next().map(str::trim) else {
+    let first = first_line(path)?;
+    if first.is_empty() {
         return Ok(None);
-    };
+    }
     let cells: Vec<&str> = first.split(',').map(str::trim).collect();
     if cells.len() == 2
         && cells
@@ -308,6 +316,22 @@ fn check_xjtu_header(path: &Path) -> Result<(), IoError> {
 mod tests {
     use super::*;
     use crate::io::read_any;
+
+    /// The first line comes from the file's head only: a FEMTO clock row followed by a
+    /// 64 MiB line (no newline) is read as that row, and an empty file gives "".
+    #[test]
+    fn first_line_reads_the_head_of_a_file_of_any_size() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("acc_00001.csv");
+        let mut body = b"9;39;39;65664;0.552;-0.146\n".to_vec();
+        body.resize(body.len() + (64 << 20), b'1');
+        std::fs::write(&p, &body).unwrap();
+        assert_eq!(first_line(&p).unwrap(), "9;39;39;65664;0.552;-0.146");
+        let e = dir.path().join("empty.csv");
+        std::fs::write(&e, b"").unwrap();
+        assert_eq!(first_line(&e).unwrap(), "");
+        assert!(first_line(&dir.path().join("missing.csv")).is_err());
+    }
 
     fn opts(ch: Option<&str>) -> ReadOptions {
         ReadOptions {

@@ -136,8 +136,9 @@ fn report_kind(raw: &Value) -> Option<&'static str> {
     }
 }
 
-/// The JSON value of a sidecar file, at most [`MAX_SIDECAR_BYTES`].
-fn read_json(path: &Path) -> Result<Value, IoError> {
+/// The JSON value of a sidecar file (a record's or a feature table's), at most
+/// [`MAX_SIDECAR_BYTES`], a UTF-8 byte order mark skipped.
+pub fn read_json(path: &Path) -> Result<Value, IoError> {
     let bytes = super::record::read_capped(
         path,
         MAX_SIDECAR_BYTES,

@@ -335,3 +335,37 @@ fn a_life_needing_more_windows_than_the_bound_is_refused_naming_snapshot_every()
     refused(&o, &["100000 windows", "--snapshot-every"]);
     assert!(!out.join("life-summary.json").exists());
 }
+
+/// A sidecar whose `bearing` lacks `id` was refused naming `id`, a top-level key the format
+/// does not have; a held-out life at another speed than the training life's was refused
+/// saying that `rpm` differs, without either value.
+#[test]
+fn table_sidecar_errors_name_the_dotted_key_and_both_values() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let a = bom_table(dir.path(), "a", 400, 25_600.0, false);
+    let b = bom_table(dir.path(), "b", 400, 25_600.0, false);
+    let out = dir.path().join("gap");
+    let run = || {
+        wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&a),
+            "--real",
+            s(&b),
+            "--out",
+            s(&out),
+        ])
+    };
+    let edit = |name: &str, from: &str, to: &str| {
+        let p = dir.path().join(name);
+        let t = std::fs::read_to_string(&p).expect("sidecar");
+        assert!(t.contains(from), "{t}");
+        std::fs::write(&p, t.replace(from, to)).expect("sidecar");
+    };
+    edit("b.json", r#""rpm": 1800.0"#, r#""rpm": 1500.0"#);
+    refused(&run(), &["b.json", "`rpm` differs", "1500 against 1800"]);
+    edit("a.json", r#", "id": "b1""#, "");
+    refused(&run(), &["a.json", "`bearing.id`"]);
+    assert!(!out.exists(), "an output was written");
+}

@@ -305,26 +305,56 @@ impl RigDescription {
             .map_err(|e| format!("simulated bearing ({}): {e}", self.origin))
     }
 
-    /// The first field in which `other` differs from this description, if any.
-    pub fn differs(&self, other: &Self) -> Option<&'static str> {
+    /// The first field in which `other` differs from this description, if any, with this
+    /// description's value and `other`'s (as the sidecar states them: rpm, N, Hz, samples).
+    pub fn differs(&self, other: &Self) -> Option<(&'static str, String, String)> {
+        let geometry = |d: &Self| {
+            format!(
+                "{} × {} mm on {} mm, {}°",
+                d.elements, d.ball_mm, d.pitch_mm, d.angle_deg
+            )
+        };
         let f = [
             (
                 "bearing",
                 self.origin != other.origin || self.base != other.base,
+                format!("{} ({})", self.origin, self.base),
+                format!("{} ({})", other.origin, other.base),
             ),
-            ("bearing.geometry", self.geometry != other.geometry),
-            ("rpm", self.shaft_hz != other.shaft_hz),
-            ("radial_load_n", self.radial_load_n != other.radial_load_n),
+            (
+                "bearing.geometry",
+                self.geometry != other.geometry,
+                geometry(self),
+                geometry(other),
+            ),
+            (
+                "rpm",
+                self.shaft_hz != other.shaft_hz,
+                format!("{}", 60.0 * self.shaft_hz),
+                format!("{}", 60.0 * other.shaft_hz),
+            ),
+            (
+                "radial_load_n",
+                self.radial_load_n != other.radial_load_n,
+                format!("{}", self.radial_load_n),
+                format!("{}", other.radial_load_n),
+            ),
             (
                 "sample_rate_hz",
                 self.sample_rate_hz != other.sample_rate_hz,
+                format!("{}", self.sample_rate_hz),
+                format!("{}", other.sample_rate_hz),
             ),
             (
                 "snapshot_samples",
                 self.window_samples != other.window_samples,
+                format!("{}", self.window_samples),
+                format!("{}", other.window_samples),
             ),
         ];
-        f.iter().find(|(_, d)| *d).map(|(n, _)| *n)
+        f.into_iter()
+            .find(|(_, d, _, _)| *d)
+            .map(|(n, _, a, b)| (n, a, b))
     }
 }
 
@@ -364,7 +394,7 @@ mod tests {
         assert!(d.differs(&d.clone()).is_none());
         let mut e = d.clone();
         e.radial_load_n = 1.0;
-        assert_eq!(d.differs(&e), Some("radial_load_n"));
+        assert_eq!(d.differs(&e).map(|x| x.0), Some("radial_load_n"));
     }
 
     #[test]

@@ -48,9 +48,9 @@ pub fn measured_tables(paths: &[PathBuf], o: &LifeOptions) -> Result<MeasuredSet
     let mut holdout = vec![];
     for k in &o.holdout {
         let (life, r) = read(*k)?;
-        if let Some(f) = rig.differs(&r) {
+        if let Some((f, ours, theirs)) = rig.differs(&r) {
             return Err(format!(
-                "{}: sidecar field `{f}` differs from the training life's ({}): the lives of one diagnosis share one simulated bearing",
+                "{}: sidecar field `{f}` differs from the training life's ({}): {theirs} against {ours}; the lives of one diagnosis share one simulated bearing",
                 sidecar_path(std::path::Path::new(&life.file)).display(),
                 sidecar_path(std::path::Path::new(&train.file)).display()
             ));
