@@ -44,6 +44,11 @@ pub enum ConfigError {
         limit: f64,
         /// Smallest internal rate (Hz) that would be accepted.
         min_internal_rate_hz: f64,
+        /// The largest automatic oversample (internal steps per output sample) when the
+        /// oversample was automatic and even it was too coarse: the output rate `fs` must
+        /// then be at least `min_internal_rate_hz / max_oversample`. `None` when the
+        /// configuration fixed the oversample.
+        max_oversample: Option<u32>,
     },
     /// A feature of the model that this version does not implement.
     Unsupported {
@@ -91,11 +96,24 @@ impl core::fmt::Display for ConfigError {
                 omega_h,
                 limit,
                 min_internal_rate_hz,
-            } => write!(
-                f,
-                "{field}: internal step too large for the stiffest mode (omega*h = {omega_h:.3}, \
-                 limit {limit}); use an internal rate of at least {min_internal_rate_hz:.0} Hz"
-            ),
+                max_oversample,
+            } => {
+                write!(
+                    f,
+                    "{field}: internal step too large for the stiffest mode (omega*h = \
+                     {omega_h:.3}, limit {limit}); use an internal rate of at least \
+                     {min_internal_rate_hz:.0} Hz"
+                )?;
+                match max_oversample {
+                    Some(r) if r > 0 => write!(
+                        f,
+                        ": an output rate fs of at least {:.0} Hz (at most {r} internal steps \
+                         per sample)",
+                        libm::ceil(min_internal_rate_hz / r as f64)
+                    ),
+                    _ => Ok(()),
+                }
+            }
             ConfigError::Unsupported { field, what } => {
                 write!(f, "{field}: {what} is not supported by this version")
             }

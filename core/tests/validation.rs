@@ -172,6 +172,34 @@ fn too_large_step_is_an_error() {
         ),
         "{e:?}"
     );
+    // The automatic oversample at 1 kHz: the message states the output rate that works (up
+    // to the largest oversample), and that rate is accepted.
+    match Model::new_checked(ModelConfig {
+        output_rate: 1000.0,
+        ..r.clone()
+    }) {
+        Err(
+            e @ ConfigError::StepTooLarge {
+                max_oversample: Some(k),
+                min_internal_rate_hz,
+                ..
+            },
+        ) => {
+            let fs = (min_internal_rate_hz / k as f64).ceil();
+            let msg = e.to_string();
+            assert!(
+                msg.contains(&format!("output rate fs of at least {fs:.0} Hz")),
+                "{msg}"
+            );
+            assert!(fs > 1000.0, "{msg}");
+            let ok = Model::new_checked(ModelConfig {
+                output_rate: fs as _,
+                ..r.clone()
+            });
+            assert!(ok.is_ok(), "{fs} Hz: {ok:?}");
+        }
+        other => panic!("expected StepTooLarge with the automatic oversample, got {other:?}"),
+    }
     // The exact integrator handles the over-damped as-printed preset.
     assert!(Model::new_checked(presets::by_name("thesis-as-printed").unwrap()).is_ok());
 }

@@ -376,6 +376,7 @@ fn oversampling(
                     omega_h: omega / (fs * r as f64),
                     limit,
                     min_internal_rate_hz: min_rate,
+                    max_oversample: None,
                 });
             }
             Ok(r)
@@ -387,6 +388,7 @@ fn oversampling(
                 omega_h: omega / (fs * MAX_OVERSAMPLE as f64),
                 limit,
                 min_internal_rate_hz: (omega / limit).max(wave_hz / 0.45),
+                max_oversample: Some(MAX_OVERSAMPLE),
             }),
         },
     }

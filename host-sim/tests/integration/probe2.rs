@@ -369,3 +369,39 @@ fn table_sidecar_errors_name_the_dotted_key_and_both_values() {
     refused(&run(), &["a.json", "`bearing.id`"]);
     assert!(!out.exists(), "an output was written");
 }
+
+/// `simulate --fs 1000` (inside the documented 100..=1e6) was refused as "use an internal
+/// rate of at least 12072 Hz", a rate no flag sets: the message now gives the output rate
+/// that works, and that rate is accepted.
+#[test]
+fn a_rate_too_low_for_the_bearing_is_refused_with_the_output_rate_that_works() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("sim");
+    let run = |fs: &str| {
+        wearsim(&[
+            "simulate",
+            "--fs",
+            fs,
+            "--duration",
+            "0.05",
+            "--out",
+            s(&out),
+        ])
+    };
+    let o = run("1000");
+    refused(&o, &["fs", "an output rate fs of at least"]);
+    assert!(!out.exists(), "an output was written");
+    let msg = String::from_utf8_lossy(&o.stderr).to_string();
+    let fs = msg
+        .split("an output rate fs of at least ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .expect("a rate in the message");
+    let ok = run(fs);
+    assert_eq!(
+        ok.status.code(),
+        Some(0),
+        "{fs} Hz: {}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+}

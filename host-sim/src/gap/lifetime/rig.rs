@@ -229,11 +229,11 @@ impl RigDescription {
             Err(wearsim_core::ConfigError::StepTooLarge {
                 field: "fs",
                 min_internal_rate_hz,
+                max_oversample: Some(k),
                 ..
             }) => Err(format!(
-                "{fs} Hz is too low to simulate this bearing: its stiffest contact mode needs a sample rate of at least {:.0} Hz ({} internal steps per sample at most), allowed up to {hi} Hz",
-                (min_internal_rate_hz / f64::from(wearsim_core::model::MAX_OVERSAMPLE)).ceil(),
-                wearsim_core::model::MAX_OVERSAMPLE
+                "{fs} Hz is too low to simulate this bearing: its stiffest contact mode needs a sample rate of at least {:.0} Hz ({k} internal steps per sample at most), allowed up to {hi} Hz",
+                (min_internal_rate_hz / f64::from(k)).ceil(),
             )),
             _ => Ok(()),
         }
