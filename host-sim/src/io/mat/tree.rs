@@ -262,29 +262,10 @@ fn top_elements(
     ctx: &mut Ctx<'_>,
     out: &mut Vec<MatNode>,
 ) -> Result<(), IoError> {
-    while cur.remaining() > 0 {
-        if cur.remaining() < 8 {
-            return Err(IoError::truncated(
-                cur.path,
-                format!(
-                    "{} stray bytes at offset {} of {} (shorter than an element tag)",
-                    cur.remaining(),
-                    cur.pos,
-                    cur.ctx
-                ),
-            ));
-        }
-        let at = cur.pos;
-        let (ty, n, small) = cur.tag("element tag")?;
-        if small {
-            cur.take(4, "small element")?;
-            continue;
-        }
-        let data = cur.take(n, "element data")?;
-        let pad = ((8 - n % 8) % 8).min(cur.remaining());
+    while let Some((at, ty, data)) = cur.next_element()? {
         match ty {
             MI_MATRIX => {
-                cur.pos += pad;
+                cur.skip_padding(data.len());
                 let where_ = format!("matrix element at offset {at} of {}", cur.ctx);
                 if let Some(node) = matrix(data, cur.big, cur.path, &where_, None, 1, ctx)? {
                     out.push(node);
@@ -299,16 +280,9 @@ fn top_elements(
                 }
                 let inflated = inflate(data, cur.path, at, &mut ctx.budget)?;
                 let c = format!("compressed element at offset {at}");
-                let mut inner = Cursor {
-                    buf: &inflated,
-                    pos: 0,
-                    big: cur.big,
-                    path: cur.path,
-                    ctx: &c,
-                };
-                top_elements(&mut inner, depth + 1, ctx, out)?;
+                top_elements(&mut cur.inner(&inflated, &c), depth + 1, ctx, out)?;
             }
-            _ => cur.pos += pad,
+            _ => cur.skip_padding(data.len()),
         }
     }
     Ok(())

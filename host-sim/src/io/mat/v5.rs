@@ -151,6 +151,9 @@ impl Default for Budget {
 /// Nesting limit for compressed-in-compressed elements.
 const MAX_DEPTH: u32 = 4;
 
+/// One element of a MAT stream: its offset in the stream, data type and data.
+pub(crate) type Element<'a> = (usize, u32, &'a [u8]);
+
 /// Bounds-checked little/big-endian cursor over a byte slice.
 pub(crate) struct Cursor<'a> {
     pub(crate) buf: &'a [u8],
@@ -191,6 +194,56 @@ impl<'a> Cursor<'a> {
         } else {
             u32::from_le_bytes(a)
         })
+    }
+
+    /// The next element of the stream: `(offset, data type, data)`, its padding not yet
+    /// skipped ([`Cursor::skip_padding`]; compressed elements have none); small elements
+    /// (data inside the tag) are passed over; `None` at the end. Trailing bytes shorter than
+    /// a tag are an error: MATLAB never writes them.
+    pub(crate) fn next_element(&mut self) -> Result<Option<Element<'a>>, IoError> {
+        loop {
+            match self.remaining() {
+                0 => return Ok(None),
+                r if r < 8 => {
+                    return Err(IoError::truncated(
+                        self.path,
+                        format!(
+                            "{r} stray bytes at offset {} of {} (shorter than an element tag)",
+                            self.pos, self.ctx
+                        ),
+                    ))
+                }
+                _ => {}
+            }
+            let at = self.pos;
+            let (ty, n, small) = self.tag("element tag")?;
+            if small {
+                self.take(4, "small element")?;
+                continue;
+            }
+            return Ok(Some((at, ty, self.take(n, "element data")?)));
+        }
+    }
+
+    /// Skips the padding that aligns an uncompressed element of `n` bytes to 8 bytes (as
+    /// much of it as the stream holds).
+    pub(crate) fn skip_padding(&mut self, n: usize) {
+        self.pos += ((8 - n % 8) % 8).min(self.remaining());
+    }
+
+    /// A cursor over `buf` (an inflated compressed element, described by `ctx`) with this
+    /// one's byte order and file.
+    pub(crate) fn inner<'b>(&self, buf: &'b [u8], ctx: &'b str) -> Cursor<'b>
+    where
+        'a: 'b,
+    {
+        Cursor {
+            buf,
+            pos: 0,
+            big: self.big,
+            path: self.path,
+            ctx,
+        }
     }
 
     /// Read an element tag; returns (data type, byte count, small-format flag).
@@ -313,30 +366,10 @@ pub(crate) fn parse_elements(
     out: &mut Vec<MatVariable>,
     budget: &mut Budget,
 ) -> Result<(), IoError> {
-    while cur.remaining() > 0 {
-        if cur.remaining() < 8 {
-            // Trailing garbage shorter than a tag: MATLAB never writes this.
-            return Err(IoError::truncated(
-                cur.path,
-                format!(
-                    "{} stray bytes at offset {} of {} (shorter than an element tag)",
-                    cur.remaining(),
-                    cur.pos,
-                    cur.ctx
-                ),
-            ));
-        }
-        let at = cur.pos;
-        let (ty, n, small) = cur.tag("element tag")?;
-        if small {
-            cur.take(4, "small element")?;
-            continue;
-        }
-        let data = cur.take(n, "element data")?;
+    while let Some((at, ty, data)) = cur.next_element()? {
         match ty {
             MI_MATRIX => {
-                let pad = ((8 - n % 8) % 8).min(cur.remaining());
-                cur.pos += pad;
+                cur.skip_padding(data.len());
                 if let Some(v) = parse_matrix(data, cur, at, want, budget)? {
                     out.push(v);
                 }
@@ -352,20 +385,16 @@ pub(crate) fn parse_elements(
                 }
                 let inflated = inflate(data, cur.path, at, budget)?;
                 let ctx = format!("compressed element at offset {at}");
-                let mut inner = Cursor {
-                    buf: &inflated,
-                    pos: 0,
-                    big: cur.big,
-                    path: cur.path,
-                    ctx: &ctx,
-                };
-                parse_elements(&mut inner, want, depth + 1, out, budget)?;
+                parse_elements(
+                    &mut cur.inner(&inflated, &ctx),
+                    want,
+                    depth + 1,
+                    out,
+                    budget,
+                )?;
             }
-            _ => {
-                // Unknown top-level element: skip it (with padding).
-                let pad = ((8 - n % 8) % 8).min(cur.remaining());
-                cur.pos += pad;
-            }
+            // Unknown top-level element: skipped with its padding.
+            _ => cur.skip_padding(data.len()),
         }
     }
     Ok(())
