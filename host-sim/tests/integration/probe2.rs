@@ -2,7 +2,7 @@
 //! tables the project's own tests did not have (other sample rates, other labs' layouts,
 //! hand-written tables); one test per defect, each named after what must hold.
 
-use crate::support::{refused, s, wearsim};
+use crate::support::{gap_life, refused, s, wearsim};
 use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_host::gap::space::{space, Context};
 
@@ -197,24 +197,6 @@ fn a_record_of_exactly_the_minimum_length_passes_at_a_fractional_rate() {
     assert_eq!(o.status.code(), Some(0), "{err}");
 }
 
-/// `wearsim gap --life` of the training table `a` and the held-out table `b` into `out`.
-fn gap_life(
-    a: &std::path::Path,
-    b: &std::path::Path,
-    out: &std::path::Path,
-) -> std::process::Output {
-    wearsim(&[
-        "gap",
-        "--life",
-        "--real",
-        s(a),
-        "--real",
-        s(b),
-        "--out",
-        s(out),
-    ])
-}
-
 /// Writes a documented feature table `name.csv` of `n` rows and its sidecar `name.json`
 /// (the worked example's rig, 13 balls, 3600 s apart) with `rate` Hz, `bom` before both.
 fn bom_table(
@@ -256,7 +238,7 @@ fn a_feature_table_and_sidecar_with_a_byte_order_mark_are_read() {
     let a = bom_table(dir.path(), "a", 12, 25_600.0, true);
     let b = bom_table(dir.path(), "b", 12, 25_600.0, true);
     let out = dir.path().join("gap");
-    let o = gap_life(&a, &b, &out);
+    let o = gap_life(&a, &b, &out, &[]);
     // Read through to the life's own check: 12 snapshots are too few for its stages.
     refused(&o, &["running-in stage"]);
 }
@@ -288,7 +270,7 @@ fn a_table_rate_the_simulator_cannot_render_is_refused_naming_the_sidecar_field(
     ] {
         let a = bom_table(dir.path(), "a", 400, rate, false);
         let b = bom_table(dir.path(), "b", 400, rate, false);
-        let o = gap_life(&a, &b, &out);
+        let o = gap_life(&a, &b, &out, &[]);
         let mut n = needles.clone();
         n.push("a.json");
         refused(&o, &n);
@@ -345,7 +327,7 @@ fn table_sidecar_errors_name_the_dotted_key_and_both_values() {
     let a = bom_table(dir.path(), "a", 400, 25_600.0, false);
     let b = bom_table(dir.path(), "b", 400, 25_600.0, false);
     let out = dir.path().join("gap");
-    let run = || gap_life(&a, &b, &out);
+    let run = || gap_life(&a, &b, &out, &[]);
     let edit = |name: &str, from: &str, to: &str| {
         let p = dir.path().join(name);
         let t = std::fs::read_to_string(&p).expect("sidecar");

@@ -92,21 +92,12 @@ fn table_every(
 }
 
 fn gap(a: &Path, b: &Path, out: &Path) -> Output {
-    wearsim(&[
-        "gap",
-        "--life",
-        "--real",
-        s(a),
-        "--real",
-        s(b),
-        "--effects",
-        "sensor",
-        "--life-search",
-        "2",
-        "--out",
-        s(out),
-        "--json",
-    ])
+    support::gap_life(
+        a,
+        b,
+        out,
+        &["--effects", "sensor", "--life-search", "2", "--json"],
+    )
 }
 
 /// `docs/feature-tables.md`.

@@ -82,3 +82,20 @@ pub const FEMTO_FLAGS: [&str; 6] = [
     "--bearing-geometry",
     "elements=13,ball=3.5,pitch=25.6,angle=0",
 ];
+
+/// `wearsim gap --life` of the training table `a` and the held-out table `b` into `out`,
+/// with `extra` arguments after them.
+pub fn gap_life(a: &Path, b: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "gap",
+        "--life",
+        "--real",
+        s(a),
+        "--real",
+        s(b),
+        "--out",
+        s(out),
+    ];
+    args.extend_from_slice(extra);
+    wearsim(&args)
+}
