@@ -24,7 +24,8 @@ pub struct LifeArgs {
     /// TOML scenario file (as for `simulate`) instead of a preset.
     #[arg(long)]
     pub config: Option<PathBuf>,
-    /// Cycle cap: revolutions within which the bearing must fail, 1..=1e13.
+    /// Cycle cap: revolutions within which the bearing must fail, 1..=1e13 (with --lives, a
+    /// life still running there ends as a suspension: right-censored, fitted as such).
     #[arg(long, default_value_t = 5.0e7)]
     pub cycles: f64,
     /// Revolutions between snapshots (a vibration window is also rendered at every transition).
@@ -342,16 +343,17 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let mut csv = String::from(
-        "load_scale,seed,life_revs,first_spall_revs,initiation,onset_fraction,wall_s\n",
+        "load_scale,seed,life_revs,suspended,first_spall_revs,initiation,onset_fraction,wall_s\n",
     );
     let opt = |x: Option<f64>| x.map(|o| o.to_string()).unwrap_or_default();
     for g in &groups {
         for l in &g.lives {
             csv.push_str(&format!(
-                "{},{},{},{},{},{},{}\n",
+                "{},{},{},{},{},{},{},{}\n",
                 g.load_scale,
                 l.seed,
                 l.life,
+                l.suspended,
                 opt(l.first_spall),
                 l.initiation.map_or("", |i| i.name()),
                 opt(l.onset),
@@ -361,6 +363,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     }
     let summary = json!({
         "lives_per_load": n,
+        "cycle_cap": a.cycles,
         "site": site,
         "threads": threads,
         "wall_s": wall,
@@ -402,6 +405,14 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
             "load ×{} ({:.0} N): ISO 281 L10 {:.4e} rev",
             g.load_scale, g.load_n, g.iso_l10
         );
+        let suspended = g.lives.iter().filter(|l| l.suspended).count();
+        if suspended > 0 {
+            println!(
+                "  {suspended} of {} lives did not fail within the cycle cap ({:.3e} rev): fitted as suspensions",
+                g.lives.len(),
+                a.cycles
+            );
+        }
         for (what, fit) in [
             ("to failure", &g.weibull),
             ("to the first spall", &g.first_spall_weibull),
@@ -414,18 +425,21 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
                     w.l10.value / g.iso_l10,
                     est(&w.scale)
                 ),
-                None => println!("  {what}: Weibull fit not possible (degenerate lives)"),
+                None => println!(
+                    "  {what}: no Weibull fit: it needs 3 lives that reach it within the cycle cap ({:.3e} rev; raise --cycles) and not all alike",
+                    a.cycles
+                ),
             }
         }
         println!(
-            "  onset of instability: median {} over {} of {} lives",
+            "  onset of instability: median {} over {} of {} failed lives",
             g.onset_median
                 .map_or("none".to_string(), |o| format!("{o:.3} of life")),
             g.onset_found,
-            g.lives.len()
+            g.lives.len() - suspended
         );
         for (s, f) in &g.stage_onsets {
-            println!("  {s:<20} median onset {f:.3} of life");
+            println!("  {s:<20} median onset {f:.3} of life (failed lives)");
         }
     }
     for (what, e) in [("to failure", exp), ("to the first spall", exp_spall)] {
@@ -483,6 +497,8 @@ fn group_json(g: &LoadGroup) -> serde_json::Value {
             "surface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Surface)).count(),
             "subsurface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Subsurface)).count(),
         },
+        "failed": g.lives.iter().filter(|l| !l.suspended).count(),
+        "suspended": g.lives.iter().filter(|l| l.suspended).count(),
         "life_min": mn, "life_max": mx, "onset_median": g.onset_median, "onset_found": g.onset_found,
         "stage_onsets": g.stage_onsets,
         "mean_wall_s_per_life": g.lives.iter().map(|l| l.wall_s).sum::<f64>() / g.lives.len().max(1) as f64,

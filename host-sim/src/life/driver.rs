@@ -47,24 +47,44 @@ pub struct Block {
     pub cut: bool,
 }
 
+/// What the driver does when the wear reaches the cycle cap (`LifeConfig::cycle_cap`,
+/// revolutions) before the bearing fails.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AtCap {
+    /// Refuse the life with [`LifeError::CapReached`]: one life, a calibration or a
+    /// comparison needs the whole life to failure.
+    Refuse,
+    /// End the life there as a *suspension* (right-censored: still running when the test
+    /// stopped), as an endurance test stopped at a set number of revolutions does; life
+    /// statistics fit such lives as suspensions (Abernethy, *The New Weibull Handbook*,
+    /// 5th ed., ch. 2 and 5; [`super::weibull`]).
+    Suspend,
+}
+
 /// The end of a driven life.
 #[derive(Debug, Clone)]
 pub struct Driven {
-    /// Final wear state (stage failure, with the event log).
+    /// Final wear state (stage failure, with the event log; with [`AtCap::Suspend`], the
+    /// state at the cycle cap when `suspended`).
     pub state: LifeState,
     /// Windows rendered.
     pub windows: u64,
+    /// The life reached the cycle cap before failing and was ended there
+    /// ([`AtCap::Suspend`]).
+    pub suspended: bool,
 }
 
 impl LifeRun {
     /// Drives the whole life: a window for the current state, `observe` on it, then the
     /// wear advanced by `block(state)` revolutions (or up to the next transition) with the
-    /// window's pass loads; stops after the window of the failure state. Fails when the
+    /// window's pass loads; stops after the window of the failure state (or, with
+    /// [`AtCap::Suspend`], when the wear reaches the cycle cap first). Fails when the
     /// cycle cap is reached or more than `max_windows` windows would be needed.
     pub fn drive(
         &self,
         mut block: impl FnMut(&LifeState) -> f64,
         max_windows: u64,
+        at_cap: AtCap,
         mut observe: impl FnMut(DriverWindow<'_>) -> Result<(), LifeError>,
     ) -> Result<Driven, LifeError> {
         let mut st = self.life.initial_state(self.spec.seed);
@@ -95,7 +115,16 @@ impl LifeRun {
                 break;
             }
             let revs = block(&st);
-            let b = self.advance_checked(&mut st, &loads, revs)?;
+            let b = match self.advance_checked(&mut st, &loads, revs) {
+                Err(LifeError::CapReached { .. }) if at_cap == AtCap::Suspend => {
+                    return Ok(Driven {
+                        state: st,
+                        windows: k,
+                        suspended: true,
+                    })
+                }
+                b => b?,
+            };
             entered = b.entered;
             scheduled = !b.cut;
             if k > max_windows {
@@ -109,6 +138,7 @@ impl LifeRun {
         Ok(Driven {
             state: st,
             windows: k,
+            suspended: false,
         })
     }
 

@@ -8,10 +8,16 @@
 //! published Weibull slopes).
 //!
 //! Each life records only what the statistics need: the RMS of every window (for the
-//! onset of instability, [`super::ims::onset`]) and the stage event log.
+//! onset of instability, [`super::ims::onset`]) and the stage event log. A life that
+//! reaches the cycle cap (`--cycles`) before failing is ended there as a suspension, as
+//! an endurance test stopped at a set number of revolutions ends its survivors: the
+//! Weibull fits count it as a life longer than the cap ([`super::weibull::fit_units`]),
+//! and the onsets and stage fractions, which are fractions of a life to failure, leave it
+//! out.
 
+use super::driver::AtCap;
 use super::ims::{normalise, onset};
-use super::weibull::{fit_with_ci, load_exponent, Estimate, WeibullFit};
+use super::weibull::{fit_with_ci, load_exponent, Estimate, Unit, WeibullFit};
 use super::{LifeError, LifeRun, LifeSpec};
 use crate::analysis::stats::median;
 use serde::Serialize;
@@ -25,14 +31,17 @@ pub const BOOTSTRAP: usize = 1000;
 pub struct LifeOutcome {
     /// Seed.
     pub seed: u64,
-    /// Revolutions to failure.
+    /// Revolutions to failure, or to the cycle cap when `suspended`.
     pub life: f64,
+    /// The life reached the cycle cap before failing and was ended there (right-censored).
+    pub suspended: bool,
     /// Revolutions to the first spall (entry into defect completion), if reached.
     pub first_spall: Option<f64>,
     /// How the first crack started: at a dent (surface) or under the surface before any
     /// dent formed (subsurface); `None` if no crack opened.
     pub initiation: Option<Initiation>,
-    /// Onset of instability of the normalised RMS (fraction of life), if found.
+    /// Onset of instability of the normalised RMS (fraction of life), if found (`None`
+    /// for a suspended life: its end is not a failure).
     pub onset: Option<f64>,
     /// Revolutions at which each stage was entered (stage name, revolutions).
     pub stages: Vec<(String, f64)>,
@@ -72,16 +81,19 @@ pub struct LoadGroup {
     pub iso_l10: f64,
     /// The lives, in seed order.
     pub lives: Vec<LifeOutcome>,
-    /// Weibull fit of the lives (None when fewer than 3 or degenerate).
+    /// Weibull fit of the lives to failure, suspended ones as suspensions (None when
+    /// fewer than 3 failed, or degenerate).
     pub weibull: Option<WeibullFit>,
-    /// Weibull fit of the revolutions to the first spall (None when fewer than 3 or
-    /// degenerate).
+    /// Weibull fit of the revolutions to the first spall, lives suspended before it as
+    /// suspensions (None when fewer than 3 reached it, or degenerate).
     pub first_spall_weibull: Option<WeibullFit>,
-    /// Median onset of instability (fraction of life) over the lives where one was found.
+    /// Median onset of instability (fraction of life) over the failed lives where one was
+    /// found.
     pub onset_median: Option<f64>,
     /// Lives with an onset found.
     pub onset_found: usize,
-    /// Median revolutions at which each stage was entered, as a fraction of the life.
+    /// Median revolutions at which each stage was entered, as a fraction of the life, over
+    /// the failed lives.
     pub stage_onsets: Vec<(String, f64)>,
 }
 
@@ -121,6 +133,7 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
     let d = run.drive(
         |_| every,
         super::MAX_LIFE_WINDOWS,
+        AtCap::Suspend,
         |w| {
             // The onset is read as a periodic measurement would: transition windows left out.
             if w.scheduled {
@@ -145,9 +158,10 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
     Ok(LifeOutcome {
         seed,
         life: d.state.cycles,
+        suspended: d.suspended,
         first_spall,
         initiation,
-        onset: onset(&curve),
+        onset: onset(&curve).filter(|_| !d.suspended),
         stages: d
             .state
             .events
@@ -160,14 +174,15 @@ pub fn one_life(spec: LifeSpec) -> Result<LifeOutcome, LifeError> {
 
 /// Summarises the lives at one load.
 pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutcome>) -> LoadGroup {
-    let x: Vec<f64> = lives.iter().map(|l| l.life).collect();
-    let spall: Vec<f64> = lives.iter().filter_map(|l| l.first_spall).collect();
+    let x: Vec<Unit> = lives.iter().map(to_failure).collect();
+    let spall: Vec<Unit> = lives.iter().map(to_first_spall).collect();
     let onsets: Vec<f64> = lives.iter().filter_map(|l| l.onset).collect();
     let stage_onsets = Stage::ALL
         .iter()
         .filter_map(|s| {
             let v: Vec<f64> = lives
                 .iter()
+                .filter(|l| !l.suspended)
                 .filter_map(|l| {
                     l.stages
                         .iter()
@@ -191,20 +206,38 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
     }
 }
 
+/// A life as a unit of a test to failure: failed at its life, or suspended at the cap.
+fn to_failure(l: &LifeOutcome) -> Unit {
+    Unit {
+        time: l.life,
+        failed: !l.suspended,
+    }
+}
+
+/// A life as a unit of a test to the first spall: failed there, or suspended at its end
+/// (a life that fails always passes its first spall first).
+fn to_first_spall(l: &LifeOutcome) -> Unit {
+    match l.first_spall {
+        Some(t) => Unit::failure(t),
+        None => Unit {
+            time: l.life,
+            failed: false,
+        },
+    }
+}
+
 /// The life–load exponent across the groups (slope of ln η against ln load), of the
-/// lives to failure (`first_spall` false) or to the first spall (true).
+/// lives to failure (`first_spall` false) or to the first spall (true), suspensions
+/// included as such.
 pub fn exponent(groups: &[LoadGroup], first_spall: bool) -> Option<Estimate> {
-    let g: Vec<(f64, Vec<f64>)> = groups
+    let unit = if first_spall {
+        to_first_spall
+    } else {
+        to_failure
+    };
+    let g: Vec<(f64, Vec<Unit>)> = groups
         .iter()
-        .map(|g| {
-            let x = g.lives.iter();
-            let x = if first_spall {
-                x.filter_map(|l| l.first_spall).collect()
-            } else {
-                x.map(|l| l.life).collect()
-            };
-            (g.load_n, x)
-        })
+        .map(|g| (g.load_n, g.lives.iter().map(unit).collect()))
         .collect();
     load_exponent(&g, BOOTSTRAP, 0x10AD)
 }

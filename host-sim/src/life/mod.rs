@@ -6,6 +6,7 @@
 //! seed gives the same wear history in both.
 
 use crate::analysis::{self, WelchParams, Window, ZoneBands};
+use driver::AtCap;
 use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Site, Stage};
 
@@ -395,6 +396,7 @@ impl LifeRun {
         let d = self.drive(
             |_| every,
             MAX_LIFE_WINDOWS,
+            AtCap::Refuse,
             |w| {
                 snapshots.push(self.snapshot(w.state, &w.samples, w.loads)?);
                 if let Some(stage) = w.entered {

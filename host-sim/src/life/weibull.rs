@@ -1,9 +1,10 @@
-//! Two-parameter Weibull fit of a set of lives (maximum likelihood) with percentile
-//! bootstrap confidence intervals, and the life–load exponent from lives at several
-//! loads. Used by `wearsim life --lives N`.
+//! Two-parameter Weibull fit of a set of lives (maximum likelihood, with suspensions:
+//! right-censored lives) with percentile bootstrap confidence intervals, and the
+//! life–load exponent from lives at several loads. Used by `wearsim life --lives N`.
 //!
-//! Source: the Weibull likelihood equations as in Abernethy, *The New Weibull Handbook*
-//! (5th ed., §5); L10 = η·(−ln 0.9)^(1/β) (ISO 281's 90 % reliability).
+//! Source: the Weibull likelihood equations with suspensions as in Abernethy, *The New
+//! Weibull Handbook* (5th ed., §5.3) and Nelson, *Applied Life Data Analysis* (1982,
+//! ch. 8); L10 = η·(−ln 0.9)^(1/β) (ISO 281's 90 % reliability).
 
 use crate::analysis::stats;
 use serde::Serialize;
@@ -29,32 +30,71 @@ impl Weibull {
     }
 }
 
-/// Maximum-likelihood fit of lives `x` (all > 0, at least 3, not all equal); `None`
-/// otherwise. Solves the profile equation Σxᵝ ln x / Σxᵝ − 1/β − mean(ln x) = 0 for β by
-/// bisection on [0.05, 100] (it is increasing in β), then η = (mean xᵝ)^(1/β). Data are
-/// scaled by their geometric mean first, so the powers stay finite.
+/// One unit of a life test: its time (revolutions, or any unit > 0) and whether it
+/// failed then or was suspended (still running when the test stopped: right-censored).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Unit {
+    /// Time at failure or at suspension.
+    pub time: f64,
+    /// `true`: failed at `time`; `false`: suspended at `time` (its life is longer).
+    pub failed: bool,
+}
+
+impl Unit {
+    /// A unit that failed at `time`.
+    pub fn failure(time: f64) -> Self {
+        Unit { time, failed: true }
+    }
+}
+
+/// Maximum-likelihood fit of lives `x` (all failed; all > 0, at least 3, not all equal):
+/// [`fit_units`] without suspensions.
 pub fn fit(x: &[f64]) -> Option<Weibull> {
-    if x.len() < 3 || x.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+    fit_units(&x.iter().copied().map(Unit::failure).collect::<Vec<_>>())
+}
+
+/// Maximum-likelihood fit of `units`, failures and suspensions (all times finite and
+/// > 0, at least 3 failures, not all times equal); `None` otherwise. With `r` failures,
+/// β solves the profile equation Σtᵝ ln t / Σtᵝ − 1/β − (1/r)·Σ_failed ln t = 0 (sums
+/// over all units; increasing in β), found by bisection on [0.05, 100], and
+/// η = (Σtᵝ / r)^(1/β) (Nelson 1982, ch. 8 eq. 2.5–2.6). The powers are taken relative to
+/// the largest time (log-sum-exp), so they stay finite for any spread.
+pub fn fit_units(units: &[Unit]) -> Option<Weibull> {
+    let r = units.iter().filter(|u| u.failed).count();
+    if r < 3 || units.iter().any(|u| !(u.time.is_finite() && u.time > 0.0)) {
         return None;
     }
-    let n = x.len() as f64;
-    let mean_ln = x.iter().map(|v| v.ln()).sum::<f64>() / n;
-    let g = mean_ln.exp();
-    let y: Vec<f64> = x.iter().map(|v| v / g).collect();
-    if y.iter().all(|v| (v - y[0]).abs() <= 1e-12 * y[0]) {
+    let ln: Vec<f64> = units.iter().map(|u| u.time.ln()).collect();
+    let top = ln.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let low = ln.iter().copied().fold(f64::INFINITY, f64::min);
+    if top - low <= 1e-12 {
         return None;
     }
-    let f = |b: f64| {
+    let r = r as f64;
+    // ln t relative to the largest: every term e^{β·d} is in (0, 1].
+    let d: Vec<f64> = ln.iter().map(|l| l - top).collect();
+    let mean_failed = units
+        .iter()
+        .zip(&d)
+        .filter(|(u, _)| u.failed)
+        .map(|(_, d)| d)
+        .sum::<f64>()
+        / r;
+    let sums = |b: f64| {
         let (mut s, mut sl) = (0.0, 0.0);
-        for v in &y {
-            let p = v.powf(b);
+        for v in &d {
+            let p = (b * v).exp();
             s += p;
-            sl += p * v.ln();
+            sl += p * v;
         }
-        sl / s - 1.0 / b // mean ln y = 0 after scaling
+        (s, sl)
+    };
+    let f = |b: f64| {
+        let (s, sl) = sums(b);
+        sl / s - 1.0 / b - mean_failed
     };
     let (mut lo, mut hi) = (0.05_f64, 100.0_f64);
-    if f(lo) > 0.0 || f(hi) < 0.0 {
+    if !(f(lo) <= 0.0 && f(hi) >= 0.0) {
         return None;
     }
     for _ in 0..200 {
@@ -66,10 +106,10 @@ pub fn fit(x: &[f64]) -> Option<Weibull> {
         }
     }
     let b = 0.5 * (lo + hi);
-    let m = y.iter().map(|v| v.powf(b)).sum::<f64>() / n;
+    let (s, _) = sums(b);
     Some(Weibull {
         shape: b,
-        scale: g * m.powf(1.0 / b),
+        scale: (top + (s / r).ln() / b).exp(),
     })
 }
 
@@ -106,7 +146,7 @@ fn percentile(v: &mut [f64], q: f64) -> f64 {
     stats::quantile(v, q).unwrap_or(f64::NAN)
 }
 
-fn resample(x: &[f64], rng: &mut SplitMix) -> Vec<f64> {
+fn resample(x: &[Unit], rng: &mut SplitMix) -> Vec<Unit> {
     (0..x.len()).map(|_| x[rng.below(x.len())]).collect()
 }
 
@@ -122,13 +162,15 @@ pub struct WeibullFit {
     pub l10: Estimate,
 }
 
-/// Fits `x` and bootstraps the intervals.
-pub fn fit_with_ci(x: &[f64], reps: usize, seed: u64) -> Option<WeibullFit> {
-    let w = fit(x)?;
+/// Fits `x` (failures and suspensions, [`fit_units`]) and bootstraps the intervals
+/// (units resampled with their failed/suspended mark; a resample with fewer than 3
+/// failures gives no fit and is skipped).
+pub fn fit_with_ci(x: &[Unit], reps: usize, seed: u64) -> Option<WeibullFit> {
+    let w = fit_units(x)?;
     let mut rng = SplitMix(seed);
     let (mut b, mut s, mut l) = (vec![], vec![], vec![]);
     for _ in 0..reps {
-        if let Some(f) = fit(&resample(x, &mut rng)) {
+        if let Some(f) = fit_units(&resample(x, &mut rng)) {
             b.push(f.shape);
             s.push(f.scale);
             l.push(f.l10());
@@ -147,10 +189,10 @@ pub fn fit_with_ci(x: &[f64], reps: usize, seed: u64) -> Option<WeibullFit> {
 }
 
 /// Life–load exponent: the slope of ln(characteristic life η) against ln(load) by least
-/// squares over the load groups `(load, lives)` (≥ 2 loads, each fitted), with a
-/// bootstrap interval (lives resampled within each load). ISO 281 gives −3 for ball
-/// bearings, −10/3 for roller bearings.
-pub fn load_exponent(groups: &[(f64, Vec<f64>)], reps: usize, seed: u64) -> Option<Estimate> {
+/// squares over the load groups `(load, lives)` (≥ 2 loads, each fitted with its
+/// suspensions, [`fit_units`]), with a bootstrap interval (lives resampled within each
+/// load). ISO 281 gives −3 for ball bearings, −10/3 for roller bearings.
+pub fn load_exponent(groups: &[(f64, Vec<Unit>)], reps: usize, seed: u64) -> Option<Estimate> {
     if groups.len() < 2 {
         return None;
     }
@@ -167,7 +209,7 @@ pub fn load_exponent(groups: &[(f64, Vec<f64>)], reps: usize, seed: u64) -> Opti
     };
     let etas: Option<Vec<(f64, f64)>> = groups
         .iter()
-        .map(|(p, x)| fit(x).map(|w| (*p, w.scale)))
+        .map(|(p, x)| fit_units(x).map(|w| (*p, w.scale)))
         .collect();
     let value = slope(&etas?)?;
     let mut rng = SplitMix(seed);
@@ -175,7 +217,7 @@ pub fn load_exponent(groups: &[(f64, Vec<f64>)], reps: usize, seed: u64) -> Opti
     for _ in 0..reps {
         let e: Option<Vec<(f64, f64)>> = groups
             .iter()
-            .map(|(p, x)| fit(&resample(x, &mut rng)).map(|w| (*p, w.scale)))
+            .map(|(p, x)| fit_units(&resample(x, &mut rng)).map(|w| (*p, w.scale)))
             .collect();
         if let Some(s) = e.and_then(|e| slope(&e)) {
             bs.push(s);
@@ -223,19 +265,86 @@ mod tests {
         assert!((cdf - 0.1).abs() < 1e-12);
     }
 
+    fn failures(x: Vec<f64>) -> Vec<Unit> {
+        x.into_iter().map(Unit::failure).collect()
+    }
+
+    /// A Type-I censored test: units still running at `stop` are suspended there.
+    fn stopped_at(x: &[f64], stop: f64) -> Vec<Unit> {
+        x.iter()
+            .map(|&t| Unit {
+                time: t.min(stop),
+                failed: t <= stop,
+            })
+            .collect()
+    }
+
+    /// With a test stopped at η (63 % failed) or at 0.3 η (27 % at β = 1.11), the fit with the
+    /// suspensions recovers shape and scale; dropping the suspensions, or counting them as
+    /// failures at the stop, is far off (so the test can fail).
+    #[test]
+    fn suspensions_are_fitted_as_longer_lives() {
+        // Stopped at η: 63 % failed; at 0.3 η with β = 1.11: 27 %.
+        for (b, e, stop) in [(1.11, 1e7, 1e7), (1.11, 1e7, 3e6), (3.0, 5.0, 5.0)] {
+            let x = sample(b, e, 4000);
+            let u = stopped_at(&x, stop);
+            let w = fit_units(&u).unwrap();
+            assert!((w.shape / b - 1.0).abs() < 0.04, "{b} {stop}: {w:?}");
+            assert!((w.scale / e - 1.0).abs() < 0.04, "{e} {stop}: {w:?}");
+            let dropped: Vec<f64> = u.iter().filter(|u| u.failed).map(|u| u.time).collect();
+            let d = fit(&dropped).unwrap();
+            assert!(d.scale < 0.8 * e, "failures alone: {d:?}");
+            let all: Vec<f64> = u.iter().map(|u| u.time).collect();
+            assert!(
+                fit(&all).is_none_or(|a| a.scale < 0.9 * e),
+                "suspensions as failures"
+            );
+        }
+    }
+
+    /// Without suspensions the fit is the classic one: β from Σxᵝ ln x / Σxᵝ − 1/β =
+    /// mean ln x, η = (mean xᵝ)^{1/β} (checked against those equations directly).
+    #[test]
+    fn complete_data_solve_the_classic_equations() {
+        let x = sample(1.4, 3e6, 200);
+        let w = fit(&x).unwrap();
+        let n = x.len() as f64;
+        let ml = x.iter().map(|v| v.ln()).sum::<f64>() / n;
+        let s: f64 = x.iter().map(|v| v.powf(w.shape)).sum();
+        let sl: f64 = x.iter().map(|v| v.powf(w.shape) * v.ln()).sum();
+        assert!((sl / s - 1.0 / w.shape - ml).abs() < 1e-9, "{w:?}");
+        assert!(
+            (w.scale / (s / n).powf(1.0 / w.shape) - 1.0).abs() < 1e-9,
+            "{w:?}"
+        );
+    }
+
+    /// Fewer than 3 failures give no fit, whatever the suspensions.
+    #[test]
+    fn fewer_than_three_failures_give_no_fit() {
+        let mut u = vec![Unit::failure(1.0), Unit::failure(2.0)];
+        u.extend((0..20).map(|_| Unit {
+            time: 5.0,
+            failed: false,
+        }));
+        assert!(fit_units(&u).is_none());
+        u.push(Unit::failure(3.0));
+        assert!(fit_units(&u).is_some());
+    }
+
     #[test]
     fn intervals_contain_the_truth_and_narrow_with_n() {
-        let small = fit_with_ci(&sample(1.5, 1.0, 40), 300, 1).unwrap();
-        let big = fit_with_ci(&sample(1.5, 1.0, 800), 300, 1).unwrap();
+        let small = fit_with_ci(&failures(sample(1.5, 1.0, 40)), 300, 1).unwrap();
+        let big = fit_with_ci(&failures(sample(1.5, 1.0, 800)), 300, 1).unwrap();
         assert!(big.shape.lo < 1.5 && 1.5 < big.shape.hi, "{big:?}");
         assert!(big.shape.hi - big.shape.lo < 0.5 * (small.shape.hi - small.shape.lo));
     }
 
     #[test]
     fn load_exponent_of_cubic_lives_is_minus_three() {
-        let groups: Vec<(f64, Vec<f64>)> = [1.0, 2.0]
+        let groups: Vec<(f64, Vec<Unit>)> = [1.0, 2.0]
             .iter()
-            .map(|p: &f64| (*p, sample(1.2, 1e6 * p.powf(-3.0), 500)))
+            .map(|p: &f64| (*p, failures(sample(1.2, 1e6 * p.powf(-3.0), 500))))
             .collect();
         let e = load_exponent(&groups, 200, 3).unwrap();
         assert!((e.value + 3.0).abs() < 1e-9, "{e:?}");

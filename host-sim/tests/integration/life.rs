@@ -229,6 +229,7 @@ fn windows_rendered_ahead_equal_windows_rendered_alone() {
         run.drive(
             |_| 100.0,
             100_000,
+            wearsim_host::life::driver::AtCap::Refuse,
             |w| {
                 let dented = w.state.stage.index() >= Stage::Dent.index();
                 if dented && w.state.stage != Stage::Failure && states.len() == 1 {

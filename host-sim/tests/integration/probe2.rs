@@ -279,9 +279,13 @@ fn a_table_rate_the_simulator_cannot_render_is_refused_naming_the_sidecar_field(
 }
 
 /// `life --lives` over load scales where one life runs into the cycle cap said only "the
-/// bearing did not fail within the cycle cap", not which load scale or seed.
+/// bearing did not fail within the cycle cap", not which load scale or seed; then (stop
+/// 41) it still threw the whole run away. A life still running at the cap is now a
+/// suspension (right-censored), as in an endurance test stopped at a set number of
+/// revolutions: the run completes, the CSV marks it, and a load where fewer than three
+/// lives failed has no Weibull fit instead of a wrong one.
 #[test]
-fn a_life_statistics_run_names_the_load_scale_and_seed_of_a_life_that_did_not_fail() {
+fn a_life_statistics_run_keeps_lives_that_reach_the_cap_as_suspensions() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("lives");
     let o = wearsim(&[
@@ -290,11 +294,45 @@ fn a_life_statistics_run_names_the_load_scale_and_seed_of_a_life_that_did_not_fa
         "3",
         "--loads",
         "0.05,1",
+        "--cycles",
+        "1e7",
+        "--snapshot-every",
+        "200000",
+        "--window",
+        "0.05",
         "--out",
         s(&out),
         "--json",
     ]);
-    refused(&o, &["load scale 0.05", "seed 1", "cycle cap"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
+    assert_eq!(v["cycle_cap"], 1e7);
+    let light = &v["groups"][0];
+    assert_eq!(light["load_scale"], 0.05);
+    assert_eq!(
+        (light["failed"].as_u64(), light["suspended"].as_u64()),
+        (Some(0), Some(3))
+    );
+    assert!(light["weibull"].is_null() && light["first_spall"]["weibull"].is_null());
+    assert!(light["onset_median"].is_null(), "{light}");
+    let nominal = &v["groups"][1];
+    let (f, su) = (nominal["failed"].as_u64(), nominal["suspended"].as_u64());
+    assert_eq!(f.zip(su).map(|(a, b)| a + b), Some(3), "{nominal}");
+    let csv = std::fs::read_to_string(out.join("lives.csv")).expect("lives.csv");
+    let head: Vec<&str> = csv.lines().next().unwrap_or("").split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).expect(n);
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 6);
+    for r in rows.iter().filter(|r| r[col("load_scale")] == "0.05") {
+        assert_eq!(r[col("suspended")], "true", "{r:?}");
+        let life: f64 = r[col("life_revs")].parse().expect("life");
+        assert!(life >= 1e7, "a suspension before the cap: {r:?}");
+        assert_eq!(r[col("onset_fraction")], "", "{r:?}");
+    }
 }
 
 /// `life --snapshot-every 1` rendered and kept a window per revolution for the whole life

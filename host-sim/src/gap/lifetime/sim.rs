@@ -9,6 +9,7 @@ use crate::analysis;
 use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
 use crate::life::calibrate::{calibrate as calibrate_life, Secant};
+use crate::life::driver::AtCap;
 use crate::life::{LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -127,6 +128,7 @@ impl LifeSim {
             .drive(
                 |st| self.block(st.cycles),
                 MAX_WINDOWS,
+                AtCap::Refuse,
                 |w| {
                     // Stage means of a periodic measurement: windows at transitions feed the
                     // wear only (see `DriverWindow::scheduled`).

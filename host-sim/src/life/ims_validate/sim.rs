@@ -95,6 +95,7 @@ pub fn simulate(
         .drive(
             |st| next_on_grid(st.cycles, every) - st.cycles,
             100_000,
+            AtCap::Refuse,
             |w| {
                 if !w.scheduled {
                     return Ok(());
