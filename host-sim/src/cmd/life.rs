@@ -384,6 +384,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     let cp = a.out.join("lives.csv");
     crate::life::output::write_atomic(&cp, csv.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", cp.display())))?;
+    let plots = crate::life::weibull_plot::lives_weibull(&a.out, &groups)?;
     // The summary is written last: its presence means the set is complete.
     let jp = a.out.join("lives.json");
     crate::life::output::write_atomic(
@@ -476,7 +477,9 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
             println!("published life–load exponent {v}: {s}");
         }
     }
-    println!("wrote {}\nwrote {}", cp.display(), jp.display());
+    for f in plots.iter().chain([&cp, &jp]) {
+        println!("wrote {}", f.display());
+    }
     Ok(())
 }
 

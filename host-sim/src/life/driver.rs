@@ -8,7 +8,7 @@
 //! unchanged from window to window (the fatigue accumulation before the first dent), the
 //! driver renders the next windows together as lanes (`Ahead`): the same bits, faster.
 
-use super::{LifeError, LifeRun};
+use super::{AtCap, LifeError, LifeRun};
 use wearsim_core::wear::{LifeState, PassLoads, Stage};
 
 /// One window of a life, as the driver hands it to its observer.
@@ -45,20 +45,6 @@ pub struct Block {
     /// Whether a transition (a stage change or a growth step of the defect) ended the
     /// block before its revolutions were done.
     pub cut: bool,
-}
-
-/// What the driver does when the wear reaches the cycle cap (`LifeConfig::cycle_cap`,
-/// revolutions) before the bearing fails.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AtCap {
-    /// Refuse the life with [`LifeError::CapReached`]: one life, a calibration or a
-    /// comparison needs the whole life to failure.
-    Refuse,
-    /// End the life there as a *suspension* (right-censored: still running when the test
-    /// stopped), as an endurance test stopped at a set number of revolutions does; life
-    /// statistics fit such lives as suspensions (Abernethy, *The New Weibull Handbook*,
-    /// 5th ed., ch. 2 and 5; [`super::weibull`]).
-    Suspend,
 }
 
 /// The end of a driven life.

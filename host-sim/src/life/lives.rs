@@ -15,10 +15,9 @@
 //! and the onsets and stage fractions, which are fractions of a life to failure, leave it
 //! out.
 
-use super::driver::AtCap;
 use super::ims::{normalise, onset};
 use super::weibull::{fit_with_ci, load_exponent, Estimate, Unit, WeibullFit};
-use super::{LifeError, LifeRun, LifeSpec};
+use super::{AtCap, LifeError, LifeRun, LifeSpec};
 use crate::analysis::stats::median;
 use serde::Serialize;
 use wearsim_core::wear::Stage;
@@ -207,7 +206,7 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
 }
 
 /// A life as a unit of a test to failure: failed at its life, or suspended at the cap.
-fn to_failure(l: &LifeOutcome) -> Unit {
+pub(crate) fn to_failure(l: &LifeOutcome) -> Unit {
     Unit {
         time: l.life,
         failed: !l.suspended,
@@ -216,7 +215,7 @@ fn to_failure(l: &LifeOutcome) -> Unit {
 
 /// A life as a unit of a test to the first spall: failed there, or suspended at its end
 /// (a life that fails always passes its first spall first).
-fn to_first_spall(l: &LifeOutcome) -> Unit {
+pub(crate) fn to_first_spall(l: &LifeOutcome) -> Unit {
     match l.first_spall {
         Some(t) => Unit::failure(t),
         None => Unit {

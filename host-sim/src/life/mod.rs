@@ -6,7 +6,6 @@
 //! seed gives the same wear history in both.
 
 use crate::analysis::{self, WelchParams, Window, ZoneBands};
-use driver::AtCap;
 use serde::{Deserialize, Serialize};
 use wearsim_core::wear::{Life, LifeConfig, LifeState, PassLoads, PassMeter, Site, Stage};
 
@@ -23,6 +22,7 @@ pub mod plot;
 pub mod site_json;
 pub mod state_json;
 pub mod weibull;
+pub mod weibull_plot;
 use wearsim_core::{Model, ModelConfig, Sample, State};
 
 /// Capacity of the dynamic state.
@@ -55,6 +55,20 @@ pub struct LifeSpec {
     /// ([`Life::new_checked_at`]), so a heavier load wears faster through them too. `None`:
     /// the model's own radial load.
     pub calibration_load: Option<f64>,
+}
+
+/// What the driver does when the wear reaches the cycle cap (`LifeConfig::cycle_cap`,
+/// revolutions) before the bearing fails.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AtCap {
+    /// Refuse the life with [`LifeError::CapReached`]: one life, a calibration or a
+    /// comparison needs the whole life to failure.
+    Refuse,
+    /// End the life there as a *suspension* (right-censored: still running when the test
+    /// stopped), as an endurance test stopped at a set number of revolutions does; life
+    /// statistics fit such lives as suspensions (Abernethy, *The New Weibull Handbook*,
+    /// 5th ed., ch. 2 and 5; [`weibull`]).
+    Suspend,
 }
 
 /// Why a life run cannot be done.

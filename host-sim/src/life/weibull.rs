@@ -54,10 +54,10 @@ pub fn fit(x: &[f64]) -> Option<Weibull> {
 }
 
 /// Maximum-likelihood fit of `units`, failures and suspensions (all times finite and
-/// > 0, at least 3 failures, not all times equal); `None` otherwise. With `r` failures,
+/// positive, at least 3 failures, not all times equal); `None` otherwise. With `r` failures,
 /// β solves the profile equation Σtᵝ ln t / Σtᵝ − 1/β − (1/r)·Σ_failed ln t = 0 (sums
 /// over all units; increasing in β), found by bisection on [0.05, 100], and
-/// η = (Σtᵝ / r)^(1/β) (Nelson 1982, ch. 8 eq. 2.5–2.6). The powers are taken relative to
+/// η = (Σtᵝ / r)^(1/β) (Nelson 1982, ch. 8). The powers are taken relative to
 /// the largest time (log-sum-exp), so they stay finite for any spread.
 pub fn fit_units(units: &[Unit]) -> Option<Weibull> {
     let r = units.iter().filter(|u| u.failed).count();
@@ -111,6 +111,33 @@ pub fn fit_units(units: &[Unit]) -> Option<Weibull> {
         shape: b,
         scale: (top + (s / r).ln() / b).exp(),
     })
+}
+
+/// Plotting positions of the failures among `units` for a Weibull probability plot:
+/// `(time, unreliability F)` in time order, with Johnson's adjusted ranks for the
+/// suspensions (rank_j = (r_rev·rank_{j−1} + n + 1) / (r_rev + 1), r_rev the reverse rank
+/// of the unit in the sorted list) and Bernard's median rank F = (rank − 0.3) / (n + 0.4)
+/// (Abernethy, *The New Weibull Handbook*, 5th ed., §2.4 and §2.9). Without suspensions
+/// the ranks are 1, 2, …, n. Units with a non-finite or non-positive time are left out.
+pub fn median_ranks(units: &[Unit]) -> Vec<(f64, f64)> {
+    let mut u: Vec<Unit> = units
+        .iter()
+        .copied()
+        .filter(|u| u.time.is_finite() && u.time > 0.0)
+        .collect();
+    // At equal times failures come first (a suspension at a failure's time outlived it).
+    u.sort_by(|a, b| a.time.total_cmp(&b.time).then(b.failed.cmp(&a.failed)));
+    let n = u.len() as f64;
+    let mut rank = 0.0;
+    let mut out = vec![];
+    for (i, x) in u.iter().enumerate() {
+        if x.failed {
+            let rev = n - i as f64;
+            rank = (rev * rank + n + 1.0) / (rev + 1.0);
+            out.push((x.time, (rank - 0.3) / (n + 0.4)));
+        }
+    }
+    out
 }
 
 /// A value with a two-sided 90 % confidence interval.
@@ -317,6 +344,29 @@ mod tests {
             (w.scale / (s / n).powf(1.0 / w.shape) - 1.0).abs() < 1e-9,
             "{w:?}"
         );
+    }
+
+    /// Johnson's adjusted ranks on the handbook's pattern F, S, F, F, S (n = 5): ranks 1,
+    /// 2.25, 3.5; without suspensions 1..n; Bernard's approximation on top.
+    #[test]
+    fn median_ranks_adjust_for_suspensions() {
+        let u = |time, failed| Unit { time, failed };
+        let pts = median_ranks(&[
+            u(40.0, false),
+            u(10.0, true),
+            u(30.0, true),
+            u(20.0, false),
+            u(35.0, true),
+        ]);
+        let ranks: Vec<f64> = pts.iter().map(|(_, f)| f * 5.4 + 0.3).collect();
+        let times: Vec<f64> = pts.iter().map(|(t, _)| *t).collect();
+        assert_eq!(times, [10.0, 30.0, 35.0]);
+        for (r, want) in ranks.iter().zip([1.0, 2.25, 3.5]) {
+            assert!((r - want).abs() < 1e-12, "{ranks:?}");
+        }
+        let all = median_ranks(&failures(vec![3.0, 1.0, 2.0]));
+        assert_eq!(all.iter().map(|p| p.0).collect::<Vec<_>>(), [1.0, 2.0, 3.0]);
+        assert!((all[0].1 - 0.7 / 3.4).abs() < 1e-12);
     }
 
     /// Fewer than 3 failures give no fit, whatever the suspensions.

@@ -229,7 +229,7 @@ fn windows_rendered_ahead_equal_windows_rendered_alone() {
         run.drive(
             |_| 100.0,
             100_000,
-            wearsim_host::life::driver::AtCap::Refuse,
+            wearsim_host::life::AtCap::Refuse,
             |w| {
                 let dented = w.state.stage.index() >= Stage::Dent.index();
                 if dented && w.state.stage != Stage::Failure && states.len() == 1 {
@@ -518,6 +518,14 @@ fn lives_give_weibull_and_load_exponent() {
     );
     let csv = std::fs::read_to_string(out.join("lives.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 16);
+    // The Weibull plot: both loads' fits in the legend of both panels, ISO's L10 marked.
+    assert!(out.join("lives-weibull.png").exists());
+    let svg = std::fs::read_to_string(out.join("lives-weibull.svg")).unwrap();
+    for g in groups {
+        let beta = format!("β {:.2}", g["weibull"]["shape"]["value"].as_f64().unwrap());
+        assert!(svg.contains(&beta), "{beta} not in the plot");
+    }
+    assert_eq!(svg.matches("ISO L10").count(), 4, "two loads × two panels");
     // Every life reaches its first spall before it fails.
     let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| head.iter().position(|h| *h == name).unwrap();

@@ -50,9 +50,8 @@ pub use record::*;
 pub use sim::*;
 
 use super::calibrate::{calibrate, Secant};
-use super::driver::AtCap;
 use super::ims::{distance_db, normalise, onset, Curve};
-use super::{LifeError, LifeRun, LifeSpec};
+use super::{AtCap, LifeError, LifeRun, LifeSpec};
 use crate::io::ims::{read_ims_features, IMS_RPM};
 use crate::io::ims_life::live_snapshots;
 use serde::Serialize;
