@@ -23,7 +23,7 @@ use crate::analyze::family_name;
 use crate::io::{mat, parse_cwru_name, CwruLabel};
 use clap::Args;
 use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
+use realfft::{ComplexToReal, RealFftPlanner};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -303,13 +303,7 @@ pub fn decimate_fft(x: &[f64], factor: usize) -> Vec<f64> {
     if m.is_multiple_of(2) {
         small[keep - 1] = Complex::new(0.0, 0.0);
     }
-    let mut out = inv.make_output_vec();
-    if inv.process(&mut small, &mut out).is_err() {
-        return Vec::new();
-    }
-    let scale = 1.0 / n as f64;
-    out.iter_mut().for_each(|v| *v *= scale);
-    out
+    inverse_scaled(inv.as_ref(), &mut small, n)
 }
 
 /// Band-limited resampling of `x` to `m` samples (ideal FFT interpolation or decimation:
@@ -333,8 +327,14 @@ pub fn resample_fft(x: &[f64], m: usize) -> Vec<f64> {
     let keep = spec.len().min(big.len()) - 1;
     big[..keep].copy_from_slice(&spec[..keep]);
     big[0].im = 0.0;
+    inverse_scaled(inv.as_ref(), &mut big, n)
+}
+
+/// Inverse real FFT of `spec` by `inv`, scaled by `1 / n` (`n` the forward FFT's length, so
+/// the amplitude is kept); empty if the FFT fails.
+fn inverse_scaled(inv: &dyn ComplexToReal<f64>, spec: &mut [Complex<f64>], n: usize) -> Vec<f64> {
     let mut out = inv.make_output_vec();
-    if inv.process(&mut big, &mut out).is_err() {
+    if inv.process(spec, &mut out).is_err() {
         return Vec::new();
     }
     let scale = 1.0 / n as f64;

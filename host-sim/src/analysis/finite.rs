@@ -55,6 +55,16 @@ macro_rules! ok_scalars {
     ($($f:ident: $t:ty),*) => { $(fn $f(self, _: $t) -> Result<(), Stop> { Ok(()) })* };
 }
 
+/// The `serialize_*` methods that begin a compound value: every one scans its contents with a
+/// fresh [`Seq`] (the arguments, a name, a variant or a length, are not needed).
+macro_rules! begin_compound {
+    ($($f:ident($($t:ty),*)),*) => {$(
+        fn $f(self, $(_: $t),*) -> Result<Self::SerializeSeq, Stop> {
+            Ok(Seq { s: self, i: 0 })
+        }
+    )*};
+}
+
 impl<'a> ser::Serializer for &'a mut Scan {
     type Ok = ();
     type Error = Stop;
@@ -103,39 +113,15 @@ impl<'a> ser::Serializer for &'a mut Scan {
     ) -> Result<(), Stop> {
         self.nested(variant.into(), v)
     }
-    fn serialize_seq(self, _: Option<usize>) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_tuple(self, _: usize) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_tuple_struct(self, _: &'static str, _: usize) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_tuple_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_map(self, _: Option<usize>) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_struct(self, _: &'static str, _: usize) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
-    fn serialize_struct_variant(
-        self,
-        _: &'static str,
-        _: u32,
-        _: &'static str,
-        _: usize,
-    ) -> Result<Seq<'a>, Stop> {
-        Ok(Seq { s: self, i: 0 })
-    }
+    begin_compound!(
+        serialize_seq(Option<usize>),
+        serialize_tuple(usize),
+        serialize_tuple_struct(&'static str, usize),
+        serialize_tuple_variant(&'static str, u32, &'static str, usize),
+        serialize_map(Option<usize>),
+        serialize_struct(&'static str, usize),
+        serialize_struct_variant(&'static str, u32, &'static str, usize)
+    );
 }
 
 /// Any compound value: elements are named by their index, fields by their name.

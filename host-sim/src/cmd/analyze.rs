@@ -2,6 +2,7 @@
 
 use crate::analyze::{analyze, print_analysis, AnalyzeArgs};
 use crate::cmd::args::CliError;
+use crate::cmd::report::print_json;
 
 /// `wearsim analyze`: read, analyse, print (or `--json`), plot.
 pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
@@ -23,10 +24,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
         if let Some(obj) = v.as_object_mut() {
             obj.insert("plots".into(), serde_json::json!(plots));
         }
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&v).map_err(CliError::run)?
-        );
+        print_json(&v)?;
     } else {
         print_analysis(&a);
         for p in &plots {

@@ -3,6 +3,7 @@
 
 use crate::analysis::chain::{BandRule, Method};
 use crate::cmd::args::CliError;
+use crate::cmd::report::print_json;
 use crate::cwru_benchmark::{
     print_report, run_benchmark_resampled, to_markdown, CwruBenchmarkArgs,
 };
@@ -37,10 +38,7 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
             .map_err(|e| CliError::run(format!("{}: cannot write: {e}", md.display())))?;
     }
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(CliError::run)?
-        );
+        print_json(&report)?;
     } else {
         print_report(&report);
         if let Some(md) = &args.markdown {

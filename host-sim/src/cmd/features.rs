@@ -4,6 +4,7 @@
 //! is printed.
 
 use crate::cmd::args::CliError;
+use crate::cmd::report::print_json;
 use crate::features::{convert, FeatureOptions, FeaturesError, RawLayout};
 use crate::io::feature_table::FeatureTableError;
 use crate::io::IoError;
@@ -76,10 +77,7 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
         e => CliError::input(e),
     })?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&s).map_err(CliError::run)?
-        );
+        print_json(&s)?;
     } else {
         println!(
             "{} snapshots ({:?} layout) over {:.2} h: RMS {:.4} -> {:.4} {} (x{:.2}); {} skipped{}",

@@ -3,6 +3,7 @@
 //! the report files and what is printed.
 
 use crate::cmd::args::CliError;
+use crate::cmd::report::print_json;
 use crate::gap::attribute::{self, Totals};
 use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
@@ -92,10 +93,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
     };
     out.files = report::write(&a.out, &out, &parts.valid, &at)?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::run)?
-        );
+        print_json(&out)?;
     } else {
         print!("{}", report::markdown(&out));
     }
@@ -122,10 +120,7 @@ fn run_life(a: &GapArgs) -> Result<(), CliError> {
     let mut out = life_report::output(&g);
     out.files = life_report::write(&a.out, &out, &g)?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(CliError::run)?
-        );
+        print_json(&out)?;
     } else {
         print!("{}", life_report::markdown(&out));
     }

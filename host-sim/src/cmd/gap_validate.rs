@@ -1,6 +1,7 @@
 //! `wearsim gap-validate`: arguments, the run, and the printed confusion matrix.
 
 use crate::cmd::args::{CliError, Progress};
+use crate::cmd::report::print_json;
 use crate::gap::nuisance::Tolerances;
 use crate::gap::twin::Mismatch;
 use crate::gap::validate::{validate, TwinOptions, TwinReport};
@@ -270,10 +271,7 @@ pub fn run(a: &GapValidateArgs) -> Result<(), CliError> {
     let r = validate(&opt, &|d, t| bar.update(d, t)).map_err(CliError::run)?;
     bar.finish();
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&r).map_err(CliError::run)?
-        );
+        print_json(&r)?;
     } else {
         print(&r);
     }

@@ -24,14 +24,20 @@ pub struct ImsCompareArgs {
     pub json: bool,
 }
 
-/// Runs `wearsim ims-compare`.
-pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
-    let data = match &a.data {
-        Some(d) => d.clone(),
+/// The data folder of an IMS command: `--data`, else the default one ([`crate::io::data_dir`]);
+/// none is bad input.
+fn data_folder(given: Option<&PathBuf>) -> Result<PathBuf, CliError> {
+    match given {
+        Some(d) => Ok(d.clone()),
         None => crate::io::data_dir()
             .map_err(CliError::input)?
-            .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA"))?,
-    };
+            .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA")),
+    }
+}
+
+/// Runs `wearsim ims-compare`.
+pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
+    let data = data_folder(a.data.as_ref())?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let c = crate::life::ims_compare::compare(&data, a.seed).map_err(CliError::input)?;
     std::fs::create_dir_all(&a.out)
@@ -277,12 +283,7 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
             a.seed, a.seeds
         ))
     })?;
-    let data = match &a.data {
-        Some(d) => d.clone(),
-        None => crate::io::data_dir()
-            .map_err(CliError::input)?
-            .ok_or_else(|| CliError::input("no data folder: pass --data or set WEARSIM_DATA"))?,
-    };
+    let data = data_folder(a.data.as_ref())?;
     // Bad records stop the run before anything is written.
     let recs = ims_validate::read_records(&data).map_err(CliError::input)?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;

@@ -1,5 +1,5 @@
-//! What the figure-reporting commands share: the Markdown + JSON report pair and the
-//! formatting of an optional figure.
+//! What the reporting commands share: the Markdown + JSON report pair, the formatting of an
+//! optional figure, and printing a result as JSON (`--json`).
 
 use crate::cmd::args::CliError;
 
@@ -7,6 +7,15 @@ use crate::cmd::args::CliError;
 pub fn fig(x: Option<f64>, digits: usize) -> String {
     x.map(|v| format!("{v:.digits$}"))
         .unwrap_or_else(|| "none".into())
+}
+
+/// Prints `v` as pretty JSON on stdout; a value that cannot be serialised fails the run.
+pub fn print_json(v: &impl serde::Serialize) -> Result<(), CliError> {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(v).map_err(CliError::run)?
+    );
+    Ok(())
 }
 
 /// Writes `out/STEM.md` and `out/STEM.json` (each atomically), then prints the JSON

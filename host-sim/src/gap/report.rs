@@ -9,7 +9,7 @@ use super::matched::Matched;
 use super::stationary::GapOutput;
 use crate::analysis::{self, Spectrum, WelchParams};
 use crate::life::output::write_atomic;
-use crate::plot::{db, e, points, range, register_fonts, render, FONT, R};
+use crate::plot::{db, e, points, range, register_fonts, render, PlotError, FONT, R};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::fmt::Write as _;
@@ -327,6 +327,24 @@ pub(crate) const FINAL_C: RGBColor = RGBColor(20, 90, 200);
 /// One curve: legend, colour, points.
 pub(crate) type Series<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
 
+/// [`draw_lines`] rendered to `<dir>/<name>.png` and `.svg` (see [`render`]).
+pub(crate) fn render_lines(
+    dir: &Path,
+    name: &str,
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    x1: f64,
+    series: &[Series],
+) -> Result<Vec<PathBuf>, PlotError> {
+    render(
+        dir,
+        name,
+        |r| draw_lines(r, title, xlabel, ylabel, x1, series),
+        |r| draw_lines(r, title, xlabel, ylabel, x1, series),
+    )
+}
+
 pub(crate) fn draw_lines<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     title: &str,
@@ -461,29 +479,14 @@ pub fn write(
             ("with added effects", FINAL_C, pts(&spectra[2], nyq)),
         ];
         let title = format!("PSD, held-out: {}", m.label);
-        files.extend(render(
+        files.extend(render_lines(
             dir,
             "gap-spectra",
-            |r| {
-                draw_lines(
-                    r,
-                    &title,
-                    "frequency (Hz)",
-                    "PSD (dB re 1 (m/s²)²/Hz)",
-                    nyq,
-                    &ser,
-                )
-            },
-            |r| {
-                draw_lines(
-                    r,
-                    &title,
-                    "frequency (Hz)",
-                    "PSD (dB re 1 (m/s²)²/Hz)",
-                    nyq,
-                    &ser,
-                )
-            },
+            &title,
+            "frequency (Hz)",
+            "PSD (dB re 1 (m/s²)²/Hz)",
+            nyq,
+            &ser,
         )?);
         let ff = &m.spec().ff;
         let f1 = 6.0 * ff.bpfi.max(ff.bpfo).max(2.0 * ff.bsf);
@@ -501,29 +504,14 @@ pub fn write(
             ("with added effects", FINAL_C, env[2].clone()),
         ];
         let title = format!("envelope spectrum, held-out: {}", m.label);
-        files.extend(render(
+        files.extend(render_lines(
             dir,
             "gap-envelope",
-            |r| {
-                draw_lines(
-                    r,
-                    &title,
-                    "frequency (Hz)",
-                    "envelope amplitude (dB re 1 m/s²)",
-                    f1,
-                    &eser,
-                )
-            },
-            |r| {
-                draw_lines(
-                    r,
-                    &title,
-                    "frequency (Hz)",
-                    "envelope amplitude (dB re 1 m/s²)",
-                    f1,
-                    &eser,
-                )
-            },
+            &title,
+            "frequency (Hz)",
+            "envelope amplitude (dB re 1 m/s²)",
+            f1,
+            &eser,
         )?);
     }
     files.extend(render(

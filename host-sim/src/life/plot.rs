@@ -287,36 +287,20 @@ fn draw_ims<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &ImsComparison)
         "fraction of life",
         "RMS / early-life median",
     )?;
-    let m: Vec<(f64, f64)> = c
-        .measured
-        .t
-        .iter()
-        .copied()
-        .zip(c.measured.rms.iter().copied())
-        .collect();
-    let s: Vec<(f64, f64)> = c
-        .simulated
-        .t
-        .iter()
-        .copied()
-        .zip(c.simulated.rms.iter().copied())
-        .collect();
-    e(chart.draw_series(LineSeries::new(m, RGBColor(210, 40, 40).stroke_width(2))))?
-        .label("measured (IMS)")
-        .legend(|(x, y)| {
-            PathElement::new(
-                vec![(x, y), (x + 20, y)],
-                RGBColor(210, 40, 40).stroke_width(2),
-            )
-        });
-    e(chart.draw_series(LineSeries::new(s, RGBColor(20, 90, 200).stroke_width(2))))?
-        .label("simulated (wearsim)")
-        .legend(|(x, y)| {
-            PathElement::new(
-                vec![(x, y), (x + 20, y)],
-                RGBColor(20, 90, 200).stroke_width(2),
-            )
-        });
+    for (curve, label, col) in [
+        (&c.measured, "measured (IMS)", RGBColor(210, 40, 40)),
+        (&c.simulated, "simulated (wearsim)", RGBColor(20, 90, 200)),
+    ] {
+        let pts: Vec<(f64, f64)> = curve
+            .t
+            .iter()
+            .copied()
+            .zip(curve.rms.iter().copied())
+            .collect();
+        e(chart.draw_series(LineSeries::new(pts, col.stroke_width(2))))?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2)));
+    }
     for (o, col) in [
         (c.onset_measured, RGBColor(210, 40, 40)),
         (c.onset_simulated, RGBColor(20, 90, 200)),

@@ -8,8 +8,8 @@ use crate::gap::error::GapError;
 use crate::gap::fit::FittedParam;
 use crate::gap::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifePoint, StageGap};
 use crate::gap::report::{
-    draw_gap_bars, draw_lines, findings_section, finish, fmt_params, greedy_section,
-    leave_one_out_section, Series, BASE_C, FINAL_C, REAL_C,
+    draw_gap_bars, findings_section, finish, fmt_params, greedy_section, leave_one_out_section,
+    render_lines, Series, BASE_C, FINAL_C, REAL_C,
 };
 use crate::plot::{register_fonts, render};
 use plotters::style::RGBColor;
@@ -444,11 +444,14 @@ pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>,
             ser.push((label.as_str(), col, along(pts, i)));
         }
         let title = format!("{ylabel} along life: measured and simulated");
-        files.extend(render(
+        files.extend(render_lines(
             dir,
             name,
-            |r| draw_lines(r, &title, "fraction of life", ylabel, 1.0, &ser),
-            |r| draw_lines(r, &title, "fraction of life", ylabel, 1.0, &ser),
+            &title,
+            "fraction of life",
+            ylabel,
+            1.0,
+            &ser,
         )?);
     }
     let rows: Vec<(String, f64, f64)> = o

@@ -189,6 +189,22 @@ pub(crate) fn pick_by_record<'v, T>(
     }
 }
 
+/// The CWRU label of `path`'s file name ([`parse_cwru_name`]) and the record number to prefer
+/// among its variables: the label's, else a bare numeric name (`118.mat`).
+/// Shared by the flat CWRU reader and the tree resolver (`super::resolve`).
+pub(crate) fn file_label(path: &Path) -> (Option<CwruLabel>, Option<u32>) {
+    let file_name = path
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let label = parse_cwru_name(&file_name);
+    let record_no = label
+        .as_ref()
+        .map(|l| l.record)
+        .or_else(|| file_name.strip_suffix(".mat").and_then(|s| s.parse().ok()));
+    (label, record_no)
+}
+
 /// [`pick_by_record`] over the flat reader's variables.
 fn pick<'v>(
     path: &Path,
@@ -224,15 +240,7 @@ pub fn read_cwru(
     let vars = read_mat(path, &|name: &str| {
         name.ends_with(&suffix) || name.ends_with("RPM")
     })?;
-    let file_name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let label = parse_cwru_name(&file_name);
-    let record_no = label
-        .as_ref()
-        .map(|l| l.record)
-        .or_else(|| file_name.strip_suffix(".mat").and_then(|s| s.parse().ok()));
+    let (label, record_no) = file_label(path);
 
     let numeric = |v: &&MatVariable| v.class.is_numeric() && !v.complex;
     let time_vars: Vec<&MatVariable> = vars

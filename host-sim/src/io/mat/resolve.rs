@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::json;
 
-use super::cwru::{cwru_bearing_preset, parse_cwru_name, pick_by_record};
+use super::cwru::{cwru_bearing_preset, file_label, pick_by_record};
 use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode, MatValue};
 use crate::io::error::IoError;
 use crate::io::record::{check_finite, check_fs, check_fs_argument, check_rpm, Record};
@@ -314,15 +314,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     let path = path.as_ref();
     let listing = read_mat_tree(path, &|_| false)?;
     let layout = recognise(&listing);
-    let file_name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let label = parse_cwru_name(&file_name);
-    let record_no = label
-        .as_ref()
-        .map(|l| l.record)
-        .or_else(|| file_name.strip_suffix(".mat").and_then(|s| s.parse().ok()));
+    let (label, record_no) = file_label(path);
     // A CWRU fan-end fault file is analysed on the accelerometer at the faulted bearing (and so
     // with its geometry, `cwru-6203-fe`), as the data center's own file naming says.
     let cwru_default = match label.as_ref().and_then(|l| l.fault_end.as_deref()) {

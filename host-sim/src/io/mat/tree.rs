@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use super::v5::{
     inflate, parse_header, read_file, read_real_part, Budget, Cursor, MatClass, MI_COMPRESSED,
-    MI_INT16, MI_INT32, MI_INT8, MI_MATRIX, MI_UINT16, MI_UINT32, MI_UINT8, MI_UTF8,
+    MI_INT16, MI_INT32, MI_MATRIX, MI_UINT16,
 };
 use crate::io::error::IoError;
 
@@ -370,14 +370,7 @@ fn matrix(
         path,
         ctx: where_,
     };
-    let (ty, flags) = c.sub_element("array flags")?;
-    if ty != MI_UINT32 || flags.len() != 8 {
-        return Err(IoError::malformed(
-            path,
-            format!("{where_}: array flags sub-element has type {ty} and {} bytes (expected miUINT32, 8)", flags.len()),
-        ));
-    }
-    let f0 = u32_of(flags, big);
+    let f0 = c.array_flags()?;
     let class = MatClass::from_code((f0 & 0xFF) as u8);
     let complex = f0 & 0x0800 != 0;
     let logical = f0 & 0x0200 != 0;
@@ -405,14 +398,7 @@ fn matrix(
         .ok_or_else(|| {
             IoError::contradiction(path, format!("{where_}: dimensions {dims:?} overflow"))
         })?;
-    let (ty, name_raw) = c.sub_element("array name")?;
-    if ty != MI_INT8 && ty != MI_UINT8 && ty != MI_UTF8 {
-        return Err(IoError::malformed(
-            path,
-            format!("{where_}: array name sub-element has type {ty} (expected miINT8)"),
-        ));
-    }
-    let stored = String::from_utf8_lossy(name_raw).into_owned();
+    let stored = c.array_name()?;
     let name = name_given.unwrap_or(stored.clone());
     let node_path = path_given.unwrap_or(stored);
     let mut node = MatNode {

@@ -285,6 +285,44 @@ impl<'a> Cursor<'a> {
             Ok((ty, data))
         }
     }
+
+    /// Read a matrix's array-flags sub-element (miUINT32, 8 bytes); returns its first word
+    /// (class in the low byte, the complex and logical bits above it).
+    pub(crate) fn array_flags(&mut self) -> Result<u32, IoError> {
+        let (ty, flags) = self.sub_element("array flags")?;
+        if ty != MI_UINT32 || flags.len() != 8 {
+            return Err(IoError::malformed(
+                self.path,
+                format!(
+                    "{}: array flags sub-element has type {ty} and {} bytes (expected miUINT32, 8)",
+                    self.ctx,
+                    flags.len()
+                ),
+            ));
+        }
+        let word = [flags[0], flags[1], flags[2], flags[3]];
+        Ok(if self.big {
+            u32::from_be_bytes(word)
+        } else {
+            u32::from_le_bytes(word)
+        })
+    }
+
+    /// Read a matrix's array-name sub-element (miINT8, miUINT8 or miUTF8), decoded as UTF-8
+    /// (invalid bytes replaced).
+    pub(crate) fn array_name(&mut self) -> Result<String, IoError> {
+        let (ty, name_raw) = self.sub_element("array name")?;
+        if ty != MI_INT8 && ty != MI_UINT8 && ty != MI_UTF8 {
+            return Err(IoError::malformed(
+                self.path,
+                format!(
+                    "{}: array name sub-element has type {ty} (expected miINT8)",
+                    self.ctx
+                ),
+            ));
+        }
+        Ok(String::from_utf8_lossy(name_raw).into_owned())
+    }
 }
 
 /// Check the 128-byte MAT v5 header of `bytes`; returns true for big-endian (`MI`) files.
@@ -462,21 +500,7 @@ pub(crate) fn parse_matrix(
         ctx: &ctx,
     };
     let path = outer.path;
-    let (ty, flags) = c.sub_element("array flags")?;
-    if ty != MI_UINT32 || flags.len() != 8 {
-        return Err(IoError::malformed(
-            path,
-            format!(
-                "{ctx}: array flags sub-element has type {ty} and {} bytes (expected miUINT32, 8)",
-                flags.len()
-            ),
-        ));
-    }
-    let f0 = if c.big {
-        u32::from_be_bytes([flags[0], flags[1], flags[2], flags[3]])
-    } else {
-        u32::from_le_bytes([flags[0], flags[1], flags[2], flags[3]])
-    };
+    let f0 = c.array_flags()?;
     let class = MatClass::from_code((f0 & 0xFF) as u8);
     let complex = f0 & 0x0800 != 0;
 
@@ -504,14 +528,7 @@ pub(crate) fn parse_matrix(
         dims.push(d as usize);
     }
 
-    let (ty, name_raw) = c.sub_element("array name")?;
-    if ty != MI_INT8 && ty != MI_UINT8 && ty != MI_UTF8 {
-        return Err(IoError::malformed(
-            path,
-            format!("{ctx}: array name sub-element has type {ty} (expected miINT8)"),
-        ));
-    }
-    let name = String::from_utf8_lossy(name_raw).into_owned();
+    let name = c.array_name()?;
     let mut var = MatVariable {
         name,
         class,
