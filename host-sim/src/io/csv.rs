@@ -60,7 +60,14 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     if head.is_empty() {
         return Err(IoError::truncated(path, "empty file (no rows)"));
     }
-    let first_line = head.split(|&b| b == b'\n').next().unwrap_or(&[]);
+    // The separator is decided on the first line that is data or header: a `#` comment
+    // above it (a DAQ's "# exported by X, fs=25600") is free text, skipped like the reader
+    // skips it.
+    let first_line = head
+        .split(|&b| b == b'\n')
+        .map(|l| l.strip_prefix(b"\xef\xbb\xbf").unwrap_or(l))
+        .find(|l| !l.starts_with(b"#") && l.iter().any(|b| !b.is_ascii_whitespace()))
+        .unwrap_or(&[]);
     let has = |b: u8| first_line.contains(&b);
     let delim = if has(b'\t') && !has(b',') {
         b'\t'

@@ -59,3 +59,41 @@ fn a_layout_file_with_a_byte_order_mark_is_recognised_by_content() {
     assert_eq!(v["fs_source"], "layout:femto", "{v}");
     assert_eq!(v["channel"], "horiz");
 }
+
+/// Lines `time,value` of `x` at `fs` Hz, the time printed by `time` (seconds → cell).
+fn timed_rows(x: &[f64], fs: f64, sep: &str, time: impl Fn(f64) -> String) -> String {
+    x.iter()
+        .enumerate()
+        .map(|(i, v)| format!("{}{sep}{v}\n", time(i as f64 / fs)))
+        .collect()
+}
+
+/// A DAQ export opening with a `#` comment that holds a comma (`# exported by X, fs=25600`)
+/// above a tab-separated table: the separator was decided on that comment, so every row
+/// was one cell and `analyze` exited 2 with `"0\t-0.14" is not a number`. The comment is
+/// skipped when the separator is chosen, as the reader skips it.
+#[test]
+fn a_comment_line_does_not_decide_the_separator() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(25_600);
+    let body = timed_rows(&x, 25_600.0, "\t", |t| format!("{t}"));
+    let p = dir.path().join("daq.csv");
+    std::fs::write(
+        &p,
+        format!("# exported by DAQ, channel 1, units g\ntime\taccel\n{body}"),
+    )
+    .expect("write");
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ]);
+    let v = json_ok(&o);
+    assert_eq!(v["channel"], "accel", "{v}");
+    let fs = v["fs"].as_f64().expect("fs");
+    assert!((fs - 25_600.0).abs() < 1e-6 * 25_600.0, "{fs}");
+}
