@@ -97,3 +97,24 @@ fn a_comment_line_does_not_decide_the_separator() {
     let fs = v["fs"].as_f64().expect("fs");
     assert!((fs - 25_600.0).abs() < 1e-6 * 25_600.0, "{fs}");
 }
+
+/// A hand-written sidecar's `bearing_geometry` (documented, and used: `bearing_source` is
+/// `sidecar`) was named on stderr among the "sidecar keys not read".
+#[test]
+fn a_sidecar_bearing_geometry_is_not_called_unread() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let body: String = noise(25_600).iter().map(|v| format!("{v}\n")).collect();
+    let p = dir.path().join("run1.csv");
+    std::fs::write(&p, format!("accel\n{body}")).expect("write");
+    std::fs::write(
+        dir.path().join("run1.json"),
+        r#"{"fs": 25600, "rpm": 2100, "units": "g",
+            "bearing_geometry": "elements=8,ball=7.92,pitch=34.55,angle=0"}"#,
+    )
+    .expect("sidecar");
+    let o = wearsim(&["analyze", s(&p), "--json"]);
+    let v = json_ok(&o);
+    assert_eq!(v["bearing_source"], "sidecar", "{v}");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("not read"), "{err}");
+}
