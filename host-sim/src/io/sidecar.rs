@@ -453,6 +453,7 @@ pub(crate) fn resolve_fs(
                     .collect::<Vec<_>>()
                     .join(" or ")
             ),
+            advice: super::error::SIDECAR_FS_ADVICE,
         }),
     }
 }

@@ -3,9 +3,11 @@
 //! order mark, DAQ exports with comment lines and rounded time stamps, MAT files of other
 //! labs); one test per defect, each named after what must hold.
 
+use std::path::Path;
 use std::process::Output;
 
-use crate::support::{noise, s, wearsim};
+use crate::support::{noise, refused, s, wearsim};
+use wearsim_host::io::mat::fixture::{mat5_tree_bytes, FixtureValue};
 
 /// The `--json` object of a run that must have succeeded.
 fn json_ok(o: &Output) -> serde_json::Value {
@@ -117,4 +119,56 @@ fn a_sidecar_bearing_geometry_is_not_called_unread() {
     assert_eq!(v["bearing_source"], "sidecar", "{v}");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("not read"), "{err}");
+}
+
+/// Writes `vars` as a MAT v5 file `dir/name`.
+fn mat(dir: &Path, name: &str, vars: &[(&str, FixtureValue)]) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, mat5_tree_bytes(vars)).expect("write mat");
+    p
+}
+
+/// A MAT file without a usable rate was told to "write a sidecar with `"fs": HZ`", which a
+/// MAT file's sidecar is not read for (one sitting beside it gave the same error), and an
+/// MFPT struct whose `sr` was a char array or a vector was said to store "none". The
+/// message now names the field that is there and why it is not used, and the ways that work.
+#[test]
+fn a_mat_file_without_a_usable_rate_is_told_what_works() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(60_000);
+    let p = mat(
+        dir.path(),
+        "lab.mat",
+        &[
+            ("acc", FixtureValue::Doubles(x.clone())),
+            ("rpm", FixtureValue::Doubles(vec![1797.0])),
+        ],
+    );
+    std::fs::write(dir.path().join("lab.json"), r#"{"fs": 25600}"#).expect("sidecar");
+    let o = wearsim(&["analyze", s(&p), "--bearing", "cwru-6205-de"]);
+    refused(&o, &["sample rate unknown", "--fs HZ", "numeric scalar"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("write a sidecar"), "{err}");
+
+    let p = mat(
+        dir.path(),
+        "mfpt.mat",
+        &[(
+            "bearing",
+            FixtureValue::Struct {
+                dims: vec![1, 1],
+                fields: vec!["gs".into(), "sr".into(), "rate".into()],
+                elems: vec![vec![
+                    FixtureValue::Doubles(x),
+                    FixtureValue::Char("48828".into()),
+                    FixtureValue::Doubles(vec![25.0]),
+                ]],
+            },
+        )],
+    );
+    let o = wearsim(&["analyze", s(&p)]);
+    refused(
+        &o,
+        &["`bearing.sr` is a char array \"48828\", not a numeric scalar"],
+    );
 }

@@ -270,6 +270,29 @@ fn find_scalar<'n>(all: &[&'n MatNode], channel: &str, names: &[&str]) -> Option
     }
 }
 
+/// The nodes named one of `names` (case-insensitive) that are no numeric scalar, as
+/// `; `bearing.sr` is a char array "48828"` / `is a 1x2 double`, for a message saying why
+/// a rate or speed stored there was not taken; empty when there are none.
+fn not_scalar(all: &[&MatNode], names: &[&str]) -> String {
+    all.iter()
+        .filter(|n| names.iter().any(|k| n.name.eq_ignore_ascii_case(k)))
+        .filter(|n| !(is_numeric(n) && n.numel() == 1))
+        .map(|n| {
+            let dims: Vec<String> = n.dims.iter().map(usize::to_string).collect();
+            let what = match &n.value {
+                MatValue::Char(t) => {
+                    format!("a char array {:?}", t.chars().take(40).collect::<String>())
+                }
+                MatValue::Numeric { .. } => format!("a {} numeric array", dims.join("x")),
+                MatValue::Struct { .. } => "a struct".into(),
+                MatValue::Cell(_) => "a cell array".into(),
+                MatValue::Sparse | MatValue::Other => "not a numeric array".into(),
+            };
+            format!("; `{}` is {what}, not a numeric scalar", n.path)
+        })
+        .collect()
+}
+
 /// Names of a sample-rate scalar.
 const FS_NAMES: &[&str] = &[
     "sr",
@@ -412,10 +435,12 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             return Err(IoError::MissingSampleRate {
                 path: path.to_path_buf(),
                 detail: format!(
-                    "the {} layout stores none (no scalar named {}) and the file name does not give one",
+                    "the {} layout stores none (no numeric scalar named {}{}) and the file name does not give one",
                     layout.name(),
-                    FS_NAMES.join("/")
+                    FS_NAMES.join("/"),
+                    not_scalar(&all, FS_NAMES)
                 ),
+                advice: crate::io::error::MAT_FS_ADVICE,
             })
         }
     };
