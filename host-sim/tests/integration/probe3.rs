@@ -172,3 +172,51 @@ fn a_mat_file_without_a_usable_rate_is_told_what_works() {
         &["`bearing.sr` is a char array \"48828\", not a numeric scalar"],
     );
 }
+
+/// A Paderborn file states each channel's unit in `Y(i).Unit`; it was ignored, so
+/// `vibration_1` was `unknown` unless a sidecar repeated it.
+#[test]
+fn a_paderborn_file_gives_the_unit_it_states() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(64_000);
+    let channel = |name: &str, unit: &str, d: &[f64]| {
+        vec![
+            FixtureValue::Char(name.into()),
+            FixtureValue::Char("Signal".into()),
+            FixtureValue::Char(unit.into()),
+            FixtureValue::Doubles(d.to_vec()),
+            FixtureValue::Char("HostService".into()),
+        ]
+    };
+    let y = FixtureValue::Struct {
+        dims: vec![1, 2],
+        fields: ["Name", "Type", "Unit", "Data", "Raster"]
+            .iter()
+            .map(|f| f.to_string())
+            .collect(),
+        elems: vec![
+            channel("force", "N", &[1.0; 300]),
+            channel("vibration_1", "m/s^2", &x),
+        ],
+    };
+    let name = "N15_M07_F10_KA01_1";
+    let p = mat(
+        dir.path(),
+        "record.mat",
+        &[(
+            name,
+            FixtureValue::Struct {
+                dims: vec![1, 1],
+                fields: vec!["Info".into(), "Y".into()],
+                elems: vec![vec![FixtureValue::Empty, y]],
+            },
+        )],
+    );
+    let v = json_ok(&wearsim(&["analyze", s(&p), "--json"]));
+    assert_eq!(v["input"]["layout"], "paderborn", "{v}");
+    assert_eq!(v["unit"], "m/s^2", "{v}");
+    // A sidecar's unit still overrides the file's.
+    std::fs::write(dir.path().join("record.json"), r#"{"units": "g"}"#).expect("sidecar");
+    let v = json_ok(&wearsim(&["analyze", s(&p), "--json"]));
+    assert_eq!(v["unit"], "g", "{v}");
+}

@@ -480,7 +480,13 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     };
     let (unit, unit_source) = match layout {
         MatLayout::Cwru | MatLayout::Mfpt(_) => ("g".to_string(), "layout".to_string()),
-        MatLayout::Paderborn(_) | MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
+        MatLayout::Paderborn(_) => match sidecar_unit(path, &channel, &chan_path)? {
+            (u, _) if u == "unknown" => {
+                paderborn_unit(&listing, &chan_path).unwrap_or((u, "none".into()))
+            }
+            stated => stated,
+        },
+        MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
     };
     let meta = json!({
         "format": if layout == MatLayout::Cwru { "cwru-mat5" } else { "mat5" },
@@ -494,6 +500,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         "unit_note": match layout {
             MatLayout::Cwru => "CWRU does not state units; g is the common assumption",
             MatLayout::Mfpt(_) => "MFPT stores acceleration in g (field gs)",
+            MatLayout::Paderborn(_) => "Paderborn states each channel's unit in Y(i).Unit; a sidecar's unit overrides it",
             _ => "the file does not state units",
         },
         "unit_source": unit_source,
@@ -509,6 +516,15 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         source: PathBuf::from(path),
         meta,
     })
+}
+
+/// The unit a Paderborn file states for the channel at `chan_path` (`….Y(i).Data`): the
+/// char array `….Y(i).Unit` beside it, when not blank; with its path as the source
+/// (`file:N15_M07_F10_KA01_1.Y(7).Unit`).
+fn paderborn_unit(listing: &[MatNode], chan_path: &str) -> Option<(String, String)> {
+    let unit_path = format!("{}.Unit", chan_path.strip_suffix(".Data")?);
+    let unit = find(listing, &unit_path)?.text()?.trim();
+    (!unit.is_empty()).then(|| (unit.to_string(), format!("file:{unit_path}")))
 }
 
 /// The unit of a MAT file whose layout states none (Paderborn, generic): the one its JSON
