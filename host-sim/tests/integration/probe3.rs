@@ -220,3 +220,43 @@ fn a_paderborn_file_gives_the_unit_it_states() {
     let v = json_ok(&wearsim(&["analyze", s(&p), "--json"]));
     assert_eq!(v["unit"], "g", "{v}");
 }
+
+/// A MAT variable holding several channels as columns was refused with "pick one column
+/// with --channel", which no `--channel` value can do; the message now says what works.
+#[test]
+fn a_mat_matrix_channel_is_refused_with_advice_that_works() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(2 * 4096);
+    let p = mat(
+        dir.path(),
+        "two.mat",
+        &[
+            (
+                "data",
+                FixtureValue::Typed {
+                    class: 6,
+                    mi: 9,
+                    dims: vec![4096, 2],
+                    bytes: x.iter().flat_map(|v| v.to_le_bytes()).collect(),
+                    logical: false,
+                },
+            ),
+            ("fs", FixtureValue::Doubles(vec![25_600.0])),
+        ],
+    );
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--channel",
+        "data",
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+    ]);
+    refused(
+        &o,
+        &["[4096, 2] matrix", "not a column of one", "data(:,1)"],
+    );
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("pick one column with --channel"));
+}

@@ -400,7 +400,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     if !is_vector(chan) {
         return Err(IoError::unsupported(
             path,
-            format!("{chan_path:?} is a {:?} matrix, expected a vector (pick one column with --channel)", chan.dims),
+            format!("{chan_path:?} is a {:?} matrix, expected a vector: --channel takes a variable, not a column of one; save each channel as its own vector (in MATLAB `ch1 = data(:,1)`) or export the channel to CSV/NPY (whose --channel takes a column index)", chan.dims),
         ));
     }
     let samples = chan.numbers().unwrap_or(&[]).to_vec();
