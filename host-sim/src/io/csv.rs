@@ -31,11 +31,13 @@ use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
 use super::write::unit_from_column_name;
 use super::ReadOptions;
 
-/// Header names recognised as a time axis in seconds.
-pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time [s]", "time(s)"];
+/// Header names recognised as a time axis in seconds (compared ignoring case and spaces, so
+/// `Time (s)`, `time [s]` and `T(s)` are all time columns).
+pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time[s]", "time(s)", "t[s]", "t(s)"];
 
 fn is_time_name(s: &str) -> bool {
-    TIME_NAMES.iter().any(|t| s.eq_ignore_ascii_case(t))
+    let compact: String = s.chars().filter(|c| !c.is_whitespace()).collect();
+    TIME_NAMES.iter().any(|t| compact.eq_ignore_ascii_case(t))
 }
 
 /// Read one numeric column of a CSV file as a [`Record`] (see the module doc for the rules).

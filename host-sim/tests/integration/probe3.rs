@@ -260,3 +260,28 @@ fn a_mat_matrix_channel_is_refused_with_advice_that_works() {
     );
     assert!(!String::from_utf8_lossy(&o.stderr).contains("pick one column with --channel"));
 }
+
+/// A time column headed `Time (s)` (a space before the unit, as many DAQ programs write
+/// it) was not taken as the time axis: it became the analysed channel (a ramp), and the
+/// rate was unknown. A unit in brackets in a header (`Accel (g)`) now gives the unit.
+#[test]
+fn a_time_column_with_its_unit_in_brackets_is_the_time_axis() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let body = timed_rows(&noise(25_600), 25_600.0, ",", |t| format!("{t}"));
+    let p = dir.path().join("export.csv");
+    std::fs::write(&p, format!("Time (s),Accel (g)\n{body}")).expect("write");
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ]);
+    let v = json_ok(&o);
+    assert_eq!(v["channel"], "Accel (g)", "{v}");
+    assert_eq!(v["unit"], "g", "{v}");
+    let fs = v["fs"].as_f64().expect("fs");
+    assert!((fs - 25_600.0).abs() < 1e-6 * 25_600.0, "{fs}");
+}
