@@ -105,6 +105,9 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let mut time_col: Option<usize> = None;
     let mut samples: Vec<f64> = Vec::new();
     let mut times: Vec<f64> = Vec::new();
+    // Most decimals printed in a time cell (`None` once one is in exponent form: full
+    // precision), for the rounding the spacing check allows.
+    let mut time_decimals: Option<usize> = Some(0);
     let mut first = true;
     loop {
         match rdr.read_record(&mut rec) {
@@ -164,6 +167,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
                 )
             })?;
             times.push(tv);
+            time_decimals = time_decimals.zip(decimals(cell)).map(|(a, b)| a.max(b));
         }
     }
     let names = header.unwrap_or_default();
@@ -175,7 +179,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
     let from_time = match time_col {
-        Some(t) => fs_from_time(path, &names[t], &times)?,
+        Some(t) => fs_from_time(path, &names[t], &times, time_decimals)?,
         None => None,
     };
     let (fs, fs_source) = resolve_fs(
@@ -306,9 +310,28 @@ fn choose_column(
     Ok(0)
 }
 
+/// Digits after the decimal point (or comma) of a number cell as printed; `None` for the
+/// exponent form (`3.9e-5`), taken as printed to full precision.
+fn decimals(cell: &str) -> Option<usize> {
+    if cell.contains(['e', 'E']) {
+        return None;
+    }
+    Some(cell.rsplit_once(['.', ',']).map_or(0, |(_, f)| f.len()))
+}
+
 /// Sample rate from a time column in seconds; `None` for fewer than 2 rows. Non-uniform or
-/// non-increasing times are an error.
-fn fs_from_time(path: &Path, name: &str, t: &[f64]) -> Result<Option<f64>, IoError> {
+/// non-increasing times are an error. A time printed with `decimals` digits after the point
+/// is off by up to half a unit of the last digit (a 25.6 kHz record's stamps printed to the
+/// microsecond are 0.000039, 0.000078, …): each stamp must lie within twice that rounding
+/// (its own and the first stamp's), plus 10⁻³ of the spacing, of the uniform grid, and the
+/// rate is taken from the whole span. Whole numbers are taken as exact. Stamps too coarse to
+/// tell neighbouring samples apart are an error.
+fn fs_from_time(
+    path: &Path,
+    name: &str,
+    t: &[f64],
+    decimals: Option<usize>,
+) -> Result<Option<f64>, IoError> {
     if t.len() < 2 {
         return Ok(None);
     }
@@ -322,7 +345,21 @@ fn fs_from_time(path: &Path, name: &str, t: &[f64]) -> Result<Option<f64>, IoErr
         ));
     }
     let dt = span / (n - 1) as f64;
-    let tol = dt * 1e-3;
+    // Half a unit of the last printed digit, s (0 for full precision and for whole numbers;
+    // 10^-d underflows to 0 past f64's exponent range, also full precision).
+    let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
+        0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
+    });
+    if rounding >= 0.25 * dt {
+        return Err(IoError::malformed(
+            path,
+            format!(
+                "time column {name:?} is printed to {} decimals, too coarse for its sample spacing of {dt:e} s; print it with more decimals, or drop the column and pass --fs",
+                decimals.unwrap_or(0)
+            ),
+        ));
+    }
+    let tol = dt * 1e-3 + 2.0 * rounding;
     for (i, &ti) in t.iter().enumerate() {
         if (ti - (t[0] + i as f64 * dt)).abs() > tol {
             return Err(IoError::malformed(

@@ -285,3 +285,36 @@ fn a_time_column_with_its_unit_in_brackets_is_the_time_axis() {
     let fs = v["fs"].as_f64().expect("fs");
     assert!((fs - 25_600.0).abs() < 1e-6 * 25_600.0, "{fs}");
 }
+
+/// At 25.6 kHz, time stamps printed to the microsecond (`0.000039`, `0.000078`, …; what
+/// `%.6f` writes) are off the grid by up to 0.5 µs, and the record was refused as "not
+/// uniformly spaced", with no way round it (`--fs` must agree with the column). The
+/// rounding of the printed digits is allowed; stamps too coarse to tell samples apart are
+/// refused saying so.
+#[test]
+fn time_stamps_rounded_to_the_microsecond_give_the_rate() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(25_600);
+    let p = dir.path().join("us.csv");
+    let body = timed_rows(&x, 25_600.0, ",", |t| format!("{t:.6}"));
+    std::fs::write(&p, format!("time,accel\n{body}")).expect("write");
+    let args = [
+        "analyze",
+        s(&p),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ];
+    let v = json_ok(&wearsim(&args));
+    let fs = v["fs"].as_f64().expect("fs");
+    assert!((fs - 25_600.0).abs() < 1e-4 * 25_600.0, "{fs}");
+
+    let body = timed_rows(&x, 25_600.0, ",", |t| format!("{t:.4}"));
+    std::fs::write(&p, format!("time,accel\n{body}")).expect("write");
+    refused(
+        &wearsim(&args),
+        &["time column \"time\"", "4 decimals", "too coarse"],
+    );
+}
