@@ -318,3 +318,35 @@ fn time_stamps_rounded_to_the_microsecond_give_the_rate() {
         &["time column \"time\"", "4 decimals", "too coarse"],
     );
 }
+
+/// `--bearing mfpt-nice` is accepted, but a misspelt name was refused listing only the
+/// model presets ("unknown bearing preset … (allowed: thesis-61810, …, ims-za2115)"),
+/// hiding the catalogue bearings `--bearing` also takes.
+#[test]
+fn an_unknown_bearing_lists_every_name_bearing_takes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let body: String = noise(25_600).iter().map(|v| format!("{v}\n")).collect();
+    let p = dir.path().join("rec.csv");
+    std::fs::write(&p, format!("accel\n{body}")).expect("write");
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--fs",
+        "25600",
+        "--rpm",
+        "1500",
+        "--bearing",
+        "mfpt",
+    ]);
+    refused(
+        &o,
+        &[
+            "--bearing \"mfpt\"",
+            "cwru-6205-de",
+            "mfpt-nice",
+            "paderborn-6203",
+            "xjtu-ldk-uer204",
+            "--bearing-geometry",
+        ],
+    );
+}
