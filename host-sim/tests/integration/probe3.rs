@@ -350,3 +350,33 @@ fn an_unknown_bearing_lists_every_name_bearing_takes() {
         ],
     );
 }
+
+/// A batch with `--out` into a directory that does not exist analysed every file first and
+/// then exited 1 with an error about a temporary file (`…/.tmpXXXX: No such file or
+/// directory`). It is refused before any work, naming `--out`.
+#[test]
+fn a_batch_out_in_a_missing_directory_is_refused_first() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let body: String = noise(25_600).iter().map(|v| format!("{v}\n")).collect();
+    let p = dir.path().join("rec.csv");
+    std::fs::write(&p, format!("accel\n{body}")).expect("write");
+    let out = dir.path().join("missing").join("table.csv");
+    let o = wearsim(&[
+        "analyze",
+        s(&p),
+        "--fs",
+        "25600",
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--out",
+        s(&out),
+    ]);
+    refused(&o, &["--out", "directory does not exist"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !err.contains("analysed"),
+        "no file is analysed first: {err}"
+    );
+}
