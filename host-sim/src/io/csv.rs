@@ -324,8 +324,9 @@ fn decimals(cell: &str) -> Option<usize> {
 /// is off by up to half a unit of the last digit (a 25.6 kHz record's stamps printed to the
 /// microsecond are 0.000039, 0.000078, …): each stamp must lie within twice that rounding
 /// (its own and the first stamp's), plus 10⁻³ of the spacing, of the uniform grid, and the
-/// rate is taken from the whole span. Whole numbers are taken as exact. Stamps too coarse to
-/// tell neighbouring samples apart are an error.
+/// rate is taken from the whole span. Whole numbers are taken as exact. The allowance is at
+/// most a quarter of the spacing, so every stamp still lies nearest its own sample; stamps
+/// printed too coarsely to meet it are refused saying so.
 fn fs_from_time(
     path: &Path,
     name: &str,
@@ -350,22 +351,19 @@ fn fs_from_time(
     let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
         0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
     });
-    if rounding >= 0.25 * dt {
-        return Err(IoError::malformed(
-            path,
-            format!(
-                "time column {name:?} is printed to {} decimals, too coarse for its sample spacing of {dt:e} s; print it with more decimals, or drop the column and pass --fs",
-                decimals.unwrap_or(0)
-            ),
-        ));
-    }
-    let tol = dt * 1e-3 + 2.0 * rounding;
+    let tol = dt * 1e-3 + (2.0 * rounding).min(0.25 * dt);
     for (i, &ti) in t.iter().enumerate() {
         if (ti - (t[0] + i as f64 * dt)).abs() > tol {
+            let coarse = match decimals {
+                Some(d) if 2.0 * rounding > 0.25 * dt => format!(
+                    "; printed to {d} decimals, the stamps are too coarse for a spacing of {dt:e} s: print more decimals, or drop the column and pass --fs"
+                ),
+                _ => String::new(),
+            };
             return Err(IoError::malformed(
                 path,
                 format!(
-                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s)",
+                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s){coarse}",
                     t[0] + i as f64 * dt
                 ),
             ));

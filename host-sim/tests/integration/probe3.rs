@@ -289,8 +289,8 @@ fn a_time_column_with_its_unit_in_brackets_is_the_time_axis() {
 /// At 25.6 kHz, time stamps printed to the microsecond (`0.000039`, `0.000078`, …; what
 /// `%.6f` writes) are off the grid by up to 0.5 µs, and the record was refused as "not
 /// uniformly spaced", with no way round it (`--fs` must agree with the column). The
-/// rounding of the printed digits is allowed; stamps too coarse to tell samples apart are
-/// refused saying so.
+/// rounding of the printed digits is allowed (stamps exact at their digits, 1 kHz to the
+/// millisecond, stay exact); stamps too coarse to tell samples apart are refused saying so.
 #[test]
 fn time_stamps_rounded_to_the_microsecond_give_the_rate() {
     let dir = tempfile::tempdir().expect("tempdir");
