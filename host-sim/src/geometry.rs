@@ -353,7 +353,9 @@ pub struct ScaledModel {
 /// The bearing `analyze` uses when it is not a model preset: from `--bearing-geometry`
 /// (`geometry`), a catalogue name given with `--bearing` (`preset`), a sidecar's
 /// `"bearing_geometry"`, or a catalogue name a reader set from the file's layout. Returns
-/// `(name, source, geometry)`, or `None` when the bearing is a model preset (or unknown).
+/// `(name, source, geometry)`, or `None` when the bearing is a model preset (or unknown, when
+/// not given with `--bearing`). A `--bearing` that is neither a preset nor a catalogue
+/// bearing is an error listing both.
 pub fn choose(
     rec: &crate::io::Record,
     preset: Option<&str>,
@@ -366,6 +368,13 @@ pub fn choose(
         return Ok(Some(("custom".into(), "argument", GeometrySpec::parse(g)?)));
     }
     if let Some(b) = preset {
+        if wearsim_core::presets::by_name(b).is_none() && catalogue(b).is_none() {
+            return Err(format!(
+                "--bearing {b:?} is no preset or catalogue bearing (allowed: {}, {}; or --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG)",
+                wearsim_core::presets::NAMES.join(", "),
+                CATALOGUE.map(|e| e.name).join(", ")
+            ));
+        }
         return Ok(catalogue(b).map(|e| (b.to_string(), "argument", e.geometry)));
     }
     if let Some(v) = rec

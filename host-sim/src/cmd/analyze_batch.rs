@@ -268,6 +268,16 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
             "--plot: plots are written for one file at a time, not in a batch run",
         ));
     }
+    // The table's directory must exist before any file is analysed (a batch can take hours).
+    if let Some(o) = &args.out {
+        let parent = o.parent().filter(|p| !p.as_os_str().is_empty());
+        if parent.is_some_and(|p| !p.is_dir()) {
+            return Err(CliError::input(format!(
+                "--out {}: its directory does not exist (create it first, or choose another --out)",
+                o.display()
+            )));
+        }
+    }
     let inputs: Vec<PathBuf> = std::iter::once(args.file.clone())
         .chain(args.more.iter().cloned())
         .collect();

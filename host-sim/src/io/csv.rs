@@ -31,11 +31,13 @@ use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
 use super::write::unit_from_column_name;
 use super::ReadOptions;
 
-/// Header names recognised as a time axis in seconds.
-pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time [s]", "time(s)"];
+/// Header names recognised as a time axis in seconds (compared ignoring case and spaces, so
+/// `Time (s)`, `time [s]` and `T(s)` are all time columns).
+pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time[s]", "time(s)", "t[s]", "t(s)"];
 
 fn is_time_name(s: &str) -> bool {
-    TIME_NAMES.iter().any(|t| s.eq_ignore_ascii_case(t))
+    let compact: String = s.chars().filter(|c| !c.is_whitespace()).collect();
+    TIME_NAMES.iter().any(|t| compact.eq_ignore_ascii_case(t))
 }
 
 /// Read one numeric column of a CSV file as a [`Record`] (see the module doc for the rules).
@@ -60,7 +62,14 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     if head.is_empty() {
         return Err(IoError::truncated(path, "empty file (no rows)"));
     }
-    let first_line = head.split(|&b| b == b'\n').next().unwrap_or(&[]);
+    // The separator is decided on the first line that is data or header: a `#` comment
+    // above it (a DAQ's "# exported by X, fs=25600") is free text, skipped like the reader
+    // skips it.
+    let first_line = head
+        .split(|&b| b == b'\n')
+        .map(|l| l.strip_prefix(b"\xef\xbb\xbf").unwrap_or(l))
+        .find(|l| !l.starts_with(b"#") && l.iter().any(|b| !b.is_ascii_whitespace()))
+        .unwrap_or(&[]);
     let has = |b: u8| first_line.contains(&b);
     let delim = if has(b'\t') && !has(b',') {
         b'\t'
@@ -96,6 +105,9 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let mut time_col: Option<usize> = None;
     let mut samples: Vec<f64> = Vec::new();
     let mut times: Vec<f64> = Vec::new();
+    // Most decimals printed in a time cell (`None` once one is in exponent form: full
+    // precision), for the rounding the spacing check allows.
+    let mut time_decimals: Option<usize> = Some(0);
     let mut first = true;
     loop {
         match rdr.read_record(&mut rec) {
@@ -155,6 +167,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
                 )
             })?;
             times.push(tv);
+            time_decimals = time_decimals.zip(decimals(cell)).map(|(a, b)| a.max(b));
         }
     }
     let names = header.unwrap_or_default();
@@ -166,7 +179,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
     let from_time = match time_col {
-        Some(t) => fs_from_time(path, &names[t], &times)?,
+        Some(t) => fs_from_time(path, &names[t], &times, time_decimals)?,
         None => None,
     };
     let (fs, fs_source) = resolve_fs(
@@ -297,9 +310,29 @@ fn choose_column(
     Ok(0)
 }
 
+/// Digits after the decimal point (or comma) of a number cell as printed; `None` for the
+/// exponent form (`3.9e-5`), taken as printed to full precision.
+fn decimals(cell: &str) -> Option<usize> {
+    if cell.contains(['e', 'E']) {
+        return None;
+    }
+    Some(cell.rsplit_once(['.', ',']).map_or(0, |(_, f)| f.len()))
+}
+
 /// Sample rate from a time column in seconds; `None` for fewer than 2 rows. Non-uniform or
-/// non-increasing times are an error.
-fn fs_from_time(path: &Path, name: &str, t: &[f64]) -> Result<Option<f64>, IoError> {
+/// non-increasing times are an error. A time printed with `decimals` digits after the point
+/// is off by up to half a unit of the last digit (a 25.6 kHz record's stamps printed to the
+/// microsecond are 0.000039, 0.000078, …): each stamp must lie within twice that rounding
+/// (its own and the first stamp's), plus 10⁻³ of the spacing, of the uniform grid, and the
+/// rate is taken from the whole span. Whole numbers are taken as exact. The allowance is at
+/// most a quarter of the spacing, so every stamp still lies nearest its own sample; stamps
+/// printed too coarsely to meet it are refused saying so.
+fn fs_from_time(
+    path: &Path,
+    name: &str,
+    t: &[f64],
+    decimals: Option<usize>,
+) -> Result<Option<f64>, IoError> {
     if t.len() < 2 {
         return Ok(None);
     }
@@ -313,13 +346,24 @@ fn fs_from_time(path: &Path, name: &str, t: &[f64]) -> Result<Option<f64>, IoErr
         ));
     }
     let dt = span / (n - 1) as f64;
-    let tol = dt * 1e-3;
+    // Half a unit of the last printed digit, s (0 for full precision and for whole numbers;
+    // 10^-d underflows to 0 past f64's exponent range, also full precision).
+    let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
+        0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
+    });
+    let tol = dt * 1e-3 + (2.0 * rounding).min(0.25 * dt);
     for (i, &ti) in t.iter().enumerate() {
         if (ti - (t[0] + i as f64 * dt)).abs() > tol {
+            let coarse = match decimals {
+                Some(d) if 2.0 * rounding > 0.25 * dt => format!(
+                    "; printed to {d} decimals, the stamps are too coarse for a spacing of {dt:e} s: print more decimals, or drop the column and pass --fs"
+                ),
+                _ => String::new(),
+            };
             return Err(IoError::malformed(
                 path,
                 format!(
-                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s)",
+                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s){coarse}",
                     t[0] + i as f64 * dt
                 ),
             ));

@@ -108,12 +108,15 @@ pub enum IoError {
 
     /// No sample rate is known: the format does not store one and neither a sidecar nor an
     /// argument gave one.
-    #[error("{}: sample rate unknown: {detail}; pass `--fs HZ`, or write a sidecar with `\"fs\": HZ` (`<file>.json`)", path.display())]
+    #[error("{}: sample rate unknown: {detail}; pass `--fs HZ`, or {advice}", path.display())]
     MissingSampleRate {
         /// Data file without a known rate.
         path: PathBuf,
         /// Where the rate was looked for.
         detail: String,
+        /// The other way to state the rate for this kind of file (a sidecar's `fs` for CSV,
+        /// WAV and NPY; a scalar in the file for MAT, whose sidecar gives only units).
+        advice: &'static str,
     },
 
     /// The output directory is in use by another run (see [`crate::io::lock`]).
@@ -144,6 +147,11 @@ pub enum IoError {
         path: PathBuf,
     },
 }
+
+/// [`IoError::MissingSampleRate`]'s advice for a file whose sidecar may give the rate.
+pub const SIDECAR_FS_ADVICE: &str = "write a sidecar with `\"fs\": HZ` (`<file>.json`)";
+/// [`IoError::MissingSampleRate`]'s advice for a MAT file (its sidecar is read for units only).
+pub const MAT_FS_ADVICE: &str = "store the rate in the file as a numeric scalar (`fs`, `sr` or `sample_rate`, beside the signal); a MAT file's sidecar is read for its units only";
 
 impl IoError {
     /// The file this error is about.

@@ -133,7 +133,9 @@ pub fn read_ims_snapshot(path: impl AsRef<Path>, channel: usize) -> Result<Recor
         "IMS snapshot",
         &format!("{MAX_SNAPSHOT_BYTES} bytes (an IMS snapshot is about 1 MB)"),
     )?;
-    let text = std::str::from_utf8(&bytes)
+    // A UTF-8 byte order mark (an editor's) is no part of the first value.
+    let body = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
+    let text = std::str::from_utf8(body)
         .map_err(|e| IoError::malformed(path, format!("not ASCII text: {e}")))?;
     let mut ncols = 0usize;
     let mut samples = Vec::with_capacity(IMS_ROWS);

@@ -73,12 +73,15 @@ fn read_head(path: &Path) -> Result<Vec<u8>, IoError> {
     Ok(buf)
 }
 
-/// The first line of `path` (trimmed), read from its first 4096 bytes only: what a text
-/// layout is recognised from, and what a FEMTO snapshot's clock and separator are taken
-/// from, without reading a file of any size whole. Empty for an empty file.
+/// The first line of `path` (trimmed, a UTF-8 byte order mark dropped), read from its first
+/// 4096 bytes only: what a text layout is recognised from, and what a FEMTO snapshot's clock
+/// and separator are taken from, without reading a file of any size whole. Empty for an
+/// empty file. The mark is what spreadsheet programs write before a CSV's first cell; the
+/// readers behind the layouts (the `csv` crate) skip it too.
 pub fn first_line(path: &Path) -> Result<String, IoError> {
     let head = read_head(path)?;
-    let text = String::from_utf8_lossy(&head);
+    let body = head.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head);
+    let text = String::from_utf8_lossy(body);
     Ok(text.lines().next().map(str::trim).unwrap_or("").to_string())
 }
 
@@ -291,9 +294,8 @@ fn check_xjtu_header(path: &Path) -> Result<(), IoError> {
     if sniff_text(path)? == Some(TextLayout::XjtuSy) {
         return Ok(());
     }
-    let head = read_head(path)?;
-    let text = String::from_utf8_lossy(&head);
-    let first = text.lines().next().unwrap_or("").trim();
+    let first = first_line(path)?;
+    let first = first.as_str();
     let numbers = !first.is_empty()
         && first
             .split(',')

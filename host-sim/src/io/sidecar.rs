@@ -187,6 +187,7 @@ const READ_KEYS: &[&str] = &[
     "units",
     "unit",
     "bearing",
+    "bearing_geometry",
     "wav",
     "complete",
     "model",
@@ -223,7 +224,7 @@ fn warn_unread_keys(path: &Path, raw: &Map<String, Value>) {
             "wearsim: warning: {}: sidecar keys not read: {} (read: {})",
             path.display(),
             unread.join(", "),
-            READ_KEYS[..9].join(", ")
+            READ_KEYS[..10].join(", ")
         );
     }
 }
@@ -452,6 +453,7 @@ pub(crate) fn resolve_fs(
                     .collect::<Vec<_>>()
                     .join(" or ")
             ),
+            advice: super::error::SIDECAR_FS_ADVICE,
         }),
     }
 }

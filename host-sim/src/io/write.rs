@@ -62,9 +62,33 @@ pub struct OutputSet {
 }
 
 /// Unit implied by a column-name suffix: `_m_s2` → `m/s^2`, `_g` → `g`, `_mm_s` → `mm/s`,
-/// `_um` → `um`, `_n` → `N`, `_s` → `s`; otherwise `"unknown"`.
+/// `_um` → `um`, `_n` → `N`, `_s` → `s`; or by a unit in brackets at the end, as DAQ and
+/// spreadsheet headers write it (`Acc [g]`, `accel (m/s^2)`, `a [m/s²]`); otherwise
+/// `"unknown"`.
 pub fn unit_from_column_name(name: &str) -> &'static str {
     let n = name.to_ascii_lowercase();
+    let trimmed = n.trim_end();
+    let bracketed = [('[', ']'), ('(', ')')].iter().find_map(|&(open, close)| {
+        let inner = trimmed.strip_suffix(close)?;
+        inner.rsplit_once(open).map(|(_, u)| u.trim())
+    });
+    if let Some(u) = bracketed {
+        let unit = match u.replace(' ', "").as_str() {
+            "g" => Some("g"),
+            "m/s^2" | "m/s2" | "m/s²" | "ms^-2" | "m*s^-2" => Some("m/s^2"),
+            "mm/s" => Some("mm/s"),
+            "m/s" => Some("m/s"),
+            "um" | "µm" | "μm" => Some("um"),
+            "mm" => Some("mm"),
+            "n" => Some("N"),
+            "s" => Some("s"),
+            "hz" => Some("Hz"),
+            _ => None,
+        };
+        if let Some(unit) = unit {
+            return unit;
+        }
+    }
     const TABLE: &[(&str, &str)] = &[
         ("_m_s2", "m/s^2"),
         ("_mm_s", "mm/s"),

@@ -32,6 +32,7 @@ mod life_ball;
 mod life_sites;
 mod out_dirs;
 mod probe2;
+mod probe3;
 mod readers;
 mod reference_hashes;
 mod rig_tables;

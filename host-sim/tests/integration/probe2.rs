@@ -2,7 +2,7 @@
 //! tables the project's own tests did not have (other sample rates, other labs' layouts,
 //! hand-written tables); one test per defect, each named after what must hold.
 
-use crate::support::{gap_life, refused, s, wearsim};
+use crate::support::{gap_life, noise, refused, s, wearsim};
 use wearsim_core::effects::{EffectKind, Effects};
 use wearsim_host::gap::space::{space, Context};
 
@@ -35,19 +35,6 @@ fn fit_space_ends_stay_inside_the_catalogue_bounds_at_any_level() {
             }
         }
     }
-}
-
-/// A broadband test signal of `n` samples (deterministic), peak about 0.5.
-fn noise(n: usize) -> Vec<f64> {
-    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
-    (0..n)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
-        .collect()
 }
 
 /// A float WAV's unit came only from `wav.unit` or `units[wav.column]`: a sidecar with

@@ -291,6 +291,7 @@ pub fn read_cwru(
                 detail: "CWRU files do not store it and the file name is not of the form \
                          12k_Drive_End_IR007_0_105.mat / normal_0_97.mat"
                     .into(),
+                advice: crate::io::error::MAT_FS_ADVICE,
             })
         }
     };

@@ -270,6 +270,29 @@ fn find_scalar<'n>(all: &[&'n MatNode], channel: &str, names: &[&str]) -> Option
     }
 }
 
+/// The nodes named one of `names` (case-insensitive) that are no numeric scalar, as
+/// `; `bearing.sr` is a char array "48828"` / `is a 1x2 double`, for a message saying why
+/// a rate or speed stored there was not taken; empty when there are none.
+fn not_scalar(all: &[&MatNode], names: &[&str]) -> String {
+    all.iter()
+        .filter(|n| names.iter().any(|k| n.name.eq_ignore_ascii_case(k)))
+        .filter(|n| !(is_numeric(n) && n.numel() == 1))
+        .map(|n| {
+            let dims: Vec<String> = n.dims.iter().map(usize::to_string).collect();
+            let what = match &n.value {
+                MatValue::Char(t) => {
+                    format!("a char array {:?}", t.chars().take(40).collect::<String>())
+                }
+                MatValue::Numeric { .. } => format!("a {} numeric array", dims.join("x")),
+                MatValue::Struct { .. } => "a struct".into(),
+                MatValue::Cell(_) => "a cell array".into(),
+                MatValue::Sparse | MatValue::Other => "not a numeric array".into(),
+            };
+            format!("; `{}` is {what}, not a numeric scalar", n.path)
+        })
+        .collect()
+}
+
 /// Names of a sample-rate scalar.
 const FS_NAMES: &[&str] = &[
     "sr",
@@ -369,7 +392,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     if !is_vector(chan) {
         return Err(IoError::unsupported(
             path,
-            format!("{chan_path:?} is a {:?} matrix, expected a vector (pick one column with --channel)", chan.dims),
+            format!("{chan_path:?} is a {:?} matrix, expected a vector: --channel takes a variable, not a column of one; save each channel as its own vector (in MATLAB `ch1 = data(:,1)`) or export the channel to CSV/NPY (whose --channel takes a column index)", chan.dims),
         ));
     }
     let samples = chan.numbers().unwrap_or(&[]).to_vec();
@@ -404,10 +427,12 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             return Err(IoError::MissingSampleRate {
                 path: path.to_path_buf(),
                 detail: format!(
-                    "the {} layout stores none (no scalar named {}) and the file name does not give one",
+                    "the {} layout stores none (no numeric scalar named {}{}) and the file name does not give one",
                     layout.name(),
-                    FS_NAMES.join("/")
+                    FS_NAMES.join("/"),
+                    not_scalar(&all, FS_NAMES)
                 ),
+                advice: crate::io::error::MAT_FS_ADVICE,
             })
         }
     };
@@ -447,7 +472,13 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     };
     let (unit, unit_source) = match layout {
         MatLayout::Cwru | MatLayout::Mfpt(_) => ("g".to_string(), "layout".to_string()),
-        MatLayout::Paderborn(_) | MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
+        MatLayout::Paderborn(_) => match sidecar_unit(path, &channel, &chan_path)? {
+            (u, _) if u == "unknown" => {
+                paderborn_unit(&listing, &chan_path).unwrap_or((u, "none".into()))
+            }
+            stated => stated,
+        },
+        MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
     };
     let meta = json!({
         "format": if layout == MatLayout::Cwru { "cwru-mat5" } else { "mat5" },
@@ -461,6 +492,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         "unit_note": match layout {
             MatLayout::Cwru => "CWRU does not state units; g is the common assumption",
             MatLayout::Mfpt(_) => "MFPT stores acceleration in g (field gs)",
+            MatLayout::Paderborn(_) => "Paderborn states each channel's unit in Y(i).Unit; a sidecar's unit overrides it",
             _ => "the file does not state units",
         },
         "unit_source": unit_source,
@@ -476,6 +508,15 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         source: PathBuf::from(path),
         meta,
     })
+}
+
+/// The unit a Paderborn file states for the channel at `chan_path` (`….Y(i).Data`): the
+/// char array `….Y(i).Unit` beside it, when not blank; with its path as the source
+/// (`file:N15_M07_F10_KA01_1.Y(7).Unit`).
+fn paderborn_unit(listing: &[MatNode], chan_path: &str) -> Option<(String, String)> {
+    let unit_path = format!("{}.Unit", chan_path.strip_suffix(".Data")?);
+    let unit = find(listing, &unit_path)?.text()?.trim();
+    (!unit.is_empty()).then(|| (unit.to_string(), format!("file:{unit_path}")))
 }
 
 /// The unit of a MAT file whose layout states none (Paderborn, generic): the one its JSON

@@ -17,6 +17,19 @@ pub fn s(p: &Path) -> &str {
     p.to_str().expect("UTF-8 path")
 }
 
+/// A broadband test signal of `n` samples (deterministic xorshift), peak about 0.5.
+pub fn noise(n: usize) -> Vec<f64> {
+    let mut x: u64 = 0x2545_F491_4F6C_DD1D;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect()
+}
+
 /// Asserts that a run was refused as bad input: exit code 2 and a message on standard error
 /// that contains every one of `needles` (the field named, the allowed range…).
 pub fn refused(o: &Output, needles: &[&str]) {
