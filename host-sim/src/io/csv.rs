@@ -2,8 +2,10 @@
 //!
 //! Format (RFC 4180 as read by the `csv` crate): comma-separated; tab-separated when the
 //! first line has tabs and no commas; semicolon-separated when it has semicolons and no tabs
-//! (spreadsheet exports of locales that write a decimal comma). With tabs or semicolons a
-//! number may use a decimal comma (`-0,125`). Lines starting with `#` are comments; cells are
+//! (spreadsheet exports of locales that write a decimal comma); separated by spaces when the
+//! first line has spaces between values and no comma, semicolon or tab (numpy's `savetxt`,
+//! MATLAB's `save -ascii`: runs of spaces count as one, [`super::space_runs`]). Without
+//! commas as separators a number may use a decimal comma (`-0,125`). Lines starting with `#` are comments; cells are
 //! trimmed.
 //! The first row is a header if any of its cells is not a number. Every data cell of the chosen
 //! column must parse as a finite `f64` (`NaN`/`inf` cells are [`IoError::NonFinite`]).
@@ -65,13 +67,27 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     // The separator is decided on the first line that is data or header: a `#` comment
     // above it (a DAQ's "# exported by X, fs=25600") is free text, skipped like the reader
     // skips it.
-    let first_line = head
+    let mut content = head
         .split(|&b| b == b'\n')
         .map(|l| l.strip_prefix(b"\xef\xbb\xbf").unwrap_or(l))
-        .find(|l| !l.starts_with(b"#") && l.iter().any(|b| !b.is_ascii_whitespace()))
-        .unwrap_or(&[]);
+        .filter(|l| !l.starts_with(b"#") && l.iter().any(|b| !b.is_ascii_whitespace()));
+    let first_line = content.next().unwrap_or(&[]);
     let has = |b: u8| first_line.contains(&b);
-    let delim = if has(b'\t') && !has(b',') {
+    // Values separated by spaces only (numpy's `savetxt`, MATLAB's `save -ascii`): the
+    // first two lines have no comma, semicolon or tab and two or more words each (a
+    // one-column file whose header has a space, `Accel (g)`, stays one column). Runs of
+    // spaces become one space before the `csv` crate sees them.
+    let words = |l: &[u8]| {
+        !l.iter().any(|b| matches!(b, b',' | b';' | b'\t'))
+            && l.split(|b| b.is_ascii_whitespace())
+                .filter(|w| !w.is_empty())
+                .count()
+                >= 2
+    };
+    let spaced = words(first_line) && content.next().is_none_or(words);
+    let delim = if spaced {
+        b' '
+    } else if has(b'\t') && !has(b',') {
         b'\t'
     } else if has(b';') && !has(b'\t') {
         b';'
@@ -89,14 +105,19 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             Err(_) => None,
         }
     };
+    let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let source: Box<dyn std::io::Read> = if spaced {
+        Box::new(super::space_runs::SpaceRuns::new(file))
+    } else {
+        Box::new(file)
+    };
     let mut rdr = ::csv::ReaderBuilder::new()
         .has_headers(false)
         .delimiter(delim)
         .comment(Some(b'#'))
         .trim(::csv::Trim::All)
         .flexible(false)
-        .from_path(path)
-        .map_err(|e| csv_err(path, e))?;
+        .from_reader(std::io::BufReader::new(source));
 
     let mut rec = ::csv::StringRecord::new();
     let mut header: Option<Vec<String>> = None;

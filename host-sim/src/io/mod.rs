@@ -24,6 +24,7 @@ pub mod npy;
 pub mod perms;
 pub mod record;
 pub mod sidecar;
+pub mod space_runs;
 pub mod wav;
 pub mod write;
 

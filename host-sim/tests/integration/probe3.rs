@@ -380,3 +380,72 @@ fn a_batch_out_in_a_missing_directory_is_refused_first() {
         "no file is analysed first: {err}"
     );
 }
+
+/// Text written by numpy's `savetxt` (one space between values) or MATLAB's `save -ascii`
+/// (values right-aligned in 16-character fields: runs of spaces, a leading space) was read
+/// as one column whose first row is a header, and refused with "column "0.0 -0.14" … is
+/// not a number". Both now read as columns, the same samples as the comma-separated file;
+/// a one-column file whose header has a space stays one column.
+#[test]
+fn space_separated_text_is_read_as_columns() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(4096);
+    let write = |name: &str, text: String| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).expect("write");
+        p
+    };
+    let comma = write(
+        "comma.csv",
+        x.iter().map(|v| format!("{v:.7e},{:.7e}\n", -v)).collect(),
+    );
+    let numpy = write(
+        "numpy.txt",
+        x.iter()
+            .map(|v| format!("{v:.18e} {:.18e}\n", -v))
+            .collect(),
+    );
+    let matlab = write(
+        "matlab.txt",
+        x.iter()
+            .map(|v| format!("{v:16.7e}{:16.7e}\r\n", -v))
+            .collect(),
+    );
+    let header = write(
+        "one.csv",
+        std::iter::once("Accel (g)\n".to_string())
+            .chain(x.iter().map(|v| format!("{v:.7e}\n")))
+            .collect(),
+    );
+    let run = |p: &Path, ch: &str| {
+        json_ok(&wearsim(&[
+            "analyze",
+            s(p),
+            "--fs",
+            "12000",
+            "--rpm",
+            "1797",
+            "--bearing",
+            "cwru-6205-de",
+            "--channel",
+            ch,
+            "--json",
+        ]))
+    };
+    let want = run(&comma, "1");
+    for p in [&numpy, &matlab] {
+        let v = run(p, "1");
+        assert_eq!(v["samples"], 4096, "{}", p.display());
+        for k in ["rms", "kurtosis", "crest_factor"] {
+            let (a, b) = (v["stats"][k].as_f64(), want["stats"][k].as_f64());
+            assert!(
+                a.zip(b)
+                    .is_some_and(|(a, b)| (a - b).abs() <= 1e-6 * b.abs()),
+                "{}: {k} {a:?} against {b:?}",
+                p.display()
+            );
+        }
+    }
+    let v = run(&header, "Accel (g)");
+    assert_eq!(v["samples"], 4096, "{v}");
+}
