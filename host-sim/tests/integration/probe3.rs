@@ -9,6 +9,22 @@ use std::process::Output;
 use crate::support::{noise, refused, s, wearsim};
 use wearsim_host::io::mat::fixture::{mat5_tree_bytes, FixtureValue};
 
+/// `analyze FILE --rpm 1797 --bearing cwru-6205-de --json` and `extra`; its JSON, the run
+/// having succeeded.
+fn analyze_6205(p: &Path, extra: &[&str]) -> serde_json::Value {
+    let mut a = vec![
+        "analyze",
+        s(p),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ];
+    a.extend(extra);
+    json_ok(&wearsim(&a))
+}
+
 /// The `--json` object of a run that must have succeeded.
 fn json_ok(o: &Output) -> serde_json::Value {
     assert_eq!(
@@ -85,16 +101,7 @@ fn a_comment_line_does_not_decide_the_separator() {
         format!("# exported by DAQ, channel 1, units g\ntime\taccel\n{body}"),
     )
     .expect("write");
-    let o = wearsim(&[
-        "analyze",
-        s(&p),
-        "--rpm",
-        "1797",
-        "--bearing",
-        "cwru-6205-de",
-        "--json",
-    ]);
-    let v = json_ok(&o);
+    let v = analyze_6205(&p, &[]);
     assert_eq!(v["channel"], "accel", "{v}");
     let fs = v["fs"].as_f64().expect("fs");
     assert!((fs - 25_600.0).abs() < 1e-6 * 25_600.0, "{fs}");
@@ -270,16 +277,7 @@ fn a_time_column_with_its_unit_in_brackets_is_the_time_axis() {
     let body = timed_rows(&noise(25_600), 25_600.0, ",", |t| format!("{t}"));
     let p = dir.path().join("export.csv");
     std::fs::write(&p, format!("Time (s),Accel (g)\n{body}")).expect("write");
-    let o = wearsim(&[
-        "analyze",
-        s(&p),
-        "--rpm",
-        "1797",
-        "--bearing",
-        "cwru-6205-de",
-        "--json",
-    ]);
-    let v = json_ok(&o);
+    let v = analyze_6205(&p, &[]);
     assert_eq!(v["channel"], "Accel (g)", "{v}");
     assert_eq!(v["unit"], "g", "{v}");
     let fs = v["fs"].as_f64().expect("fs");
@@ -417,21 +415,7 @@ fn space_separated_text_is_read_as_columns() {
             .chain(x.iter().map(|v| format!("{v:.7e}\n")))
             .collect(),
     );
-    let run = |p: &Path, ch: &str| {
-        json_ok(&wearsim(&[
-            "analyze",
-            s(p),
-            "--fs",
-            "12000",
-            "--rpm",
-            "1797",
-            "--bearing",
-            "cwru-6205-de",
-            "--channel",
-            ch,
-            "--json",
-        ]))
-    };
+    let run = |p: &Path, ch: &str| analyze_6205(p, &["--fs", "12000", "--channel", ch]);
     let want = run(&comma, "1");
     for p in [&numpy, &matlab] {
         let v = run(p, "1");
