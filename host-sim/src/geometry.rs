@@ -350,6 +350,22 @@ pub struct ScaledModel {
     pub scale: f64,
 }
 
+/// What a bearing may be given as: the model presets, the catalogue bearings and
+/// `--bearing-geometry` (for messages).
+pub(crate) fn bearing_choices() -> String {
+    format!(
+        "give --bearing NAME (a model preset: {}; or a catalogue bearing: {}) or --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG",
+        wearsim_core::presets::NAMES.join(", "),
+        CATALOGUE.map(|e| e.name).join(", ")
+    )
+}
+
+/// The error for a `--bearing` that is neither a model preset nor a catalogue bearing
+/// (`analyze` and `gap` alike).
+pub(crate) fn unknown_bearing(b: &str) -> String {
+    format!("--bearing: unknown bearing `{b}`; {}", bearing_choices())
+}
+
 /// The bearing `analyze` uses when it is not a model preset: from `--bearing-geometry`
 /// (`geometry`), a catalogue name given with `--bearing` (`preset`), a sidecar's
 /// `"bearing_geometry"`, or a catalogue name a reader set from the file's layout. Returns
@@ -369,11 +385,7 @@ pub fn choose(
     }
     if let Some(b) = preset {
         if wearsim_core::presets::by_name(b).is_none() && catalogue(b).is_none() {
-            return Err(format!(
-                "--bearing {b:?} is no preset or catalogue bearing (allowed: {}, {}; or --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG)",
-                wearsim_core::presets::NAMES.join(", "),
-                CATALOGUE.map(|e| e.name).join(", ")
-            ));
+            return Err(unknown_bearing(b));
         }
         return Ok(catalogue(b).map(|e| (b.to_string(), "argument", e.geometry)));
     }

@@ -396,7 +396,7 @@ pub fn base_model(
         return scaled(name, source, g, warnings);
     }
     if let Some(b) = &o.bearing {
-        return Err(unknown_bearing(b));
+        return Err(crate::geometry::unknown_bearing(b));
     }
     // The defect sits in the bearing the file's label names (CWRU: the drive- or fan-end
     // bearing), whichever channel recorded it: a drive-end fault measured at the fan end or
@@ -427,11 +427,11 @@ pub fn base_model(
         }
         (None, Some(b)) => Err(format!(
             "the file names the bearing `{b}`, which is no model preset and no catalogue bearing; {}",
-            bearing_choices()
+            crate::geometry::bearing_choices()
         )),
         (None, None) => Err(format!(
             "the bearing is not known from the file; {}",
-            bearing_choices()
+            crate::geometry::bearing_choices()
         )),
     }
 }
@@ -517,20 +517,6 @@ fn fault_end_bearing(rec: &Record) -> Option<&'static str> {
         return None;
     }
     io::mat::cwru_bearing_preset(label.fault_end.as_deref()?)
-}
-
-/// The error for a `--bearing` that is neither a preset nor a catalogue bearing.
-fn unknown_bearing(b: &str) -> String {
-    format!("--bearing: unknown bearing `{b}`; {}", bearing_choices())
-}
-
-/// What a bearing may be given as.
-fn bearing_choices() -> String {
-    format!(
-        "give --bearing NAME (a model preset: {}; or a catalogue bearing: {}) or --bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG",
-        presets::NAMES.join(", "),
-        crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
-    )
 }
 
 /// The matched baseline configuration of a record.

@@ -339,7 +339,7 @@ fn an_unknown_bearing_lists_every_name_bearing_takes() {
     refused(
         &o,
         &[
-            "--bearing \"mfpt\"",
+            "--bearing: unknown bearing `mfpt`",
             "cwru-6205-de",
             "mfpt-nice",
             "paderborn-6203",
