@@ -50,8 +50,8 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
                 &spaces,
                 &at.final_effects,
                 &added,
-                &parts.train,
-                &parts.test,
+                parts.final_parts().0,
+                parts.final_parts().2,
                 &ev,
                 &a.attribution_options(),
             )
@@ -86,6 +86,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         findings,
         leave_one_out: loo,
         calibration: parts.calibration.clone(),
+        recalibration: parts.recalibrated.as_ref().map(|r| r.calibration.clone()),
         stability,
         simulations: ev.sims(),
         seconds: at.seconds,

@@ -44,6 +44,12 @@ pub struct GapValidateArgs {
     /// `docs/sim-to-real-results.md`, "Pairs of effects").
     #[arg(long)]
     pub backfit: bool,
+    /// Keep the rig's calibration made with no effect through the greedy addition instead
+    /// of calibrating it again after each addition with the effects kept so far (the
+    /// diagnosis as it was before, for comparison: `docs/sim-to-real-results.md`, "The
+    /// rig calibrated again at each greedy step").
+    #[arg(long)]
+    pub fixed_calibration: bool,
     /// Seed of the parameter draws and realisations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -132,6 +138,7 @@ impl GapValidateArgs {
             noise: self.noise,
             jobs: self.jobs.unwrap_or(d.jobs),
             backfit: self.backfit,
+            fixed_calibration: self.fixed_calibration,
         })
     }
 }

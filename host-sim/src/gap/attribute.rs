@@ -301,6 +301,27 @@ pub fn attribute<T: Target>(
     ev: &Evaluator,
     opt: &Options,
 ) -> Result<Attribution, String> {
+    attribute_with(spaces, base, train, holdout, ev, opt, None)
+}
+
+/// The training and held-out records again, with the rig's nuisances recalibrated for the
+/// effects of the current model (see [`attribute_with`]).
+pub type Recalibrate<'a, T> = &'a (dyn Fn(&Effects) -> Result<(Vec<T>, Vec<T>), String> + Sync);
+
+/// [`attribute`], with the rig's nuisances (`gap::nuisance`) calibrated again by `recal`
+/// after each greedy addition, with the effects kept so far on: a calibration made with no
+/// effect absorbs what the missing effects leave (on twins it sits at its tolerance's
+/// edge), and the next effect is then judged against a rig bent towards the first.
+#[allow(clippy::too_many_arguments)]
+pub fn attribute_with<T: Target>(
+    spaces: &[FitSpace],
+    base: &Effects,
+    train: &[T],
+    holdout: &[T],
+    ev: &Evaluator,
+    opt: &Options,
+    recal: Option<Recalibrate<T>>,
+) -> Result<Attribution, String> {
     let t0 = Instant::now();
     let sims0 = ev.sims();
     let train_r0 = ev.residuals(train, base)?;
@@ -449,7 +470,25 @@ pub fn attribute<T: Target>(
             kept_coords.push((b.effect.clone(), f.coords.clone()));
         }
     }
+    let mut sets: Option<(Vec<T>, Vec<T>)> = None;
+    let recalibrate =
+        |current: &Effects, sets: &mut Option<(Vec<T>, Vec<T>)>| -> Result<Option<Gaps>, String> {
+            let Some(f) = recal else { return Ok(None) };
+            let (tr, ho) = f(current)?;
+            let r = ev.residuals(&ho, current)?;
+            *sets = Some((tr, ho));
+            Ok(Some(r))
+        };
+    if !used.is_empty() && greedy.len() < opt.max_effects {
+        if let Some(r) = recalibrate(&current, &mut sets)? {
+            cur = r.total();
+            cur_r = r;
+        }
+    }
     while !used.is_empty() && greedy.len() < opt.max_effects {
+        let (train, holdout) = sets
+            .as_ref()
+            .map_or((train, holdout), |(a, b)| (a.as_slice(), b.as_slice()));
         let cands: Vec<&FitSpace> = ranking
             .iter()
             .filter(|r| !used.contains(&r.effect))
@@ -565,6 +604,12 @@ pub fn attribute<T: Target>(
                     current = fx;
                     cur = g;
                     cur_r = r;
+                }
+                if greedy.len() < opt.max_effects {
+                    if let Some(r) = recalibrate(&current, &mut sets)? {
+                        cur = r.total();
+                        cur_r = r;
+                    }
                 }
             }
             _ => break,

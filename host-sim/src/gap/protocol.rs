@@ -11,7 +11,8 @@ use wearsim_core::effects::Effects;
 
 /// Judges a finished attribution on the test part `test` (never seen by the fit or the
 /// choice): the baseline `base`, every ranked effect alone at its training fit, and the
-/// final model. Fills [`super::attribute::Ranked::test_shrink`] and
+/// final model — the last on `test_final`, the test part with the rig calibrated for the
+/// final model's effects (`test` itself when the rig is not recalibrated). Fills [`super::attribute::Ranked::test_shrink`] and
 /// [`Attribution::test`]; when the final model leaves a test gap at or above
 /// `significant` (the measurement's variability, [`super::attribute::Options`]), a
 /// finding says that the library does not close the gap.
@@ -19,6 +20,7 @@ pub fn judge<T: Target>(
     at: &mut Attribution,
     base: &Effects,
     test: &[T],
+    test_final: &[T],
     ev: &Evaluator,
     significant: f64,
 ) -> Result<TestTotals, String> {
@@ -28,7 +30,7 @@ pub fn judge<T: Target>(
         r.test_gap = Some(g);
         r.test_shrink = Some(1.0 - g / before);
     }
-    let after = ev.residuals(test, &at.final_effects)?.total();
+    let after = ev.residuals(test_final, &at.final_effects)?.total();
     let t = TestTotals {
         before,
         after,
@@ -86,7 +88,7 @@ mod tests {
         let t = [Floor(floor)];
         let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
         assert_eq!(at.kept, ["roughness"]);
-        let tt = judge(&mut at, &Effects::NONE, &t, &ev, opt.significant_gap).unwrap();
+        let tt = judge(&mut at, &Effects::NONE, &t, &t, &ev, opt.significant_gap).unwrap();
         (tt, at.findings)
     }
 

@@ -2,7 +2,9 @@
 //! training/held-out selection, the attribution run, and the "where" cells of the report
 //! ([`super::report`] writes it; [`crate::cmd::gap`] runs it).
 
-use super::attribute::{attribute, Attribution, Options, Totals, SIGNIFICANT_GAP};
+use super::attribute::{
+    attribute_with, Attribution, Options, Recalibrate, Totals, SIGNIFICANT_GAP,
+};
 use super::error::GapError;
 use super::identify;
 use super::informed;
@@ -15,6 +17,7 @@ use crate::analysis::stats::rms;
 use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
+use std::sync::Mutex;
 use wearsim_core::effects::Effects;
 
 /// `wearsim gap` arguments.
@@ -94,6 +97,12 @@ pub struct GapArgs {
     /// Records of seconds only: a lifetime diagnosis (--life) fits no rig nuisances.
     #[arg(long)]
     pub no_calibration: bool,
+    /// Keep the rig's calibration made with no effect for the whole greedy addition
+    /// instead of calibrating it again with the effects kept so far after each addition;
+    /// the diagnosis as it was before, for comparison (`docs/sim-to-real-results.md`,
+    /// "The rig calibrated again at each greedy step").
+    #[arg(long)]
+    pub fixed_calibration: bool,
     /// Also refit every effect of the chosen model on each record (part) separately and
     /// compare its parameters between records (`gap::stability`): a disagreement beyond
     /// two combined standard deviations is reported as a finding. Costs one lock-step fit
@@ -172,6 +181,11 @@ pub struct GapOutput {
     /// The rig's nuisances as calibrated on the training part before any effect was
     /// ranked (`null` with `--no-calibration`).
     pub calibration: Option<Calibration>,
+    /// The rig's nuisances calibrated again on the training part with the chosen model's
+    /// effects on, after each greedy addition: the last of these, on which the final
+    /// model's later effects were fitted and chosen and its test gap measured (`null`
+    /// with `--no-calibration` or when no effect was added).
+    pub recalibration: Option<Calibration>,
     /// The kept effects' parameters refitted on each record separately (`--stability`;
     /// `null` without it).
     pub stability: Option<Vec<super::stability::ParamStability>>,
@@ -288,6 +302,35 @@ pub struct Parts {
     /// The rig's calibration on the training part, once [`diagnose`] has applied it to
     /// every part's baseline (`None` before, or with `--no-calibration`).
     pub calibration: Option<Calibration>,
+    /// The rig calibrated again with the chosen model's effects on
+    /// ([`super::attribute::attribute_with`]), and the three parts with it: the final
+    /// model was fitted and chosen on these, so its test gap, stability and leave-one-out
+    /// are measured on them (`None` with `--no-calibration` or before [`diagnose`]).
+    pub recalibrated: Option<Recalibrated>,
+}
+
+/// The parts with the rig calibrated for the chosen model's effects.
+#[derive(Debug, Clone)]
+pub struct Recalibrated {
+    /// The calibration.
+    pub calibration: Calibration,
+    /// Training parts.
+    pub train: Vec<Matched>,
+    /// Validation parts.
+    pub valid: Vec<Matched>,
+    /// Test parts.
+    pub test: Vec<Matched>,
+}
+
+impl Parts {
+    /// The parts the chosen model was fitted and chosen on: recalibrated for its effects
+    /// when the rig is calibrated, else the parts as prepared. (training, validation, test).
+    pub fn final_parts(&self) -> (&[Matched], &[Matched], &[Matched]) {
+        match &self.recalibrated {
+            Some(r) => (&r.train, &r.valid, &r.test),
+            None => (&self.train, &self.valid, &self.test),
+        }
+    }
 }
 
 /// Loads the records and builds the disjoint training, validation and test parts.
@@ -317,6 +360,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         valid: vec![],
         test: vec![],
         calibration: None,
+        recalibrated: None,
     };
     let push = |p: &mut Parts, r: &RealRecord, start: usize, len: usize, seed: u64, tag: &str| {
         let m = records::part(r, start, len, seed, tag).map_err(GapError::input)?;
@@ -452,11 +496,14 @@ pub fn diagnose(
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
     let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
-    if !a.no_calibration && p.calibration.is_none() {
-        let cal = nuisance::calibrate(&p.train, &Effects::NONE, &Tolerances::CALIBRATE, &ev);
-        p.train = cal.applied(&p.train);
-        p.valid = cal.applied(&p.valid);
-        p.test = cal.applied(&p.test);
+    // The parts on the nominal rig, kept for the calibrations with effects on.
+    let nominal = (!a.no_calibration && p.calibration.is_none())
+        .then(|| (p.train.clone(), p.valid.clone(), p.test.clone()));
+    if let Some((train, valid, test)) = &nominal {
+        let cal = nuisance::calibrate(train, &Effects::NONE, &Tolerances::CALIBRATE, &ev);
+        p.train = cal.applied(train);
+        p.valid = cal.applied(valid);
+        p.test = cal.applied(test);
         p.calibration = Some(cal);
     }
     let (spaces, uninformed) =
@@ -472,8 +519,33 @@ pub fn diagnose(
         )));
     }
     let opt = a.attribution_options();
-    let mut at =
-        attribute(&spaces, &Effects::NONE, &p.train, &p.valid, &ev, &opt).map_err(GapError::run)?;
+    let last: Mutex<Option<Calibration>> = Mutex::new(None);
+    let recal = |fx: &Effects| -> Result<(Vec<Matched>, Vec<Matched>), String> {
+        let (train, valid, _) = nominal.as_ref().ok_or("no nominal parts")?;
+        let cal = nuisance::calibrate(train, fx, &Tolerances::CALIBRATE, &ev);
+        let out = (cal.applied(train), cal.applied(valid));
+        *last.lock().map_err(|_| "calibration lock poisoned")? = Some(cal);
+        Ok(out)
+    };
+    let mut at = attribute_with(
+        &spaces,
+        &Effects::NONE,
+        &p.train,
+        &p.valid,
+        &ev,
+        &opt,
+        (nominal.is_some() && !a.fixed_calibration).then_some(&recal as Recalibrate<Matched>),
+    )
+    .map_err(GapError::run)?;
+    let last = last.into_inner().ok().flatten();
+    if let (Some((train, valid, test)), Some(cal)) = (&nominal, last) {
+        p.recalibrated = Some(Recalibrated {
+            train: cal.applied(train),
+            valid: cal.applied(valid),
+            test: cal.applied(test),
+            calibration: cal,
+        });
+    }
     at.findings.extend(uninformed.iter().map(informed::finding));
     if let Some(c) = &p.calibration {
         at.findings.extend(c.fitted.iter().filter(|f| f.at_bound).map(|f| {
@@ -494,7 +566,16 @@ pub fn diagnose(
             .collect();
         identify::group_shrink(&mut at, &groups);
     }
-    judge(&mut at, &Effects::NONE, &p.test, &ev, opt.significant_gap).map_err(GapError::run)?;
+    let (_, _, test_final) = p.final_parts();
+    judge(
+        &mut at,
+        &Effects::NONE,
+        &p.test,
+        test_final,
+        &ev,
+        opt.significant_gap,
+    )
+    .map_err(GapError::run)?;
     Ok((at, spaces, ev))
 }
 
@@ -526,13 +607,8 @@ pub fn stability(
             Some((name.clone(), hint))
         })
         .collect();
-    let records: Vec<Matched> = p
-        .train
-        .iter()
-        .chain(&p.valid)
-        .chain(&p.test)
-        .cloned()
-        .collect();
+    let (train, valid, test) = p.final_parts();
+    let records: Vec<Matched> = train.iter().chain(valid).chain(test).cloned().collect();
     let rows = super::stability::stability(spaces, &at.final_effects, &kept, &records, ev)
         .map_err(GapError::run)?;
     at.findings.extend(

@@ -18,7 +18,7 @@ pub use super::twin_report::{
     STRENGTH_BINS,
 };
 
-use super::attribute::{attribute, Options};
+use super::attribute::{attribute_with, Options, Recalibrate};
 use super::matched::{merge, without, Evaluator, Matched, MEMO};
 use super::memo::Memo;
 use super::nuisance::{calibrate, Tolerances};
@@ -66,6 +66,9 @@ pub struct TwinOptions {
     pub jobs: usize,
     /// The greedy steps refit the effects kept before ([`Options::backfit`]).
     pub backfit: bool,
+    /// Keep the rig calibrated with no effect through the greedy addition instead of
+    /// calibrating it again after each addition ([`super::attribute::attribute_with`]).
+    pub fixed_calibration: bool,
 }
 
 impl Default for TwinOptions {
@@ -84,6 +87,7 @@ impl Default for TwinOptions {
             noise: 0.01,
             jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
             backfit: false,
+            fixed_calibration: false,
         }
     }
 }
@@ -376,7 +380,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         };
         let oracle = ev.total(std::slice::from_ref(&r.truth), &truth);
         let (calibration, train, holdout) = if opt.calibrate.is_none() {
-            (None, vec![r.train], vec![r.holdout])
+            (None, vec![r.train.clone()], vec![r.holdout.clone()])
         } else {
             let cal = calibrate(
                 std::slice::from_ref(&r.train),
@@ -388,7 +392,15 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             let holdout = cal.applied(std::slice::from_ref(&r.holdout));
             (Some(cal), train, holdout)
         };
-        let mut a = attribute(
+        let recal = |fx: &Effects| -> Result<(Vec<Matched>, Vec<Matched>), String> {
+            let cal = calibrate(std::slice::from_ref(&r.train), fx, &opt.calibrate, &ev);
+            Ok((
+                cal.applied(std::slice::from_ref(&r.train)),
+                cal.applied(std::slice::from_ref(&r.holdout)),
+            ))
+        };
+        let recal_on = !opt.calibrate.is_none() && !opt.fixed_calibration;
+        let mut a = attribute_with(
             &all,
             &setup.floor,
             &train,
@@ -398,6 +410,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 max_effects,
                 ..aopt
             },
+            recal_on.then_some(&recal as Recalibrate<Matched>),
         )?;
         let angles = super::identify::confounded(&mut a, aopt.min_shrink);
         let first = a

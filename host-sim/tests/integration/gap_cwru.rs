@@ -52,6 +52,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         out: PathBuf::from("unused"),
         leave_one_out: false,
         no_calibration: false,
+        fixed_calibration: false,
         stability: false,
         life_search: None,
         significant_gap: None,
@@ -130,8 +131,8 @@ fn family(family: &str) -> Result<(), Box<dyn std::error::Error>> {
         &spaces,
         &at.final_effects,
         &names,
-        &p.train,
-        &p.test,
+        p.final_parts().0,
+        p.final_parts().2,
         &ev,
         &Options::default(),
     )?;
