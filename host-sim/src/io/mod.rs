@@ -23,6 +23,7 @@ pub mod mat;
 pub mod npy;
 pub mod perms;
 pub mod record;
+pub mod selector;
 pub mod sidecar;
 pub mod space_runs;
 pub mod wav;

@@ -1,0 +1,150 @@
+//! Gaps a probe found and left open (continued from `probe3.rs`): a column or row of a 2-D
+//! MAT or NPY array chosen with `--channel NAME(:,K)`, an NPY array whose shape does not say
+//! which axis holds the samples, CSV time columns in other units than seconds, and where a
+//! rate or speed came from (`fs_detail`, `rpm_detail`); one test per gap, each named after
+//! what must hold.
+
+use crate::support::{analyze_6205, mat, noise, npy, refused, s, wearsim};
+use wearsim_host::io::mat::fixture::FixtureValue;
+
+/// A MAT double array of `dims` holding `data` (column by column, as MATLAB stores it).
+fn doubles(dims: &[i32], data: &[f64]) -> FixtureValue {
+    FixtureValue::Typed {
+        class: 6,
+        mi: 9,
+        dims: dims.to_vec(),
+        bytes: data.iter().flat_map(|v| v.to_le_bytes()).collect(),
+        logical: false,
+    }
+}
+
+/// `--channel` could not take one column of a MAT matrix (the message said to re-save the
+/// file). `data(:,2)` is column 2, `rig.acc(2,:)` row 2 of a struct field, both the same
+/// samples as the vector `ch2` holding them; an index out of range and a malformed
+/// selector are refused naming the array, its shape and the range.
+#[test]
+fn a_mat_matrix_column_or_row_is_chosen_with_a_selector() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(2 * 4096);
+    let ch2 = &x[4096..];
+    // rig.acc is 2 × 4096 with row 2 = ch2: column-major, rows interleaved.
+    let rows: Vec<f64> = (0..4096).flat_map(|j| [x[j], ch2[j]]).collect();
+    let p = mat(
+        dir.path(),
+        "two.mat",
+        &[
+            ("data", doubles(&[4096, 2], &x)),
+            ("ch2", FixtureValue::Doubles(ch2.to_vec())),
+            (
+                "rig",
+                FixtureValue::Struct {
+                    dims: vec![1, 1],
+                    fields: vec!["acc".into()],
+                    elems: vec![vec![doubles(&[2, 4096], &rows)]],
+                },
+            ),
+            ("fs", FixtureValue::Doubles(vec![25_600.0])),
+        ],
+    );
+    let want = analyze_6205(&p, &["--channel", "ch2"]);
+    for sel in ["data(:,2)", "rig.acc(2,:)"] {
+        let v = analyze_6205(&p, &["--channel", sel]);
+        assert_eq!(v["channel"], sel, "{v}");
+        assert_eq!(v["input"]["variable"], sel, "{v}");
+        assert_eq!(v["samples"], 4096);
+        assert_eq!(v["stats"], want["stats"], "{sel}");
+        assert_eq!(v["diagnosis"], want["diagnosis"], "{sel}");
+    }
+    let run = |sel: &str| {
+        wearsim(&[
+            "analyze",
+            s(&p),
+            "--channel",
+            sel,
+            "--rpm",
+            "1797",
+            "--bearing",
+            "cwru-6205-de",
+        ])
+    };
+    refused(
+        &run("data(:,3)"),
+        &[
+            "--channel: column 3 is out of range 1..=2",
+            "\"data\" is a [4096, 2] array",
+        ],
+    );
+    refused(
+        &run("rig.acc(3,:)"),
+        &["row 3 is out of range 1..=2", "\"rig.acc\" is a [2, 4096]"],
+    );
+    refused(
+        &run("data(2,2)"),
+        &[
+            "malformed selector (2,2)",
+            "[4096, 2]",
+            "'data(:,K)' (K = 1..=2)",
+            "'data(K,:)' (K = 1..=4096)",
+        ],
+    );
+    refused(
+        &run("ch2(:,2)"),
+        &["column 2 is out of range 1..=1", "\"ch2\""],
+    );
+}
+
+/// A square 2-D NPY array was read along one axis silently (its columns, whichever the
+/// user meant). It is refused naming the shape and the ways to choose; `(:,K)` and `(K,:)`
+/// pick a column or a row of the array as stored, the same samples as a 1-D file of them.
+/// A long array of a few channels, either way round, is still read by its shape.
+#[test]
+fn an_npy_array_whose_shape_does_not_tell_its_axes_is_refused_until_chosen() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let n = 1024;
+    let a = noise(n * n);
+    let sq = npy(dir.path(), "square.npy", &[n as u64, n as u64], &a);
+    let col2: Vec<f64> = (0..n).map(|i| a[i * n + 1]).collect();
+    let row3 = a[2 * n..3 * n].to_vec();
+    let one = |name: &str, d: &[f64]| npy(dir.path(), name, &[n as u64], d);
+    let (c, r) = (one("col2.npy", &col2), one("row3.npy", &row3));
+    let fs = ["--fs", "4096"];
+    for ch in [None, Some("1")] {
+        let mut args = vec!["analyze", s(&sq), "--fs", "4096", "--rpm", "1797"];
+        args.extend(ch.map(|c| ["--channel", c]).into_iter().flatten());
+        refused(
+            &wearsim(&args),
+            &[
+                "shape [1024, 1024]",
+                "it is square",
+                "--channel '(:,K)' (K = 1..=1024)",
+                "--channel '(K,:)' (K = 1..=1024)",
+                "\"columns\"",
+            ],
+        );
+    }
+    for (sel, same) in [("(:,2)", &c), ("(3,:)", &r)] {
+        let v = analyze_6205(&sq, &[&fs[..], &["--channel", sel]].concat());
+        let w = analyze_6205(same, &fs);
+        assert_eq!(v["samples"], n, "{v}");
+        assert_eq!(v["stats"], w["stats"], "{sel}");
+    }
+    refused(
+        &wearsim(&["analyze", s(&sq), "--fs", "4096", "--channel", "(:,1025)"]),
+        &["column 1025 is out of range 1..=1024", "[1024, 1024]"],
+    );
+    // Both axes long.
+    let wide = npy(dir.path(), "wide.npy", &[1024, 256], &a[..1024 * 256]);
+    refused(
+        &wearsim(&["analyze", s(&wide), "--fs", "4096", "--rpm", "1797"]),
+        &["shape [1024, 256]", "both axes are long"],
+    );
+    // A few channels, either way round: read by the shape, as before.
+    let x = noise(2 * 4096);
+    let t: Vec<f64> = (0..4096).flat_map(|i| [x[i], x[4096 + i]]).collect();
+    let tall = npy(dir.path(), "tall.npy", &[4096, 2], &t);
+    let flat = npy(dir.path(), "flat.npy", &[2, 4096], &x);
+    let v = analyze_6205(&tall, &["--fs", "12000", "--channel", "1"]);
+    let w = analyze_6205(&flat, &["--fs", "12000", "--channel", "1"]);
+    assert_eq!(v["samples"], 4096);
+    assert_eq!(v["stats"], w["stats"]);
+}
