@@ -26,6 +26,7 @@ pub mod record;
 pub mod selector;
 pub mod sidecar;
 pub mod space_runs;
+pub mod time_column;
 pub mod wav;
 pub mod write;
 

@@ -148,3 +148,64 @@ fn an_npy_array_whose_shape_does_not_tell_its_axes_is_refused_until_chosen() {
     assert_eq!(v["samples"], 4096);
     assert_eq!(v["stats"], w["stats"]);
 }
+
+/// A time column in milliseconds or microseconds (`Time (ms)`, `t_ms`, `time [us]`,
+/// `Time (µs)`) was not taken as the time axis: it became the analysed channel (a ramp)
+/// and the rate was unknown. Each now gives the rate of the same record with a seconds
+/// column, and the same report but for the file and where the rate came from. A `time`
+/// column in a unit not read (`Time (h)`) is refused naming it and the units read, rather
+/// than analysed as a channel.
+#[test]
+fn a_time_column_in_other_units_gives_the_rate_of_the_seconds_column() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // 16 384 Hz: every stamp is exact in binary in s, ms and µs, so the rates are equal.
+    let fs = 16_384.0;
+    let x = noise(16_384);
+    let write = |name: &str, header: &str, per_second: f64| {
+        let body = crate::support::timed_rows(&x, fs, ",", |t| format!("{}", t * per_second));
+        let p = dir.path().join(name);
+        std::fs::write(&p, format!("{header},accel\n{body}")).expect("write");
+        p
+    };
+    let strip = |mut v: serde_json::Value| {
+        let o = v.as_object_mut().expect("object");
+        for k in ["file", "fs_detail"] {
+            o.remove(k);
+        }
+        v
+    };
+    let want = analyze_6205(&write("s.csv", "time", 1.0), &[]);
+    assert_eq!(want["fs"], fs);
+    for (i, (header, per_second)) in [
+        ("time_s", 1.0),
+        ("Time (ms)", 1e3),
+        ("time [ms]", 1e3),
+        ("t_ms", 1e3),
+        ("time [us]", 1e6),
+        ("Time (µs)", 1e6),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let v = analyze_6205(&write(&format!("{i}.csv"), header, per_second), &[]);
+        assert_eq!(v["channel"], "accel", "{header}: {v}");
+        assert_eq!(v["fs"], fs, "{header}");
+        assert_eq!(v["fs_source"], "file", "{header}");
+        assert_eq!(strip(v), strip(want.clone()), "{header}");
+    }
+    let hours = write("h.csv", "Time (h)", 1.0 / 3600.0);
+    for extra in [&[][..], &["--fs", "16384"]] {
+        let mut args = vec!["analyze", s(&hours), "--rpm", "1797"];
+        args.extend(extra);
+        refused(
+            &wearsim(&args),
+            &[
+                "time column \"Time (h)\"",
+                "unit \"h\" is not a time unit read here",
+                "s/sec",
+                "ms/msec",
+                "us/µs",
+            ],
+        );
+    }
+}
