@@ -200,7 +200,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             .map(|f| (f, format!("time column `{}`", names[t]))),
         None => None,
     };
-    let (fs, fs_source) = resolve_fs(
+    let (fs, fs_source, fs_detail) = resolve_fs(
         path,
         opts.fs,
         sidecar.as_ref(),
@@ -208,6 +208,8 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         &|a, b| ((a - b) / a).abs() <= 1e-6,
     )?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
+    let rpm = rpm.map(|r| r.0);
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
@@ -227,6 +229,8 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "column_index": col,
             "n_columns": ncols,
             "fs_source": fs_source.name(),
+            "fs_detail": fs_detail,
+            "rpm_detail": rpm_detail,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })

@@ -351,8 +351,11 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let channel = names[col].clone();
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
-    let (fs, fs_source) = resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
+    let (fs, fs_source, fs_detail) =
+        resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
+    let rpm = rpm.map(|r| r.0);
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
@@ -375,6 +378,8 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "sample_axis": usize::from(channels_first),
             "selector": line.map(selector::Line::suffix),
             "fs_source": fs_source.name(),
+            "fs_detail": fs_detail,
+            "rpm_detail": rpm_detail,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })

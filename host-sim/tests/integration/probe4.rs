@@ -209,3 +209,153 @@ fn a_time_column_in_other_units_gives_the_rate_of_the_seconds_column() {
         );
     }
 }
+
+/// `fs_source` said `file` alike for a WAV header and a CSV time column (and `argument`,
+/// `sidecar` without naming which): `fs_detail` and `rpm_detail` now say where exactly,
+/// beside the unchanged `fs_source` and `rpm_source`; the batch table has `fs_detail` too.
+#[test]
+fn the_report_says_where_the_rate_and_speed_were_found() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let x = noise(16_384);
+    let wav = dir.path().join("rec.wav");
+    let spec = hound::WavSpec {
+        channels: 1,
+        sample_rate: 16_000,
+        bits_per_sample: 32,
+        sample_format: hound::SampleFormat::Float,
+    };
+    let mut w = hound::WavWriter::create(&wav, spec).expect("wav");
+    for v in &x {
+        w.write_sample(*v as f32).expect("sample");
+    }
+    w.finalize().expect("wav end");
+    let v = analyze_6205(&wav, &[]);
+    assert_eq!(
+        (&v["fs_source"], &v["fs_detail"]),
+        (&"file".into(), &"WAV header".into())
+    );
+    assert_eq!(
+        (&v["rpm_source"], &v["rpm_detail"]),
+        (&"argument".into(), &"--rpm".into())
+    );
+    let v = analyze_6205(&wav, &["--fs", "16000"]);
+    assert_eq!(
+        (&v["fs_source"], &v["fs_detail"]),
+        (&"argument".into(), &"--fs".into())
+    );
+
+    let body = crate::support::timed_rows(&x, 16_384.0, ",", |t| format!("{}", t * 1e3));
+    let csv = dir.path().join("run1.csv");
+    std::fs::write(&csv, format!("Time (ms),accel\n{body}")).expect("csv");
+    let v = analyze_6205(&csv, &[]);
+    assert_eq!(
+        (&v["fs_source"], &v["fs_detail"]),
+        (&"file".into(), &"time column `Time (ms)`".into())
+    );
+    std::fs::write(
+        dir.path().join("run1.json"),
+        r#"{"fs": 16384, "rpm": 1797}"#,
+    )
+    .expect("sidecar");
+    let o = wearsim(&["analyze", s(&csv), "--bearing", "cwru-6205-de", "--json"]);
+    let v = crate::support::json_ok(&o);
+    assert_eq!(v["fs_source"], "sidecar");
+    assert_eq!(v["fs_detail"], "sidecar `run1.json`");
+    assert_eq!(
+        (&v["rpm_source"], &v["rpm_detail"]),
+        (&"file".into(), &"sidecar `run1.json`".into())
+    );
+
+    let p = mat(
+        dir.path(),
+        "lab.mat",
+        &[
+            ("acc", FixtureValue::Doubles(x.clone())),
+            ("fs", FixtureValue::Doubles(vec![16_384.0])),
+            ("rpm", FixtureValue::Doubles(vec![1797.0])),
+        ],
+    );
+    let v = crate::support::json_ok(&wearsim(&[
+        "analyze",
+        s(&p),
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ]));
+    assert_eq!(
+        (&v["fs_source"], &v["fs_detail"]),
+        (&"file:fs".into(), &"MAT variable `fs`".into())
+    );
+    assert_eq!(v["input"]["rpm_source"], "file:rpm");
+    assert_eq!(v["rpm_detail"], "MAT variable `rpm`");
+    let p = mat(
+        dir.path(),
+        "mfpt.mat",
+        &[(
+            "bearing",
+            FixtureValue::Struct {
+                dims: vec![1, 1],
+                fields: vec!["gs".into(), "sr".into(), "rate".into()],
+                elems: vec![vec![
+                    FixtureValue::Doubles(x),
+                    FixtureValue::Doubles(vec![16_384.0]),
+                    FixtureValue::Doubles(vec![25.0]),
+                ]],
+            },
+        )],
+    );
+    let v = crate::support::json_ok(&wearsim(&["analyze", s(&p), "--json"]));
+    assert_eq!(v["fs_source"], "file:bearing.sr");
+    assert_eq!(v["fs_detail"], "MAT struct field `bearing.sr`");
+    assert_eq!(v["rpm_detail"], "MAT struct field `bearing.rate` (Hz × 60)");
+
+    let table = dir.path().join("t.csv");
+    let o = wearsim(&[
+        "analyze",
+        s(&wav),
+        s(&csv),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--out",
+        s(&table),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let text = std::fs::read_to_string(&table).expect("table");
+    assert!(
+        text.lines()
+            .next()
+            .unwrap_or("")
+            .contains(",fs_source,fs_detail,rpm,"),
+        "{text}"
+    );
+    assert!(
+        text.contains("WAV header") && text.contains("sidecar `run1.json`"),
+        "{text}"
+    );
+}
+
+/// A CWRU record's rate comes from its file name and its speed from its `X<n>RPM`
+/// variable; the details name both (skipped without the data folder, failing on CI).
+#[test]
+fn a_cwru_record_names_its_file_name_and_rpm_variable() -> Result<(), wearsim_host::io::IoError> {
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        return Ok(());
+    };
+    let p = data.join("cwru").join("12k_Drive_End_B007_0_118.mat");
+    let v = crate::support::json_ok(&wearsim(&["analyze", s(&p), "--json"]));
+    assert_eq!(v["fs_source"], "file name");
+    assert_eq!(
+        v["fs_detail"],
+        "CWRU file name `12k_Drive_End_B007_0_118.mat` (12000 Hz)"
+    );
+    assert_eq!(v["rpm_source"], "file");
+    assert_eq!(v["rpm_detail"], "MAT variable `X118RPM`");
+    Ok(())
+}

@@ -22,6 +22,7 @@ use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode,
 use crate::io::error::IoError;
 use crate::io::record::{check_finite, check_fs, check_fs_argument, check_rpm, Record};
 use crate::io::selector;
+use crate::io::sidecar::{ARGUMENT_FS, ARGUMENT_RPM};
 use crate::io::ReadOptions;
 
 /// Paderborn (KAt data center) vibration sample rate, Hz (Lessmeier et al. 2016: 64 kHz).
@@ -454,6 +455,16 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         }
     };
     let fs = check_fs(path, fs)?;
+    let fs_detail = match (fs_source.as_str(), &label) {
+        ("argument", _) => ARGUMENT_FS.to_string(),
+        ("file name", Some(l)) => format!(
+            "CWRU file name `{}` ({} Hz)",
+            path.file_name().unwrap_or_default().to_string_lossy(),
+            l.fs_hz
+        ),
+        ("layout:paderborn", _) => format!("Paderborn layout ({PADERBORN_FS} Hz, documented)"),
+        (s, _) => s.strip_prefix("file:").map_or(s.to_string(), stored_at),
+    };
 
     // Shaft speed.
     let from_file = |p: &Option<String>, scale: f64| -> Option<(f64, String)> {
@@ -479,6 +490,18 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         (None, Some((r, s))) => (Some(check_rpm(path, r)?), Some(s)),
         (None, None) => (None, None),
     };
+    let rpm_detail = rpm_source.as_deref().map(|s| match s {
+        "argument" => ARGUMENT_RPM.to_string(),
+        s if s.starts_with("layout:paderborn") => match &layout {
+            MatLayout::Paderborn(v) => format!("Paderborn variable name `{v}` (N<nn> × 100 rpm)"),
+            _ => s.to_string(),
+        },
+        s => match s.strip_prefix("file:") {
+            Some(p) if rate_node.as_deref() == Some(p) => format!("{} (Hz × 60)", stored_at(p)),
+            Some(p) => stored_at(p),
+            None => s.to_string(),
+        },
+    });
     let load = from_file(&load_node, 1.0);
     let channel = match layout {
         MatLayout::Cwru => ["DE", "FE", "BA"]
@@ -504,7 +527,9 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         "variable": format!("{chan_path}{suffix}"),
         "arrays": numeric_arrays(&tree),
         "fs_source": fs_source,
+        "fs_detail": fs_detail,
         "rpm_source": rpm_source,
+        "rpm_detail": rpm_detail,
         "load": load.as_ref().map(|l| l.0),
         "load_source": load.as_ref().map(|l| l.1.clone()),
         "unit_note": match layout {
@@ -526,6 +551,19 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         source: PathBuf::from(path),
         meta,
     })
+}
+
+/// Where in a MAT file a value is stored, as `fs_detail`/`rpm_detail` say it: `MAT
+/// variable `X118RPM`` for a variable, `MAT struct field `bearing.sr`` for a path into one.
+fn stored_at(p: &str) -> String {
+    let kind = if p.contains('{') {
+        "cell element"
+    } else if p.contains(['.', '(']) {
+        "struct field"
+    } else {
+        "variable"
+    };
+    format!("MAT {kind} `{p}`")
 }
 
 /// The unit a Paderborn file states for the channel at `chan_path` (`….Y(i).Data`): the
