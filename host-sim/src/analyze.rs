@@ -107,6 +107,11 @@ pub struct Analysis {
     /// `file:bearing.sr`), `layout:NAME` (the data set's documented rate), `file name`,
     /// `sidecar`, `header`.
     pub fs_source: String,
+    /// Where exactly the rate was found (the reader's words, `fs_source` kept as it was):
+    /// `--fs`, `WAV header`, `time column `Time (ms)``, `sidecar `run1.json``, `MAT
+    /// variable `fs``, `MAT struct field `bearing.sr``, `CWRU file name `…` (12000 Hz)`,
+    /// `xjtu-sy layout (25600 Hz, documented)`; `fs_source` when the reader says no more.
+    pub fs_detail: String,
     /// What the reader found: `layout` (`cwru`, `mfpt`, `paderborn`, `ims`, `femto`,
     /// `xjtu-sy`, `generic`), `variable` (path inside a MAT file), `rpm_source` (as `fs_source`),
     /// `load` and `load_source` when the file stores a load; absent keys are unknown.
@@ -121,6 +126,12 @@ pub struct Analysis {
     /// speed), or `file speed profile` / `config speed profile` when the model's speed
     /// profile gives it over the record's span (its mean when order-tracked).
     pub rpm_source: String,
+    /// Where exactly the speed was found: `--rpm`, `sidecar `run1.json``, `MAT variable
+    /// `X118RPM``, `MAT struct field `bearing.rate` (Hz × 60)`, `Paderborn variable name
+    /// `…``, `ims layout (2000 rpm, documented)`, `--config `FILE``, `speed profile of the
+    /// sidecar's model` / `speed profile of --config`; `rpm_source` when the reader says no
+    /// more.
+    pub rpm_detail: String,
     /// Set when the record was taken at a varying shaft speed that its wearsim sidecar's
     /// (or `--config` scenario's) speed profile states: the record was resampled to equal
     /// shaft-angle steps before the analysis and `rpm` is the mean speed (see
@@ -228,6 +239,9 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
     )?;
     if rpm_from_config && a.rpm_source == "file" {
         a.rpm_source = "config".into();
+        if let Some(c) = &args.config {
+            a.rpm_detail = format!("--config `{}`", c.display());
+        }
     }
     Ok((a, spectra))
 }
@@ -372,26 +386,32 @@ fn analyze_chosen(
         Ok(z) => (Some(z), None),
         Err(e) => (None, Some(e)),
     };
+    let meta_str = |k: &str| rec.meta.get(k).and_then(|v| v.as_str()).map(str::to_string);
+    let fs_source = meta_str("fs_source").unwrap_or_else(|| "file".to_string());
+    let rpm_source = match (rpm_from_argument, from_profile) {
+        (true, _) => "argument".to_string(),
+        (false, true) => format!("{bearing_source} speed profile"),
+        (false, false) => "file".to_string(),
+    };
+    let rpm_detail = match (rpm_from_argument, from_profile) {
+        (true, _) => io::sidecar::ARGUMENT_RPM.to_string(),
+        (false, true) if bearing_source == "config" => "speed profile of --config".to_string(),
+        (false, true) => "speed profile of the sidecar's model".to_string(),
+        (false, false) => meta_str("rpm_detail").unwrap_or_else(|| rpm_source.clone()),
+    };
     let analysis = Analysis {
         file: rec.source.clone(),
         channel: rec.channel.clone(),
         unit: rec.unit.clone(),
         fs: rec.fs,
-        fs_source: rec
-            .meta
-            .get("fs_source")
-            .and_then(|v| v.as_str())
-            .unwrap_or("file")
-            .to_string(),
+        fs_detail: meta_str("fs_detail").unwrap_or_else(|| fs_source.clone()),
+        fs_source,
         input: input_provenance(rec),
         samples: rec.samples.len(),
         duration_s: rec.duration_s(),
         rpm,
-        rpm_source: match (rpm_from_argument, from_profile) {
-            (true, _) => "argument".into(),
-            (false, true) => format!("{bearing_source} speed profile"),
-            (false, false) => "file".into(),
-        },
+        rpm_source,
+        rpm_detail,
         order_tracking: tracked.map(|t| t.1),
         bearing,
         bearing_source: bearing_source.into(),

@@ -46,6 +46,8 @@ pub struct Row {
     pub fs: Option<f64>,
     /// Where the sample rate came from.
     pub fs_source: Option<String>,
+    /// Where exactly the sample rate was found (`Analysis::fs_detail`).
+    pub fs_detail: Option<String>,
     /// Shaft speed, rpm.
     pub rpm: Option<f64>,
     /// Bearing used.
@@ -122,6 +124,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
         channel: None,
         fs: None,
         fs_source: None,
+        fs_detail: None,
         rpm: None,
         bearing: None,
         error: None,
@@ -158,6 +161,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
             row.channel = Some(an.channel);
             row.fs = Some(an.fs);
             row.fs_source = Some(an.fs_source);
+            row.fs_detail = Some(an.fs_detail);
             row.rpm = Some(an.rpm);
             row.bearing = Some(an.bearing);
         }
@@ -173,7 +177,7 @@ fn opt<T: ToString>(v: &Option<T>) -> String {
     v.as_ref().map_or(String::new(), T::to_string)
 }
 
-const HEADER: [&str; 12] = [
+const HEADER: [&str; 13] = [
     "file",
     "status",
     "family",
@@ -183,12 +187,13 @@ const HEADER: [&str; 12] = [
     "channel",
     "fs",
     "fs_source",
+    "fs_detail",
     "rpm",
     "bearing",
     "error",
 ];
 
-fn cells(r: &Row) -> [String; 12] {
+fn cells(r: &Row) -> [String; 13] {
     [
         r.file.display().to_string(),
         r.status.clone(),
@@ -199,6 +204,7 @@ fn cells(r: &Row) -> [String; 12] {
         opt(&r.channel),
         opt(&r.fs),
         opt(&r.fs_source),
+        opt(&r.fs_detail),
         opt(&r.rpm),
         opt(&r.bearing),
         opt(&r.error),

@@ -12,14 +12,16 @@
 //!
 //! Column choice ([`ReadOptions::channel`]): a header name (exact, then case-insensitive) or a
 //! zero-based index. Default: the sidecar's first column, else the first column that is not a
-//! time column (`time_s`, `time`, `t`), else column 0. A column taken by its name (the
+//! time column (`time`, `t`, with a unit: `time_s`, `Time (ms)`, `t [us]`;
+//! [`super::time_column`]), else column 0. A column taken by its name (the
 //! requested, the sidecar's, the default or the time column) whose name appears more than
 //! once in the header is refused naming both positions: which one was meant is not known
 //! (select it by its index instead).
 //!
 //! Sample rate: argument (which must agree within 0.1 % with a sidecar `fs` and a time column),
 //! else sidecar `fs` (see [`crate::io::sidecar`]), else derived from a time
-//! column in seconds (uniform spacing required); a sidecar and a time column that disagree by more
+//! column in seconds, milliseconds, microseconds or nanoseconds (uniform spacing required; a
+//! `time` column in another unit is refused naming it); a sidecar and a time column that disagree by more
 //! than 1 ppm are a contradiction. The CSV written by [`crate::io::write_outputs`] reads back
 //! exactly.
 
@@ -30,17 +32,9 @@ use serde_json::json;
 use super::error::IoError;
 use super::record::{check_finite, Record};
 use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::time_column::{decimals, fs_from_time, time_column, time_unit, TimeUnit};
 use super::write::unit_from_column_name;
 use super::ReadOptions;
-
-/// Header names recognised as a time axis in seconds (compared ignoring case and spaces, so
-/// `Time (s)`, `time [s]` and `T(s)` are all time columns).
-pub const TIME_NAMES: &[&str] = &["time_s", "time", "t", "time[s]", "time(s)", "t[s]", "t(s)"];
-
-fn is_time_name(s: &str) -> bool {
-    let compact: String = s.chars().filter(|c| !c.is_whitespace()).collect();
-    TIME_NAMES.iter().any(|t| compact.eq_ignore_ascii_case(t))
-}
 
 /// Read one numeric column of a CSV file as a [`Record`] (see the module doc for the rules).
 pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
@@ -123,7 +117,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let mut header: Option<Vec<String>> = None;
     let mut ncols = 0usize;
     let mut col = usize::MAX;
-    let mut time_col: Option<usize> = None;
+    let mut time_col: Option<(usize, TimeUnit)> = None;
     let mut samples: Vec<f64> = Vec::new();
     let mut times: Vec<f64> = Vec::new();
     // Most decimals printed in a time cell (`None` once one is in exponent form: full
@@ -150,11 +144,13 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             time_col = if all_numeric {
                 None
             } else {
-                let t = names.iter().position(|n| is_time_name(n));
-                if let Some(t) = t {
-                    unique(path, &names, t)?;
+                let mut t = None;
+                for (i, n) in names.iter().enumerate().filter(|&(i, _)| i != col) {
+                    if let (Some(u), None) = (time_column(path, n)?, t) {
+                        t = Some((unique(path, &names, i)?, u));
+                    }
                 }
-                t.filter(|&t| t != col)
+                t
             };
             header = Some(names);
             if !all_numeric {
@@ -176,7 +172,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         // Rows are streamed: refuse past the limit instead of growing with the file.
         let kept = if time_col.is_some() { 2 } else { 1 };
         super::record::check_record_size(path, samples.len(), kept * samples.len())?;
-        if let Some(t) = time_col {
+        if let Some((t, _)) = time_col {
             let cell = &rec[t];
             let tv: f64 = number(cell).ok_or_else(|| {
                 IoError::malformed(
@@ -200,17 +196,20 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
     let from_time = match time_col {
-        Some(t) => fs_from_time(path, &names[t], &times, time_decimals)?,
+        Some((t, unit)) => fs_from_time(path, &names[t], &times, time_decimals, unit)?
+            .map(|f| (f, format!("time column `{}`", names[t]))),
         None => None,
     };
-    let (fs, fs_source) = resolve_fs(
+    let (fs, fs_source, fs_detail) = resolve_fs(
         path,
         opts.fs,
         sidecar.as_ref(),
-        from_time.map(|f| (f, "time column")),
+        from_time.as_ref().map(|(f, what)| (*f, what.as_str())),
         &|a, b| ((a - b) / a).abs() <= 1e-6,
     )?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
+    let rpm = rpm.map(|r| r.0);
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
@@ -230,6 +229,8 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "column_index": col,
             "n_columns": ncols,
             "fs_source": fs_source.name(),
+            "fs_detail": fs_detail,
+            "rpm_detail": rpm_detail,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })
@@ -321,7 +322,7 @@ fn choose_column(
                 return unique(path, names, i);
             }
         }
-        if let Some(i) = names.iter().position(|n| !is_time_name(n)) {
+        if let Some(i) = names.iter().position(|n| time_unit(n).is_none()) {
             return unique(path, names, i);
         }
     }
@@ -329,68 +330,6 @@ fn choose_column(
         return Err(unknown("0"));
     }
     Ok(0)
-}
-
-/// Digits after the decimal point (or comma) of a number cell as printed; `None` for the
-/// exponent form (`3.9e-5`), taken as printed to full precision.
-fn decimals(cell: &str) -> Option<usize> {
-    if cell.contains(['e', 'E']) {
-        return None;
-    }
-    Some(cell.rsplit_once(['.', ',']).map_or(0, |(_, f)| f.len()))
-}
-
-/// Sample rate from a time column in seconds; `None` for fewer than 2 rows. Non-uniform or
-/// non-increasing times are an error. A time printed with `decimals` digits after the point
-/// is off by up to half a unit of the last digit (a 25.6 kHz record's stamps printed to the
-/// microsecond are 0.000039, 0.000078, …): each stamp must lie within twice that rounding
-/// (its own and the first stamp's), plus 10⁻³ of the spacing, of the uniform grid, and the
-/// rate is taken from the whole span. Whole numbers are taken as exact. The allowance is at
-/// most a quarter of the spacing, so every stamp still lies nearest its own sample; stamps
-/// printed too coarsely to meet it are refused saying so.
-fn fs_from_time(
-    path: &Path,
-    name: &str,
-    t: &[f64],
-    decimals: Option<usize>,
-) -> Result<Option<f64>, IoError> {
-    if t.len() < 2 {
-        return Ok(None);
-    }
-    check_finite(path, name, t)?;
-    let n = t.len();
-    let span = t[n - 1] - t[0];
-    if span <= 0.0 {
-        return Err(IoError::malformed(
-            path,
-            format!("time column {name:?} does not increase"),
-        ));
-    }
-    let dt = span / (n - 1) as f64;
-    // Half a unit of the last printed digit, s (0 for full precision and for whole numbers;
-    // 10^-d underflows to 0 past f64's exponent range, also full precision).
-    let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
-        0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
-    });
-    let tol = dt * 1e-3 + (2.0 * rounding).min(0.25 * dt);
-    for (i, &ti) in t.iter().enumerate() {
-        if (ti - (t[0] + i as f64 * dt)).abs() > tol {
-            let coarse = match decimals {
-                Some(d) if 2.0 * rounding > 0.25 * dt => format!(
-                    "; printed to {d} decimals, the stamps are too coarse for a spacing of {dt:e} s: print more decimals, or drop the column and pass --fs"
-                ),
-                _ => String::new(),
-            };
-            return Err(IoError::malformed(
-                path,
-                format!(
-                    "time column {name:?} is not uniformly spaced (row {i}: {ti} s, expected {} s){coarse}",
-                    t[0] + i as f64 * dt
-                ),
-            ));
-        }
-    }
-    Ok(Some(1.0 / dt))
 }
 
 #[cfg(test)]

@@ -188,7 +188,31 @@ pub fn read_layout(path: &Path, layout: TextLayout, opts: &ReadOptions) -> Resul
         m.insert("fs_source".into(), json!(fs_source));
         m.insert("rpm_source".into(), json!(rpm_source));
     }
+    set_details(&mut rec, layout.name(), opts);
     Ok(rec)
+}
+
+/// Sets `fs_detail` and `rpm_detail` in the `meta` of a record of the data set `name`
+/// (`ims`, `femto`, `xjtu-sy`) read at its documented rate and speed: `--fs`/`--rpm` when
+/// `opts` gives them, else `NAME layout (RATE Hz, documented)` (a speed the reader found
+/// elsewhere, e.g. a sidecar's, keeps its own detail).
+pub(crate) fn set_details(rec: &mut Record, name: &str, opts: &ReadOptions) {
+    use super::sidecar::{ARGUMENT_FS, ARGUMENT_RPM};
+    let fs = match opts.fs {
+        Some(_) => ARGUMENT_FS.to_string(),
+        None => format!("{name} layout ({} Hz, documented)", rec.fs),
+    };
+    let found = rec.meta.get("rpm_detail").filter(|d| !d.is_null()).cloned();
+    let rpm = match (opts.rpm, rec.rpm, found) {
+        (Some(_), _, _) => json!(ARGUMENT_RPM),
+        (None, _, Some(d)) => d,
+        (None, Some(r), None) => json!(format!("{name} layout ({r} rpm, documented)")),
+        (None, None, None) => json!(null),
+    };
+    if let Some(m) = rec.meta.as_object_mut() {
+        m.insert("fs_detail".into(), json!(fs));
+        m.insert("rpm_detail".into(), rpm);
+    }
 }
 
 /// FEMTO/PRONOSTIA `acc_NNNNN.csv`: rows of hour, minute, second, microsecond, horizontal and

@@ -23,8 +23,10 @@ pub mod mat;
 pub mod npy;
 pub mod perms;
 pub mod record;
+pub mod selector;
 pub mod sidecar;
 pub mod space_runs;
+pub mod time_column;
 pub mod wav;
 pub mod write;
 
@@ -102,6 +104,7 @@ pub fn read_any(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         if let Some(rpm) = opts.rpm {
             r.rpm = Some(record::check_rpm(path, rpm)?);
         }
+        layout::set_details(&mut r, "ims", opts);
         return Ok(r);
     }
     match ext.as_str() {

@@ -13,9 +13,12 @@
 //! For a 2-D array the samples run along the longer axis (a record holds far more samples than
 //! channels, so `(N, channels)` as pandas writes it and `(channels, N)` as signal-processing
 //! code does are both read as meant); a sidecar whose `columns` count matches exactly one axis
-//! makes that axis the channels. [`ReadOptions::channel`] picks the channel (zero-based index,
-//! or a name from the sidecar's `columns`); default 0. The JSON `meta.sample_axis` says which
-//! axis was taken.
+//! makes that axis the channels. A shape that does not tell (square, or both axes long: see
+//! [`MAX_SHAPE_CHANNELS`], [`SAMPLES_RATIO`]) is refused unless the sidecar or a selector
+//! decides. [`ReadOptions::channel`] picks the channel (zero-based index, or a name from the
+//! sidecar's `columns`, or a 1-based selector of the array as stored: `(:,K)` column K,
+//! `(K,:)` row K, [`selector`]); default 0. The JSON `meta.sample_axis` says which axis was
+//! taken.
 //! Integers are converted as they are (no full-scale normalisation); the unit comes from the
 //! sidecar (`units`), else `"unknown"`. Sample rate and rpm: argument, else sidecar.
 
@@ -25,6 +28,7 @@ use serde_json::json;
 
 use super::error::IoError;
 use super::record::{check_finite, Record};
+use super::selector;
 use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
 use super::ReadOptions;
 
@@ -146,6 +150,58 @@ fn quoted(v: &str) -> Option<&str> {
     rest.find(q).map(|e| &rest[..e])
 }
 
+/// Most channels the shorter axis of a 2-D array may hold for the shape alone to say it is
+/// the channels' axis (unless the other axis is [`SAMPLES_RATIO`] times longer).
+pub const MAX_SHAPE_CHANNELS: usize = 64;
+/// How many times longer than the other the samples' axis must be for the shape alone to
+/// decide when both axes are longer than [`MAX_SHAPE_CHANNELS`].
+pub const SAMPLES_RATIO: usize = 16;
+
+/// Whether the samples of a 2-D array of `shape` run along its second axis (channels
+/// first), and the line a `--channel` selector ([`selector`]: `(:,K)`, `(K,:)`) picks.
+/// Without a selector: a sidecar whose `columns` count matches exactly one axis makes it the
+/// channels; else the shape decides when it is unambiguous (the axes differ, and the shorter
+/// holds at most [`MAX_SHAPE_CHANNELS`] or the longer is [`SAMPLES_RATIO`] times longer);
+/// a square array or two long axes are refused saying how to choose.
+fn sample_axis(
+    path: &Path,
+    shape: &[usize],
+    columns: usize,
+    channel: Option<&str>,
+) -> Result<(bool, Option<selector::Line>), IoError> {
+    let dims = match shape {
+        [n] => [*n, 1],
+        [n, m] => [*n, *m],
+        _ => [0, 0],
+    };
+    if let Some((base, sel)) = channel.and_then(selector::split) {
+        if base.is_empty() {
+            let line = selector::check(sel, "", &dims).map_err(|e| IoError::malformed(path, e))?;
+            return Ok((line.is_row(), Some(line)));
+        }
+    }
+    let [n, m] = dims;
+    if shape.len() != 2 {
+        return Ok((false, None));
+    }
+    if columns > 0 && (columns == n) != (columns == m) {
+        return Ok((columns == n, None));
+    }
+    let (short, long) = (n.min(m), n.max(m));
+    if short > 1 && (short == long || (short > MAX_SHAPE_CHANNELS && long < SAMPLES_RATIO * short))
+    {
+        return Err(IoError::malformed(
+            path,
+            format!(
+                "--channel: the npy array of shape {shape:?} could hold its samples along either axis ({}); {}, or give a sidecar whose \"columns\" lists one name per channel",
+                if short == long { "it is square" } else { "both axes are long" },
+                selector::advice("", &dims)
+            ),
+        ));
+    }
+    Ok((m > n, None))
+}
+
 /// Read one column of a `.npy` file as a [`Record`] (see the module doc for the rules).
 pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, IoError> {
     let path = path.as_ref();
@@ -201,12 +257,7 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         IoError::contradiction(path, format!("npy shape {:?} overflows", h.shape))
     })?;
     let columns = sidecar.as_ref().map_or(0, |s| s.columns.len());
-    let channels_first = h.shape.len() == 2
-        && if columns > 0 && (columns == n) != (columns == m) {
-            columns == n
-        } else {
-            m > n
-        };
+    let (channels_first, line) = sample_axis(path, &h.shape, columns, opts.channel.as_deref())?;
     // (samples, channels) whatever the layout on disk.
     let (len, m) = if channels_first { (m, n) } else { (n, m) };
     super::record::check_record_size(path, len, numel)?;
@@ -246,9 +297,10 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         Some(s) if s.columns.len() == m => s.columns.clone(),
         _ => (0..m).map(|i| format!("col{i}")).collect(),
     };
-    let col = match opts.channel.as_deref() {
-        None => 0,
-        Some(req) => names
+    let col = match (line, opts.channel.as_deref()) {
+        (Some(line), _) => line.index0(),
+        (None, None) => 0,
+        (None, Some(req)) => names
             .iter()
             .position(|c| c == req)
             .or_else(|| req.parse::<usize>().ok().filter(|&i| i < m))
@@ -299,8 +351,11 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let channel = names[col].clone();
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
-    let (fs, fs_source) = resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
+    let (fs, fs_source, fs_detail) =
+        resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
+    let rpm = rpm.map(|r| r.0);
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
@@ -321,7 +376,10 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "fortran_order": h.fortran_order,
             "column_index": col,
             "sample_axis": usize::from(channels_first),
+            "selector": line.map(selector::Line::suffix),
             "fs_source": fs_source.name(),
+            "fs_detail": fs_detail,
+            "rpm_detail": rpm_detail,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })
@@ -468,6 +526,32 @@ mod tests {
         std::fs::write(dir.path().join("b.json"), r#"{"fs": 48000, "unit": 9.81}"#).unwrap();
         let e = read_npy(&q, &o(None)).unwrap_err().to_string();
         assert!(e.contains("\"unit\"") && e.contains("string"), "{e}");
+    }
+
+    /// The shape decides the axes when it tells them (a few channels, or one axis 16 times
+    /// longer); a square array or two long axes need a selector or a sidecar's `columns`.
+    #[test]
+    fn the_shape_decides_the_sample_axis_only_when_it_tells() {
+        let p = Path::new("x.npy");
+        let axis = |shape: &[usize], columns: usize, ch: Option<&str>| {
+            sample_axis(p, shape, columns, ch).map(|(first, line)| (first, line.is_some()))
+        };
+        assert_eq!(axis(&[3, 2], 0, None).unwrap(), (false, false));
+        assert_eq!(axis(&[2, 3], 0, None).unwrap(), (true, false));
+        assert_eq!(axis(&[64, 8192], 0, None).unwrap(), (true, false));
+        assert_eq!(axis(&[20_000, 1000], 0, None).unwrap(), (false, false));
+        assert_eq!(axis(&[1, 1], 0, None).unwrap(), (false, false));
+        for shape in [[2, 2], [1000, 1000], [4096, 1000], [100, 1000]] {
+            let e = axis(&shape, 0, Some("0")).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("{shape:?}")) && e.contains("'(:,K)'"),
+                "{e}"
+            );
+        }
+        assert_eq!(axis(&[3, 3], 0, Some("(2,:)")).unwrap(), (true, true));
+        assert_eq!(axis(&[4096, 1000], 1000, None).unwrap(), (false, false));
+        assert_eq!(axis(&[4096], 0, Some("(:,1)")).unwrap(), (false, true));
+        assert!(axis(&[4096], 0, Some("(:,2)")).is_err());
     }
 
     #[test]

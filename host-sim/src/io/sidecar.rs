@@ -65,6 +65,13 @@ pub struct Sidecar {
 }
 
 impl Sidecar {
+    /// What a rate or speed taken from this sidecar is reported as (`fs_detail`,
+    /// `rpm_detail`): `sidecar `NAME.json``.
+    pub fn detail(&self) -> String {
+        let name = self.path.file_name().unwrap_or(self.path.as_os_str());
+        format!("sidecar `{}`", name.to_string_lossy())
+    }
+
     /// Unit of `column`: `units[column]`, else the sidecar-wide unit, if given.
     pub fn unit_of(&self, column: &str) -> Option<&str> {
         self.units
@@ -405,12 +412,35 @@ impl FsSource {
     }
 }
 
+/// What `fs_detail` says of a rate given as `--fs` (and `rpm_detail` of `--rpm`).
+pub const ARGUMENT_FS: &str = "--fs";
+/// What `rpm_detail` says of a speed given as `--rpm`.
+pub const ARGUMENT_RPM: &str = "--rpm";
+
 /// Decide the sample rate of `data`: an explicit argument must agree with every rate the
 /// sidecar and the file state ([`check_fs_argument`], the rule the MAT reader applies) and is
 /// then used; it is the only rate of a file that states none. Without it, the sidecar and the
-/// file's own value (`intrinsic`, e.g. a WAV header rate, with its name for messages) must
-/// agree (`agree(sidecar_fs, intrinsic_fs)`), and the sidecar's exact value is used.
+/// file's own value (`intrinsic`, e.g. a WAV header rate, with its name for messages, which
+/// is also its `fs_detail`: `WAV header`) must agree (`agree(sidecar_fs, intrinsic_fs)`),
+/// and the sidecar's exact value is used. Returns the rate, its source and its detail
+/// ([`ARGUMENT_FS`], [`Sidecar::detail`] or the intrinsic rate's name).
 pub(crate) fn resolve_fs(
+    data: &Path,
+    arg: Option<f64>,
+    sidecar: Option<&Sidecar>,
+    intrinsic: Option<(f64, &str)>,
+    agree: &dyn Fn(f64, f64) -> bool,
+) -> Result<(f64, FsSource, String), IoError> {
+    let (fs, source) = resolve_fs_source(data, arg, sidecar, intrinsic, agree)?;
+    let detail = match (source, sidecar, intrinsic) {
+        (FsSource::Sidecar, Some(s), _) => s.detail(),
+        (FsSource::Intrinsic, _, Some((_, what))) => what.to_string(),
+        _ => ARGUMENT_FS.to_string(),
+    };
+    Ok((fs, source, detail))
+}
+
+fn resolve_fs_source(
     data: &Path,
     arg: Option<f64>,
     sidecar: Option<&Sidecar>,
@@ -477,15 +507,16 @@ pub(crate) fn check_n_samples(
     Ok(())
 }
 
-/// Shaft speed: explicit argument, else sidecar.
+/// Shaft speed: explicit argument, else sidecar; with its `rpm_detail` ([`ARGUMENT_RPM`]
+/// or [`Sidecar::detail`]).
 pub(crate) fn resolve_rpm(
     data: &Path,
     arg: Option<f64>,
     sidecar: Option<&Sidecar>,
-) -> Result<Option<f64>, IoError> {
+) -> Result<Option<(f64, String)>, IoError> {
     match arg {
-        Some(r) => Ok(Some(check_rpm(data, r)?)),
-        None => Ok(sidecar.and_then(|s| s.rpm)),
+        Some(r) => Ok(Some((check_rpm(data, r)?, ARGUMENT_RPM.to_string()))),
+        None => Ok(sidecar.and_then(|s| s.rpm.map(|r| (r, s.detail())))),
     }
 }
 

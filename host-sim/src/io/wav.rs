@@ -101,14 +101,16 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
     let header_fs = f64::from(spec.sample_rate);
-    let (fs, fs_source) = resolve_fs(
+    let (fs, fs_source, fs_detail) = resolve_fs(
         path,
         opts.fs,
         sidecar.as_ref(),
-        Some((header_fs, "WAV header rate")),
+        Some((header_fs, "WAV header")),
         &|side, head| side.round() == head,
     )?;
     let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
+    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
+    let rpm = rpm.map(|r| r.0);
     let full_scale_units = int && scale == 1.0;
     let unit = sidecar
         .as_ref()
@@ -147,6 +149,8 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "sample_format": if int { "int" } else { "float" },
             "header_sample_rate_hz": spec.sample_rate,
             "fs_source": fs_source.name(),
+            "fs_detail": fs_detail,
+            "rpm_detail": rpm_detail,
             "scale": scale,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),

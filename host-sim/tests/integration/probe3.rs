@@ -4,37 +4,9 @@
 //! labs); one test per defect, each named after what must hold.
 
 use std::path::Path;
-use std::process::Output;
 
-use crate::support::{noise, refused, s, wearsim};
-use wearsim_host::io::mat::fixture::{mat5_tree_bytes, FixtureValue};
-
-/// `analyze FILE --rpm 1797 --bearing cwru-6205-de --json` and `extra`; its JSON, the run
-/// having succeeded.
-fn analyze_6205(p: &Path, extra: &[&str]) -> serde_json::Value {
-    let mut a = vec![
-        "analyze",
-        s(p),
-        "--rpm",
-        "1797",
-        "--bearing",
-        "cwru-6205-de",
-        "--json",
-    ];
-    a.extend(extra);
-    json_ok(&wearsim(&a))
-}
-
-/// The `--json` object of a run that must have succeeded.
-fn json_ok(o: &Output) -> serde_json::Value {
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    serde_json::from_slice(&o.stdout).expect("analyze --json prints one JSON object")
-}
+use crate::support::{analyze_6205, json_ok, mat, noise, refused, s, timed_rows, wearsim};
+use wearsim_host::io::mat::fixture::FixtureValue;
 
 /// An XJTU-SY (or FEMTO) CSV saved by a spreadsheet program starts with a UTF-8 byte order
 /// mark. The layout was recognised from the raw first line, so the mark hid the header:
@@ -78,14 +50,6 @@ fn a_layout_file_with_a_byte_order_mark_is_recognised_by_content() {
     assert_eq!(v["channel"], "horiz");
 }
 
-/// Lines `time,value` of `x` at `fs` Hz, the time printed by `time` (seconds → cell).
-fn timed_rows(x: &[f64], fs: f64, sep: &str, time: impl Fn(f64) -> String) -> String {
-    x.iter()
-        .enumerate()
-        .map(|(i, v)| format!("{}{sep}{v}\n", time(i as f64 / fs)))
-        .collect()
-}
-
 /// A DAQ export opening with a `#` comment that holds a comma (`# exported by X, fs=25600`)
 /// above a tab-separated table: the separator was decided on that comment, so every row
 /// was one cell and `analyze` exited 2 with `"0\t-0.14" is not a number`. The comment is
@@ -126,13 +90,6 @@ fn a_sidecar_bearing_geometry_is_not_called_unread() {
     assert_eq!(v["bearing_source"], "sidecar", "{v}");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("not read"), "{err}");
-}
-
-/// Writes `vars` as a MAT v5 file `dir/name`.
-fn mat(dir: &Path, name: &str, vars: &[(&str, FixtureValue)]) -> std::path::PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, mat5_tree_bytes(vars)).expect("write mat");
-    p
 }
 
 /// A MAT file without a usable rate was told to "write a sidecar with `"fs": HZ`", which a
@@ -229,7 +186,8 @@ fn a_paderborn_file_gives_the_unit_it_states() {
 }
 
 /// A MAT variable holding several channels as columns was refused with "pick one column
-/// with --channel", which no `--channel` value can do; the message now says what works.
+/// with --channel", which no `--channel` value could do; the message now says what works:
+/// the selector `data(:,K)` / `data(K,:)` with the ranges of this array (probe4 tests it).
 #[test]
 fn a_mat_matrix_channel_is_refused_with_advice_that_works() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -263,9 +221,12 @@ fn a_mat_matrix_channel_is_refused_with_advice_that_works() {
     ]);
     refused(
         &o,
-        &["[4096, 2] matrix", "not a column of one", "data(:,1)"],
+        &[
+            "[4096, 2] matrix",
+            "--channel 'data(:,K)' (K = 1..=2)",
+            "--channel 'data(K,:)' (K = 1..=4096)",
+        ],
     );
-    assert!(!String::from_utf8_lossy(&o.stderr).contains("pick one column with --channel"));
 }
 
 /// A time column headed `Time (s)` (a space before the unit, as many DAQ programs write

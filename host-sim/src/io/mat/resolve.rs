@@ -21,6 +21,8 @@ use super::cwru::{cwru_bearing_preset, file_label, pick_by_record};
 use super::tree::{find, numeric_arrays, read_mat_tree, walk, ArrayInfo, MatNode, MatValue};
 use crate::io::error::IoError;
 use crate::io::record::{check_finite, check_fs, check_fs_argument, check_rpm, Record};
+use crate::io::selector;
+use crate::io::sidecar::{ARGUMENT_FS, ARGUMENT_RPM};
 use crate::io::ReadOptions;
 
 /// Paderborn (KAt data center) vibration sample rate, Hz (Lessmeier et al. 2016: 64 kHz).
@@ -344,14 +346,14 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         Some("FE") => "FE",
         _ => "DE",
     };
-    let (chan_path, chan_name) = channel_path(
-        path,
-        &listing,
-        &layout,
-        opts.channel.as_deref(),
-        record_no,
-        cwru_default,
-    )?;
+    // `NAME(:,K)` / `NAME(K,:)`: one line of a 2-D array (`crate::io::selector`).
+    let (requested, selected) = match opts.channel.as_deref().map(|c| (c, selector::split(c))) {
+        Some((_, Some((base, sel)))) => (Some(base), Some(sel)),
+        Some((c, None)) => (Some(c), None),
+        None => (None, None),
+    };
+    let (chan_path, chan_name) =
+        channel_path(path, &listing, &layout, requested, record_no, cwru_default)?;
     let mut all = Vec::new();
     walk(&listing, &mut all);
     let fs_node = find_scalar(&all, &chan_path, FS_NAMES).map(|n| n.path.clone());
@@ -389,13 +391,29 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             format!("{chan_path:?} is complex; only real signals are analysed"),
         ));
     }
-    if !is_vector(chan) {
-        return Err(IoError::unsupported(
-            path,
-            format!("{chan_path:?} is a {:?} matrix, expected a vector: --channel takes a variable, not a column of one; save each channel as its own vector (in MATLAB `ch1 = data(:,1)`) or export the channel to CSV/NPY (whose --channel takes a column index)", chan.dims),
-        ));
-    }
-    let samples = chan.numbers().unwrap_or(&[]).to_vec();
+    let data = chan.numbers().unwrap_or(&[]);
+    let (samples, line) = match selected {
+        Some(sel) => {
+            let line = selector::check(sel, &chan_path, &chan.dims)
+                .map_err(|e| IoError::malformed(path, e))?;
+            let rows = chan.dims[0];
+            // MAT arrays are stored column by column.
+            let get = |i: usize, j: usize| data.get(i + j * rows).copied().unwrap_or(f64::NAN);
+            (selector::extract(line, rows, chan.dims[1], get), Some(line))
+        }
+        None if !is_vector(chan) => {
+            return Err(IoError::unsupported(
+                path,
+                format!(
+                    "{chan_path:?} is a {:?} matrix, expected a vector: {}",
+                    chan.dims,
+                    selector::advice(&chan_path, &chan.dims)
+                ),
+            ))
+        }
+        None => (data.to_vec(), None),
+    };
+    let suffix = line.map(selector::Line::suffix).unwrap_or_default();
     if samples.is_empty() {
         return Err(IoError::truncated(
             path,
@@ -437,6 +455,16 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         }
     };
     let fs = check_fs(path, fs)?;
+    let fs_detail = match (fs_source.as_str(), &label) {
+        ("argument", _) => ARGUMENT_FS.to_string(),
+        ("file name", Some(l)) => format!(
+            "CWRU file name `{}` ({} Hz)",
+            path.file_name().unwrap_or_default().to_string_lossy(),
+            l.fs_hz
+        ),
+        ("layout:paderborn", _) => format!("Paderborn layout ({PADERBORN_FS} Hz, documented)"),
+        (s, _) => s.strip_prefix("file:").map_or(s.to_string(), stored_at),
+    };
 
     // Shaft speed.
     let from_file = |p: &Option<String>, scale: f64| -> Option<(f64, String)> {
@@ -462,6 +490,18 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         (None, Some((r, s))) => (Some(check_rpm(path, r)?), Some(s)),
         (None, None) => (None, None),
     };
+    let rpm_detail = rpm_source.as_deref().map(|s| match s {
+        "argument" => ARGUMENT_RPM.to_string(),
+        s if s.starts_with("layout:paderborn") => match &layout {
+            MatLayout::Paderborn(v) => format!("Paderborn variable name `{v}` (N<nn> × 100 rpm)"),
+            _ => s.to_string(),
+        },
+        s => match s.strip_prefix("file:") {
+            Some(p) if rate_node.as_deref() == Some(p) => format!("{} (Hz × 60)", stored_at(p)),
+            Some(p) => stored_at(p),
+            None => s.to_string(),
+        },
+    });
     let load = from_file(&load_node, 1.0);
     let channel = match layout {
         MatLayout::Cwru => ["DE", "FE", "BA"]
@@ -470,23 +510,26 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             .map_or(chan_name, str::to_string),
         _ => chan_name,
     };
+    let selected_name = format!("{channel}{suffix}");
     let (unit, unit_source) = match layout {
         MatLayout::Cwru | MatLayout::Mfpt(_) => ("g".to_string(), "layout".to_string()),
-        MatLayout::Paderborn(_) => match sidecar_unit(path, &channel, &chan_path)? {
+        MatLayout::Paderborn(_) => match sidecar_unit(path, &selected_name, &chan_path)? {
             (u, _) if u == "unknown" => {
                 paderborn_unit(&listing, &chan_path).unwrap_or((u, "none".into()))
             }
             stated => stated,
         },
-        MatLayout::Generic => sidecar_unit(path, &channel, &chan_path)?,
+        MatLayout::Generic => sidecar_unit(path, &selected_name, &chan_path)?,
     };
     let meta = json!({
         "format": if layout == MatLayout::Cwru { "cwru-mat5" } else { "mat5" },
         "layout": layout.name(),
-        "variable": chan_path,
+        "variable": format!("{chan_path}{suffix}"),
         "arrays": numeric_arrays(&tree),
         "fs_source": fs_source,
+        "fs_detail": fs_detail,
         "rpm_source": rpm_source,
+        "rpm_detail": rpm_detail,
         "load": load.as_ref().map(|l| l.0),
         "load_source": load.as_ref().map(|l| l.1.clone()),
         "unit_note": match layout {
@@ -503,11 +546,24 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         fs,
         rpm,
         bearing: layout_bearing(&layout, &channel),
-        channel,
+        channel: selected_name,
         unit,
         source: PathBuf::from(path),
         meta,
     })
+}
+
+/// Where in a MAT file a value is stored, as `fs_detail`/`rpm_detail` say it: `MAT
+/// variable `X118RPM`` for a variable, `MAT struct field `bearing.sr`` for a path into one.
+fn stored_at(p: &str) -> String {
+    let kind = if p.contains('{') {
+        "cell element"
+    } else if p.contains(['.', '(']) {
+        "struct field"
+    } else {
+        "variable"
+    };
+    format!("MAT {kind} `{p}`")
 }
 
 /// The unit a Paderborn file states for the channel at `chan_path` (`….Y(i).Data`): the

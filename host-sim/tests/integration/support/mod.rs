@@ -1,8 +1,10 @@
 //! Helpers shared by the command-line integration tests (each test crate uses a subset).
 #![allow(dead_code)]
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+
+use wearsim_host::io::mat::fixture::{mat5_tree_bytes, FixtureValue};
 
 /// Runs the `wearsim` binary of this build with `args` and returns what it did.
 pub fn wearsim(args: &[&str]) -> Output {
@@ -111,4 +113,63 @@ pub fn gap_life(a: &Path, b: &Path, out: &Path, extra: &[&str]) -> Output {
     ];
     args.extend_from_slice(extra);
     wearsim(&args)
+}
+
+/// `analyze FILE --rpm 1797 --bearing cwru-6205-de --json` and `extra`; its JSON, the run
+/// having succeeded.
+pub fn analyze_6205(p: &Path, extra: &[&str]) -> serde_json::Value {
+    let mut a = vec![
+        "analyze",
+        s(p),
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+        "--json",
+    ];
+    a.extend(extra);
+    json_ok(&wearsim(&a))
+}
+
+/// The `--json` object of a run that must have succeeded.
+pub fn json_ok(o: &Output) -> serde_json::Value {
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("analyze --json prints one JSON object")
+}
+
+/// Lines `time,value` of `x` at `fs` Hz, the time printed by `time` (seconds → cell).
+pub fn timed_rows(x: &[f64], fs: f64, sep: &str, time: impl Fn(f64) -> String) -> String {
+    x.iter()
+        .enumerate()
+        .map(|(i, v)| format!("{}{sep}{v}\n", time(i as f64 / fs)))
+        .collect()
+}
+
+/// Writes `vars` as a MAT v5 file `dir/name`.
+pub fn mat(dir: &Path, name: &str, vars: &[(&str, FixtureValue)]) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, mat5_tree_bytes(vars)).expect("write mat");
+    p
+}
+
+/// Writes a little-endian f64 `.npy` file `dir/name` of `shape` holding `data` in C order.
+pub fn npy(dir: &Path, name: &str, shape: &[u64], data: &[f64]) -> PathBuf {
+    use npyz::WriterBuilder;
+    let mut buf = Vec::new();
+    let mut w = npyz::WriteOptions::new()
+        .default_dtype()
+        .shape(shape)
+        .writer(&mut buf)
+        .begin_nd()
+        .expect("npy header");
+    w.extend(data.iter().copied()).expect("npy data");
+    w.finish().expect("npy end");
+    let p = dir.join(name);
+    std::fs::write(&p, buf).expect("write npy");
+    p
 }

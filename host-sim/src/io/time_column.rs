@@ -1,0 +1,236 @@
+//! The time column of a text record: which header names one, in which unit, and the sample
+//! rate its stamps give ([`crate::io::csv`], and the layouts read through it).
+//!
+//! A time column is headed `time` or `t`, alone (seconds) or with a unit in brackets
+//! (`Time (ms)`, `time [us]`, `t(s)`) or after an underscore (`time_s`, `t_ms`); spaces and
+//! case are ignored. Units: seconds (`s`, `sec`, `second(s)`), milliseconds (`ms`, `msec`),
+//! microseconds (`us`, `µs`, `μs`, `usec`) and nanoseconds (`ns`, `nsec`). A `time` header
+//! with another unit in brackets (`Time (h)`, `time [samples]`) is refused naming the column
+//! and the units read, rather than taken as a data channel; `t` with another unit (`T (°C)`)
+//! and `_` suffixes that are no unit (`time_stamp`, `t_max`) are data columns.
+
+use std::path::Path;
+
+use super::error::IoError;
+use super::record::check_finite;
+
+/// The unit of a time column.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeUnit {
+    /// The unit's symbol as messages print it (`s`, `ms`, `µs`, `ns`).
+    pub symbol: &'static str,
+    /// Units per second (1 for `s`, 1000 for `ms`).
+    pub per_second: f64,
+}
+
+/// Accepted spellings of each time unit (compared lower-case), with the unit.
+const UNITS: &[(&[&str], TimeUnit)] = &[
+    (
+        &["s", "sec", "secs", "second", "seconds"],
+        TimeUnit {
+            symbol: "s",
+            per_second: 1.0,
+        },
+    ),
+    (
+        &["ms", "msec", "msecs", "millisecond", "milliseconds"],
+        TimeUnit {
+            symbol: "ms",
+            per_second: 1e3,
+        },
+    ),
+    (
+        &[
+            "us",
+            "µs",
+            "μs",
+            "usec",
+            "usecs",
+            "microsecond",
+            "microseconds",
+        ],
+        TimeUnit {
+            symbol: "µs",
+            per_second: 1e6,
+        },
+    ),
+    (
+        &["ns", "nsec", "nsecs", "nanosecond", "nanoseconds"],
+        TimeUnit {
+            symbol: "ns",
+            per_second: 1e9,
+        },
+    ),
+];
+
+/// Seconds, the unit of a bare `time` or `t` column.
+pub const SECONDS: TimeUnit = UNITS[0].1;
+
+/// The units a time column may state, as a message lists them.
+pub fn accepted_units() -> String {
+    UNITS
+        .iter()
+        .map(|(names, _)| names.join("/"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What header `name` says of its column: `None` for a data column, `Some(Ok(unit))` for
+/// a time column in a unit read here, `Some(Err(unit))` for a `time` column in another unit
+/// (see the module doc).
+pub fn time_unit(name: &str) -> Option<Result<TimeUnit, String>> {
+    let compact: String = name
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .flat_map(char::to_lowercase)
+        .collect();
+    let known = |u: &str| UNITS.iter().find(|(n, _)| n.contains(&u)).map(|(_, t)| *t);
+    for base in ["time", "t"] {
+        let Some(rest) = compact.strip_prefix(base) else {
+            continue;
+        };
+        if rest.is_empty() {
+            return Some(Ok(SECONDS));
+        }
+        let bracketed = [('(', ')'), ('[', ']')]
+            .iter()
+            .find_map(|&(o, c)| rest.strip_prefix(o)?.strip_suffix(c));
+        match (bracketed, rest.strip_prefix('_')) {
+            (Some(u), _) => match known(u) {
+                Some(t) => return Some(Ok(t)),
+                None if base == "time" => return Some(Err(u.to_string())),
+                None => return None,
+            },
+            (None, Some(u)) => return known(u).map(Ok),
+            (None, None) => {}
+        }
+    }
+    None
+}
+
+/// The [`time_unit`] of column `name` of `path` when it is a time column; a `time` column in
+/// a unit not read here is an error naming the column and the units accepted.
+pub fn time_column(path: &Path, name: &str) -> Result<Option<TimeUnit>, IoError> {
+    match time_unit(name) {
+        None => Ok(None),
+        Some(Ok(u)) => Ok(Some(u)),
+        Some(Err(u)) => Err(IoError::malformed(
+            path,
+            format!(
+                "time column {name:?}: unit {u:?} is not a time unit read here (accepted: {}); rename the column with one of them, or remove it and pass --fs",
+                accepted_units()
+            ),
+        )),
+    }
+}
+
+/// Digits after the decimal point (or comma) of a number cell as printed; `None` for the
+/// exponent form (`3.9e-5`), taken as printed to full precision.
+pub fn decimals(cell: &str) -> Option<usize> {
+    if cell.contains(['e', 'E']) {
+        return None;
+    }
+    Some(cell.rsplit_once(['.', ',']).map_or(0, |(_, f)| f.len()))
+}
+
+/// Sample rate (Hz) from the stamps `t` of time column `name` in `unit`; `None` for fewer
+/// than 2 rows. Non-uniform or non-increasing times are an error. A time printed with
+/// `decimals` digits after the point is off by up to half a unit of the last digit (a
+/// 25.6 kHz record's stamps printed to the microsecond are 0.000039, 0.000078, …): each stamp
+/// must lie within twice that rounding (its own and the first stamp's), plus 10⁻³ of the
+/// spacing, of the uniform grid, and the rate is taken from the whole span. Whole numbers are
+/// taken as exact. The allowance is at most a quarter of the spacing, so every stamp still
+/// lies nearest its own sample; stamps printed too coarsely to meet it are refused saying so.
+/// The check runs in the column's unit; the rate is `unit.per_second` over the spacing.
+pub fn fs_from_time(
+    path: &Path,
+    name: &str,
+    t: &[f64],
+    decimals: Option<usize>,
+    unit: TimeUnit,
+) -> Result<Option<f64>, IoError> {
+    if t.len() < 2 {
+        return Ok(None);
+    }
+    check_finite(path, name, t)?;
+    let n = t.len();
+    let span = t[n - 1] - t[0];
+    if span <= 0.0 {
+        return Err(IoError::malformed(
+            path,
+            format!("time column {name:?} does not increase"),
+        ));
+    }
+    let dt = span / (n - 1) as f64;
+    let u = unit.symbol;
+    // Half a unit of the last printed digit (0 for full precision and for whole numbers;
+    // 10^-d underflows to 0 past f64's exponent range, also full precision).
+    let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
+        0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
+    });
+    let tol = dt * 1e-3 + (2.0 * rounding).min(0.25 * dt);
+    for (i, &ti) in t.iter().enumerate() {
+        if (ti - (t[0] + i as f64 * dt)).abs() > tol {
+            let coarse = match decimals {
+                Some(d) if 2.0 * rounding > 0.25 * dt => format!(
+                    "; printed to {d} decimals, the stamps are too coarse for a spacing of {dt:e} {u}: print more decimals, or drop the column and pass --fs"
+                ),
+                _ => String::new(),
+            };
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "time column {name:?} is not uniformly spaced (row {i}: {ti} {u}, expected {} {u}){coarse}",
+                    t[0] + i as f64 * dt
+                ),
+            ));
+        }
+    }
+    Ok(Some(unit.per_second / dt))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_headers_and_their_units() {
+        let unit = |n: &str| time_unit(n).map(|r| r.map(|u| u.symbol));
+        for (name, want) in [
+            ("time", "s"),
+            ("T", "s"),
+            ("time_s", "s"),
+            ("Time (s)", "s"),
+            ("time [sec]", "s"),
+            ("Time (ms)", "ms"),
+            ("time [ms]", "ms"),
+            ("t_ms", "ms"),
+            ("Time (us)", "µs"),
+            ("Time (µs)", "µs"),
+            ("time [μs]", "µs"),
+            ("time_ns", "ns"),
+        ] {
+            assert_eq!(unit(name), Some(Ok(want)), "{name}");
+        }
+        for name in ["accel", "T (°C)", "time_stamp", "t_max", "Temp", "times"] {
+            assert_eq!(unit(name), None, "{name}");
+        }
+        assert_eq!(unit("Time (h)"), Some(Err("h".into())));
+        assert_eq!(unit("time [samples]"), Some(Err("samples".into())));
+        let e = time_column(Path::new("x.csv"), "Time (h)").unwrap_err();
+        let e = e.to_string();
+        assert!(e.contains("\"Time (h)\"") && e.contains("ms/msec"), "{e}");
+    }
+
+    #[test]
+    fn a_millisecond_column_gives_the_rate_of_the_seconds_column() {
+        let p = Path::new("x.csv");
+        // 16384 Hz: every stamp is exact in binary, in seconds and in milliseconds.
+        let s: Vec<f64> = (0..100).map(|i| i as f64 / 16384.0).collect();
+        let ms: Vec<f64> = s.iter().map(|t| t * 1000.0).collect();
+        let unit_ms = time_unit("t_ms").unwrap().unwrap();
+        let a = fs_from_time(p, "t", &s, None, SECONDS).unwrap();
+        let b = fs_from_time(p, "t_ms", &ms, None, unit_ms).unwrap();
+        assert_eq!((a, b), (Some(16384.0), Some(16384.0)));
+    }
+}
