@@ -46,7 +46,7 @@ const INDEX: &str = "index.parquet";
 /// their drawn effects), before anything is written.
 pub fn validate(spec: &SweepSpec) -> Result<(), SweepError> {
     let cells = record::cells(spec);
-    for i in 0..spec.records.min(cells.len() as u64) {
+    for i in 0..spec.records.min(cells.len()) {
         shard::scenario(spec, &cells, i)?;
     }
     Ok(())

@@ -33,6 +33,7 @@ mod life_sites;
 mod out_dirs;
 mod probe2;
 mod probe3;
+mod probe_sweep;
 mod readers;
 mod reference_hashes;
 mod rig_tables;

@@ -1,0 +1,102 @@
+//! An outside probe of `wearsim sweep` and `wearsim simulate` as a new user drives them:
+//! a grid far larger than its records is labelled without holding every cell, a
+//! configuration or spec that never ends (`/dev/zero`) is refused within a bound, a core
+//! range error names the scenario file's own key (in its unit), and a data set resumed in
+//! a directory that cannot be written is refused before any simulation.
+
+use crate::support::{refused, s, wearsim};
+use std::process::{Command, Output};
+use wearsim_host::sweep::{record, SweepSpec};
+
+/// Runs `wearsim args` under an address-space limit of `mib` MiB (`ulimit -v`), so that an
+/// unbounded allocation fails in the child instead of exhausting the machine.
+fn wearsim_limited(mib: u64, args: &[&str]) -> Output {
+    let bin = env!("CARGO_BIN_EXE_wearsim");
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {}; exec \"$0\" \"$@\"", mib * 1024))
+        .arg(bin)
+        .args(args)
+        .output()
+        .expect("run wearsim under sh")
+}
+
+fn grid_spec(rpms: usize, loads: usize) -> String {
+    let list = |n: usize, first: f64| {
+        (0..n)
+            .map(|i| format!("{:.2}", first + i as f64 * 0.01))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!(
+        "seed = 3\nrecords = 6\nrecords_per_shard = 3\nduration = 0.01\nfs = 12000.0\n\
+         [grid]\npreset = [\"cwru-6205-de\"]\nrpm = [{}]\nradial_load = [{}]\n\
+         fault = [\"healthy\", \"outer\"]\nstage = [\"mild-defect\", \"large-defect\"]\n",
+        list(rpms, 1000.0),
+        list(loads, 100.0)
+    )
+}
+
+/// 20 000 speeds × 20 000 loads × 3 (fault, stage) pairs = 1.2·10⁹ cells for 6 records:
+/// the sweep holds none of the cells it does not label (it built every one, about 400
+/// bytes each, and compared every pair of axis values to find a repeat: minutes, then
+/// out of memory), and its labels are the first cells in the documented order.
+#[test]
+fn a_grid_larger_than_its_records_is_not_materialised() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec_path = dir.path().join("huge grid.toml");
+    let text = grid_spec(20_000, 20_000);
+    std::fs::write(&spec_path, &text).unwrap();
+    let out = dir.path().join("set ü");
+    let t0 = std::time::Instant::now();
+    let o = wearsim_limited(2048, &["sweep", s(&spec_path), "--out", s(&out), "--json"]);
+    assert!(
+        o.status.success(),
+        "exit {:?}: {}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(t0.elapsed().as_secs() < 60, "took {:?}", t0.elapsed());
+    assert!(out.join("manifest.json").is_file());
+    let spec = SweepSpec::parse(&text, "spec").unwrap();
+    let cells = record::cells(&spec);
+    assert_eq!(cells.len(), 20_000 * 20_000 * 3);
+    let labels: Vec<String> = (0..6)
+        .map(|i| {
+            let c = record::record(&spec, &cells, i).cell;
+            format!("{} {:?} {} {}", c.rpm, c.radial_load, c.fault, c.stage)
+        })
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "1000 Some(100.0) healthy healthy",
+            "1000 Some(100.0) outer mild-defect",
+            "1000 Some(100.0) outer large-defect",
+            "1000 Some(100.01) healthy healthy",
+            "1000 Some(100.01) outer mild-defect",
+            "1000 Some(100.01) outer large-defect",
+        ]
+    );
+    let last = cells.get(cells.len() - 1);
+    assert_eq!(
+        (last.rpm, last.radial_load, last.stage.as_str()),
+        (1199.99, Some(299.99), "large-defect")
+    );
+}
+
+/// A repeated value at the end of a long axis is still found, in one pass.
+#[test]
+fn a_repeat_on_a_long_axis_is_named_quickly() {
+    let dir = tempfile::tempdir().unwrap();
+    let spec_path = dir.path().join("spec.toml");
+    // The repeat is the last pair: a search of every pair met it last.
+    let text = grid_spec(100_000, 1).replace("]\nradial_load", ", 1999.99]\nradial_load");
+    assert!(text.contains("1999.99, 1999.99]"));
+    std::fs::write(&spec_path, text).unwrap();
+    let t0 = std::time::Instant::now();
+    let o = wearsim(&["sweep", s(&spec_path), "--out", s(&dir.path().join("o"))]);
+    refused(&o, &["grid.rpm", "1999.99 twice"]);
+    assert!(t0.elapsed().as_secs() < 30, "took {:?}", t0.elapsed());
+    assert!(!dir.path().join("o").exists());
+}
