@@ -59,8 +59,8 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
     let spec_path = dir.join(SPEC_FILE);
     let text = serde_json::to_string_pretty(spec).map_err(|e| SweepError::Run(e.to_string()))?;
     if spec_path.exists() {
-        let old = std::fs::read_to_string(&spec_path)
-            .map_err(|e| SweepError::Input(format!("cannot read {}: {e}", spec_path.display())))?;
+        let old = crate::config::read_config_text(&spec_path)
+            .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
         let same = serde_json::from_str::<SweepSpec>(&old).is_ok_and(|o| &o == spec);
         if !same {
             return Err(SweepError::Input(format!(

@@ -100,3 +100,31 @@ fn a_repeat_on_a_long_axis_is_named_quickly() {
     assert!(t0.elapsed().as_secs() < 30, "took {:?}", t0.elapsed());
     assert!(!dir.path().join("o").exists());
 }
+
+/// A configuration or spec that never ends is refused at the documented bound (it was read
+/// whole: gigabytes of RAM in seconds), exit 2, naming the limit.
+#[test]
+fn endless_configuration_files_are_refused_within_a_bound() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        eprintln!("skipped: no /dev/zero");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    for args in [
+        vec!["simulate", "--config", "/dev/zero", "--out", s(&out)],
+        vec!["sweep", "/dev/zero", "--out", s(&out)],
+        vec!["life", "--config", "/dev/zero", "--out", s(&out)],
+    ] {
+        let o = wearsim_limited(2048, &args);
+        refused(&o, &["/dev/zero", "too large", "16777216 bytes"]);
+    }
+    assert!(!out.exists());
+    // Not UTF-8: refused as such, exit 2.
+    let bin = dir.path().join("bin.toml");
+    std::fs::write(&bin, [0xff, 0xfe, 0x00, 0x41]).unwrap();
+    refused(
+        &wearsim(&["simulate", "--config", s(&bin), "--out", s(&out)]),
+        &["bin.toml", "UTF-8"],
+    );
+}
