@@ -60,27 +60,60 @@ pub enum ConfigFileError {
 }
 
 impl From<wearsim_core::ConfigError> for ConfigFileError {
+    /// A core error in the file's terms (see [`file_field`]).
     fn from(e: wearsim_core::ConfigError) -> Self {
-        ConfigFileError::Core(e)
+        use wearsim_core::ConfigError as E;
+        ConfigFileError::Core(match e {
+            E::OutOfRange {
+                field,
+                value,
+                min,
+                max,
+            } => match file_field(field) {
+                (key, true) => E::OutOfRange {
+                    field: key,
+                    value: value.to_degrees(),
+                    min: min.to_degrees(),
+                    max: max.to_degrees(),
+                },
+                (key, false) => E::OutOfRange {
+                    field: key,
+                    value,
+                    min,
+                    max,
+                },
+            },
+            E::TooMany { field, count, max } => E::TooMany {
+                field: file_field(field).0,
+                count,
+                max,
+            },
+            E::Inconsistent { field, reason } => E::Inconsistent {
+                field: file_field(field).0,
+                reason,
+            },
+            other => other,
+        })
     }
 }
 
-/// A core geometry error in the file's terms: the core checks the contact angle in radians
-/// under `bearing.contact_angle`, the file gives `bearing.contact_angle_deg` in degrees.
-fn in_degrees(e: wearsim_core::ConfigError) -> ConfigFileError {
-    match e {
-        wearsim_core::ConfigError::OutOfRange {
-            field: "bearing.contact_angle",
-            value,
-            min,
-            max,
-        } => ConfigFileError::Core(wearsim_core::ConfigError::OutOfRange {
-            field: "bearing.contact_angle_deg",
-            value: value.to_degrees(),
-            min: min.to_degrees(),
-            max: max.to_degrees(),
-        }),
-        other => ConfigFileError::Core(other),
+/// The scenario-file key of a field the core names in its own terms, and whether the core
+/// checks it in radians where the file gives degrees: the core's `bearing.contact_angle`
+/// and `defect.angle` (radians) are the file's `bearing.contact_angle_deg` and
+/// `defect.angle_deg`, its ramp `speed.duration` is `speed.ramp_duration`, and its
+/// `topography.*` are the `[defect]` keys. Other fields are the file's keys already.
+fn file_field(core: &'static str) -> (&'static str, bool) {
+    match core {
+        "bearing.contact_angle" => ("bearing.contact_angle_deg", true),
+        "defect.angle" => ("defect.angle_deg", true),
+        "speed.duration" => ("speed.ramp_duration", false),
+        "topography.asperity_height" => ("defect.asperity_height", false),
+        "topography.length" => ("defect.length", false),
+        "topography.width" => ("defect.width", false),
+        "topography.depth" => ("defect.depth", false),
+        "topography.count" => ("defect.count", false),
+        "topography.debris" => ("defect.debris", false),
+        other => (other, false),
     }
 }
 
@@ -447,7 +480,7 @@ impl ScenarioFile {
             poisson: bs.poisson.or(b0.map(|b| b.poisson)).unwrap_or(0.3),
             density: bs.density.or(b0.map(|b| b.density)).unwrap_or(7830.0),
         };
-        BearingGeometry::new_checked(bearing).map_err(in_degrees)?;
+        BearingGeometry::new_checked(bearing)?;
         let s0 = base.as_ref().map(|c| c.structure);
         let ss = self.structure.clone().unwrap_or_default();
         let structure = Structure {

@@ -128,3 +128,51 @@ fn endless_configuration_files_are_refused_within_a_bound() {
         &["bin.toml", "UTF-8"],
     );
 }
+
+/// Range errors the core raises in its own terms name the scenario file's key, in the
+/// file's unit: `defect.angle_deg` in degrees (was `defect.angle` in radians),
+/// `speed.ramp_duration` (was `speed.duration`), `[defect]` sizes (were `topography.*`).
+#[test]
+fn core_range_errors_name_the_files_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str]); 5] = [
+        (
+            "[defect]\nlocation = \"outer\"\nangle_deg = 1000.0",
+            &["defect.angle_deg = 1000", "572.9"],
+        ),
+        (
+            "[speed]\nfrom_hz = 5.0\nto_hz = 30.0\nramp_duration = 0.0",
+            &["speed.ramp_duration = 0", "0.000001"],
+        ),
+        (
+            "[defect]\nlocation = \"outer\"\nlength = 1.0",
+            &["defect.length = 1", "0.02"],
+        ),
+        (
+            "[defect]\nlocation = \"inner\"\ndepth = -1.0",
+            &["defect.depth = -1", "0.005"],
+        ),
+        (
+            "[defect]\nlocation = \"outer\"\ncount = 9",
+            &["defect.count", "at most 8"],
+        ),
+    ];
+    for (i, (body, needles)) in cases.iter().enumerate() {
+        let cfg = dir.path().join(format!("c{i}.toml"));
+        std::fs::write(&cfg, format!("preset = \"cwru-6205-de\"\n{body}\n")).unwrap();
+        let out = dir.path().join(format!("o{i}"));
+        let o = wearsim(&[
+            "simulate",
+            "--config",
+            s(&cfg),
+            "--duration",
+            "0.01",
+            "--out",
+            s(&out),
+        ]);
+        refused(&o, needles);
+        let msg = String::from_utf8_lossy(&o.stderr);
+        assert!(!msg.contains("topography."), "{msg}");
+        assert!(!out.join("simulate.json").exists());
+    }
+}
