@@ -87,6 +87,17 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
     }
     std::fs::create_dir_all(dir.join("shards"))
         .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
+    // A data set being resumed may sit in a directory this run cannot write (read-only
+    // mount, another user's): say so before simulating anything, as bad input.
+    crate::io::perms::output_builder()
+        .prefix(".write-check.")
+        .tempfile_in(dir.join("shards"))
+        .map_err(|e| {
+            SweepError::Input(format!(
+                "--out {}: the directory cannot be written ({e}); choose a writable output directory",
+                dir.display()
+            ))
+        })?;
     Ok(())
 }
 

@@ -176,3 +176,32 @@ fn core_range_errors_name_the_files_keys() {
         assert!(!out.join("simulate.json").exists());
     }
 }
+
+/// Resuming a data set in a directory this run cannot write is refused before any record
+/// is simulated (exit 2, naming the directory), not after the first shard (exit 1).
+/// Needs a user whom permissions bind (skipped as root, who writes anyway).
+#[cfg(unix)]
+#[test]
+fn resuming_in_an_unwritable_directory_is_refused_first() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let spec_path = dir.path().join("spec.toml");
+    std::fs::write(&spec_path, grid_spec(2, 1)).unwrap();
+    let out = dir.path().join("set");
+    let o = wearsim(&["sweep", s(&spec_path), "--out", s(&out), "--json"]);
+    assert!(o.status.success());
+    let shards = out.join("shards");
+    std::fs::remove_file(shards.join("shard-00001.done.json")).unwrap();
+    std::fs::remove_file(out.join("manifest.json")).unwrap();
+    std::fs::set_permissions(&shards, std::fs::Permissions::from_mode(0o555)).unwrap();
+    if std::fs::write(shards.join("probe"), b"").is_ok() {
+        let _ = std::fs::remove_file(shards.join("probe"));
+        std::fs::set_permissions(&shards, std::fs::Permissions::from_mode(0o755)).unwrap();
+        eprintln!("skipped: permissions do not bind this user (root)");
+        return;
+    }
+    let o = wearsim(&["sweep", s(&spec_path), "--out", s(&out), "--json"]);
+    std::fs::set_permissions(&shards, std::fs::Permissions::from_mode(0o755)).unwrap();
+    refused(&o, &["set", "cannot be written"]);
+    assert!(!out.join("manifest.json").exists());
+}
