@@ -221,3 +221,9 @@ def test_sweep_spec_path_with_an_equals_sign_is_read_as_a_path(tmp_path):
     with pytest.raises(wearsim.ConfigError, match="missing field `records`"):
         wearsim.sweep("seed = 1", str(tmp_path / "other"), threads=1)
 
+
+def test_sweep_threads_zero_is_refused_like_the_command_line(tmp_path):
+    # `wearsim sweep --threads 0` exits 2; threads=0 ran on one thread without a word.
+    with pytest.raises(wearsim.ConfigError, match="threads = 0"):
+        wearsim.sweep(ONE_CELL, str(tmp_path / "set"), threads=0)
+    assert not (tmp_path / "set").exists()

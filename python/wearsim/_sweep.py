@@ -81,6 +81,8 @@ def sweep(
     part = _part(part)
     if cluster is None:
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
+        if n == 0:  # as `wearsim sweep --threads 0` (was run on 1 thread, silently)
+            raise ConfigError("threads = 0: use 1 or more")
         return json.loads(_wearsim.sweep_run(text, out, n, part))
     from dask.distributed import Client
 
