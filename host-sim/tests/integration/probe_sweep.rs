@@ -205,3 +205,30 @@ fn resuming_in_an_unwritable_directory_is_refused_first() {
     refused(&o, &["set", "cannot be written"]);
     assert!(!out.join("manifest.json").exists());
 }
+
+/// `channels = "all"` states a unit for every column it writes: `disp_m` was `"unknown"`
+/// in the sidecar (the suffix table knew `_um` and `_mm`, not `_m`).
+#[test]
+fn every_simulated_column_has_its_unit() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("all.toml");
+    std::fs::write(
+        &cfg,
+        "preset = \"cwru-6205-de\"\nchannels = \"all\"\nduration = 0.01\n",
+    )
+    .unwrap();
+    let out = dir.path().join("o");
+    let o = wearsim(&["simulate", "--config", s(&cfg), "--out", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let side: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).unwrap()).unwrap();
+    let units = &side["units"];
+    for (col, unit) in [
+        ("accel_m_s2", "m/s^2"),
+        ("accel_g", "g"),
+        ("vel_m_s", "m/s"),
+        ("disp_m", "m"),
+    ] {
+        assert_eq!(units[col], unit, "{col}: {units}");
+    }
+}
