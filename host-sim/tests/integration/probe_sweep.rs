@@ -232,3 +232,31 @@ fn every_simulated_column_has_its_unit() {
         assert_eq!(units[col], unit, "{col}: {units}");
     }
 }
+
+/// A "CSV" without line ends (`/dev/zero` behind a `.csv` name) is refused at the bound
+/// on one line (it grew to gigabytes: the `csv` crate holds a whole record).
+#[cfg(unix)]
+#[test]
+fn a_csv_line_without_end_is_refused_within_a_bound() {
+    if !std::path::Path::new("/dev/zero").exists() {
+        eprintln!("skipped: no /dev/zero");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("zero.csv");
+    std::os::unix::fs::symlink("/dev/zero", &csv).unwrap();
+    let args = [
+        "analyze",
+        s(&csv),
+        "--fs",
+        "12000",
+        "--rpm",
+        "1797",
+        "--bearing",
+        "cwru-6205-de",
+    ];
+    refused(
+        &wearsim_limited(2048, &args),
+        &["zero.csv", "too large", "1048576 bytes per line"],
+    );
+}
