@@ -59,30 +59,7 @@ pub enum ConfigFileError {
     Limit(String),
 }
 
-impl From<wearsim_core::ConfigError> for ConfigFileError {
-    fn from(e: wearsim_core::ConfigError) -> Self {
-        ConfigFileError::Core(e)
-    }
-}
-
-/// A core geometry error in the file's terms: the core checks the contact angle in radians
-/// under `bearing.contact_angle`, the file gives `bearing.contact_angle_deg` in degrees.
-fn in_degrees(e: wearsim_core::ConfigError) -> ConfigFileError {
-    match e {
-        wearsim_core::ConfigError::OutOfRange {
-            field: "bearing.contact_angle",
-            value,
-            min,
-            max,
-        } => ConfigFileError::Core(wearsim_core::ConfigError::OutOfRange {
-            field: "bearing.contact_angle_deg",
-            value: value.to_degrees(),
-            min: min.to_degrees(),
-            max: max.to_degrees(),
-        }),
-        other => ConfigFileError::Core(other),
-    }
-}
+mod terms;
 
 /// The whole file. Every field is optional at this level; see the module docs.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
@@ -341,14 +318,37 @@ pub const DEFECT_MODELS: [(&str, DefectModel); 4] = [
     ("impulse", DefectModel::Impulse),
 ];
 
+/// Largest configuration file (scenario TOML or sweep spec) read, bytes (16 MiB: the
+/// longest real one is a sweep grid of a few thousand values, tens of kB).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 24;
+
+/// The text of the configuration file `path` (a scenario or a sweep spec), read only up to
+/// [`MAX_CONFIG_BYTES`]: a larger, endless (`/dev/zero`) or non-UTF-8 file is refused
+/// without holding more than the limit.
+pub fn read_config_text(path: &Path) -> Result<String, ConfigFileError> {
+    let bytes = crate::io::record::read_capped(
+        path,
+        MAX_CONFIG_BYTES,
+        "configuration file",
+        &format!("{MAX_CONFIG_BYTES} bytes per configuration file"),
+    )
+    .map_err(|e| match e {
+        crate::io::IoError::Io { source, .. } => ConfigFileError::Read {
+            path: path.display().to_string(),
+            source,
+        },
+        other => ConfigFileError::Limit(other.to_string()),
+    })?;
+    String::from_utf8(bytes).map_err(|e| ConfigFileError::Parse {
+        path: path.display().to_string(),
+        message: format!("not UTF-8 text ({e})"),
+    })
+}
+
 impl ScenarioFile {
     /// Reads and parses a TOML file (syntax, types and unknown keys are checked here).
     pub fn load(path: &Path) -> Result<Self, ConfigFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ConfigFileError::Read {
-            path: path.display().to_string(),
-            source,
-        })?;
-        Self::parse(&text, &path.display().to_string())
+        Self::parse(&read_config_text(path)?, &path.display().to_string())
     }
 
     /// Parses TOML text; `origin` names it in errors.
@@ -424,7 +424,7 @@ impl ScenarioFile {
             poisson: bs.poisson.or(b0.map(|b| b.poisson)).unwrap_or(0.3),
             density: bs.density.or(b0.map(|b| b.density)).unwrap_or(7830.0),
         };
-        BearingGeometry::new_checked(bearing).map_err(in_degrees)?;
+        BearingGeometry::new_checked(bearing)?;
         let s0 = base.as_ref().map(|c| c.structure);
         let ss = self.structure.clone().unwrap_or_default();
         let structure = Structure {

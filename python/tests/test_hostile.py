@@ -206,3 +206,24 @@ def test_gap_records_and_dataset_shards_of_the_wrong_kind_are_config_errors(tmp_
     for bad in ("0", 1.0, True):
         with pytest.raises(wearsim.ConfigError, match="shard"):
             signals(bad)
+
+
+def test_sweep_spec_path_with_an_equals_sign_is_read_as_a_path(tmp_path):
+    # A Hydra-style run directory (`lr=0.1`) put `=` in the path: the one-line string was
+    # taken for TOML text and refused as a parse error of the path itself.
+    run = tmp_path / "run lr=0.1"
+    run.mkdir()
+    spec = run / "spec.toml"
+    spec.write_text(ONE_CELL.replace("records = 16", "records = 2").replace("duration = 0.25", "duration = 0.01"))
+    report = wearsim.sweep(str(spec), str(tmp_path / "set"), threads=1)
+    assert report["complete"] is True
+    # A one-line string with `=` that names no file is still TOML text (and refused as such).
+    with pytest.raises(wearsim.ConfigError, match="missing field `records`"):
+        wearsim.sweep("seed = 1", str(tmp_path / "other"), threads=1)
+
+
+def test_sweep_threads_zero_is_refused_like_the_command_line(tmp_path):
+    # `wearsim sweep --threads 0` exits 2; threads=0 ran on one thread without a word.
+    with pytest.raises(wearsim.ConfigError, match="threads = 0"):
+        wearsim.sweep(ONE_CELL, str(tmp_path / "set"), threads=0)
+    assert not (tmp_path / "set").exists()

@@ -16,13 +16,21 @@ from . import _wearsim
 from ._wearsim import ConfigError
 
 
+def _is_file(s: str) -> bool:
+    try:
+        return Path(s).is_file()
+    except (OSError, ValueError):  # a name too long, a NUL byte: not a path
+        return False
+
+
 def _spec_text(spec: Union[str, os.PathLike]) -> str:
-    """The TOML text of ``spec``: a path (``PathLike``, or a one-line string with no ``=``)
-    is read; anything else is the text itself."""
+    """The TOML text of ``spec``: a path (``PathLike``, or a one-line string that names a
+    file or has no ``=``) is read; anything else is the text itself. A path may hold ``=``
+    (Hydra-style run directories, ``runs/lr=0.1/spec.toml``)."""
     if not isinstance(spec, (str, os.PathLike)):
         raise ConfigError(f"spec: expected a TOML file path or TOML text, got {type(spec).__name__}")
     s = os.fspath(spec)
-    if isinstance(spec, os.PathLike) or ("\n" not in s and "=" not in s):
+    if isinstance(spec, os.PathLike) or ("\n" not in s and (_is_file(s) or "=" not in s)):
         if not Path(s).is_file():
             raise ConfigError(f"spec: {s}: no such file (pass a TOML file path or TOML text)")
         return Path(s).read_text()
@@ -73,6 +81,8 @@ def sweep(
     part = _part(part)
     if cluster is None:
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
+        if n == 0:  # as `wearsim sweep --threads 0` (was run on 1 thread, silently)
+            raise ConfigError("threads = 0: use 1 or more")
         return json.loads(_wearsim.sweep_run(text, out, n, part))
     from dask.distributed import Client
 

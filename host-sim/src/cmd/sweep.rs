@@ -53,8 +53,12 @@ pub fn parse_part(s: &str) -> Result<(u64, u64), CliError> {
 
 /// `wearsim sweep`.
 pub fn run(a: &SweepArgs) -> Result<(), CliError> {
-    let text = std::fs::read_to_string(&a.spec)
-        .map_err(|e| CliError::input(format!("cannot read {}: {e}", a.spec.display())))?;
+    let text = crate::config::read_config_text(&a.spec).map_err(|e| match e {
+        crate::config::ConfigFileError::Read { source, .. } => {
+            CliError::input(format!("cannot read {}: {source}", a.spec.display()))
+        }
+        other => CliError::input(other),
+    })?;
     let spec = SweepSpec::parse(&text, &a.spec.display().to_string()).map_err(CliError::input)?;
     let part = a.shard.as_deref().map(parse_part).transpose()?;
     if a.threads == Some(0) {

@@ -32,6 +32,7 @@ use serde_json::json;
 use super::error::IoError;
 use super::record::{check_finite, Record};
 use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::space_runs::{LineCap, MAX_LINE_BYTES};
 use super::time_column::{decimals, fs_from_time, time_column, time_unit, TimeUnit};
 use super::write::unit_from_column_name;
 use super::ReadOptions;
@@ -100,6 +101,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         }
     };
     let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let file = LineCap::new(file, MAX_LINE_BYTES);
     let source: Box<dyn std::io::Read> = if spaced {
         Box::new(super::space_runs::SpaceRuns::new(file))
     } else {
@@ -242,6 +244,13 @@ fn csv_err(path: &Path, e: ::csv::Error) -> IoError {
         .map(|p| format!("line {}: ", p.line()))
         .unwrap_or_default();
     match e.into_kind() {
+        ::csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::FileTooLarge => {
+            IoError::TooLarge {
+                path: path.to_path_buf(),
+                what: format!("{pos}{io}"),
+                limit: format!("{MAX_LINE_BYTES} bytes per line"),
+            }
+        }
         ::csv::ErrorKind::Io(io) => IoError::io(path, "read", io),
         ::csv::ErrorKind::UnequalLengths {
             expected_len, len, ..

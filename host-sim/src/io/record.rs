@@ -82,24 +82,36 @@ pub const MAX_FS: f64 = 10.0e6;
 /// size before anything is allocated). `what` names the file's kind and `limit` describes
 /// the bound in the [`IoError::TooLarge`] message (e.g. "524288 bytes per sidecar"). The one
 /// size-checked read of the readers that take a file whole (MAT, IMS and FEMTO snapshots,
-/// sidecars, feature tables).
+/// sidecars, feature tables, configuration files and sweep specs). The bound holds while
+/// reading too: a device, pipe or growing file (`/dev/zero` states 0 bytes) is read to at
+/// most one byte past the limit and refused.
 pub fn read_capped(
     path: &std::path::Path,
     max_bytes: u64,
     what: &str,
     limit: &str,
 ) -> Result<Vec<u8>, IoError> {
+    use std::io::Read;
     let len = std::fs::metadata(path)
         .map_err(|e| IoError::io(path, "stat", e))?
         .len();
+    let too_large = |what: String| IoError::TooLarge {
+        path: path.to_path_buf(),
+        what,
+        limit: limit.to_string(),
+    };
     if len > max_bytes {
-        return Err(IoError::TooLarge {
-            path: path.to_path_buf(),
-            what: format!("{what} of {len} bytes"),
-            limit: limit.to_string(),
-        });
+        return Err(too_large(format!("{what} of {len} bytes")));
     }
-    std::fs::read(path).map_err(|e| IoError::io(path, "read", e))
+    let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| IoError::io(path, "read", e))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large(format!("{what} of more than {max_bytes} bytes")));
+    }
+    Ok(bytes)
 }
 
 /// Check that `fs` (Hz) lies in [`MIN_FS`] ..= [`MAX_FS`]; `path` names the file that declared it.

@@ -2,6 +2,7 @@
 //! layout of `numpy.savetxt` (one space) and of MATLAB's `save -ascii` (values right-aligned
 //! in 16-character fields, runs of spaces, a leading space), which the `csv` crate, whose
 //! delimiter is one byte, would read as empty cells.
+//! And [`LineCap`]: a bound on the length of a line, for the same reader.
 
 use std::io::{self, Read};
 
@@ -77,6 +78,52 @@ impl<R: Read> Read for SpaceRuns<R> {
             }
         }
         Ok(n)
+    }
+}
+
+/// Longest line the CSV reader takes, bytes (1 MiB: thousands of columns of full-precision
+/// numbers). The `csv` crate holds a whole record in memory, so a file without line ends
+/// (`/dev/zero`, a binary file named `.csv`) grew without bound.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// A [`Read`] adapter that fails with [`io::ErrorKind::FileTooLarge`] once a line runs
+/// past `max` bytes without a `\n`; every byte passes unchanged.
+#[derive(Debug)]
+pub struct LineCap<R> {
+    inner: R,
+    /// Bytes since the last line end.
+    in_line: usize,
+    max: usize,
+}
+
+impl<R: Read> LineCap<R> {
+    /// Wraps `inner`, allowing lines of up to `max` bytes.
+    pub fn new(inner: R, max: usize) -> Self {
+        LineCap {
+            inner,
+            in_line: 0,
+            max,
+        }
+    }
+}
+
+impl<R: Read> Read for LineCap<R> {
+    fn read(&mut self, out: &mut [u8]) -> io::Result<usize> {
+        let k = self.inner.read(out)?;
+        for &b in &out[..k] {
+            if b == b'\n' {
+                self.in_line = 0;
+            } else {
+                self.in_line += 1;
+                if self.in_line > self.max {
+                    return Err(io::Error::new(
+                        io::ErrorKind::FileTooLarge,
+                        format!("a line of more than {} bytes", self.max),
+                    ));
+                }
+            }
+        }
+        Ok(k)
     }
 }
 

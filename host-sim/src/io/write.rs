@@ -62,7 +62,7 @@ pub struct OutputSet {
 }
 
 /// Unit implied by a column-name suffix: `_m_s2` → `m/s^2`, `_g` → `g`, `_mm_s` → `mm/s`,
-/// `_um` → `um`, `_n` → `N`, `_s` → `s`; or by a unit in brackets at the end, as DAQ and
+/// `_um` → `um`, `_m` → `m` (simulate's `disp_m`), `_n` → `N`, `_s` → `s`; or by a unit in brackets at the end, as DAQ and
 /// spreadsheet headers write it (`Acc [g]`, `accel (m/s^2)`, `a [m/s²]`); otherwise
 /// `"unknown"`.
 pub fn unit_from_column_name(name: &str) -> &'static str {
@@ -80,6 +80,7 @@ pub fn unit_from_column_name(name: &str) -> &'static str {
             "m/s" => Some("m/s"),
             "um" | "µm" | "μm" => Some("um"),
             "mm" => Some("mm"),
+            "m" => Some("m"),
             "n" => Some("N"),
             "s" => Some("s"),
             "hz" => Some("Hz"),
@@ -95,6 +96,7 @@ pub fn unit_from_column_name(name: &str) -> &'static str {
         ("_m_s", "m/s"),
         ("_um", "um"),
         ("_mm", "mm"),
+        ("_m", "m"),
         ("_g", "g"),
         ("_n", "N"),
         ("_s", "s"),

@@ -46,7 +46,7 @@ const INDEX: &str = "index.parquet";
 /// their drawn effects), before anything is written.
 pub fn validate(spec: &SweepSpec) -> Result<(), SweepError> {
     let cells = record::cells(spec);
-    for i in 0..spec.records.min(cells.len() as u64) {
+    for i in 0..spec.records.min(cells.len()) {
         shard::scenario(spec, &cells, i)?;
     }
     Ok(())
@@ -59,8 +59,8 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
     let spec_path = dir.join(SPEC_FILE);
     let text = serde_json::to_string_pretty(spec).map_err(|e| SweepError::Run(e.to_string()))?;
     if spec_path.exists() {
-        let old = std::fs::read_to_string(&spec_path)
-            .map_err(|e| SweepError::Input(format!("cannot read {}: {e}", spec_path.display())))?;
+        let old = crate::config::read_config_text(&spec_path)
+            .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
         let same = serde_json::from_str::<SweepSpec>(&old).is_ok_and(|o| &o == spec);
         if !same {
             return Err(SweepError::Input(format!(
@@ -87,6 +87,17 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
     }
     std::fs::create_dir_all(dir.join("shards"))
         .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
+    // A data set being resumed may sit in a directory this run cannot write (read-only
+    // mount, another user's): say so before simulating anything, as bad input.
+    crate::io::perms::output_builder()
+        .prefix(".write-check.")
+        .tempfile_in(dir.join("shards"))
+        .map_err(|e| {
+            SweepError::Input(format!(
+                "--out {}: the directory cannot be written ({e}); choose a writable output directory",
+                dir.display()
+            ))
+        })?;
     Ok(())
 }
 

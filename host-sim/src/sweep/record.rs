@@ -66,37 +66,76 @@ impl std::fmt::Display for Cell {
 }
 
 /// The grid's cells in a fixed order: preset, rpm, load, fault, stage (a healthy fault
-/// is one cell, whatever the stages).
-pub fn cells(spec: &SweepSpec) -> Vec<Cell> {
+/// is one cell, whatever the stages). Cell `k` is computed from `k` when asked for
+/// ([`Cells::get`]), never the whole full factorial at once: a grid of `P × R × L` points
+/// can be far larger than the records it labels (record `i` takes cell `i mod len`), and
+/// holding every cell was about 400 bytes each (4 GB for a 10⁷-cell grid).
+#[derive(Debug, Clone)]
+pub struct Cells {
+    presets: Vec<String>,
+    rpms: Vec<f64>,
+    loads: Vec<Option<f64>>,
+    /// The (fault, stage) pairs of one (preset, rpm, load) point, in order.
+    faults: Vec<(String, String)>,
+    /// Number of cells (saturated at `u64::MAX`; records never reach it).
+    len: u64,
+}
+
+impl Cells {
+    /// Number of cells of the grid (at least 1 for a checked spec).
+    pub fn len(&self) -> u64 {
+        self.len
+    }
+
+    /// Whether the grid has no cell (an empty axis; a checked spec never has one).
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Cell `k` (`k < len`), in the order documented on [`Cells`].
+    pub fn get(&self, k: u64) -> Cell {
+        let per = self.faults.len() as u64;
+        let (fs, rest) = (k % per, k / per);
+        let nl = self.loads.len() as u64;
+        let (l, rest) = (rest % nl, rest / nl);
+        let nr = self.rpms.len() as u64;
+        let (r, p) = (rest % nr, rest / nr);
+        let (fault, stage) = &self.faults[fs as usize];
+        Cell {
+            preset: self.presets[p as usize].clone(),
+            rpm: self.rpms[r as usize],
+            radial_load: self.loads[l as usize],
+            fault: fault.clone(),
+            stage: stage.clone(),
+        }
+    }
+}
+
+/// The grid's cells of `spec` (see [`Cells`]).
+pub fn cells(spec: &SweepSpec) -> Cells {
     let g = &spec.grid;
     let loads: Vec<Option<f64>> = match &g.radial_load {
         Some(v) => v.iter().map(|x| Some(*x)).collect(),
         None => vec![None],
     };
-    let mut out = Vec::new();
-    for p in &g.preset {
-        for &rpm in &g.rpm {
-            for &load in &loads {
-                for f in &g.fault {
-                    let stages: Vec<String> = if f == "healthy" {
-                        vec!["healthy".into()]
-                    } else {
-                        g.stage.clone()
-                    };
-                    for s in stages {
-                        out.push(Cell {
-                            preset: p.clone(),
-                            rpm,
-                            radial_load: load,
-                            fault: f.clone(),
-                            stage: s,
-                        });
-                    }
-                }
-            }
+    let mut faults = Vec::new();
+    for f in &g.fault {
+        if f == "healthy" {
+            faults.push((f.clone(), "healthy".to_string()));
+        } else {
+            faults.extend(g.stage.iter().map(|s| (f.clone(), s.clone())));
         }
     }
-    out
+    let len = [g.preset.len(), g.rpm.len(), loads.len(), faults.len()]
+        .iter()
+        .fold(1u64, |n, &k| n.saturating_mul(k as u64));
+    Cells {
+        presets: g.preset.clone(),
+        rpms: g.rpm.clone(),
+        loads,
+        faults,
+        len,
+    }
 }
 
 /// One effect of a record: on or off, with its full parameter vector (drawn whether on
@@ -125,9 +164,9 @@ pub struct Record {
 }
 
 /// Record `i` of `spec` over `cells` (from [`cells`]).
-pub fn record(spec: &SweepSpec, cells: &[Cell], i: u64) -> Record {
+pub fn record(spec: &SweepSpec, cells: &Cells, i: u64) -> Record {
     let seed = record_seed(spec.seed, i);
-    let cell = cells[(i % cells.len() as u64) as usize].clone();
+    let cell = cells.get(i % cells.len());
     let mut d = Draws(splitmix64(seed ^ 0x5EED_0FEF_FEC7));
     let mut effects = Vec::with_capacity(spec.effect.len());
     for e in &spec.effect {

@@ -3,7 +3,7 @@
 //! place, then marked done by a small JSON marker (also written and renamed), so that a
 //! shard is either absent or complete, never half-written.
 
-use super::record::{cells, record, Cell};
+use super::record::{cells, record, Cells};
 use super::spec::SweepSpec;
 use super::SweepError;
 use crate::simulate::{self, Scenario};
@@ -44,7 +44,7 @@ pub fn is_done(dir: &Path, s: u64) -> bool {
 }
 
 /// The validated scenario of one record.
-pub fn scenario(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Scenario, SweepError> {
+pub fn scenario(spec: &SweepSpec, cells: &Cells, i: u64) -> Result<Scenario, SweepError> {
     let rec = record(spec, cells, i);
     let file = rec.scenario_file(spec);
     let (cfg, run) = file
@@ -55,7 +55,7 @@ pub fn scenario(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Scenario, Sw
 }
 
 /// Simulates record `i`, returning its acceleration as float32.
-pub fn simulate_record(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Vec<f32>, SweepError> {
+pub fn simulate_record(spec: &SweepSpec, cells: &Cells, i: u64) -> Result<Vec<f32>, SweepError> {
     let sc = scenario(spec, cells, i)?;
     let out =
         simulate::run(&sc, |_, _| {}).map_err(|e| SweepError::Run(format!("record {i}: {e}")))?;
@@ -68,7 +68,7 @@ pub fn simulate_record(spec: &SweepSpec, cells: &[Cell], i: u64) -> Result<Vec<f
 /// one-by-one loop would meet it.
 pub fn simulate_records(
     spec: &SweepSpec,
-    cells: &[Cell],
+    cells: &Cells,
     first: u64,
     end: u64,
 ) -> Result<Vec<Vec<f32>>, SweepError> {

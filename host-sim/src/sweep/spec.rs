@@ -241,12 +241,19 @@ impl SweepSpec {
     }
 }
 
-/// The first value of `v` that occurs again later, if any.
+/// The first value of `v` that occurs again later, if any (one pass: an axis may list
+/// 10⁵ values, and comparing every pair of them took minutes).
 fn first_repeat(v: &[String]) -> Option<&str> {
-    v.iter()
-        .enumerate()
-        .find(|(i, x)| v[i + 1..].contains(x))
-        .map(|(_, x)| x.as_str())
+    let mut seen = std::collections::HashMap::with_capacity(v.len());
+    let mut first: Option<usize> = None;
+    for (i, x) in v.iter().enumerate() {
+        if let Some(&j) = seen.get(x.as_str()) {
+            first = Some(first.map_or(j, |f: usize| f.min(j)));
+        } else {
+            seen.insert(x.as_str(), i);
+        }
+    }
+    first.map(|j| v[j].as_str())
 }
 
 fn check_effect(i: usize, e: &EffectDraw) -> Result<(), SpecError> {

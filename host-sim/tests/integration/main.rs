@@ -34,6 +34,7 @@ mod out_dirs;
 mod probe2;
 mod probe3;
 mod probe4;
+mod probe_sweep;
 mod readers;
 mod reference_hashes;
 mod rig_tables;
