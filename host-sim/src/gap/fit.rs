@@ -281,15 +281,16 @@ impl Search {
 /// models allow it). Each fit's result is exactly what it gives alone: the fits do not
 /// share any decision, only the batches.
 pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Budget) -> Vec<Fit> {
+    let effects =
+        |(j, u): &(usize, Vec<f64>)| jobs.get(*j).and_then(|job| with(job.space, job.base, u));
     // The objective at many (job, point) pairs at once: +∞ where the point is outside
-    // the model's accepted configurations.
-    let objective = |pts: &[(usize, Vec<f64>)]| -> Vec<f64> {
-        let fxs: Vec<Option<Effects>> = pts
-            .iter()
-            .map(|(j, u)| jobs.get(*j).and_then(|job| with(job.space, job.base, u)))
-            .collect();
+    // the model's accepted configurations; `ahead`: points likely asked for next
+    // (simulated where a lane is free, see `Evaluator::totals_ahead`).
+    let objective = |pts: &[(usize, Vec<f64>)], ahead: &[(usize, Vec<f64>)]| -> Vec<f64> {
+        let fxs: Vec<Option<Effects>> = pts.iter().map(effects).collect();
         let ok: Vec<Effects> = fxs.iter().flatten().copied().collect();
-        let mut totals = ev.totals(train, &ok).into_iter();
+        let guesses: Vec<Effects> = ahead.iter().filter_map(effects).collect();
+        let mut totals = ev.totals_ahead(train, &ok, &guesses).into_iter();
         fxs.iter()
             .map(|f| match f {
                 Some(_) => totals.next().unwrap_or(f64::INFINITY),
@@ -317,7 +318,7 @@ pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Bu
         .enumerate()
         .flat_map(|(j, g)| g.iter().map(move |u| (j, u.clone())))
         .collect();
-    let mut vals = objective(&flat).into_iter();
+    let mut vals = objective(&flat, &[]).into_iter();
     let mut searches: Vec<Search> = jobs
         .iter()
         .zip(&grids)
@@ -357,7 +358,7 @@ pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Bu
             .iter()
             .flat_map(|(j, polls)| polls.iter().map(move |u| (*j, u.clone())))
             .collect();
-        let mut v = objective(&flat).into_iter();
+        let mut v = objective(&flat, &guesses(&rounds, &searches, &budget)).into_iter();
         for (j, polls) in &rounds {
             let vj: Vec<f64> = v.by_ref().take(polls.len()).collect();
             if let Some(s) = searches.get_mut(*j) {
@@ -419,6 +420,41 @@ pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Bu
             }
         })
         .collect()
+}
+
+/// Points the searches of `rounds` (job, polls) may ask for after this round, best guesses
+/// first: for each search the polls after a round without improvement (half the step),
+/// or the points of the local analysis where that ends the search; then the local
+/// analysis at every search's current best. Only guesses: the searches' paths do not
+/// depend on them.
+fn guesses(
+    rounds: &[(usize, Vec<Vec<f64>>)],
+    searches: &[Search],
+    budget: &Budget,
+) -> Vec<(usize, Vec<f64>)> {
+    let mut out = vec![];
+    let mut later = vec![];
+    for (j, _) in rounds {
+        let Some(s) = searches.get(*j) else {
+            continue;
+        };
+        let half = Search {
+            best_u: s.best_u.clone(),
+            best: s.best,
+            step: s.step * 0.5,
+            searched: s.searched,
+            evaluations: 0,
+        };
+        let local = local_points(&s.best_u);
+        if half.step >= budget.step_tol {
+            out.extend(half.polls().into_iter().map(|u| (*j, u)));
+            later.extend(local.into_iter().map(|u| (*j, u)));
+        } else {
+            out.extend(local.into_iter().map(|u| (*j, u)));
+        }
+    }
+    out.extend(later);
+    out
 }
 
 /// Finite-difference step of the local analysis (normalised coordinates).

@@ -29,9 +29,14 @@ pub struct Matched {
     /// The measured samples (m/s²), kept for the report's plots (may be empty).
     pub real: Vec<f64>,
     /// Simulated cell means already computed, by the full configuration, seed and length
-    /// simulated (so that a changed baseline cannot hit a stale entry).
-    pub memo: Memo<(ModelConfig, u64, usize), Vec<f64>>,
+    /// simulated (so that a changed baseline cannot hit a stale entry); and samples
+    /// simulated ahead of need ([`Matched::sim_cells_ahead`]).
+    pub memo: Memo<(ModelConfig, u64, usize), Vec<f64>, Vec<f64>>,
 }
+
+/// Most samples (all records together) a [`Matched`] keeps of simulations run ahead of
+/// need (32 MiB).
+pub const AHEAD_SAMPLES: usize = 1 << 22;
 
 /// Most simulations a [`Matched`] remembers (a few hundred bytes each): a fit's grid and
 /// search, and the greedy steps' refits, stay within it.
@@ -68,8 +73,21 @@ impl Matched {
         fxs: &[Effects],
         sims: &AtomicUsize,
     ) -> Vec<Result<Arc<Vec<f64>>, String>> {
+        self.sim_cells_many_ahead(fxs, &[], sims)
+    }
+
+    /// [`Matched::sim_cells_many`], also simulating the guesses `ahead` (effect sets
+    /// likely asked for next, best first) in lanes that would otherwise be padding
+    /// ([`Matched::sim_cells_ahead`]).
+    pub fn sim_cells_many_ahead(
+        &self,
+        fxs: &[Effects],
+        ahead: &[Effects],
+        sims: &AtomicUsize,
+    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
         let cfgs: Vec<ModelConfig> = fxs.iter().map(|fx| self.config(fx)).collect();
-        self.sim_cells_configs(&cfgs, sims)
+        let guesses: Vec<ModelConfig> = ahead.iter().map(|fx| self.config(fx)).collect();
+        self.sim_cells_ahead(&cfgs, &guesses, sims)
     }
 
     /// Mean simulated cell values of this record's stretch for whole configurations
@@ -80,21 +98,63 @@ impl Matched {
         cfgs: &[ModelConfig],
         sims: &AtomicUsize,
     ) -> Vec<Result<Arc<Vec<f64>>, String>> {
-        let keys: Vec<(ModelConfig, u64, usize)> = cfgs
-            .iter()
-            .map(|c| (c.clone(), self.seed, self.samples))
-            .collect();
+        self.sim_cells_ahead(cfgs, &[], sims)
+    }
+
+    /// [`Matched::sim_cells_configs`] that also simulates those of the configurations
+    /// `ahead` (guesses, best first) that fit into lanes the groups would otherwise pad
+    /// ([`super::run::simulate_ahead`]): their samples are kept in the memo, uncounted,
+    /// and a later call that asks for one takes them instead of simulating it, and counts
+    /// it then. Results and counts are the same as without guesses.
+    pub fn sim_cells_ahead(
+        &self,
+        cfgs: &[ModelConfig],
+        ahead: &[ModelConfig],
+        sims: &AtomicUsize,
+    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
+        let key = |c: &ModelConfig| (c.clone(), self.seed, self.samples);
+        let keys: Vec<(ModelConfig, u64, usize)> = cfgs.iter().map(key).collect();
         let mut todo: Vec<usize> = vec![];
         for (i, k) in keys.iter().enumerate() {
             if self.memo.get(k).is_none() && !todo.iter().any(|&j| keys[j] == *k) {
                 todo.push(i);
             }
         }
-        let run: Vec<ModelConfig> = todo.iter().map(|&i| keys[i].0.clone()).collect();
+        // Those simulated ahead are taken; the rest run, with the new guesses.
+        let mut got: Vec<Option<Result<Vec<f64>, String>>> = todo
+            .iter()
+            .map(|&i| self.memo.take_ahead(&keys[i]).map(Ok))
+            .collect();
+        let run: Vec<usize> = (0..todo.len()).filter(|&t| got[t].is_none()).collect();
+        let run_cfgs: Vec<ModelConfig> = run.iter().map(|&t| keys[todo[t]].0.clone()).collect();
+        let mut guesses: Vec<(ModelConfig, u64, usize)> = vec![];
+        if !run.is_empty() {
+            for g in ahead.iter().map(key) {
+                if !keys.contains(&g)
+                    && !guesses.contains(&g)
+                    && self.memo.get(&g).is_none()
+                    && !self.memo.has_ahead(&g)
+                {
+                    guesses.push(g);
+                }
+            }
+        }
+        let guess_cfgs: Vec<ModelConfig> = guesses.iter().map(|g| g.0.clone()).collect();
+        let (runs, extra) =
+            super::run::simulate_ahead(&run_cfgs, &guess_cfgs, self.seed, self.samples);
+        for (&t, x) in run.iter().zip(runs) {
+            got[t] = Some(x);
+        }
+        let max = AHEAD_SAMPLES / self.samples.max(1);
+        for (g, x) in guesses.into_iter().zip(extra) {
+            if let Some(x) = x {
+                self.memo.put_ahead(g, x, max);
+            }
+        }
         let mut errors: Vec<(usize, String)> = vec![];
-        let runs = super::run::simulate_many(&run, self.seed, self.samples);
-        for (&i, x) in todo.iter().zip(runs) {
+        for (&i, x) in todo.iter().zip(got) {
             sims.fetch_add(1, Ordering::Relaxed);
+            let x = x.unwrap_or_else(|| Err("not simulated".into()));
             match x.and_then(|x| self.reference.sim_means(&x).map_err(|e| e.to_string())) {
                 Ok(c) => self.memo.insert(keys[i].clone(), Arc::new(c)),
                 Err(e) => errors.push((i, e)),
@@ -135,6 +195,20 @@ pub trait Target: Sync {
     fn gaps_many(&self, fxs: &[Effects], sims: &AtomicUsize) -> Vec<GapsResult> {
         fxs.iter().map(|fx| self.gaps(fx, sims)).collect()
     }
+
+    /// [`Target::gaps_many`], with guesses `ahead` (effect sets likely asked for next,
+    /// best first) that a target may simulate now where that costs nothing extra (lanes
+    /// that would be padding), without counting them until they are asked for. The
+    /// results and counts are those of [`Target::gaps_many`].
+    fn gaps_ahead(
+        &self,
+        fxs: &[Effects],
+        ahead: &[Effects],
+        sims: &AtomicUsize,
+    ) -> Vec<GapsResult> {
+        let _ = ahead;
+        self.gaps_many(fxs, sims)
+    }
 }
 
 impl Target for Matched {
@@ -144,7 +218,16 @@ impl Target for Matched {
     }
 
     fn gaps_many(&self, fxs: &[Effects], sims: &AtomicUsize) -> Vec<GapsResult> {
-        self.sim_cells_many(fxs, sims)
+        self.gaps_ahead(fxs, &[], sims)
+    }
+
+    fn gaps_ahead(
+        &self,
+        fxs: &[Effects],
+        ahead: &[Effects],
+        sims: &AtomicUsize,
+    ) -> Vec<GapsResult> {
+        self.sim_cells_many_ahead(fxs, ahead, sims)
             .into_iter()
             .map(|c| c.map(|c| (self.reference.residuals(&c), self.reference.weight.clone())))
             .collect()
@@ -244,11 +327,22 @@ impl Evaluator {
     /// simulation is rejected): the sets are split over up to `jobs` threads, and each
     /// thread's share is simulated together per record ([`Target::gaps_many`]).
     pub fn residuals_many<T: Target>(&self, set: &[T], fxs: &[Effects]) -> Vec<Option<Gaps>> {
+        self.residuals_ahead(set, fxs, &[])
+    }
+
+    /// [`Evaluator::residuals_many`] with guesses `ahead` at the next effect sets
+    /// ([`Target::gaps_ahead`]): the same results and counts.
+    pub fn residuals_ahead<T: Target>(
+        &self,
+        set: &[T],
+        fxs: &[Effects],
+        ahead: &[Effects],
+    ) -> Vec<Option<Gaps>> {
         let chunks: Vec<&[Effects]> = fxs.chunks(fxs.len().div_ceil(self.jobs).max(1)).collect();
         self.map(&chunks, |chunk| {
             let mut acc: Vec<Option<Gaps>> = vec![Some(Gaps::default()); chunk.len()];
             for m in set {
-                for (a, r) in acc.iter_mut().zip(m.gaps_many(chunk, &self.sims)) {
+                for (a, r) in acc.iter_mut().zip(m.gaps_ahead(chunk, ahead, &self.sims)) {
                     match (a.as_mut(), r) {
                         (Some(g), Ok((gaps, w))) => {
                             g.gaps.extend(gaps);
@@ -269,7 +363,17 @@ impl Evaluator {
     /// [`Evaluator::total`] for every effect set of `fxs` (+∞ where a simulation is
     /// rejected), through [`Evaluator::residuals_many`].
     pub fn totals<T: Target>(&self, set: &[T], fxs: &[Effects]) -> Vec<f64> {
-        self.residuals_many(set, fxs)
+        self.totals_ahead(set, fxs, &[])
+    }
+
+    /// [`Evaluator::totals`] with guesses `ahead` ([`Evaluator::residuals_ahead`]).
+    pub fn totals_ahead<T: Target>(
+        &self,
+        set: &[T],
+        fxs: &[Effects],
+        ahead: &[Effects],
+    ) -> Vec<f64> {
+        self.residuals_ahead(set, fxs, ahead)
             .into_iter()
             .map(|g| g.map_or(f64::INFINITY, |g| g.total()))
             .collect()

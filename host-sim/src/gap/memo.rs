@@ -5,25 +5,60 @@
 //! backward step that removes an effect again, all ask for a simulation that exists. The
 //! memo returns it, and only simulations actually run are counted.
 //!
+//! It also holds results run ahead of need (`S`: a fit's guesses at its next
+//! simulations, run in lanes that would otherwise be padding): those are not counted until
+//! they are asked for, so the counts are the same as without them.
+//!
 //! A clone starts empty: the owner's key does not say everything a result depends on
 //! (the cell spec, the measured stretch), so a memo is never shared between owners.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
-/// A bounded first-in-first-out memo from `K` to shared results `V`.
-pub struct Memo<K, V> {
+/// A bounded first-in-first-out memo from `K` to shared results `V`, and of raw results
+/// `S` run ahead of need.
+pub struct Memo<K, V, S = ()> {
     entries: Mutex<Vec<(K, Arc<V>)>>,
     capacity: usize,
+    ahead: Mutex<Vec<(K, S)>>,
 }
 
-impl<K: PartialEq + Clone, V> Memo<K, V> {
+impl<K: PartialEq + Clone, V, S> Memo<K, V, S> {
     /// An empty memo keeping at most `capacity` results (at least 1).
     pub fn new(capacity: usize) -> Self {
         Memo {
             entries: Mutex::new(vec![]),
             capacity: capacity.max(1),
+            ahead: Mutex::new(vec![]),
         }
+    }
+
+    /// Keeps `s`, run ahead of need for `key` and not counted yet, among at most `max`
+    /// such results (the oldest goes).
+    pub fn put_ahead(&self, key: K, s: S, max: usize) {
+        if let Ok(mut a) = self.ahead.lock() {
+            if a.iter().any(|(k, _)| *k == key) {
+                return;
+            }
+            while !a.is_empty() && a.len() >= max.max(1) {
+                a.remove(0);
+            }
+            a.push((key, s));
+        }
+    }
+
+    /// The result run ahead for `key`, taken out (the caller counts it now).
+    pub fn take_ahead(&self, key: &K) -> Option<S> {
+        let mut a = self.ahead.lock().ok()?;
+        let i = a.iter().position(|(k, _)| k == key)?;
+        Some(a.remove(i).1)
+    }
+
+    /// Whether a result run ahead is held for `key`.
+    pub fn has_ahead(&self, key: &K) -> bool {
+        self.ahead
+            .lock()
+            .is_ok_and(|a| a.iter().any(|(k, _)| k == key))
     }
 
     /// The result for `key`: the memo's when it holds one, else `run()`'s, which is kept
@@ -75,14 +110,14 @@ impl<K: PartialEq + Clone, V> Memo<K, V> {
     }
 }
 
-impl<K: PartialEq + Clone, V> Clone for Memo<K, V> {
+impl<K: PartialEq + Clone, V, S> Clone for Memo<K, V, S> {
     /// An empty memo of the same capacity (see the module documentation).
     fn clone(&self) -> Self {
         Memo::new(self.capacity)
     }
 }
 
-impl<K, V> std::fmt::Debug for Memo<K, V> {
+impl<K, V, S> std::fmt::Debug for Memo<K, V, S> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let n = self.entries.lock().map(|c| c.len()).unwrap_or(0);
         write!(f, "Memo({n}/{})", self.capacity)
@@ -112,6 +147,21 @@ mod tests {
         assert_eq!(m.len(), 2);
         m.get_or_run(&1, &sims, || run(1)).unwrap();
         assert_eq!(runs.load(Ordering::Relaxed), 4);
+    }
+
+    /// Results run ahead are held apart, uncounted, taken once, the oldest dropped beyond
+    /// the bound.
+    #[test]
+    fn results_run_ahead_are_taken_once_and_bounded() {
+        let m: Memo<u32, u32, u32> = Memo::new(4);
+        m.put_ahead(1, 10, 2);
+        m.put_ahead(2, 20, 2);
+        m.put_ahead(3, 30, 2);
+        assert!(!m.has_ahead(&1) && m.has_ahead(&2) && m.has_ahead(&3));
+        assert!(m.is_empty(), "results run ahead are not memo entries");
+        assert_eq!(m.take_ahead(&2), Some(20));
+        assert_eq!(m.take_ahead(&2), None);
+        assert!(m.get(&3).is_none());
     }
 
     #[test]

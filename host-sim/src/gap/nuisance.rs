@@ -190,23 +190,31 @@ impl Calibration {
 
 /// Training total gaps of `train` with every record's baseline scaled by each factor set
 /// of `candidates` and effects `fx` added (+∞ where the model refuses one); the candidates
-/// are split over the evaluator's threads and each share is simulated together per record.
-fn totals(train: &[Matched], fx: &Effects, candidates: &[Factors], ev: &Evaluator) -> Vec<f64> {
+/// are split over the evaluator's threads and each share is simulated together per record,
+/// with the factor sets `ahead` (guesses at the next round's) where a lane is free
+/// ([`Matched::sim_cells_ahead`]: the same results and counts).
+fn totals(
+    train: &[Matched],
+    fx: &Effects,
+    candidates: &[Factors],
+    ahead: &[Factors],
+    ev: &Evaluator,
+) -> Vec<f64> {
     let chunks: Vec<&[Factors]> = candidates
         .chunks(candidates.len().div_ceil(ev.jobs).max(1))
         .collect();
     ev.map(&chunks, |chunk| {
         let mut acc: Vec<Option<Gaps>> = vec![Some(Gaps::default()); chunk.len()];
         for m in train {
-            let cfgs: Vec<ModelConfig> = chunk
-                .iter()
-                .map(|f| {
-                    let mut c = apply(&m.base, f);
-                    merge(&mut c.effects, fx);
-                    c
-                })
-                .collect();
-            for (a, r) in acc.iter_mut().zip(m.sim_cells_configs(&cfgs, ev.counter())) {
+            let config = |f: &Factors| {
+                let mut c = apply(&m.base, f);
+                merge(&mut c.effects, fx);
+                c
+            };
+            let cfgs: Vec<ModelConfig> = chunk.iter().map(config).collect();
+            let guesses: Vec<ModelConfig> = ahead.iter().map(config).collect();
+            let cells = m.sim_cells_ahead(&cfgs, &guesses, ev.counter());
+            for (a, r) in acc.iter_mut().zip(cells) {
                 match (a.as_mut(), r) {
                     (Some(g), Ok(c)) => {
                         g.gaps.extend(m.reference.residuals(&c));
@@ -233,7 +241,7 @@ fn totals(train: &[Matched], fx: &Effects, candidates: &[Factors], ev: &Evaluato
 /// constant), is not fitted.
 pub fn calibrate(train: &[Matched], fx: &Effects, tol: &Tolerances, ev: &Evaluator) -> Calibration {
     let sims0 = ev.sims();
-    let before = totals(train, fx, &[NOMINAL], ev)
+    let before = totals(train, fx, &[NOMINAL], &[], ev)
         .first()
         .copied()
         .unwrap_or(f64::INFINITY);
@@ -253,18 +261,30 @@ pub fn calibrate(train: &[Matched], fx: &Effects, tol: &Tolerances, ev: &Evaluat
     let mut rounds = 0;
     while !axes.is_empty() && before.is_finite() && step >= STEP_TOL && rounds < MAX_ROUNDS {
         rounds += 1;
-        let mut moves: Vec<[f64; 5]> = vec![];
-        for &i in &axes {
-            for s in [step, -step] {
-                let mut v = u;
-                v[i] = (v[i] + s).clamp(-1.0, 1.0);
-                if v[i] != u[i] {
-                    moves.push(v);
+        let moves_at = |step: f64| {
+            let mut moves: Vec<[f64; 5]> = vec![];
+            for &i in &axes {
+                for s in [step, -step] {
+                    let mut v = u;
+                    v[i] = (v[i] + s).clamp(-1.0, 1.0);
+                    if v[i] != u[i] {
+                        moves.push(v);
+                    }
                 }
             }
-        }
+            moves
+        };
+        let moves = moves_at(step);
         let cands: Vec<Factors> = moves.iter().map(|v| tol.factors(v)).collect();
-        let t = totals(train, fx, &cands, ev);
+        // Guesses: the next round's moves if none of these improves (half the step).
+        let half: Vec<Factors> = match step * 0.5 >= STEP_TOL {
+            true => moves_at(step * 0.5)
+                .iter()
+                .map(|v| tol.factors(v))
+                .collect(),
+            false => vec![],
+        };
+        let t = totals(train, fx, &cands, &half, ev);
         match t
             .iter()
             .enumerate()
