@@ -5,7 +5,7 @@
 use super::ConfigFileError;
 
 impl From<wearsim_core::ConfigError> for ConfigFileError {
-    /// A core error in the file's terms (see [`file_field`]).
+    /// A core error in the file's terms (the key from `file_field`).
     fn from(e: wearsim_core::ConfigError) -> Self {
         use wearsim_core::ConfigError as E;
         ConfigFileError::Core(match e {
