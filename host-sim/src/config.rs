@@ -353,10 +353,12 @@ impl ScenarioFile {
 
     /// Parses TOML text; `origin` names it in errors.
     pub fn parse(text: &str, origin: &str) -> Result<Self, ConfigFileError> {
-        toml::from_str(text).map_err(|e| ConfigFileError::Parse {
+        let file: Self = toml::from_str(text).map_err(|e| ConfigFileError::Parse {
             path: origin.to_string(),
             message: e.to_string().trim().replace('\n', " "),
-        })
+        })?;
+        crate::effects::check_unique(&file.effect, "effect").map_err(ConfigFileError::Effect)?;
+        Ok(file)
     }
 
     /// Resolves the file into a validated-ready model configuration and run settings.

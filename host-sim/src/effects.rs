@@ -99,7 +99,24 @@ pub fn apply(fx: &mut Effects, sec: &EffectSection) -> Result<(), String> {
         .map_err(|e| format!("effect `{}`: {e}", info.name))
 }
 
-/// Builds the effects of a list of sections (a later section of the same effect wins).
+/// Checks that no effect appears twice in `sections` (one scenario file's `[[effect]]`
+/// tables, or one command line's `--effect` arguments, named `what` in the message): a
+/// repeated effect would silently lose the first one's parameters.
+pub fn check_unique(sections: &[EffectSection], what: &str) -> Result<(), String> {
+    for (i, e) in sections.iter().enumerate() {
+        if let Some(j) = sections[..i].iter().position(|o| o.name == e.name) {
+            return Err(format!(
+                "`{what}[{i}]` = \"{}\" repeats `{what}[{j}]`: give each effect once, with all its parameters",
+                e.name
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Builds the effects of a list of sections (a later section of the same effect wins:
+/// the command line's `--effect` replaces the scenario file's; within one source a
+/// repeat is refused by [`check_unique`]).
 pub fn build(sections: &[EffectSection]) -> Result<Effects, String> {
     let mut fx = Effects::NONE;
     for s in sections {
@@ -142,4 +159,36 @@ pub fn catalogue_text() -> String {
     }
     s.push_str("usage: --effect NAME[:PARAM=VALUE,...] (repeatable), or [[effect]] name = \"...\", params = { ... } in the scenario file\n");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::config::ScenarioFile;
+
+    #[test]
+    fn a_repeated_effect_is_refused_and_the_command_line_replaces_the_file() {
+        let text = "preset = \"thesis-61810\"\n[[effect]]\nname = \"slip\"\nparams = { fraction = 0.02 }\n[[effect]]\nname = \"slip\"\nparams = { fraction = 0.05 }\n";
+        let e = ScenarioFile::parse(text, "t.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("`effect[1]` = \"slip\" repeats `effect[0]`"),
+            "{e}"
+        );
+
+        let one = "preset = \"thesis-61810\"\n[[effect]]\nname = \"slip\"\nparams = { fraction = 0.02 }\n";
+        let mut f = ScenarioFile::parse(one, "t.toml").unwrap();
+        crate::cmd::args::add_effect_args(&mut f, &["slip:fraction=0.05".into()]).unwrap();
+        assert_eq!(f.effect.len(), 1);
+        assert_eq!(f.effect[0].params.get("fraction"), Some(&0.05));
+
+        let twice = ["slip:fraction=0.05".to_string(), "slip".to_string()];
+        let e = crate::cmd::args::add_effect_args(&mut f, &twice).unwrap_err();
+        assert_eq!(e.code, crate::cmd::exit::BAD_INPUT);
+        let e = e.message;
+        assert!(
+            e.contains("`--effect[1]` = \"slip\" repeats `--effect[0]`"),
+            "{e}"
+        );
+        // Nothing of a refused command line reaches the scenario.
+        assert_eq!(f.effect[0].params.get("fraction"), Some(&0.05));
+    }
 }

@@ -50,11 +50,19 @@ pub struct SimulateArgs {
     pub effect: Vec<String>,
 }
 
-/// Appends the `--effect` arguments to the scenario file's effects.
+/// Adds the `--effect` arguments to the scenario file's effects: an argument naming an
+/// effect the file already has replaces it; one effect given twice on the command line is
+/// refused.
 pub fn add_effect_args(file: &mut ScenarioFile, args: &[String]) -> Result<(), CliError> {
-    for a in args {
-        file.effect
-            .push(crate::effects::parse_arg(a).map_err(CliError::input)?);
+    let given = args
+        .iter()
+        .map(|a| crate::effects::parse_arg(a))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(CliError::input)?;
+    crate::effects::check_unique(&given, "--effect").map_err(CliError::input)?;
+    for g in given {
+        file.effect.retain(|e| e.name != g.name);
+        file.effect.push(g);
     }
     Ok(())
 }
