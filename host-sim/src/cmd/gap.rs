@@ -4,7 +4,7 @@
 
 use crate::cmd::args::CliError;
 use crate::cmd::report::print_json;
-use crate::gap::attribute::{self, Totals};
+use crate::gap::attribute::Totals;
 use crate::gap::lifetime::report::{self as life_report, is_life_table};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
@@ -46,7 +46,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
     let loo = if a.leave_one_out {
         let added = at.kept.clone();
         Some(
-            attribute::leave_one_out(
+            crate::gap::leave_one_out::leave_one_out(
                 &spaces,
                 &at.final_effects,
                 &added,
@@ -79,6 +79,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         uninformed: at.uninformed.clone(),
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
+        exchanged: at.exchanged.clone(),
         kept: at.kept.clone(),
         totals: Totals::of(&at),
         identified: at.identified.clone(),

@@ -50,6 +50,12 @@ pub struct GapValidateArgs {
     /// rig calibrated again at each greedy step").
     #[arg(long)]
     pub fixed_calibration: bool,
+    /// After the greedy additions, try exchanging each kept effect for each effect not
+    /// yet tried, the others refitted on top (`gap::exchange`; an experiment, off by
+    /// default for its cost: `docs/sim-to-real-results.md`, "Exchanges after the greedy
+    /// additions").
+    #[arg(long)]
+    pub exchange: bool,
     /// Seed of the parameter draws and realisations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -139,6 +145,7 @@ impl GapValidateArgs {
             jobs: self.jobs.unwrap_or(d.jobs),
             backfit: self.backfit,
             fixed_calibration: self.fixed_calibration,
+            exchange: self.exchange,
         })
     }
 }

@@ -92,6 +92,14 @@ pub struct Options {
     /// answer to one with a smaller test-part shrink (`docs/sim-to-real-results.md`,
     /// "Pairs of effects").
     pub backfit: bool,
+    /// After the greedy additions (stalled, or the model full), try replacing each kept
+    /// effect by each effect not yet tried, the other kept effects refitted on top
+    /// (`gap::exchange`), and take the best replacement while it shrinks the validation
+    /// gap by [`Self::min_shrink`] beyond what the same refits give without it. Off by
+    /// default: it names both effects of more pair twins but costs about three times the
+    /// simulations of a four-effect real diagnosis (`docs/sim-to-real-results.md`,
+    /// "Exchanges after the greedy additions").
+    pub exchange: bool,
 }
 
 impl Default for Options {
@@ -104,6 +112,7 @@ impl Default for Options {
             significant_gap: SIGNIFICANT_GAP,
             budget: Budget::DEFAULT,
             backfit: false,
+            exchange: false,
         }
     }
 }
@@ -163,8 +172,9 @@ pub struct Step {
     pub after: f64,
     /// `1 − after/before`.
     pub shrink: f64,
-    /// The effects kept before, refitted with this one on ([`Options::backfit`]): their
-    /// parameters in the model from this step on (empty without backfitting).
+    /// The effects kept before, refitted with this one on ([`Options::backfit`], or an
+    /// exchange, [`Options::exchange`]): their parameters in the model from this step on
+    /// (empty otherwise).
     pub refitted: Vec<Refitted>,
 }
 
@@ -207,6 +217,9 @@ pub struct Attribution {
     /// Effects removed again because a later addition made them redundant: withholding
     /// them from the model no longer grew the held-out gap by the minimum shrink.
     pub dropped: Vec<Dropped>,
+    /// Exchanges made after the greedy additions stalled ([`Options::exchange`]); each
+    /// added effect also has its [`Step`].
+    pub exchanged: Vec<super::exchange::Exchanged>,
     /// The effects of the final model, in the order they were added.
     pub kept: Vec<String>,
     /// Held-out total gap after the greedy additions.
@@ -450,6 +463,7 @@ pub fn attribute_with<T: Target>(
     let mut used: Vec<String> = vec![];
     let mut kept: Vec<String> = vec![];
     let mut dropped: Vec<Dropped> = vec![];
+    let mut exchanged: Vec<super::exchange::Exchanged> = vec![];
     // Each kept effect's coordinates in the current model (the backfitting's start).
     let mut kept_coords: Vec<(String, Vec<f64>)> = vec![];
     if let Some(b) = best {
@@ -615,6 +629,80 @@ pub fn attribute_with<T: Target>(
             _ => break,
         }
     }
+    // Exchanges, once the additions are done (stalled, or the model full), judged on
+    // parts calibrated with the final additions on.
+    if opt.exchange && kept.len() >= 2 && greedy.len() >= opt.max_effects {
+        if let Some(r) = recalibrate(&current, &mut sets)? {
+            cur = r.total();
+            cur_r = r;
+        }
+    }
+    while opt.exchange && kept.len() >= 2 && exchanged.len() < opt.max_effects {
+        let (train, holdout) = sets
+            .as_ref()
+            .map_or((train, holdout), |(a, b)| (a.as_slice(), b.as_slice()));
+        let Some(x) = super::exchange::best(
+            &kept_coords,
+            &used,
+            &fits,
+            spaces,
+            base,
+            train,
+            holdout,
+            ev,
+            opt.budget,
+        )?
+        else {
+            break;
+        };
+        let g = x.gaps.total();
+        if 1.0 - g / cur.min(x.rebuilt) < opt.min_shrink {
+            break;
+        }
+        let added = x.space.effect.to_string();
+        findings.push(format!(
+            "`{}` was exchanged for `{added}` after the additions: the validation gap falls from {cur:.2} to {g:.2}",
+            x.out
+        ));
+        exchanged.push(super::exchange::Exchanged {
+            out: x.out.clone(),
+            added: added.clone(),
+            before: cur,
+            after: g,
+        });
+        greedy.push(Step {
+            effect: added.clone(),
+            params: x.fit.params.clone(),
+            before: cur,
+            after: g,
+            shrink: 1.0 - g / cur,
+            refitted: x
+                .others
+                .iter()
+                .map(|(effect, fit)| Refitted {
+                    effect: effect.clone(),
+                    params: fit.params.clone(),
+                })
+                .collect(),
+        });
+        for (e, fit) in &x.others {
+            if let Some((_, c)) = kept_coords.iter_mut().find(|(k, _)| k == e) {
+                c.clone_from(&fit.coords);
+            }
+        }
+        kept.retain(|k| *k != x.out);
+        kept_coords.retain(|(k, _)| *k != x.out);
+        kept.push(added.clone());
+        kept_coords.push((added.clone(), x.fit.coords.clone()));
+        used.push(added);
+        current = x.effects;
+        cur = g;
+        cur_r = x.gaps;
+        if let Some(r) = recalibrate(&current, &mut sets)? {
+            cur = r.total();
+            cur_r = r;
+        }
+    }
     Ok(Attribution {
         uninformed: vec![],
         baseline_train: train0,
@@ -623,6 +711,7 @@ pub fn attribute_with<T: Target>(
         greedy,
         final_holdout: cur,
         dropped,
+        exchanged,
         kept,
         identified,
         tied_with,
@@ -634,77 +723,6 @@ pub fn attribute_with<T: Target>(
         holdout_before: hold_r0,
         holdout_after: cur_r,
     })
-}
-
-/// One leave-one-out check: the full model (every greedily added effect at its fitted
-/// parameters) with one effect withheld, diagnosed again.
-#[derive(Debug, Clone, Serialize)]
-pub struct LeaveOneOut {
-    /// Effect withheld.
-    pub effect: String,
-    /// Held-out total gap of the full model.
-    pub full: f64,
-    /// Held-out total gap without the effect.
-    pub without: f64,
-    /// The effect the diagnosis of the reduced model names first.
-    pub named_first: Option<String>,
-    /// Whether that is the withheld effect (or one the cells cannot tell apart from it,
-    /// [`INDISTINGUISHABLE`]).
-    pub named: bool,
-    /// The reduced model's ranking, best first (at most three): effect and held-out shrink.
-    pub ranking: Vec<(String, f64)>,
-}
-
-/// Leave one effect out (sim-to-real.md, "Checked on data whose effect is withheld"): for
-/// every effect switched on in `full` (named in `added`), withhold it, check how far the
-/// gap on `holdout` grows, and let the attribution (single-effect ranking on top of the
-/// remaining effects, among *all* candidates) name the missing one. Pass the test part as
-/// `holdout` so that the check is judged on data that chose nothing.
-pub fn leave_one_out<T: Target>(
-    spaces: &[FitSpace],
-    full: &Effects,
-    added: &[String],
-    train: &[T],
-    holdout: &[T],
-    ev: &Evaluator,
-    opt: &Options,
-) -> Result<Vec<LeaveOneOut>, String> {
-    let g_full = ev.residuals(holdout, full)?.total();
-    let mut out = vec![];
-    for name in added {
-        let reduced = without(full, name)?;
-        let g = ev.residuals(holdout, &reduced)?.total();
-        // Every candidate competes, those already in the model too (refitted on top of
-        // the reduced model): restricting the candidates to the effects the reduced
-        // model lacks made naming the withheld one close to circular (issue 13). The
-        // caller passes the test part as `holdout`, which chose nothing.
-        let lacking: Vec<FitSpace> = spaces.to_vec();
-        let a = attribute(
-            &lacking,
-            &reduced,
-            train,
-            holdout,
-            ev,
-            &Options {
-                max_effects: 1,
-                ..*opt
-            },
-        )?;
-        out.push(LeaveOneOut {
-            effect: name.clone(),
-            full: g_full,
-            without: g,
-            named: a.identified.as_deref().is_some_and(|f| same_class(f, name)),
-            named_first: a.identified,
-            ranking: a
-                .ranking
-                .iter()
-                .take(3)
-                .map(|r| (r.effect.clone(), r.shrink))
-                .collect(),
-        });
-    }
-    Ok(out)
 }
 
 /// Total gaps on the test part.

@@ -31,6 +31,9 @@ pub struct Budget {
     pub max_search: usize,
     /// Grid points per axis of a fit with two or more parameters (nine for one).
     pub axis: usize,
+    /// A fit started from a hint searches from the hint alone, with no grid around it: a
+    /// local refit of an effect whose optimum moves little (`gap::exchange`).
+    pub local: bool,
 }
 
 impl Budget {
@@ -39,6 +42,7 @@ impl Budget {
         step_tol: STEP_TOL,
         max_search: MAX_SEARCH,
         axis: 5,
+        local: false,
     };
     /// For whole lives: a step of 1/32 of the range (3 % of a decade on a log axis),
     /// 48 evaluations, 4 grid points per axis (64 lives for three parameters).
@@ -46,6 +50,7 @@ impl Budget {
         step_tol: 1.0 / 32.0,
         max_search: 48,
         axis: 4,
+        local: false,
     };
 }
 
@@ -304,6 +309,7 @@ pub fn fit_many<T: Target>(jobs: &[Job], train: &[T], ev: &Evaluator, budget: Bu
         .map(|job| {
             let p = job.space.fitted.len();
             match job.hint.filter(|h| h.len() == p) {
+                Some(h) if budget.local => vec![h.to_vec()],
                 Some(h) => {
                     let mut v = grid_k(p, 3);
                     v.push(h.to_vec());

@@ -7,9 +7,11 @@
 pub mod attribute;
 pub mod cells;
 pub mod error;
+pub mod exchange;
 pub mod fit;
 pub mod identify;
 pub mod informed;
+pub mod leave_one_out;
 pub mod lifetime;
 pub mod matched;
 pub mod memo;

@@ -3,8 +3,9 @@
 //! and the cell gaps before and after as bars). The JSON is written last, so a directory
 //! with `gap.json` holds a complete report.
 
-use super::attribute::{Attribution, Dropped, LeaveOneOut, Step};
+use super::attribute::{Attribution, Dropped, Step};
 use super::error::GapError;
+use super::leave_one_out::LeaveOneOut;
 use super::matched::Matched;
 use super::stationary::GapOutput;
 use crate::analysis::{self, Spectrum, WelchParams};

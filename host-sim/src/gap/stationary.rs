@@ -103,6 +103,12 @@ pub struct GapArgs {
     /// "The rig calibrated again at each greedy step").
     #[arg(long)]
     pub fixed_calibration: bool,
+    /// After the greedy additions, try exchanging each kept effect for each effect not
+    /// yet tried, the others refitted on top (`gap::exchange`; an experiment, off by
+    /// default for its cost: `docs/sim-to-real-results.md`, "Exchanges after the greedy
+    /// additions").
+    #[arg(long)]
+    pub exchange: bool,
     /// Also refit every effect of the chosen model on each record (part) separately and
     /// compare its parameters between records (`gap::stability`): a disagreement beyond
     /// two combined standard deviations is reported as a finding. Costs one lock-step fit
@@ -166,6 +172,8 @@ pub struct GapOutput {
     pub greedy: Vec<super::attribute::Step>,
     /// Effects taken out again because a later addition made them redundant.
     pub dropped: Vec<super::attribute::Dropped>,
+    /// Exchanges made after the greedy additions (`--exchange`; empty without it).
+    pub exchanged: Vec<super::exchange::Exchanged>,
     /// The effects of the final model, in the order they were added.
     pub kept: Vec<String>,
     /// Totals before and after.
@@ -177,7 +185,7 @@ pub struct GapOutput {
     /// Findings and limits in words.
     pub findings: Vec<String>,
     /// Leave-one-out checks (with `--leave-one-out`).
-    pub leave_one_out: Option<Vec<super::attribute::LeaveOneOut>>,
+    pub leave_one_out: Option<Vec<super::leave_one_out::LeaveOneOut>>,
     /// The rig's nuisances as calibrated on the training part before any effect was
     /// ranked (`null` with `--no-calibration`).
     pub calibration: Option<Calibration>,
@@ -242,10 +250,12 @@ fn select(spec: &str, recs: &[RealRecord]) -> Result<Vec<usize>, String> {
 }
 
 impl GapArgs {
-    /// The attribution's settings: the defaults, with `--significant-gap` when given.
+    /// The attribution's settings: the defaults, with `--significant-gap` and `--exchange`
+    /// when given.
     pub fn attribution_options(&self) -> Options {
         Options {
             significant_gap: self.significant_gap.unwrap_or(SIGNIFICANT_GAP),
+            exchange: self.exchange,
             ..Options::default()
         }
     }

@@ -53,6 +53,8 @@ pub struct Trial {
     pub first_angles: Vec<Reproducer>,
     /// Effects the greedy addition kept.
     pub kept: Vec<String>,
+    /// Exchanges made after the greedy additions (`--exchange`; empty without it).
+    pub exchanged: Vec<super::exchange::Exchanged>,
     /// Held-out total gap of the final (greedy) model.
     pub final_gap: f64,
     /// The final model closes the gap: its held-out total is within [`DETECTABLE`] × the

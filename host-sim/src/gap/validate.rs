@@ -69,6 +69,8 @@ pub struct TwinOptions {
     /// Keep the rig calibrated with no effect through the greedy addition instead of
     /// calibrating it again after each addition ([`super::attribute::attribute_with`]).
     pub fixed_calibration: bool,
+    /// Exchange kept effects when the greedy additions stall ([`Options::exchange`]).
+    pub exchange: bool,
 }
 
 impl Default for TwinOptions {
@@ -88,6 +90,7 @@ impl Default for TwinOptions {
             jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
             backfit: false,
             fixed_calibration: false,
+            exchange: false,
         }
     }
 }
@@ -306,6 +309,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let aopt = Options {
         max_effects: 1,
         backfit: opt.backfit,
+        exchange: opt.exchange,
         ..Options::default()
     };
     let mut rng = Xoshiro128pp::from_u64(opt.seed);
@@ -456,6 +460,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                 })
                 .unwrap_or_default(),
             kept: a.kept.clone(),
+            exchanged: a.exchanged.clone(),
             final_gap: a.final_holdout,
             closed: a.final_holdout <= DETECTABLE * noise_gap,
             refused,

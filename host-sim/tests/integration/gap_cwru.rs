@@ -11,7 +11,8 @@
 //! effect may legitimately absorb a withheld one — that is a confound, reported).
 
 use std::path::{Path, PathBuf};
-use wearsim_host::gap::attribute::{leave_one_out, Options};
+use wearsim_host::gap::attribute::Options;
+use wearsim_host::gap::leave_one_out::leave_one_out;
 use wearsim_host::gap::stationary::{diagnose, prepare, GapArgs};
 
 fn args(dir: &Path, family: &str) -> GapArgs {
@@ -53,6 +54,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         leave_one_out: false,
         no_calibration: false,
         fixed_calibration: false,
+        exchange: false,
         stability: false,
         life_search: None,
         significant_gap: None,

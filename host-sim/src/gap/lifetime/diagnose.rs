@@ -10,8 +10,9 @@ use super::{
     STEADY,
 };
 use crate::analysis::stats::upper_median;
-use crate::gap::attribute::{attribute, leave_one_out, Attribution, LeaveOneOut, Options};
+use crate::gap::attribute::{attribute, Attribution, Options};
 use crate::gap::fit::Budget;
+use crate::gap::leave_one_out::{leave_one_out, LeaveOneOut};
 use crate::gap::matched::{Evaluator, Gaps};
 use crate::gap::space::FitSpace;
 use crate::io::ims_life::read_life;

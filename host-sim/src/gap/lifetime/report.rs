@@ -3,9 +3,10 @@
 //! answering where along life / which effect / how far.
 
 use crate::analysis::stats::upper_median;
-use crate::gap::attribute::{Dropped, LeaveOneOut, Ranked, Step, Totals};
+use crate::gap::attribute::{Dropped, Ranked, Step, Totals};
 use crate::gap::error::GapError;
 use crate::gap::fit::FittedParam;
+use crate::gap::leave_one_out::LeaveOneOut;
 use crate::gap::lifetime::{self, EarlyShrink, LifeCell, LifeGap, LifePoint, StageGap};
 use crate::gap::report::{
     draw_gap_bars, findings_section, finish, fmt_params, greedy_section, leave_one_out_section,
