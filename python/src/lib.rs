@@ -21,7 +21,7 @@ create_exception!(
 );
 
 fn cfg_err(m: impl std::fmt::Display) -> PyErr {
-    ConfigError::new_err(m.to_string())
+    ConfigError::new_err(wearsim_host::cmd::exit::compact_numbers(&m.to_string()))
 }
 
 fn sweep_err(e: SweepError) -> PyErr {
@@ -263,7 +263,7 @@ fn cli(py: Python<'_>, argv: Vec<String>) -> (u8, String) {
                 None => (2, "no subcommand".into()),
                 Some(cmd) => match wearsim_host::cmd::dispatch(cmd) {
                     Ok(()) => (0, String::new()),
-                    Err(e) => (e.code, e.message),
+                    Err(e) => (e.code, wearsim_host::cmd::exit::compact_numbers(&e.message)),
                 },
             },
         }

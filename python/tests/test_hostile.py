@@ -227,3 +227,10 @@ def test_sweep_threads_zero_is_refused_like_the_command_line(tmp_path):
     with pytest.raises(wearsim.ConfigError, match="threads = 0"):
         wearsim.sweep(ONE_CELL, str(tmp_path / "set"), threads=0)
     assert not (tmp_path / "set").exists()
+
+
+def test_a_tiny_or_huge_value_is_named_in_exponent_form():
+    # `{}` of 1e-300 is a 300-digit decimal; the message shows it as it was written.
+    with pytest.raises(wearsim.ConfigError, match="duration") as e:
+        wearsim.simulate("cwru-6205-de", duration=1e-300)
+    assert "1e-300" in str(e.value) and len(str(e.value)) < 200, str(e.value)

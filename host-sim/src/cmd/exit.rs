@@ -79,9 +79,70 @@ pub fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(CliError { code, message }) => {
-            eprintln!("wearsim: error: {message}");
+            eprintln!("wearsim: error: {}", compact_numbers(&message));
             ExitCode::from(code)
         }
+    }
+}
+
+/// Longest decimal number a message shows as written; longer ones (`--duration 1e-300`
+/// formatted by `{}` has 300 digits) are shown in exponent form.
+const LONGEST_NUMBER: usize = 24;
+
+/// `message` with every decimal number longer than [`LONGEST_NUMBER`] characters written
+/// in exponent form (the shortest that reads back to the same `f64`); everything else as
+/// it was. A number is a run of digits with at most one `.`, not preceded by a letter,
+/// digit, `_` or `.`.
+pub fn compact_numbers(message: &str) -> String {
+    let b = message.as_bytes();
+    let mut out = String::with_capacity(message.len());
+    let mut i = 0;
+    while i < b.len() {
+        let starts = b[i].is_ascii_digit()
+            && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || matches!(b[i - 1], b'_' | b'.')));
+        if starts {
+            let mut j = i;
+            let mut dot = false;
+            while j < b.len() && (b[j].is_ascii_digit() || (b[j] == b'.' && !dot)) {
+                dot |= b[j] == b'.';
+                j += 1;
+            }
+            let token = &message[i..j];
+            match token.parse::<f64>() {
+                Ok(v) if token.len() > LONGEST_NUMBER && v.is_finite() => {
+                    out.push_str(&format!("{v:e}"));
+                }
+                _ => out.push_str(token),
+            }
+            i = j;
+        } else {
+            let c = message[i..].chars().next().unwrap_or(' ');
+            out.push(c);
+            i += c.len_utf8();
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::compact_numbers;
+
+    #[test]
+    fn long_numbers_are_written_in_exponent_form() {
+        let tiny = format!("duration = {} is out of range", 1e-300_f64);
+        assert_eq!(compact_numbers(&tiny), "duration = 1e-300 is out of range");
+        let huge = format!("--rpm = {} rpm, allowed 1..=100000", 1e300_f64);
+        assert_eq!(
+            compact_numbers(&huge),
+            "--rpm = 1e300 rpm, allowed 1..=100000"
+        );
+        let keep = "sensor.noise = 100.00000000000001 (file 2004.02.12.10.32.39, x123456789012345678901234567, µm)";
+        assert_eq!(compact_numbers(keep), keep);
+        assert_eq!(
+            compact_numbers("-0.000000000000000000000000001 ü"),
+            "-1e-27 ü"
+        );
     }
 }
 

@@ -424,3 +424,21 @@ fn sidecar_fields_are_names_and_structures_not_debug_strings() {
     assert!(v["effects"]["resolved"]["load_zone"].is_null());
     assert!(!text.contains("Some("), "a Debug string in the sidecar");
 }
+
+/// A tiny or huge value is named in exponent form, not as the 300-digit decimal `{}`
+/// gives (`cmd::exit::compact_numbers`).
+#[test]
+fn a_tiny_or_huge_value_is_named_in_exponent_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o");
+    for (arg, value, shown) in [
+        ("--duration", "1e-300", "1e-300"),
+        ("--rpm", "1e300", "1e300"),
+    ] {
+        let o = wearsim(&["simulate", arg, value, "--out", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2));
+        let e = stderr(&o);
+        assert!(e.contains(shown) && e.len() < 300, "{arg} {value}: {e}");
+        assert!(!out.exists(), "{arg} {value}: output written");
+    }
+}
