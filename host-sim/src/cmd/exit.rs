@@ -87,7 +87,7 @@ pub fn finish(result: Result<(), CliError>) -> ExitCode {
 
 /// Longest decimal number a message shows as written; longer ones (`--duration 1e-300`
 /// formatted by `{}` has 300 digits) are shown in exponent form.
-const LONGEST_NUMBER: usize = 24;
+pub const LONGEST_NUMBER: usize = 24;
 
 /// `message` with every decimal number longer than [`LONGEST_NUMBER`] characters written
 /// in exponent form (the shortest that reads back to the same `f64`); everything else as
@@ -124,6 +124,14 @@ pub fn compact_numbers(message: &str) -> String {
     out
 }
 
+/// Prints a command-line parse result that is not a command (an error: exit 2; `--help`
+/// or `--version`: exit 0).
+pub fn usage(e: &clap::Error) -> ExitCode {
+    let code = if e.use_stderr() { BAD_INPUT } else { 0 };
+    let _ = e.print();
+    ExitCode::from(code)
+}
+
 #[cfg(test)]
 mod tests {
     use super::compact_numbers;
@@ -144,12 +152,4 @@ mod tests {
             "-1e-27 ü"
         );
     }
-}
-
-/// Prints a command-line parse result that is not a command (an error: exit 2; `--help`
-/// or `--version`: exit 0).
-pub fn usage(e: &clap::Error) -> ExitCode {
-    let code = if e.use_stderr() { BAD_INPUT } else { 0 };
-    let _ = e.print();
-    ExitCode::from(code)
 }
