@@ -2,6 +2,8 @@
 ConfigError naming the field, analysis of a simulated defect."""
 
 import json
+import os
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -83,3 +85,25 @@ def test_analyze_names_the_outer_race_defect():
     assert "outer" in text or "bpfo" in text
     with pytest.raises(wearsim.ConfigError):
         wearsim.analyze(np.zeros(4), 12000.0, bearing="cwru-6205-de", rpm=1797)
+
+
+def _cwru_dir():
+    env = os.environ.get("WEARSIM_DATA")
+    here = Path(__file__).resolve()
+    for p in [Path(env) if env else None, here.parents[3] / "shared" / "data"]:
+        if p is not None and (p / "cwru").is_dir():
+            return p / "cwru"
+    if os.environ.get("CI") == "true":
+        pytest.fail("CWRU data not found (CI=true): set WEARSIM_DATA to the folder holding cwru/")
+    pytest.skip("CWRU data not found (set WEARSIM_DATA to the folder holding cwru/)")
+
+
+def test_gap_of_a_measured_record(tmp_path):
+    # `wearsim.gap(path)` once passed the path where the command wants `--real PATH`, so
+    # every call with a real record failed with a usage error.
+    rec = _cwru_dir() / "12k_Drive_End_OR007@6_0_130.mat"
+    r = wearsim.gap(str(rec), out=str(tmp_path / "gap"), jobs=2)
+    g = r["files"]["gap.json"]
+    assert g["records"][0]["meta"]["file"].endswith(rec.name)
+    assert g["totals"]["after"] < g["totals"]["before"]
+    assert "transfer-path" in [x["effect"] for x in g["ranking"]]

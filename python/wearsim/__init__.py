@@ -192,7 +192,8 @@ def gap(records: Union[str, List[str]], out: Optional[str] = None, **kwargs: Any
         raise ConfigError(f"records: expected a path or a list of paths, got {type(records).__name__}")
     if not files:
         raise ConfigError("records: at least one record is needed")
-    return _run_cli("gap", [str(f) for f in files], kwargs, out)
+    real = [a for f in files for a in ("--real", str(f))]
+    return _run_cli("gap", real, kwargs, out)
 
 
 from ._sweep import load_dataset, sweep  # noqa: E402
