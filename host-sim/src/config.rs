@@ -357,7 +357,12 @@ impl ScenarioFile {
             path: origin.to_string(),
             message: e.to_string().trim().replace('\n', " "),
         })?;
-        crate::effects::check_unique(&file.effect, "effect").map_err(ConfigFileError::Effect)?;
+        crate::effects::check_unique(
+            file.effect.iter().map(|e| e.name.as_str()),
+            "effect",
+            ".name",
+        )
+        .map_err(ConfigFileError::Effect)?;
         Ok(file)
     }
 

@@ -99,17 +99,23 @@ pub fn apply(fx: &mut Effects, sec: &EffectSection) -> Result<(), String> {
         .map_err(|e| format!("effect `{}`: {e}", info.name))
 }
 
-/// Checks that no effect appears twice in `sections` (one scenario file's `[[effect]]`
-/// tables, or one command line's `--effect` arguments, named `what` in the message): a
-/// repeated effect would silently lose the first one's parameters.
-pub fn check_unique(sections: &[EffectSection], what: &str) -> Result<(), String> {
-    for (i, e) in sections.iter().enumerate() {
-        if let Some(j) = sections[..i].iter().position(|o| o.name == e.name) {
+/// Checks that no effect name appears twice in `names` (one scenario file's
+/// `[[effect]]` tables, one command line's `--effect` arguments or one sweep's
+/// `[[effect]]` draws; `what` names the list and `field` the entry's field, if any, in
+/// the message): a repeated effect would silently lose the first one's parameters.
+pub fn check_unique<'a>(
+    names: impl IntoIterator<Item = &'a str>,
+    what: &str,
+    field: &str,
+) -> Result<(), String> {
+    let mut seen: Vec<&str> = Vec::new();
+    for (i, name) in names.into_iter().enumerate() {
+        if let Some(j) = seen.iter().position(|o| *o == name) {
             return Err(format!(
-                "`{what}[{i}]` = \"{}\" repeats `{what}[{j}]`: give each effect once, with all its parameters",
-                e.name
+                "`{what}[{i}]{field}` = \"{name}\" repeats `{what}[{j}]`: give each effect once, with all its parameters"
             ));
         }
+        seen.push(name);
     }
     Ok(())
 }
@@ -170,7 +176,7 @@ mod tests {
         let text = "preset = \"thesis-61810\"\n[[effect]]\nname = \"slip\"\nparams = { fraction = 0.02 }\n[[effect]]\nname = \"slip\"\nparams = { fraction = 0.05 }\n";
         let e = ScenarioFile::parse(text, "t.toml").unwrap_err().to_string();
         assert!(
-            e.contains("`effect[1]` = \"slip\" repeats `effect[0]`"),
+            e.contains("`effect[1].name` = \"slip\" repeats `effect[0]`"),
             "{e}"
         );
 

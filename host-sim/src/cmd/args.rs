@@ -59,7 +59,8 @@ pub fn add_effect_args(file: &mut ScenarioFile, args: &[String]) -> Result<(), C
         .map(|a| crate::effects::parse_arg(a))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::input)?;
-    crate::effects::check_unique(&given, "--effect").map_err(CliError::input)?;
+    crate::effects::check_unique(given.iter().map(|e| e.name.as_str()), "--effect", "")
+        .map_err(CliError::input)?;
     for g in given {
         file.effect.retain(|e| e.name != g.name);
         file.effect.push(g);

@@ -217,8 +217,8 @@ pub struct Attribution {
     /// Effects removed again because a later addition made them redundant: withholding
     /// them from the model no longer grew the held-out gap by the minimum shrink.
     pub dropped: Vec<Dropped>,
-    /// Exchanges made after the greedy additions stalled ([`Options::exchange`]); each
-    /// added effect also has its [`Step`].
+    /// Exchanges made once the greedy additions were done, stalled or the model full
+    /// ([`Options::exchange`]); each added effect also has its [`Step`].
     pub exchanged: Vec<super::exchange::Exchanged>,
     /// The effects of the final model, in the order they were added.
     pub kept: Vec<String>,
@@ -263,6 +263,49 @@ fn where_indices(r: &[f64]) -> Vec<usize> {
 
 fn sub(r: &[f64], idx: &[usize]) -> Vec<f64> {
     idx.iter().filter_map(|i| r.get(*i).copied()).collect()
+}
+
+/// The model being built: the effects kept, each with its coordinates in the current
+/// model (the start of backfitting and exchange refits), and every effect tried.
+#[derive(Default)]
+struct Chosen {
+    kept: Vec<(String, Vec<f64>)>,
+    used: Vec<String>,
+}
+
+impl Chosen {
+    /// Takes `effect`, fitted at `fit`, into the model, with the kept effects refitted
+    /// at `refits`, and returns its step (validation gap `before` → `after`).
+    fn take(
+        &mut self,
+        effect: &str,
+        fit: &Fit,
+        refits: Vec<(String, Fit)>,
+        before: f64,
+        after: f64,
+    ) -> Step {
+        for (e, r) in &refits {
+            if let Some((_, c)) = self.kept.iter_mut().find(|(k, _)| k == e) {
+                c.clone_from(&r.coords);
+            }
+        }
+        self.used.push(effect.to_string());
+        self.kept.push((effect.to_string(), fit.coords.clone()));
+        Step {
+            effect: effect.to_string(),
+            params: fit.params.clone(),
+            before,
+            after,
+            shrink: 1.0 - after / before,
+            refitted: refits
+                .into_iter()
+                .map(|(effect, fit)| Refitted {
+                    effect,
+                    params: fit.params,
+                })
+                .collect(),
+        }
+    }
 }
 
 /// One backfitting round for the candidates of a greedy step: every effect in `kept`
@@ -460,28 +503,15 @@ pub fn attribute_with<T: Target>(
     let mut cur = hold0;
     let mut cur_r = hold_r0.clone();
     let mut greedy = vec![];
-    let mut used: Vec<String> = vec![];
-    let mut kept: Vec<String> = vec![];
+    let mut chosen = Chosen::default();
     let mut dropped: Vec<Dropped> = vec![];
     let mut exchanged: Vec<super::exchange::Exchanged> = vec![];
-    // Each kept effect's coordinates in the current model (the backfitting's start).
-    let mut kept_coords: Vec<(String, Vec<f64>)> = vec![];
     if let Some(b) = best {
         if let Some((f, s)) = fits.iter().find(|(f, _)| f.effect == b.effect) {
             current = f.effects(s, &current);
             cur_r = ev.residuals(holdout, &current)?;
-            greedy.push(Step {
-                effect: b.effect.clone(),
-                params: f.params.clone(),
-                before: cur,
-                after: b.holdout_gap,
-                shrink: b.shrink,
-                refitted: vec![],
-            });
+            greedy.push(chosen.take(&b.effect, f, vec![], cur, b.holdout_gap));
             cur = b.holdout_gap;
-            used.push(b.effect.clone());
-            kept.push(b.effect.clone());
-            kept_coords.push((b.effect.clone(), f.coords.clone()));
         }
     }
     let mut sets: Option<(Vec<T>, Vec<T>)> = None;
@@ -493,19 +523,19 @@ pub fn attribute_with<T: Target>(
             *sets = Some((tr, ho));
             Ok(Some(r))
         };
-    if !used.is_empty() && greedy.len() < opt.max_effects {
+    if !chosen.used.is_empty() && greedy.len() < opt.max_effects {
         if let Some(r) = recalibrate(&current, &mut sets)? {
             cur = r.total();
             cur_r = r;
         }
     }
-    while !used.is_empty() && greedy.len() < opt.max_effects {
+    while !chosen.used.is_empty() && greedy.len() < opt.max_effects {
         let (train, holdout) = sets
             .as_ref()
             .map_or((train, holdout), |(a, b)| (a.as_slice(), b.as_slice()));
         let cands: Vec<&FitSpace> = ranking
             .iter()
-            .filter(|r| !used.contains(&r.effect))
+            .filter(|r| !chosen.used.contains(&r.effect))
             .take(opt.greedy_candidates)
             .filter_map(|r| spaces.iter().find(|s| s.effect == r.effect))
             .collect();
@@ -536,7 +566,7 @@ pub fn attribute_with<T: Target>(
             .map(|(f, s)| f.effects(s, &current))
             .collect();
         let refitted = if opt.backfit {
-            backfit(&kept_coords, spaces, &mut fxs, train, ev, opt.budget)?
+            backfit(&chosen.kept, spaces, &mut fxs, train, ev, opt.budget)?
         } else {
             vec![vec![]; fxs.len()]
         };
@@ -558,28 +588,7 @@ pub fn attribute_with<T: Target>(
         }
         match best_step {
             Some((f, s, g, fx, r, back)) if 1.0 - g / cur >= opt.min_shrink => {
-                for (e, fit) in &back {
-                    if let Some((_, c)) = kept_coords.iter_mut().find(|(k, _)| k == e) {
-                        c.clone_from(&fit.coords);
-                    }
-                }
-                greedy.push(Step {
-                    effect: s.effect.to_string(),
-                    params: f.params.clone(),
-                    before: cur,
-                    after: g,
-                    shrink: 1.0 - g / cur,
-                    refitted: back
-                        .into_iter()
-                        .map(|(effect, fit)| Refitted {
-                            effect,
-                            params: fit.params,
-                        })
-                        .collect(),
-                });
-                used.push(s.effect.to_string());
-                kept.push(s.effect.to_string());
-                kept_coords.push((s.effect.to_string(), f.coords.clone()));
+                greedy.push(chosen.take(s.effect, &f, back, cur, g));
                 current = fx;
                 cur = g;
                 cur_r = r;
@@ -588,7 +597,7 @@ pub fn attribute_with<T: Target>(
                 // taken out, the least needed first, one at a time.
                 loop {
                     let mut weakest: Option<(String, f64, Effects, Gaps)> = None;
-                    for e in kept.iter().filter(|e| *e != s.effect) {
+                    for (e, _) in chosen.kept.iter().filter(|(e, _)| *e != s.effect) {
                         let fx = without(&current, e)?;
                         let Ok(r) = ev.residuals(holdout, &fx) else {
                             continue;
@@ -613,8 +622,7 @@ pub fn attribute_with<T: Target>(
                         with: cur,
                         without: g,
                     });
-                    kept.retain(|k| *k != e);
-                    kept_coords.retain(|(k, _)| *k != e);
+                    chosen.kept.retain(|(k, _)| *k != e);
                     current = fx;
                     cur = g;
                     cur_r = r;
@@ -631,19 +639,19 @@ pub fn attribute_with<T: Target>(
     }
     // Exchanges, once the additions are done (stalled, or the model full), judged on
     // parts calibrated with the final additions on.
-    if opt.exchange && kept.len() >= 2 && greedy.len() >= opt.max_effects {
+    if opt.exchange && chosen.kept.len() >= 2 && greedy.len() >= opt.max_effects {
         if let Some(r) = recalibrate(&current, &mut sets)? {
             cur = r.total();
             cur_r = r;
         }
     }
-    while opt.exchange && kept.len() >= 2 && exchanged.len() < opt.max_effects {
+    while opt.exchange && chosen.kept.len() >= 2 && exchanged.len() < opt.max_effects {
         let (train, holdout) = sets
             .as_ref()
             .map_or((train, holdout), |(a, b)| (a.as_slice(), b.as_slice()));
         let Some(x) = super::exchange::best(
-            &kept_coords,
-            &used,
+            &chosen.kept,
+            &chosen.used,
             &fits,
             spaces,
             base,
@@ -670,31 +678,8 @@ pub fn attribute_with<T: Target>(
             before: cur,
             after: g,
         });
-        greedy.push(Step {
-            effect: added.clone(),
-            params: x.fit.params.clone(),
-            before: cur,
-            after: g,
-            shrink: 1.0 - g / cur,
-            refitted: x
-                .others
-                .iter()
-                .map(|(effect, fit)| Refitted {
-                    effect: effect.clone(),
-                    params: fit.params.clone(),
-                })
-                .collect(),
-        });
-        for (e, fit) in &x.others {
-            if let Some((_, c)) = kept_coords.iter_mut().find(|(k, _)| k == e) {
-                c.clone_from(&fit.coords);
-            }
-        }
-        kept.retain(|k| *k != x.out);
-        kept_coords.retain(|(k, _)| *k != x.out);
-        kept.push(added.clone());
-        kept_coords.push((added.clone(), x.fit.coords.clone()));
-        used.push(added);
+        chosen.kept.retain(|(k, _)| *k != x.out);
+        greedy.push(chosen.take(&added, &x.fit, x.others, cur, g));
         current = x.effects;
         cur = g;
         cur_r = x.gaps;
@@ -712,7 +697,7 @@ pub fn attribute_with<T: Target>(
         final_holdout: cur,
         dropped,
         exchanged,
-        kept,
+        kept: chosen.kept.into_iter().map(|(e, _)| e).collect(),
         identified,
         tied_with,
         findings,

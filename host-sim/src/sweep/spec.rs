@@ -230,13 +230,13 @@ impl SweepSpec {
         }
         for (i, e) in self.effect.iter().enumerate() {
             check_effect(i, e)?;
-            if let Some(j) = self.effect[..i].iter().position(|o| o.name == e.name) {
-                return err(format!(
-                    "`effect[{i}].name` = \"{}\" repeats `effect[{j}]`: list each effect once, with all its parameters in one [[effect]]",
-                    e.name
-                ));
-            }
         }
+        crate::effects::check_unique(
+            self.effect.iter().map(|e| e.name.as_str()),
+            "effect",
+            ".name",
+        )
+        .map_err(SpecError)?;
         Ok(())
     }
 }
