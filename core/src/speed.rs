@@ -23,6 +23,17 @@ pub struct SpeedPoint {
     pub shaft_hz: Real,
 }
 
+/// The shaft frequency over an interval of a run ([`SpeedProfile::over`]), Hz.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpeedSpan {
+    /// Time average over the interval (Hz): revolutions per second of the interval.
+    pub mean_hz: Real,
+    /// Lowest shaft frequency in the interval (Hz).
+    pub min_hz: Real,
+    /// Highest shaft frequency in the interval (Hz).
+    pub max_hz: Real,
+}
+
 /// Shaft speed profile.
 #[derive(Debug, Clone, PartialEq)]
 #[allow(clippy::large_enum_variant)] // fixed capacity on purpose: no heap
@@ -152,6 +163,51 @@ impl SpeedProfile {
                 _ => m,
             }),
         }
+    }
+
+    /// The shaft frequency over the interval `[t0, t1]` (s): its time average and its
+    /// extremes (Hz), exact for these piecewise-linear profiles (trapezoids between the
+    /// interval's ends and the profile's knots inside it). What a recorded part of a run
+    /// says about its speed: a record starts at the settle time, so `shaft_hz(0)` is not
+    /// its speed when a ramp or table changes it. An empty or reversed interval gives the
+    /// speed at `t0`.
+    pub fn over(&self, t0: Real, t1: Real) -> SpeedSpan {
+        let f0 = self.shaft_hz(t0);
+        let mut span = SpeedSpan {
+            mean_hz: f0,
+            min_hz: f0,
+            max_hz: f0,
+        };
+        if t1 <= t0 || t0.is_nan() || t1.is_nan() {
+            return span;
+        }
+        let mut knots: Vec<Real, { MAX_SPEED_POINTS + 1 }> = Vec::new();
+        match self {
+            SpeedProfile::Constant(_) => {}
+            SpeedProfile::Ramp { duration, .. } => {
+                let _ = knots.push(0.0);
+                let _ = knots.push(*duration);
+            }
+            SpeedProfile::Table(pts) => {
+                for p in pts {
+                    let _ = knots.push(p.t);
+                }
+            }
+        }
+        let (mut t, mut f, mut area) = (t0, f0, 0.0);
+        for &k in knots.iter().filter(|k| **k > t0 && **k < t1) {
+            let fk = self.shaft_hz(k);
+            area += 0.5 * (f + fk) * (k - t);
+            span.min_hz = span.min_hz.min(fk);
+            span.max_hz = span.max_hz.max(fk);
+            (t, f) = (k, fk);
+        }
+        let f1 = self.shaft_hz(t1);
+        area += 0.5 * (f + f1) * (t1 - t);
+        span.min_hz = span.min_hz.min(f1);
+        span.max_hz = span.max_hz.max(f1);
+        span.mean_hz = area / (t1 - t0);
+        span
     }
 
     /// Whether the speed never changes (lets the model skip per-step evaluation).

@@ -30,9 +30,14 @@ impl Scenario {
         self.model.config().output_rate
     }
 
-    /// Shaft speed at t = 0 (Hz).
-    pub fn shaft_hz(&self) -> f64 {
-        self.model.config().speed.shaft_hz(0.0)
+    /// The shaft speed over the recorded part, from the settle time to its end (Hz:
+    /// mean and extremes, [`SpeedProfile::over`](wearsim_core::speed::SpeedProfile::over)):
+    /// a ramp or table seen after the settle is not at its speed at t = 0.
+    #[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
+    pub fn record_speed(&self) -> wearsim_core::speed::SpeedSpan {
+        let t0 = self.run.settle as wearsim_core::Real;
+        let t1 = (self.run.settle + self.run.duration) as wearsim_core::Real;
+        self.model.config().speed.over(t0, t1)
     }
 }
 

@@ -283,6 +283,7 @@ pub fn preset_description(name: &str) -> &'static str {
 /// Sidecar metadata of a simulation run.
 pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value {
     let cfg = sc.model.config();
+    let speed = sc.record_speed();
     let mut v = json!({
         "generator": "wearsim simulate",
         "version": env!("CARGO_PKG_VERSION"),
@@ -291,7 +292,9 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
         "seed": sc.run.seed,
         "duration_s": sc.run.duration,
         "settle_s": sc.run.settle,
-        "rpm": sc.shaft_hz() * 60.0,
+        // The recorded part's mean speed, and its range when a ramp or table varies it.
+        "rpm": 60.0 * speed.mean_hz,
+        "rpm_range": [60.0 * speed.min_hz, 60.0 * speed.max_hz],
         "oversample": sc.model.oversample(),
         "internal_step_s": sc.model.step_size(),
         "integrator": crate::config::INTEGRATORS

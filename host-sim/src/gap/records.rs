@@ -280,6 +280,18 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         src => format!("{p}: the shaft speed from the {src}"),
     };
     crate::config::check_sim_rpm(&what, rpm)?;
+    if let Some((lo, hi)) = speed_range(&rec).filter(|(lo, hi)| *hi > lo * (1.0 + MAX_SPEED_SPREAD))
+    {
+        let varies = format!(
+            "the shaft speed varies over the record, {lo:.0}-{hi:.0} rpm (its sidecar), and the gap simulates one constant speed"
+        );
+        if rpm_source != "argument" {
+            return Err(format!(
+                "{p}: {varies}: give --rpm to choose it, or a part of the record at constant speed"
+            ));
+        }
+        warnings.push(format!("{varies}: --rpm {rpm:.0} used"));
+    }
     if let (Some(f), false) = (from_spectrum, rpm_source == "spectrum") {
         let rel = (60.0 * f / rpm - 1.0).abs();
         if rel > 0.05 {
@@ -447,6 +459,30 @@ const OUTER_POSITIONS: [(&str, f64); 3] = [
 
 /// The structured model of a wearsim sidecar next to `rec` (None: no sidecar, or not one of
 /// wearsim's own with a `model`).
+/// The largest relative spread of the shaft speed over a record (`max/min − 1`) that the
+/// gap accepts as the one constant speed it simulates: 1 %, a fifth of the ±5 % that makes
+/// a stated speed contradict the spectrum.
+pub const MAX_SPEED_SPREAD: f64 = 0.01;
+
+/// The lowest and highest shaft speed over the record (rpm) that its sidecar states
+/// (`rpm_range`), or that a wearsim sidecar's model speed profile gives from its settle time
+/// over the record's length (sidecars written before `rpm_range` was); `None` without either.
+#[allow(clippy::unnecessary_cast)] // Real is f32 in `f32` builds
+fn speed_range(rec: &Record) -> Option<(f64, f64)> {
+    let side = rec.meta.get("sidecar")?;
+    if let Ok(Some(r)) = crate::io::sidecar::rpm_range(side) {
+        return Some(r);
+    }
+    let m = sidecar_model(rec)?;
+    let t0 = side
+        .get("settle_s")
+        .and_then(serde_json::Value::as_f64)
+        .filter(|t| t.is_finite() && *t >= 0.0)
+        .unwrap_or(0.0);
+    let s = m.speed.over(t0 as Real, (t0 + rec.duration_s()) as Real);
+    Some((60.0 * s.min_hz as f64, 60.0 * s.max_hz as f64))
+}
+
 fn sidecar_model(rec: &Record) -> Option<ModelConfig> {
     rec.meta
         .get("sidecar")

@@ -37,8 +37,11 @@ pub struct Sidecar {
     pub path: PathBuf,
     /// Sample rate, Hz (validated: 1 Hz ..= 10 MHz).
     pub fs: Option<f64>,
-    /// Shaft speed, rpm.
+    /// Shaft speed, rpm (the record's mean speed when it varies).
     pub rpm: Option<f64>,
+    /// Lowest and highest shaft speed over the record, rpm (`"rpm_range"`, [`rpm_range`]),
+    /// when the sidecar states them.
+    pub rpm_range: Option<(f64, f64)>,
     /// Number of samples per channel the data file must hold.
     pub n_samples: Option<u64>,
     /// Data column names (CSV order, without the time column; NPY columns).
@@ -191,6 +194,7 @@ const READ_KEYS: &[&str] = &[
     "rpm",
     "n_samples",
     "columns",
+    "rpm_range",
     "units",
     "unit",
     "bearing",
@@ -271,6 +275,15 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         Some(r) => Some(check_rpm(path, r)?),
         None => None,
     };
+    let rpm_range = rpm_range(&raw).map_err(|e| IoError::malformed(path, e))?;
+    if let (Some(r), Some((lo, hi))) = (rpm, rpm_range) {
+        if r < lo * (1.0 - 1e-9) || r > hi * (1.0 + 1e-9) {
+            return Err(IoError::contradiction(
+                path,
+                format!("sidecar \"rpm\" = {r} lies outside its \"rpm_range\" [{lo}, {hi}]"),
+            ));
+        }
+    }
     let n_samples = match raw.get("n_samples") {
         None | Some(Value::Null) => None,
         Some(v) => Some(v.as_u64().ok_or_else(|| {
@@ -341,6 +354,7 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         path: path.to_path_buf(),
         fs,
         rpm,
+        rpm_range,
         n_samples,
         columns,
         units,
@@ -352,6 +366,35 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
         model: structured_model(&raw).map_err(|e| IoError::malformed(path, e))?,
         raw,
     })
+}
+
+/// The lowest and highest shaft speed over the record that a sidecar states, rpm
+/// (`"rpm_range": [min, max]`; wearsim writes it for every run, from the speed profile
+/// over the recorded part): `None` without the key; an error naming the key unless it is
+/// two speeds in (0, 10⁶) rpm, the lower first.
+pub fn rpm_range(raw: &Value) -> Result<Option<(f64, f64)>, String> {
+    let v = match raw.get("rpm_range") {
+        None | Some(Value::Null) => return Ok(None),
+        Some(v) => v,
+    };
+    let bad = || {
+        format!(
+            "sidecar \"rpm_range\" must be [lowest, highest] shaft speed over the record in rpm, each in (0, 1e6), the lower first; found {v}"
+        )
+    };
+    let [lo, hi] = v
+        .as_array()
+        .and_then(|a| match a.as_slice() {
+            [a, b] => Some([a.as_f64()?, b.as_f64()?]),
+            _ => None,
+        })
+        .ok_or_else(bad)?;
+    let ok = |r: f64| r.is_finite() && r > 0.0 && r < 1.0e6;
+    if ok(lo) && ok(hi) && lo <= hi {
+        Ok(Some((lo, hi)))
+    } else {
+        Err(bad())
+    }
 }
 
 /// Value of the `bearing` key for a run of `cfg`: the preset's name when the geometry is
@@ -523,6 +566,26 @@ pub(crate) fn resolve_rpm(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_speed_range_is_two_ordered_speeds_that_hold_the_stated_rpm() {
+        let p = Path::new("r.json");
+        let ok = parse_sidecar(p, json!({"rpm": 1750, "rpm_range": [1600, 1800]})).unwrap();
+        assert_eq!(ok.rpm_range, Some((1600.0, 1800.0)));
+        for (bad, needle) in [
+            (json!({"rpm_range": [1800, 1600]}), "the lower first"),
+            (json!({"rpm_range": [1600]}), "[lowest, highest]"),
+            (json!({"rpm_range": [0, 1600]}), "(0, 1e6)"),
+            (json!({"rpm_range": "1600-1800"}), "\"rpm_range\""),
+            (
+                json!({"rpm": 1900, "rpm_range": [1600, 1800]}),
+                "outside its \"rpm_range\"",
+            ),
+        ] {
+            let e = parse_sidecar(p, bad.clone()).unwrap_err().to_string();
+            assert!(e.contains(needle), "{bad}: {e}");
+        }
+    }
 
     #[test]
     fn unread_keys_of_hand_written_sidecars_are_named_with_what_they_likely_meant() {

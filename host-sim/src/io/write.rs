@@ -41,7 +41,8 @@ use super::record::check_fs;
 /// | `time_column` | string | `"time_s"` (seconds, `i / fs`) |
 /// | `files` | object | `{"csv": ..., "wav": ..., "json": ...}` file names (no directory) |
 /// | `wav` | object | `{"column", "unit", "sample_format": "float", "bits_per_sample": 32, "sample_rate_hz", "scale": 1.0}` |
-/// | `rpm` | number | optional, copied from `meta` if the caller put it there |
+/// | `rpm` | number | optional, copied from `meta` if the caller put it there (`simulate`: the recorded part's mean speed) |
+/// | `rpm_range` | array | optional, from `meta` (`simulate`: `[lowest, highest]` speed over the recorded part, rpm) |
 /// | `complete` | bool | `true` |
 ///
 /// Any other keys of the caller's `meta` object are kept as they are (the keys above win).

@@ -108,3 +108,60 @@ fn gap_prefers_an_explicit_defect_over_the_sidecar_and_says_so() -> Result<(), S
     );
     Ok(())
 }
+
+/// A run whose speed ramps during the recorded part: the sidecar states the recorded part's
+/// mean speed and range (it once stated the speed at t = 0, before the settle), and the gap,
+/// which simulates one constant speed, refuses the record unless `--rpm` chooses that speed.
+#[test]
+fn a_record_whose_speed_varies_gives_its_range_and_the_gap_asks_for_rpm() -> Result<(), String> {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cfg = dir.path().join("ramp.toml");
+    std::fs::write(
+        &cfg,
+        "preset = \"cwru-6205-de\"\nduration = 2.0\nsettle = 0.5\n[speed]\nfrom_hz = 25.0\nto_hz = 30.0\nramp_duration = 1.5\n",
+    )
+    .expect("write config");
+    let out = dir.path().join("sim");
+    let o = wearsim(&["simulate", "--config", s(&cfg), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let side: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("simulate.json")).expect("sidecar"))
+            .expect("sidecar JSON");
+    // Recorded from 0.5 s to 2.5 s: 25 + 5·t/1.5 Hz rises from 26.667 to 30 Hz by 1.5 s,
+    // then 30 Hz: mean (1 s · 28.333 + 1 s · 30)/2 s = 29.1667 Hz = 1750 rpm.
+    let rpm = side["rpm"].as_f64().expect("rpm");
+    assert!((rpm - 1750.0).abs() < 1e-6, "{side}");
+    let range = &side["rpm_range"];
+    let (lo, hi) = (range[0].as_f64(), range[1].as_f64());
+    assert!(
+        (lo.unwrap_or(0.0) - 1600.0).abs() < 1e-6 && (hi.unwrap_or(0.0) - 1800.0).abs() < 1e-6,
+        "{side}"
+    );
+
+    let csv = out.join("simulate.csv");
+    let gap_out = dir.path().join("gap");
+    let o = wearsim(&["gap", "--real", s(&csv), "--out", s(&gap_out)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("varies over the record, 1600-1800 rpm") && err.contains("give --rpm"),
+        "{err}"
+    );
+    assert!(!gap_out.exists(), "nothing is written for a refused record");
+
+    // With --rpm the record is read, and the report says the speed varied.
+    let rec = records::load(
+        &csv,
+        &Overrides {
+            rpm: Some(1750.0),
+            ..Overrides::default()
+        },
+    )?;
+    assert_eq!(rec.rpm, 1750.0);
+    assert!(
+        rec.warnings.iter().any(|w| w.contains("1600-1800 rpm")),
+        "{:?}",
+        rec.warnings
+    );
+    Ok(())
+}
