@@ -36,6 +36,11 @@ pub fn run(a: &GapArgs) -> Result<(), CliError> {
 
 /// `wearsim gap` on records of seconds.
 fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
+    if a.life_search.is_some() {
+        return Err(CliError::input(
+            "--life-search: bounds the fits of a lifetime diagnosis (--life); records of seconds use their own search budget",
+        ));
+    }
     let mut parts = prepare(a)?;
     let (mut at, spaces, ev) = diagnose(a, &mut parts)?;
     let stability = if a.stability {
@@ -228,6 +233,34 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
             "--significant-gap: a lifetime diagnosis takes 3× its own computed noise-only gap; the flag applies to records of seconds",
         ));
     }
+    for (flag, given, why) in [
+        (
+            "--validation",
+            a.validation.is_some(),
+            "a lifetime diagnosis fits on the --train life and chooses on the --holdout lives",
+        ),
+        (
+            "--no-calibration",
+            a.no_calibration,
+            "a lifetime diagnosis fits no rig nuisances",
+        ),
+        (
+            "--fixed-calibration",
+            a.fixed_calibration,
+            "a lifetime diagnosis fits no rig nuisances",
+        ),
+        (
+            "--stability",
+            a.stability,
+            "a lifetime diagnosis has one training life to refit on",
+        ),
+    ] {
+        if given {
+            return Err(CliError::input(format!(
+                "{flag}: {why}; the flag applies to records of seconds"
+            )));
+        }
+    }
     if a.jobs == Some(0) {
         return Err(CliError::input("--jobs 0: give at least 1"));
     }
@@ -278,5 +311,6 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
         effects: a.effects.clone(),
         leave_one_out: a.leave_one_out,
         max_search: a.life_search.map(usize::from),
+        exchange: a.exchange,
     })
 }

@@ -106,7 +106,7 @@ pub struct GapArgs {
     /// After the greedy additions, try exchanging each kept effect for each effect not
     /// yet tried, the others refitted on top (`gap::exchange`; an experiment, off by
     /// default for its cost: `docs/sim-to-real-results.md`, "Exchanges after the greedy
-    /// additions").
+    /// additions"). With --life: in the whole-life attribution.
     #[arg(long)]
     pub exchange: bool,
     /// Also refit every effect of the chosen model on each record (part) separately and

@@ -581,6 +581,7 @@ fn test2_options(jobs: usize) -> LifeOptions {
         effects: vec![],
         leave_one_out: false,
         max_search: None,
+        exchange: false,
     }
 }
 

@@ -356,6 +356,35 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
     run(&["--effects", "slip"], &life, "acts within a snapshot");
     run(&["--effects", "warp"], &life, "unknown effect `warp`");
     run(&["--jobs", "0"], &life, "--jobs 0");
+    // Flags of records of seconds are refused with --life rather than ignored (they were
+    // accepted and did nothing), and --life-search without --life.
+    run(&["--stability"], &life, "--stability: a lifetime diagnosis");
+    run(
+        &["--no-calibration"],
+        &life,
+        "--no-calibration: a lifetime diagnosis fits no rig",
+    );
+    run(&["--fixed-calibration"], &life, "--fixed-calibration");
+    run(
+        &["--validation", "B2"],
+        &life,
+        "--validation: a lifetime diagnosis fits on the --train life",
+    );
+    bad(
+        &[
+            "gap",
+            "--real",
+            &cwru,
+            "--fs",
+            "12000",
+            "--life-search",
+            "4",
+            "--out",
+            &o,
+        ],
+        "--life-search: bounds the fits of a lifetime diagnosis",
+        &out,
+    );
     // A bearing the table does not have, and too short a life: input errors found before
     // any simulation runs.
     let five = [

@@ -39,6 +39,7 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         },
         leave_one_out: false,
         max_search: None,
+        exchange: false,
     };
     let m = measured(&path, &o)?;
     let g = diagnose(&m, &o)?;

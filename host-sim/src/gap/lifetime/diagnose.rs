@@ -271,6 +271,9 @@ pub struct LifeOptions {
     pub leave_one_out: bool,
     /// Most pattern-search lives of each fit after its grid (`None`: [`Budget::LIFE`]'s).
     pub max_search: Option<usize>,
+    /// After the greedy additions of the whole-life attribution, try exchanging kept
+    /// effects ([`Options::exchange`], `--exchange`).
+    pub exchange: bool,
 }
 
 /// The measured side of a lifetime diagnosis, read and checked before any simulation:
@@ -453,6 +456,7 @@ pub fn diagnose_calibrated(
             ..Budget::LIFE
         },
         significant_gap: SIGNIFICANCE * noise_whole,
+        exchange: o.exchange,
         ..Options::default()
     };
     let at = attribute(&spaces, &Effects::NONE, &train, &hold, &ev, &opt)?;

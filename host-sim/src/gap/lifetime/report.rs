@@ -79,6 +79,8 @@ pub struct LifeGapOutput {
     pub greedy: Vec<Step>,
     /// Effects taken out again.
     pub dropped: Vec<Dropped>,
+    /// Exchanges after the greedy additions (`--exchange`; empty without it).
+    pub exchanged: Vec<crate::gap::exchange::Exchanged>,
     /// Effects of the final model.
     pub kept: Vec<String>,
     /// Held-out totals.
@@ -233,6 +235,7 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         ranking: at.ranking.clone(),
         greedy: at.greedy.clone(),
         dropped: at.dropped.clone(),
+        exchanged: at.exchanged.clone(),
         kept: at.kept.clone(),
         totals: Totals::of(at),
         identified: at.identified.clone(),
