@@ -14,6 +14,15 @@ fn close(a: Real, b: Real) -> bool {
     (a - b).abs() <= 1e-5 * b.abs().max(1.0)
 }
 
+/// 10 Hz → 30 Hz over 2 s, then 30 Hz.
+fn ramp() -> SpeedProfile {
+    SpeedProfile::Ramp {
+        from_hz: 10.0,
+        to_hz: 30.0,
+        duration: 2.0,
+    }
+}
+
 #[test]
 fn a_constant_speed_is_its_own_span() {
     let s = SpeedProfile::Constant(29.95).over(0.5, 1.5);
@@ -24,11 +33,7 @@ fn a_constant_speed_is_its_own_span() {
 fn a_ramp_seen_after_its_start_is_averaged_over_the_record_only() {
     // 10 Hz → 30 Hz over 2 s; a record from 1 s to 3 s sees 20 → 30 Hz then 30 Hz:
     // mean = (1 s · 25 Hz + 1 s · 30 Hz) / 2 s = 27.5 Hz.
-    let r = SpeedProfile::Ramp {
-        from_hz: 10.0,
-        to_hz: 30.0,
-        duration: 2.0,
-    };
+    let r = ramp();
     let s = r.over(1.0, 3.0);
     assert!(close(s.mean_hz, 27.5), "{s:?}");
     assert!(close(s.min_hz, 20.0), "{s:?}");
@@ -58,11 +63,7 @@ fn a_table_has_its_extremes_on_knots_inside_the_interval() {
 
 #[test]
 fn an_empty_interval_gives_the_speed_at_its_start() {
-    let r = SpeedProfile::Ramp {
-        from_hz: 10.0,
-        to_hz: 30.0,
-        duration: 2.0,
-    };
+    let r = ramp();
     let s = r.over(1.0, 1.0);
     assert!(close(s.mean_hz, 20.0) && s.min_hz == s.mean_hz && s.max_hz == s.mean_hz);
 }
