@@ -5,7 +5,9 @@
 use crate::cmd::args::CliError;
 use crate::cmd::report::print_json;
 use crate::gap::attribute::Totals;
-use crate::gap::lifetime::report::{self as life_report, is_life_table};
+use crate::gap::lifetime::report::{
+    self as life_report, is_life_table, is_two_channel_ims_table, TWO_CHANNEL_NOTE,
+};
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
 use crate::gap::stationary::{diagnose, prepare, stability, where_cells, GapArgs, GapOutput};
@@ -17,6 +19,12 @@ use std::path::Path;
 pub fn run(a: &GapArgs) -> Result<(), CliError> {
     // Exclusive, writable output directory before any work (docs/reliability.md).
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
+    if let Some(p) = a.real.iter().find(|p| is_two_channel_ims_table(p)) {
+        return Err(CliError::input(format!(
+            "--real {}: {TWO_CHANNEL_NOTE}",
+            p.display()
+        )));
+    }
     if a.life {
         return run_life(a);
     }

@@ -424,6 +424,23 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
         "not a lifetime record",
         &out,
     );
+    // IMS test 1's layout (two accelerometers per bearing) is refused saying so, with or
+    // without --life (it was "its sidecar is missing", or a time stamp that "is not a
+    // number").
+    let two = dir.path().join("test1_timefeatures.csv");
+    std::fs::write(
+        &two,
+        ",B1_x_mean,B1_x_rms,B1_x_kurtosis,B1_y_rms\n2003-10-22 12:06:24,0.1,0.1,0.1,0.1\n",
+    )
+    .unwrap();
+    let two = two.display().to_string();
+    for life in [true, false] {
+        let mut v = vec!["gap", "--real", &two, "--out", &o];
+        if life {
+            v.push("--life");
+        }
+        bad(&v, "two accelerometers per bearing (test 1's layout", &out);
+    }
 }
 
 /// The faulty bearing of a CWRU record is the one its label names, whichever channel

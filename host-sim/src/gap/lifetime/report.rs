@@ -21,18 +21,31 @@ use std::path::{Path, PathBuf};
 /// Whether `path` is a lifetime record: a CSV whose header has per-bearing `B<k>_rms` and
 /// `B<k>_kurtosis` columns (an IMS timefeatures table).
 pub fn is_life_table(path: &Path) -> bool {
+    csv_header(path).is_some_and(|h| h.contains("B1_rms") && h.contains("B1_kurtosis"))
+}
+
+/// Whether `path` is an IMS feature table with two accelerometers per bearing (IMS test 1:
+/// `B<k>_x_rms`, `B<k>_y_rms`, ...), which the lifetime diagnosis does not read
+/// ([`TWO_CHANNEL_NOTE`]).
+pub fn is_two_channel_ims_table(path: &Path) -> bool {
+    csv_header(path).is_some_and(|h| h.contains("B1_x_rms") && h.contains("B1_x_kurtosis"))
+}
+
+/// Why a two-channel IMS feature table ([`is_two_channel_ims_table`]) is refused.
+pub const TWO_CHANNEL_NOTE: &str = "an IMS feature table with two accelerometers per bearing (test 1's layout: B<k>_x_..., B<k>_y_...), which the lifetime diagnosis does not read: its IMS premise is one failed bearing whose neighbours on the shaft did not fail, and in test 1 bearings 3 and 4 both failed; give each bearing and channel as a documented feature table (docs/feature-tables.md)";
+
+/// The first line of a `.csv` file, if it is one and can be read.
+fn csv_header(path: &Path) -> Option<String> {
     if !path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("csv"))
     {
-        return false;
+        return None;
     }
-    let Ok(f) = std::fs::File::open(path) else {
-        return false;
-    };
+    let f = std::fs::File::open(path).ok()?;
     let mut line = String::new();
-    let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(f), &mut line);
-    line.contains("B1_rms") && line.contains("B1_kurtosis")
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(f), &mut line).ok()?;
+    Some(line)
 }
 
 /// The early-life part of the answer.
