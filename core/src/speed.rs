@@ -194,19 +194,21 @@ impl SpeedProfile {
                 }
             }
         }
+        // The area is summed relative to `f0`, so that a speed that does not change over
+        // the interval averages to `f0` exactly (no rounding of `f0·T/T`).
         let (mut t, mut f, mut area) = (t0, f0, 0.0);
         for &k in knots.iter().filter(|k| **k > t0 && **k < t1) {
             let fk = self.shaft_hz(k);
-            area += 0.5 * (f + fk) * (k - t);
+            area += 0.5 * ((f - f0) + (fk - f0)) * (k - t);
             span.min_hz = span.min_hz.min(fk);
             span.max_hz = span.max_hz.max(fk);
             (t, f) = (k, fk);
         }
         let f1 = self.shaft_hz(t1);
-        area += 0.5 * (f + f1) * (t1 - t);
+        area += 0.5 * ((f - f0) + (f1 - f0)) * (t1 - t);
         span.min_hz = span.min_hz.min(f1);
         span.max_hz = span.max_hz.max(f1);
-        span.mean_hz = area / (t1 - t0);
+        span.mean_hz = f0 + area / (t1 - t0);
         span
     }
 

@@ -25,8 +25,12 @@ fn ramp() -> SpeedProfile {
 
 #[test]
 fn a_constant_speed_is_its_own_span() {
-    let s = SpeedProfile::Constant(29.95).over(0.5, 1.5);
-    assert_eq!((s.mean_hz, s.min_hz, s.max_hz), (29.95, 29.95, 29.95));
+    // Exactly, over any interval (a sidecar's `rpm` of a constant-speed run is the
+    // configured speed, not 1796.9999999999998).
+    for (t0, t1) in [(0.5, 1.5), (0.05, 0.95), (0.05, 3.05), (0.0, 1e-3)] {
+        let s = SpeedProfile::Constant(29.95).over(t0, t1);
+        assert_eq!((s.mean_hz, s.min_hz, s.max_hz), (29.95, 29.95, 29.95));
+    }
 }
 
 #[test]
@@ -38,8 +42,8 @@ fn a_ramp_seen_after_its_start_is_averaged_over_the_record_only() {
     assert!(close(s.mean_hz, 27.5), "{s:?}");
     assert!(close(s.min_hz, 20.0), "{s:?}");
     assert!(close(s.max_hz, 30.0), "{s:?}");
-    // Wholly after the ramp: constant.
-    let s = r.over(2.5, 4.0);
+    // Wholly after the ramp: constant, exactly.
+    let s = r.over(2.5, 4.1);
     assert_eq!((s.mean_hz, s.min_hz, s.max_hz), (30.0, 30.0, 30.0));
     // Wholly inside: the mean of the ends.
     let s = r.over(0.5, 1.5);
