@@ -29,6 +29,17 @@ pub fn steel_life(life_factor: f64) -> wearsim_core::wear::LifeConfig {
     }
 }
 
+/// [`steel_life`] with the propagation limit `propagation_passes` (`material.propagation_passes`,
+/// the second scale [`calibrate_shape`] sets) instead of the material's default.
+pub fn steel_life_with(
+    life_factor: f64,
+    propagation_passes: f64,
+) -> wearsim_core::wear::LifeConfig {
+    let mut c = steel_life(life_factor);
+    c.material.propagation_passes = propagation_passes as wearsim_core::Real;
+    c
+}
+
 /// Relative tolerance on the life: calibration stops within 1 % of the target.
 pub const TOLERANCE: f64 = 0.01;
 
@@ -85,6 +96,140 @@ pub fn calibrate<T, E>(
     })
 }
 
+/// What [`calibrate_shape`] matches of a life: its length and its onset of instability.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shape {
+    /// Revolutions to failure.
+    pub life: f64,
+    /// Onset of instability, fraction of life ([`super::ims::onset`]); `None` when the RMS
+    /// never leaves its steady band.
+    pub onset: Option<f64>,
+}
+
+/// Tolerance on the onset (fraction of life) of [`calibrate_shape`]: one window of the
+/// lifetime schedule late in life (`gap::lifetime::SCHEDULE`, 2 % of life).
+pub const ONSET_TOLERANCE: f64 = 0.02;
+
+/// Least share of a simulated life counted as after its onset in a step of
+/// [`calibrate_shape`] (a life without an onset, or with one in its last window, would
+/// otherwise give an unbounded step).
+const MIN_POST: f64 = 0.02;
+
+/// Most lives [`calibrate_shape`] runs to match the length alone after its joint steps.
+pub const LENGTH_STEPS: usize = 4;
+
+/// Bounds of the propagation limit `material.propagation_passes` (`Material::new_checked`).
+pub const PROPAGATION_BOUNDS: (f64, f64) = (1.0, 1e12);
+
+/// The next value of a scale `x` whose part `y` of a life should become `want`, given the
+/// last step's `(x, y)`: a secant through both when their slope is positive (a part is
+/// close to affine in its scale: a scaled share plus a share the scale does not touch,
+/// which proportional steps approach only geometrically), bounded to a factor 10 of `x`;
+/// otherwise (first step, a slope the onset's window grid made flat or negative) the
+/// proportional step `x·want/y`.
+fn next_scale(x: f64, y: f64, prev: Option<(f64, f64)>, want: f64) -> f64 {
+    let proportional = x * (want / y).clamp(1e-9, 1e6);
+    prev.and_then(|(x0, y0)| {
+        let k = (y - y0) / (x - x0);
+        let v = x + (want - y) / k;
+        (k.is_finite() && k > 0.0 && v.is_finite()).then(|| v.clamp(x / 10.0, x * 10.0))
+    })
+    .unwrap_or(proportional)
+}
+
+/// A life calibrated in both scales.
+#[derive(Debug, Clone)]
+pub struct ShapeCalibrated<T> {
+    /// Life factor of the last life run.
+    pub factor: f64,
+    /// Propagation limit (passes) of the last life run.
+    pub propagation_passes: f64,
+    /// Its length and onset.
+    pub shape: Shape,
+    /// Lives run by the steps (the first life is not counted).
+    pub steps: usize,
+    /// What the last run returned besides its shape.
+    pub last: T,
+}
+
+/// Calibrates two scales of a life on a measured one: its length `target` (revolutions)
+/// and its onset of instability `onset` (fraction of life). The life factor scales the
+/// part before the onset (ISO 281 fatigue; the dent and crack stages it does not scale),
+/// the propagation limit `material.propagation_passes` the part after it (the spall's
+/// spawns, `wear::life`): steps on each part towards `u T` and `(1 − u) T`
+/// ([`next_scale`]: proportional first, `a ← a·(u T)/(u_s L)`, then secant), until both
+/// are within tolerance or after
+/// `max_steps`; then, if the length is still off (an onset out of reach), up to
+/// [`LENGTH_STEPS`] more with the propagation limit held and the part before the onset
+/// aiming at what the part after it leaves, `a ← a·(T − (1 − u_s) L)/(u_s L)`: the length
+/// is matched, the onset comes earlier than measured. The caller judges the last life,
+/// which is returned either way. `first` is the shape and result at (1, `n_p0`); `run(a, n_p)` runs a life.
+/// The propagation limit is the one constant of the wear model with neither a literature
+/// value nor a stress dependence confirmed by a source (`../shared/docs/life-physics-sources.md`
+/// §1), and its default was set on the thesis's reference bearing: a measured life says
+/// how long its bearing's spall grows, and this calibration reads that off the training
+/// life only.
+pub fn calibrate_shape<T, E>(
+    target: f64,
+    onset: f64,
+    n_p0: f64,
+    first: (Shape, T),
+    max_steps: usize,
+    mut run: impl FnMut(f64, f64) -> Result<(Shape, T), E>,
+) -> Result<ShapeCalibrated<T>, E> {
+    let within = |s: &Shape| {
+        (s.life / target - 1.0).abs() < TOLERANCE
+            && s.onset
+                .is_some_and(|u| (u - onset).abs() <= ONSET_TOLERANCE)
+    };
+    let (mut shape, mut last) = first;
+    let (mut a, mut n_p) = (1.0, n_p0);
+    let mut steps = 0;
+    let min_factor = wearsim_core::wear::material::MIN_LIFE_FACTOR;
+    let split = |s: &Shape| {
+        let u_s = s.onset.unwrap_or(1.0).min(1.0 - MIN_POST);
+        (u_s * s.life, (1.0 - u_s) * s.life)
+    };
+    let mut prev: Option<(f64, f64, f64, f64)> = None;
+    while steps < max_steps && !within(&shape) {
+        let (pre_s, post_s) = split(&shape);
+        let (a_new, n_new) = (
+            next_scale(a, pre_s, prev.map(|p| (p.0, p.2)), onset * target).max(min_factor),
+            next_scale(
+                n_p,
+                post_s,
+                prev.map(|p| (p.1, p.3)),
+                (1.0 - onset) * target,
+            )
+            .clamp(PROPAGATION_BOUNDS.0, PROPAGATION_BOUNDS.1),
+        );
+        prev = Some((a, n_p, pre_s, post_s));
+        (a, n_p) = (a_new, n_new);
+        (shape, last) = run(a, n_p)?;
+        steps += 1;
+    }
+    // Where the onset could not be reached (the part after it cannot shrink to the
+    // measured one: its crack growth after the first spall runs on absolute stresses), the
+    // length comes first: the propagation limit held, the part before the onset takes what
+    // the part after it leaves of the target.
+    let mut extra = 0;
+    while extra < LENGTH_STEPS && (shape.life / target - 1.0).abs() >= TOLERANCE {
+        let (pre_s, post_s) = split(&shape);
+        let want = (target - post_s).max(1e-3 * target);
+        a = (a * (want / pre_s).clamp(1e-9, 1e6)).max(min_factor);
+        (shape, last) = run(a, n_p)?;
+        steps += 1;
+        extra += 1;
+    }
+    Ok(ShapeCalibrated {
+        factor: a,
+        propagation_passes: n_p,
+        shape,
+        steps,
+        last,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,6 +262,44 @@ mod tests {
             c.steps
         );
         assert!((c.life / target - 1.0).abs() < TOLERANCE);
+    }
+
+    /// A model life: the part before the onset `a·F + C` (fatigue scaled by the factor,
+    /// crack stages fixed), after it `N_p·P + D` (spawns scaled by the limit, the crack
+    /// growth after the first spall fixed).
+    fn model(a: f64, n_p: f64) -> Shape {
+        let (pre, post) = (a * 1.0e7 + 2.0e4, n_p / 1.5e7 * 4.0e6 + 1.0e4);
+        Shape {
+            life: pre + post,
+            onset: Some(pre / (pre + post)),
+        }
+    }
+
+    #[test]
+    fn both_scales_reach_a_length_and_an_onset() {
+        let run = |a: f64, n_p: f64| -> Result<(Shape, ()), ()> { Ok((model(a, n_p), ())) };
+        for (target, onset) in [(4.0e7, 0.69), (1.2e5, 0.6), (3.0e9, 0.9)] {
+            let c =
+                calibrate_shape(target, onset, 1.5e7, (model(1.0, 1.5e7), ()), 12, run).unwrap();
+            assert!(
+                (c.shape.life / target - 1.0).abs() < TOLERANCE,
+                "{target}: {c:?}"
+            );
+            let u = c.shape.onset.unwrap();
+            assert!((u - onset).abs() <= ONSET_TOLERANCE, "{target}: {c:?}");
+        }
+    }
+
+    /// An onset so late that the part after it is shorter than the fixed crack growth `D`:
+    /// the limit ends at its least and the length is still matched.
+    #[test]
+    fn a_late_onset_out_of_reach_still_matches_the_length() {
+        let run = |a: f64, n_p: f64| -> Result<(Shape, ()), ()> { Ok((model(a, n_p), ())) };
+        let (target, onset) = (1.2e5, 0.95); // 6·10³ after the onset, D = 10⁴
+        let c = calibrate_shape(target, onset, 1.5e7, (model(1.0, 1.5e7), ()), 12, run).unwrap();
+        assert!(c.propagation_passes < 1e3, "{c:?}");
+        assert!((c.shape.life / target - 1.0).abs() < TOLERANCE, "{c:?}");
+        assert!(c.shape.onset.unwrap() < onset - 0.02, "{c:?}");
     }
 
     #[test]
