@@ -3,7 +3,7 @@
 //! lives, and the early-life part again on the early stages alone.
 
 use super::rig::RigDescription;
-use super::sim::{calibrate, failure_site, LifeSim};
+use super::sim::{calibrate, failure_site, LifeSim, Scales};
 use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
 use super::{
     stage_points, LifePoint, LifeReference, MeasuredLife, EARLY_T_MAX, HOLDOUT_T_MAX, STAGES,
@@ -153,8 +153,15 @@ pub struct LifeGap {
     pub rig: RigDescription,
     /// Its closed-form defect frequencies.
     pub kinematics: wearsim_core::kinematics::FaultFrequencies,
-    /// Calibrated life factor and what it was calibrated on.
+    /// Calibrated life factor.
     pub life_factor: f64,
+    /// Calibrated propagation limit (passes; the material's default when the training life
+    /// has no onset).
+    pub propagation_passes: f64,
+    /// Onset of instability of the measured training life (fraction of life).
+    pub measured_onset: Option<f64>,
+    /// Onset of instability of the calibrated simulated life (fraction of life).
+    pub simulated_onset: Option<f64>,
     /// Revolutions of the measured (training) life.
     pub measured_revs: f64,
     /// How the training life is compared (whole life, its failure site).
@@ -347,31 +354,52 @@ pub fn measured_from(
     })
 }
 
-/// The life factor of a diagnosis, calibrated on the training life at its failure site.
+/// The scales of a diagnosis's simulated life, calibrated on the training life at its
+/// failure site.
 #[derive(Debug, Clone, Copy)]
 pub struct Calibration {
-    /// Calibrated life factor.
-    pub factor: f64,
+    /// Calibrated life factor and propagation limit.
+    pub scales: Scales,
     /// Revolutions of the calibrated simulated life.
     pub revs: f64,
     /// Lives run to calibrate.
     pub runs: usize,
     /// Revolutions of the measured training life.
     pub measured_revs: f64,
+    /// Onset of instability of the measured training life (fraction of life,
+    /// [`crate::life::ims::onset`]); `None`: its RMS never left its steady band, and only
+    /// the life factor was calibrated.
+    pub measured_onset: Option<f64>,
+    /// Onset of instability of the calibrated simulated life.
+    pub simulated_onset: Option<f64>,
 }
 
-/// Calibrates the life factor of `m` on its training life. A failure means the training
-/// life cannot be reached by the simulated one (too short for its crack-to-failure part):
-/// a problem of the input, which the message sizes.
+/// Onset of instability of a measured life ([`crate::life::ims::onset`] of its RMS over
+/// its early-life median).
+pub fn measured_onset(l: &MeasuredLife) -> Option<f64> {
+    use crate::life::ims;
+    ims::onset(&ims::normalise(
+        l.points.iter().map(|p| p.t).collect(),
+        l.points.iter().map(|p| p.rms).collect(),
+    ))
+}
+
+/// Calibrates the scales of `m`'s simulated life on its training life ([`calibrate`]: its
+/// length and, when it has one, its onset of instability). A failure means the training
+/// life cannot be reached by the simulated one: a problem of the input, which the message
+/// sizes.
 pub fn calibrated(m: &MeasuredSet, o: &LifeOptions) -> Result<Calibration, String> {
     let measured_revs = m.train.hours * 3600.0 * m.rig.shaft_hz;
     let site = failure_site(&m.train.failure_mode);
-    let (factor, revs, runs) = calibrate(&m.rig, o.seed, measured_revs, site)?;
+    let measured_onset = measured_onset(&m.train);
+    let c = calibrate(&m.rig, o.seed, measured_revs, measured_onset, site)?;
     Ok(Calibration {
-        factor,
-        revs,
-        runs,
+        scales: c.scales,
+        revs: c.revs,
+        runs: c.runs,
         measured_revs,
+        measured_onset,
+        simulated_onset: c.onset,
     })
 }
 
@@ -403,9 +431,9 @@ pub fn diagnose_calibrated(
     let t0 = std::time::Instant::now();
     let (train_life, hold_lives) = (&m.train, &m.holdout);
     let kinematics = m.rig.kinematics()?;
-    let (factor, revs, cal_runs, measured_revs) = (c.factor, c.revs, c.runs, c.measured_revs);
+    let (scales, revs, cal_runs, measured_revs) = (c.scales, c.revs, c.runs, c.measured_revs);
     let train_site = failure_site(&train_life.failure_mode);
-    let sim = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs, train_site)?);
+    let sim = Arc::new(LifeSim::new(&m.rig, scales, o.seed, revs, train_site)?);
     let mut sims: Vec<Arc<LifeSim>> = vec![sim.clone()];
     let train = vec![LifeTarget {
         reference: m.train_ref.clone(),
@@ -418,7 +446,7 @@ pub fn diagnose_calibrated(
         let own = match failure_site(&life.failure_mode) {
             None => sim.clone(),
             Some(loc) => {
-                let s = Arc::new(LifeSim::new(&m.rig, factor, o.seed, revs, Some(loc))?);
+                let s = Arc::new(LifeSim::new(&m.rig, scales, o.seed, revs, Some(loc))?);
                 match sims.iter().find(|x| x.site() == s.site()) {
                     Some(x) => x.clone(),
                     None => {
@@ -535,7 +563,10 @@ pub fn diagnose_calibrated(
         holdout: hold_lives.iter().map(label).collect(),
         rig: m.rig.clone(),
         kinematics,
-        life_factor: factor,
+        life_factor: scales.life_factor,
+        propagation_passes: scales.propagation_passes,
+        measured_onset: c.measured_onset,
+        simulated_onset: c.simulated_onset,
         measured_revs,
         train_span: span(train_life, 1.0, &sim),
         holdout_spans,

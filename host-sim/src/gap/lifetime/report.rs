@@ -111,6 +111,13 @@ pub struct LifeGapOutput {
     pub kinematics: wearsim_core::kinematics::FaultFrequencies,
     /// Calibrated life factor (on the training bearing's measured life).
     pub life_factor: f64,
+    /// Calibrated propagation limit `material.propagation_passes` (passes; on the training
+    /// bearing's onset of instability; the material's default when it has none).
+    pub propagation_passes: f64,
+    /// Training bearing's onset of instability (fraction of life; `null`: none).
+    pub measured_onset: Option<f64>,
+    /// The calibrated simulated life's onset of instability (fraction of life).
+    pub simulated_onset: Option<f64>,
     /// Training bearing's measured life (revolutions).
     pub measured_revs: f64,
     /// Held-out gap of the whole life a correct model would leave by sampling alone.
@@ -189,10 +196,40 @@ fn span_findings(g: &LifeGap) -> Vec<String> {
 }
 
 fn findings(g: &LifeGap) -> Vec<String> {
-    let mut f = vec![format!(
-        "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not",
-        g.life_factor, g.measured_revs
-    )];
+    let steel = wearsim_core::wear::Material::BEARING_STEEL.propagation_passes;
+    let mut f = vec![match g.measured_onset {
+        Some(u) => format!(
+            "the life factor ({:.3e}) and the propagation limit ({:.3e} passes, {:.3e} times the material's {steel:.1e}) are calibrated on the training bearing's measured life ({:.3e} revolutions) and its onset of instability ({u:.3} of life; simulated {}): the length of the simulated life and the training life's onset are in-sample, the rest of its shape is not, and a held-out life's onset is a test of the calibration; the propagation limit has no literature value, so its ratio to the material's is itself a finding on this rig's spall growth",
+            g.life_factor,
+            g.propagation_passes,
+            g.propagation_passes / steel,
+            g.measured_revs,
+            g.simulated_onset.map_or("none".to_string(), |v| format!("{v:.3}"))
+        ),
+        None => format!(
+            "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not; the training life has no onset of instability (its RMS never leaves its steady band for {} snapshots after half its life), so the propagation limit stays the material's {steel:.1e} passes",
+            g.life_factor,
+            g.measured_revs,
+            crate::life::ims::PERSIST
+        ),
+    }];
+    if let Some(u) = g.measured_onset {
+        let off = g.simulated_onset.map_or(f64::INFINITY, |v| (v - u).abs());
+        if off > crate::life::calibrate::ONSET_TOLERANCE {
+            f.push(format!(
+                "the calibration did not bring the simulated onset of instability ({}) within {} of the training life's ({u:.3}): the length is matched, the onset is not, and the stages between them carry that difference{}",
+                g.simulated_onset.map_or("none".to_string(), |v| format!("{v:.3}")),
+                crate::life::calibrate::ONSET_TOLERANCE,
+                match g.simulated_onset {
+                    Some(v) if v < u => format!(
+                        "; the part after the onset could not be shortened to the measured one (the propagation limit went down to {:.3e} passes): after the first spall the simulated life still runs its crack growth on absolute stresses, which at this load lasts longer than the measured life after its onset",
+                        g.propagation_passes
+                    ),
+                    _ => String::new(),
+                }
+            ));
+        }
+    }
     f.extend(span_findings(g));
     for a in &g.rig.assumptions {
         f.push(format!(
@@ -264,6 +301,9 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         rig: g.rig.clone(),
         kinematics: g.kinematics,
         life_factor: g.life_factor,
+        propagation_passes: g.propagation_passes,
+        measured_onset: g.measured_onset,
+        simulated_onset: g.simulated_onset,
         measured_revs: g.measured_revs,
         noise_only: g.noise_only.0,
         findings: findings(g),
@@ -324,7 +364,7 @@ pub fn markdown(o: &LifeGapOutput) -> String {
     let _ = writeln!(s, "# Sim-to-real gap along a life\n");
     let _ = writeln!(
         s,
-        "Training life: {}. Held-out: {}. Simulated: {} ({} elements, ball {:.3} mm, pitch {:.3} mm, {:.2}°; {:.1} rpm, {:.0} N; structure: {}; BPFO {:.2} Hz, BPFI {:.2} Hz, natural frequency {:.0} Hz) with the core's stress-driven wear, life factor {:.3e} (calibrated on the training life, {:.3e} revolutions).\n",
+        "Training life: {}. Held-out: {}. Simulated: {} ({} elements, ball {:.3} mm, pitch {:.3} mm, {:.2}°; {:.1} rpm, {:.0} N; structure: {}; BPFO {:.2} Hz, BPFI {:.2} Hz, natural frequency {:.0} Hz) with the core's stress-driven wear, life factor {:.3e} and propagation limit {:.3e} passes (calibrated on the training life, {:.3e} revolutions, onset of instability at {}).\n",
         o.train.join(", "),
         o.holdout.join(", "),
         o.rig.origin,
@@ -339,7 +379,10 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         o.kinematics.bpfi,
         o.kinematics.natural_hz,
         o.life_factor,
-        o.measured_revs
+        o.propagation_passes,
+        o.measured_revs,
+        o.measured_onset
+            .map_or("none: the propagation limit is the material's".to_string(), |u| format!("{u:.3} of life"))
     );
     let _ = writeln!(
         s,

@@ -8,7 +8,10 @@ use super::{LifePoint, EARLY_T_MAX};
 use crate::analysis;
 use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
-use crate::life::calibrate::{calibrate as calibrate_life, Secant};
+use crate::life::calibrate::{
+    calibrate as calibrate_life, calibrate_shape, steel_life_with, Secant, Shape,
+};
+use crate::life::ims;
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -37,7 +40,7 @@ pub const WINDOW_SAMPLES: usize = super::rig::PRESET_WINDOW_SAMPLES;
 pub struct LifeSim {
     /// Dynamic model of the bearing (no effects).
     pub model: wearsim_core::ModelConfig,
-    /// Wear configuration (calibrated life factor).
+    /// Wear configuration (calibrated life factor and propagation limit).
     pub life: LifeConfig,
     /// Seed of the life (Weibull draw, window streams).
     pub seed: u64,
@@ -53,12 +56,12 @@ pub struct LifeSim {
 const CACHE: usize = 1024;
 
 impl LifeSim {
-    /// A simulated life of the bearing `rig` describes with life factor `life_factor`,
-    /// wearing at `site` ([`failure_site`]; `None`: the model's own site, the outer race
-    /// of every preset).
+    /// A simulated life of the bearing `rig` describes with the life factor and
+    /// propagation limit of `scales`, wearing at `site` ([`failure_site`]; `None`: the
+    /// model's own site, the outer race of every preset).
     pub fn new(
         rig: &RigDescription,
-        life_factor: f64,
+        scales: Scales,
         seed: u64,
         expected_revs: f64,
         site: Option<DefectLocation>,
@@ -79,7 +82,7 @@ impl LifeSim {
         Ok(LifeSim {
             model,
             window_samples: rig.window_samples,
-            life: crate::life::calibrate::steel_life(life_factor),
+            life: steel_life_with(scales.life_factor, scales.propagation_passes),
             seed,
             expected_revs,
             memo: Memo::new(CACHE),
@@ -183,31 +186,141 @@ pub fn failure_site(mode: &str) -> Option<DefectLocation> {
     }
 }
 
-/// Calibrates the life factor so that the simulated baseline life lasts `target`
-/// revolutions within 1 % ([`crate::life::calibrate`]): secant steps with no fixed part,
-/// i.e. proportional steps on the whole life (the factor scales the fatigue part, most of
-/// the life; the rest makes the steps converge geometrically), up to 8. `wearsim
-/// ims-compare` uses the same function with the crack-to-failure part held fixed. Returns
-/// the factor, the life's revolutions and the lives run.
+/// The two scales of a simulated life that a measured training life calibrates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// `material.life_factor` (–): scales the ISO 281 fatigue part of the life.
+    pub life_factor: f64,
+    /// `material.propagation_passes` (passes): the propagation limit of the spall's spawns,
+    /// the part of the life after its onset.
+    pub propagation_passes: f64,
+}
+
+impl Scales {
+    /// The material's defaults ([`wearsim_core::wear::Material::BEARING_STEEL`]).
+    pub fn steel() -> Scales {
+        let m = wearsim_core::wear::Material::BEARING_STEEL;
+        Scales {
+            life_factor: m.life_factor,
+            propagation_passes: m.propagation_passes,
+        }
+    }
+}
+
+/// A calibrated simulated life.
+#[derive(Debug, Clone, Copy)]
+pub struct Calibrated {
+    /// Its scales.
+    pub scales: Scales,
+    /// Its revolutions to failure.
+    pub revs: f64,
+    /// Its onset of instability (fraction of life), `None` if its RMS never left its band.
+    pub onset: Option<f64>,
+    /// Lives run to calibrate it.
+    pub runs: usize,
+}
+
+/// Most lives the shape calibration runs after its first.
+const SHAPE_STEPS: usize = 12;
+
+/// Calibrates the simulated baseline life on the training life: its length `target`
+/// (revolutions) within 1 %, and, when the training life has an onset of instability
+/// `onset` (fraction of life, [`ims::onset`]), that onset within
+/// [`crate::life::calibrate::ONSET_TOLERANCE`] ([`calibrate_shape`]: the life factor scales
+/// the part before the onset, the propagation limit the part after it; the onset may stay
+/// off when the part after it cannot shrink to the measured one, which the report says;
+/// the length may not stay off by more than 5 %). Without an onset
+/// only the life factor is calibrated (secant steps with no fixed part, up to 8; its
+/// crack-to-failure part then does not scale, so a life shorter than it is refused with
+/// the length it needs). `wearsim ims-compare` calibrates the life factor alone, with the
+/// crack-to-failure part held fixed.
 pub fn calibrate(
     rig: &RigDescription,
     seed: u64,
     target: f64,
+    onset: Option<f64>,
     site: Option<DefectLocation>,
-) -> Result<(f64, f64, usize), String> {
+) -> Result<Calibrated, String> {
+    let steel = Scales::steel();
     // The schedule needs an expected life; every run uses the target.
-    let run = |a: f64| -> Result<(f64, ()), String> {
+    let run = |sc: Scales| -> Result<(Shape, ()), String> {
+        let (pts, life) = LifeSim::new(rig, sc, seed, target, site)?.run(&Effects::NONE)?;
+        let c = ims::normalise(
+            pts.iter().map(|p| p.t).collect(),
+            pts.iter().map(|p| p.rms).collect(),
+        );
         Ok((
-            LifeSim::new(rig, a, seed, target, site)?
-                .run(&Effects::NONE)?
-                .1,
+            Shape {
+                life,
+                onset: ims::onset(&c),
+            },
             (),
         ))
     };
-    let first = run(1.0)?;
+    let first = run(steel)?;
+    if let Some(u) = onset {
+        let c = calibrate_shape(
+            target,
+            u,
+            steel.propagation_passes,
+            first,
+            SHAPE_STEPS,
+            |a, n_p| {
+                run(Scales {
+                    life_factor: a,
+                    propagation_passes: n_p,
+                })
+            },
+        )?;
+        if (c.shape.life / target - 1.0).abs() > 0.05 {
+            // Most likely too short for the crack stages, which neither scale shortens:
+            // say how long the training life must be.
+            let floor = run(Scales {
+                life_factor: wearsim_core::wear::material::MIN_LIFE_FACTOR,
+                propagation_passes: crate::life::calibrate::PROPAGATION_BOUNDS.0,
+            })?
+            .0
+            .life;
+            let why = if target < floor {
+                format!(
+                    "the simulated life of this bearing lasts at least {floor:.3e} revolutions at the smallest life factor and propagation limit (its crack stages, which neither scale shortens, at this bearing's load): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table)",
+                    floor / (3600.0 * rig.shaft_hz)
+                )
+            } else {
+                format!("the steps did not converge (the shortest simulated life is {floor:.3e} revolutions)")
+            };
+            return Err(format!(
+                "the simulated life did not reach the training life's length and onset of instability ({target:.3e} revolutions, {:.3} h at {:.0} rpm, onset at {u:.3} of life) in {} lives: it lasts {:.3e} revolutions with its onset at {} (life factor {:.3e}, propagation limit {:.3e} passes); {why}",
+                target / (3600.0 * rig.shaft_hz),
+                60.0 * rig.shaft_hz,
+                c.steps,
+                c.shape.life,
+                c.shape.onset.map_or("none".to_string(), |v| format!("{v:.3}")),
+                c.factor,
+                c.propagation_passes,
+            ));
+        }
+        return Ok(Calibrated {
+            scales: Scales {
+                life_factor: c.factor,
+                propagation_passes: c.propagation_passes,
+            },
+            revs: c.shape.life,
+            onset: c.shape.onset,
+            runs: c.steps + 1,
+        });
+    }
+    let run = |a: f64| -> Result<(f64, Option<f64>), String> {
+        let (s, ()) = run(Scales {
+            life_factor: a,
+            ..steel
+        })?;
+        Ok((s.life, s.onset))
+    };
+    let first = (first.0.life, first.0.onset);
     let context = |e: String| {
         format!(
-            "calibrating the life factor to the training life's {target:.3e} revolutions (the simulated life lasts {:.3e} at factor 1; its crack-to-failure part does not scale with the factor, so a measured life shorter than that part cannot be reached): {e}",
+            "calibrating the life factor to the training life's {target:.3e} revolutions (the training life has no onset of instability, so its propagation limit stays the material's; the simulated life lasts {:.3e} at factor 1; its crack-to-failure part does not scale with the factor, so a measured life shorter than that part cannot be reached): {e}",
             first.0
         )
     };
@@ -219,7 +332,7 @@ pub fn calibrate(
     let short = |e: String| {
         // Below the crack-to-failure part: say how long the training life must be.
         match run(wearsim_core::wear::material::MIN_LIFE_FACTOR) {
-            Ok((floor, ())) if target < floor => format!(
+            Ok((floor, _)) if target < floor => format!(
                 "the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {floor:.3e} revolutions at any life factor (its crack-to-failure part does not scale with the factor): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table); {}",
                 target / (3600.0 * rig.shaft_hz),
                 60.0 * rig.shaft_hz,
@@ -230,11 +343,19 @@ pub fn calibrate(
         }
     };
     let c = calibrate_life(target, first, &step, run).map_err(short)?;
-    let (a, life, runs) = (c.factor, c.life, c.steps + 1);
-    if (life / target - 1.0).abs() > 0.05 {
+    if (c.life / target - 1.0).abs() > 0.05 {
         return Err(context(format!(
-            "the life factor did not converge: {life:.3e} revolutions against the measured {target:.3e}"
+            "the life factor did not converge: {:.3e} revolutions against the measured {target:.3e}",
+            c.life
         )));
     }
-    Ok((a, life, runs))
+    Ok(Calibrated {
+        scales: Scales {
+            life_factor: c.factor,
+            ..steel
+        },
+        revs: c.life,
+        onset: c.last,
+        runs: c.steps + 1,
+    })
 }
