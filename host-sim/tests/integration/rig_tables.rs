@@ -345,22 +345,29 @@ fn onsets_match(j: &serde_json::Value) {
     assert!((s - m).abs() <= 0.02, "simulated onset {s} against {m}");
 }
 
+/// The report of `gap --life` on two FEMTO-like tables 10 s apart (1.1 h, 1.2·10⁵
+/// revolutions at 1800 rpm) whose RMS rises as `rise` ([`table_every`]); the run must
+/// succeed and the measured life be the table's.
+fn accelerated_life(rise: (f64, f64)) -> serde_json::Value {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table_every(tmp.path(), "a", 1, &bearing, "4000.0", 10.0, rise);
+    let b = table_every(tmp.path(), "b", 2, &bearing, "4000.0", 10.0, rise);
+    let o = gap(&a, &b, &tmp.path().join("gap"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let revs = j["measured_revs"].as_f64().unwrap();
+    assert!((revs / ((N - 1) as f64 * 10.0 * 30.0) - 1.0).abs() < 1e-9);
+    j
+}
+
 /// An accelerated life (FEMTO-like: 1.1 h, 1.2·10⁵ revolutions at 1800 rpm) is far shorter
 /// than the simulated life's spall growth at the material's propagation limit (about
 /// 1.3·10⁷ revolutions): its onset calibrates the propagation limit, three orders of
 /// magnitude down, and the diagnosis runs to the end.
 #[test]
 fn an_accelerated_life_calibrates_its_propagation_limit_on_its_onset() {
-    let tmp = tempfile::tempdir().unwrap();
-    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
-    let a = table_every(tmp.path(), "a", 1, &bearing, "4000.0", 10.0, (0.6, 4.0));
-    let b = table_every(tmp.path(), "b", 2, &bearing, "4000.0", 10.0, (0.6, 4.0));
-    let out = tmp.path().join("gap");
-    let o = gap(&a, &b, &out);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let revs = j["measured_revs"].as_f64().unwrap();
-    assert!((revs / ((N - 1) as f64 * 10.0 * 30.0) - 1.0).abs() < 1e-9);
+    let j = accelerated_life((0.6, 4.0));
     onsets_match(&j);
     doc_figure(&j, "propagation_passes", DOC_SHORT_PROPAGATION, 0.03);
     assert!(
@@ -376,21 +383,12 @@ fn an_accelerated_life_calibrates_its_propagation_limit_on_its_onset() {
 /// towards its least, and a finding says that the onset is not matched and why.
 #[test]
 fn a_late_onset_the_model_cannot_reach_is_reported_not_refused() {
-    let tmp = tempfile::tempdir().unwrap();
-    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
-    let a = table_every(tmp.path(), "a", 1, &bearing, "4000.0", 10.0, (0.9, 4.0));
-    let b = table_every(tmp.path(), "b", 2, &bearing, "4000.0", 10.0, (0.9, 4.0));
-    let out = tmp.path().join("gap");
-    let o = gap(&a, &b, &out);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let j = accelerated_life((0.9, 4.0));
     let m = j["measured_onset"].as_f64().unwrap();
     // 1 + 4((u − 0.9)/0.1)² reaches 1.15 at u = 0.919.
     assert!(m > 0.919 && m < 0.95, "measured onset {m}");
     let s = j["simulated_onset"].as_f64().unwrap();
     assert!(m - s > 0.05, "simulated onset {s} against {m}");
-    let revs = j["measured_revs"].as_f64().unwrap();
-    assert!((revs / ((N - 1) as f64 * 10.0 * 30.0) - 1.0).abs() < 1e-9);
     assert!(j["propagation_passes"].as_f64().unwrap() < 1e3);
     let f = findings(&j);
     assert!(
