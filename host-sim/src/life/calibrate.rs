@@ -157,7 +157,7 @@ pub struct ShapeCalibrated<T> {
 /// part before the onset (ISO 281 fatigue; the dent and crack stages it does not scale),
 /// the propagation limit `material.propagation_passes` the part after it (the spall's
 /// spawns, `wear::life`): steps on each part towards `u T` and `(1 − u) T`
-/// ([`next_scale`]: proportional first, `a ← a·(u T)/(u_s L)`, then secant), until both
+/// (`next_scale`: proportional first, `a ← a·(u T)/(u_s L)`, then secant), until both
 /// are within tolerance or after
 /// `max_steps`; then, if the length is still off (an onset out of reach), up to
 /// [`LENGTH_STEPS`] more with the propagation limit held and the part before the onset
