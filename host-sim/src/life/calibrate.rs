@@ -1,8 +1,8 @@
-//! Calibration of the life factor (the material's `life_factor`, which scales the fatigue
-//! part of a life) so that a simulated life lasts a measured number of revolutions.
+//! Calibration of a simulated life on a measured one.
 //!
-//! **Method** (the one used by every caller): secant steps on the part of the life the
-//! factor scales. With `F` the revolutions the factor does not scale (from crack opening to
+//! **The life factor alone** ([`calibrate`]; `wearsim ims-compare`, `ims-validate`, and
+//! `gap --life` on a training life without an onset): secant steps on the part of the life
+//! the factor scales. With `F` the revolutions the factor does not scale (from crack opening to
 //! failure, fixed physics) and `L` the simulated life at factor `a`, the next factor is
 //! `a · (T − F)/(L − F)` for the target `T`; the fatigue part is close to proportional to
 //! the factor, so the steps converge in a few lives. `F = 0` scales the whole life (a plain
@@ -10,6 +10,9 @@
 //! within 1 % after two or three steps. `wearsim ims-compare` takes `F` from its
 //! uncalibrated life. A step ratio is clamped to 1e-9..=1e6 so that a degenerate life
 //! cannot drive the factor to 0 or infinity.
+//!
+//! **The life factor and the propagation limit** ([`calibrate_shape`]; `gap --life` on a
+//! training life with an onset of instability): the length and the onset together.
 
 /// Most revolutions a calibrated life may run (far beyond any rating life: the cap only
 /// stops a life that would never fail).
@@ -158,17 +161,18 @@ pub struct ShapeCalibrated<T> {
 /// the propagation limit `material.propagation_passes` the part after it (the spall's
 /// spawns, `wear::life`): steps on each part towards `u T` and `(1 − u) T`
 /// (`next_scale`: proportional first, `a ← a·(u T)/(u_s L)`, then secant), until both
-/// are within tolerance or after
-/// `max_steps`; then, if the length is still off (an onset out of reach), up to
-/// [`LENGTH_STEPS`] more with the propagation limit held and the part before the onset
-/// aiming at what the part after it leaves, `a ← a·(T − (1 − u_s) L)/(u_s L)`: the length
-/// is matched, the onset comes earlier than measured. The caller judges the last life,
-/// which is returned either way. `first` is the shape and result at (1, `n_p0`); `run(a, n_p)` runs a life.
+/// are within tolerance or after `max_steps`; then, if the length is still off (an onset
+/// out of reach), up to [`LENGTH_STEPS`] more with the propagation limit held and the part
+/// before the onset aiming at what the part after it leaves,
+/// `a ← a·(T − (1 − u_s) L)/(u_s L)`: the length is matched, the onset comes earlier than
+/// measured. The caller judges the last life, which is returned either way. `first` is
+/// the shape and result at (1, `n_p0`); `run(a, n_p)` runs a life.
+///
 /// The propagation limit is the one constant of the wear model with neither a literature
-/// value nor a stress dependence confirmed by a source (`../shared/docs/life-physics-sources.md`
-/// §1), and its default was set on the thesis's reference bearing: a measured life says
-/// how long its bearing's spall grows, and this calibration reads that off the training
-/// life only.
+/// value nor a stress dependence confirmed by a source
+/// (`../shared/docs/life-physics-sources.md` §1), and its default was set on the thesis's
+/// reference bearing: a measured life says how long its bearing's spall grows, and this
+/// calibration reads that off the training life only.
 pub fn calibrate_shape<T, E>(
     target: f64,
     onset: f64,

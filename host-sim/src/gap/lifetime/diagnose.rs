@@ -374,16 +374,6 @@ pub struct Calibration {
     pub simulated_onset: Option<f64>,
 }
 
-/// Onset of instability of a measured life ([`crate::life::ims::onset`] of its RMS over
-/// its early-life median).
-pub fn measured_onset(l: &MeasuredLife) -> Option<f64> {
-    use crate::life::ims;
-    ims::onset(&ims::normalise(
-        l.points.iter().map(|p| p.t).collect(),
-        l.points.iter().map(|p| p.rms).collect(),
-    ))
-}
-
 /// Calibrates the scales of `m`'s simulated life on its training life ([`calibrate`]: its
 /// length and, when it has one, its onset of instability). A failure means the training
 /// life cannot be reached by the simulated one: a problem of the input, which the message
@@ -391,7 +381,7 @@ pub fn measured_onset(l: &MeasuredLife) -> Option<f64> {
 pub fn calibrated(m: &MeasuredSet, o: &LifeOptions) -> Result<Calibration, String> {
     let measured_revs = m.train.hours * 3600.0 * m.rig.shaft_hz;
     let site = failure_site(&m.train.failure_mode);
-    let measured_onset = measured_onset(&m.train);
+    let measured_onset = super::onset(&m.train.points);
     let c = calibrate(&m.rig, o.seed, measured_revs, measured_onset, site)?;
     Ok(Calibration {
         scales: c.scales,

@@ -129,6 +129,16 @@ impl LifePoint {
     }
 }
 
+/// Onset of instability of a life's snapshots, measured or simulated
+/// ([`crate::life::ims::onset`] of their RMS over its early-life median; fraction of life).
+pub fn onset(points: &[LifePoint]) -> Option<f64> {
+    use crate::life::ims;
+    ims::onset(&ims::normalise(
+        points.iter().map(|p| p.t).collect(),
+        points.iter().map(|p| p.rms).collect(),
+    ))
+}
+
 fn in_stage(p: &LifePoint, s: &LifeStage) -> bool {
     p.t >= s.lo && (p.t < s.hi || (s.hi >= 1.0 && p.t <= 1.0))
 }

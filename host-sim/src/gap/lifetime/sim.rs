@@ -11,7 +11,6 @@ use crate::gap::memo::Memo;
 use crate::life::calibrate::{
     calibrate as calibrate_life, calibrate_shape, steel_life_with, Secant, Shape,
 };
-use crate::life::ims;
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -225,7 +224,7 @@ const SHAPE_STEPS: usize = 12;
 
 /// Calibrates the simulated baseline life on the training life: its length `target`
 /// (revolutions) within 1 %, and, when the training life has an onset of instability
-/// `onset` (fraction of life, [`ims::onset`]), that onset within
+/// `onset` (fraction of life, [`super::onset`]), that onset within
 /// [`crate::life::calibrate::ONSET_TOLERANCE`] ([`calibrate_shape`]: the life factor scales
 /// the part before the onset, the propagation limit the part after it; the onset may stay
 /// off when the part after it cannot shrink to the measured one, which the report says;
@@ -245,17 +244,8 @@ pub fn calibrate(
     // The schedule needs an expected life; every run uses the target.
     let run = |sc: Scales| -> Result<(Shape, ()), String> {
         let (pts, life) = LifeSim::new(rig, sc, seed, target, site)?.run(&Effects::NONE)?;
-        let c = ims::normalise(
-            pts.iter().map(|p| p.t).collect(),
-            pts.iter().map(|p| p.rms).collect(),
-        );
-        Ok((
-            Shape {
-                life,
-                onset: ims::onset(&c),
-            },
-            (),
-        ))
+        let onset = super::onset(&pts);
+        Ok((Shape { life, onset }, ()))
     };
     let first = run(steel)?;
     if let Some(u) = onset {
