@@ -18,6 +18,43 @@
 /// stops a life that would never fail).
 pub const CALIBRATED_CAP: f64 = 1e13;
 
+/// The two scales of a simulated life that a measured life calibrates ([`calibrate_shape`];
+/// [`calibrate`] sets the first alone).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    /// `material.life_factor` (–): scales the ISO 281 fatigue part of the life.
+    pub life_factor: f64,
+    /// `material.propagation_passes` (passes): the propagation limit of the spall's spawns,
+    /// the part of the life after its onset.
+    pub propagation_passes: f64,
+}
+
+impl Scales {
+    /// The material's defaults ([`wearsim_core::wear::Material::BEARING_STEEL`]).
+    pub fn steel() -> Scales {
+        let m = wearsim_core::wear::Material::BEARING_STEEL;
+        Scales {
+            life_factor: m.life_factor,
+            propagation_passes: m.propagation_passes,
+        }
+    }
+}
+
+impl Scales {
+    /// The wear configuration of bearing steel at these scales ([`steel_life_with`]).
+    pub fn life(&self) -> wearsim_core::wear::LifeConfig {
+        steel_life_with(self.life_factor, self.propagation_passes)
+    }
+
+    /// The material's propagation limit with `life_factor`.
+    pub fn with_factor(life_factor: f64) -> Scales {
+        Scales {
+            life_factor,
+            ..Scales::steel()
+        }
+    }
+}
+
 /// The life configuration of bearing steel with its fatigue scaled by `life_factor` (the
 /// one parameter the callers calibrate), the default tribology, and [`CALIBRATED_CAP`].
 pub fn steel_life(life_factor: f64) -> wearsim_core::wear::LifeConfig {
@@ -166,7 +203,7 @@ pub struct ShapeCalibrated<T> {
 /// before the onset aiming at what the part after it leaves,
 /// `a ← a·(T − (1 − u_s) L)/(u_s L)`: the length is matched, the onset comes earlier than
 /// measured. The caller judges the last life, which is returned either way. `first` is
-/// the shape and result at (1, `n_p0`); `run(a, n_p)` runs a life.
+/// the shape and result at the scales `start`; `run(a, n_p)` runs a life.
 ///
 /// The propagation limit is the one constant of the wear model with neither a literature
 /// value nor a stress dependence confirmed by a source
@@ -176,7 +213,7 @@ pub struct ShapeCalibrated<T> {
 pub fn calibrate_shape<T, E>(
     target: f64,
     onset: f64,
-    n_p0: f64,
+    start: Scales,
     first: (Shape, T),
     max_steps: usize,
     mut run: impl FnMut(f64, f64) -> Result<(Shape, T), E>,
@@ -187,7 +224,7 @@ pub fn calibrate_shape<T, E>(
                 .is_some_and(|u| (u - onset).abs() <= ONSET_TOLERANCE)
     };
     let (mut shape, mut last) = first;
-    let (mut a, mut n_p) = (1.0, n_p0);
+    let (mut a, mut n_p) = (start.life_factor, start.propagation_passes);
     let mut steps = 0;
     let min_factor = wearsim_core::wear::material::MIN_LIFE_FACTOR;
     let split = |s: &Shape| {
@@ -268,6 +305,35 @@ mod tests {
         assert!((c.life / target - 1.0).abs() < TOLERANCE);
     }
 
+    /// The scales of the model lives' first run.
+    const START: Scales = Scales {
+        life_factor: 1.0,
+        propagation_passes: 1.5e7,
+    };
+
+    /// The steps start from the scales of the first life, whatever they are: a life whose
+    /// parts are proportional to their scales lands in one step from the material's own
+    /// factor (4.3·10⁻⁴), as it does from 1. A step taken as if the first life had run at
+    /// factor 1 overshoots by 1/4.3·10⁻⁴ and needs more.
+    #[test]
+    fn the_first_step_is_proportional_from_the_first_lifes_scales() {
+        let shape = |a: f64, n_p: f64| {
+            let (pre, post) = (a * 1.0e7, n_p / 1.5e7 * 4.0e6);
+            Shape {
+                life: pre + post,
+                onset: Some(pre / (pre + post)),
+            }
+        };
+        let run = |a: f64, n_p: f64| -> Result<(Shape, ()), ()> { Ok((shape(a, n_p), ())) };
+        for start in [START, Scales::steel()] {
+            let (a0, n0) = (start.life_factor, start.propagation_passes);
+            let c = calibrate_shape(3.0e4, 0.6, start, (shape(a0, n0), ()), 12, run).unwrap();
+            assert_eq!(c.steps, 1, "{start:?}: {c:?}");
+            assert!((c.factor - 1.8e-3).abs() < 1e-12, "{c:?}");
+            assert!((c.propagation_passes - 45_000.0).abs() < 1e-6, "{c:?}");
+        }
+    }
+
     /// A model life: the part before the onset `a·F + C` (fatigue scaled by the factor,
     /// crack stages fixed), after it `N_p·P + D` (spawns scaled by the limit, the crack
     /// growth after the first spall fixed).
@@ -284,7 +350,7 @@ mod tests {
         let run = |a: f64, n_p: f64| -> Result<(Shape, ()), ()> { Ok((model(a, n_p), ())) };
         for (target, onset) in [(4.0e7, 0.69), (1.2e5, 0.6), (3.0e9, 0.9)] {
             let c =
-                calibrate_shape(target, onset, 1.5e7, (model(1.0, 1.5e7), ()), 12, run).unwrap();
+                calibrate_shape(target, onset, START, (model(1.0, 1.5e7), ()), 12, run).unwrap();
             assert!(
                 (c.shape.life / target - 1.0).abs() < TOLERANCE,
                 "{target}: {c:?}"
@@ -300,7 +366,7 @@ mod tests {
     fn a_late_onset_out_of_reach_still_matches_the_length() {
         let run = |a: f64, n_p: f64| -> Result<(Shape, ()), ()> { Ok((model(a, n_p), ())) };
         let (target, onset) = (1.2e5, 0.95); // 6·10³ after the onset, D = 10⁴
-        let c = calibrate_shape(target, onset, 1.5e7, (model(1.0, 1.5e7), ()), 12, run).unwrap();
+        let c = calibrate_shape(target, onset, START, (model(1.0, 1.5e7), ()), 12, run).unwrap();
         assert!(c.propagation_passes < 1e3, "{c:?}");
         assert!((c.shape.life / target - 1.0).abs() < TOLERANCE, "{c:?}");
         assert!(c.shape.onset.unwrap() < onset - 0.02, "{c:?}");

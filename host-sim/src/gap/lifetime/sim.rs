@@ -8,6 +8,7 @@ use super::{LifePoint, EARLY_T_MAX};
 use crate::analysis;
 use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
+pub use crate::life::calibrate::Scales;
 use crate::life::calibrate::{
     calibrate as calibrate_life, calibrate_shape, steel_life_with, Secant, Shape,
 };
@@ -185,27 +186,6 @@ pub fn failure_site(mode: &str) -> Option<DefectLocation> {
     }
 }
 
-/// The two scales of a simulated life that a measured training life calibrates.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Scales {
-    /// `material.life_factor` (–): scales the ISO 281 fatigue part of the life.
-    pub life_factor: f64,
-    /// `material.propagation_passes` (passes): the propagation limit of the spall's spawns,
-    /// the part of the life after its onset.
-    pub propagation_passes: f64,
-}
-
-impl Scales {
-    /// The material's defaults ([`wearsim_core::wear::Material::BEARING_STEEL`]).
-    pub fn steel() -> Scales {
-        let m = wearsim_core::wear::Material::BEARING_STEEL;
-        Scales {
-            life_factor: m.life_factor,
-            propagation_passes: m.propagation_passes,
-        }
-    }
-}
-
 /// A calibrated simulated life.
 #[derive(Debug, Clone, Copy)]
 pub struct Calibrated {
@@ -240,7 +220,9 @@ pub fn calibrate(
     onset: Option<f64>,
     site: Option<DefectLocation>,
 ) -> Result<Calibrated, String> {
-    let steel = Scales::steel();
+    // The first life: ISO 281 fatigue at factor 1 and the material's propagation limit,
+    // the scales both calibrations step from.
+    let steel = Scales::with_factor(1.0);
     // The schedule needs an expected life; every run uses the target.
     let run = |sc: Scales| -> Result<(Shape, ()), String> {
         let (pts, life) = LifeSim::new(rig, sc, seed, target, site)?.run(&Effects::NONE)?;
@@ -249,19 +231,12 @@ pub fn calibrate(
     };
     let first = run(steel)?;
     if let Some(u) = onset {
-        let c = calibrate_shape(
-            target,
-            u,
-            steel.propagation_passes,
-            first,
-            SHAPE_STEPS,
-            |a, n_p| {
-                run(Scales {
-                    life_factor: a,
-                    propagation_passes: n_p,
-                })
-            },
-        )?;
+        let c = calibrate_shape(target, u, steel, first, SHAPE_STEPS, |a, n_p| {
+            run(Scales {
+                life_factor: a,
+                propagation_passes: n_p,
+            })
+        })?;
         if (c.shape.life / target - 1.0).abs() > 0.05 {
             // Most likely too short for the crack stages, which neither scale shortens:
             // say how long the training life must be.
