@@ -11,7 +11,9 @@
 //! the timeline is not fitted.
 
 use super::ims::{distance_db, distance_db_mean_abs, onset, Curve};
-use super::ims_validate::{calibrate_on, read_record, revs_per_hour, Feature, RECORDS};
+use super::ims_validate::{
+    calibrate_on, read_record, revs_per_hour, Calibration, Feature, RECORDS,
+};
 use serde::Serialize;
 use std::path::Path;
 
@@ -55,7 +57,7 @@ pub fn compare(data: &Path, seed: u64) -> Result<ImsComparison, String> {
         .find(|r| r.id == "t2b1")
         .ok_or("the IMS test 2 bearing 1 record is missing")?;
     let m = read_record(data, record)?;
-    let c = calibrate_on(&m, seed)?;
+    let c = calibrate_on(&m, seed, Calibration::Length)?;
     let simulated = c.life.curve(Feature::Rms);
     let measured = m.curve;
     let (om, os) = (onset(&measured), onset(&simulated));
@@ -72,7 +74,7 @@ pub fn compare(data: &Path, seed: u64) -> Result<ImsComparison, String> {
         measured_life_h: m.running_h,
         measured_life_revs: m.running_h * revs_per_hour(),
         uncalibrated_life_revs: c.uncalibrated_life,
-        life_factor: c.factor,
+        life_factor: c.scales.life_factor,
         simulated_life_revs: c.life.life,
         stages: c.life.stages,
         measured,

@@ -230,7 +230,7 @@ fn population(
         |i| {
             simulate(
                 site,
-                factor,
+                Scales::with_factor(factor),
                 seeds.get(i).copied().unwrap_or(0),
                 expected,
                 0.0,
@@ -269,19 +269,6 @@ fn calibrate_population(
     Ok((c.factor, c.last, c.steps + 1))
 }
 
-/// A curve on hours before failure, mapped to `1 − h / span` so that the fraction-of-life
-/// tools read it (0 = `span` hours before failure, 1 = failure).
-fn on_hours(c: &Curve, life_h: f64, span: f64) -> Curve {
-    let t =
-        c.t.iter()
-            .map(|t| 1.0 - (1.0 - t) * life_h / span)
-            .collect();
-    Curve {
-        t,
-        rms: c.rms.clone(),
-    }
-}
-
 /// Coverage of `meas` by the pointwise band of `sims` over the common grid, and the
 /// pointwise median curve of `sims` on that grid.
 fn band_figures(meas: &Curve, sims: &[Curve]) -> (f64, Curve) {
@@ -307,7 +294,10 @@ fn band_figures(meas: &Curve, sims: &[Curve]) -> (f64, Curve) {
 
 /// The figures of record `m` against population `pop` (its own site, one factor).
 pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> EnsembleLife {
-    let figs: Vec<LifeFigures> = pop.iter().map(|s| figures(m, s, role)).collect();
+    let figs: Vec<LifeFigures> = pop
+        .iter()
+        .map(|s| figures(m, s, role, Frame::Life))
+        .collect();
     let curves: Vec<Curve> = pop.iter().map(|s| s.curve(m.record.feature)).collect();
     let span = m.running_h;
     let hours: Vec<Curve> = curves

@@ -2,6 +2,7 @@
 //! simulated life against a measured one.
 
 use super::*;
+use crate::life::ims::GRID;
 
 /// Share of life at the end whose median is the end level (–).
 pub const END_SHARE: f64 = 0.05;
@@ -15,13 +16,15 @@ pub struct LifeFigures {
     pub role: String,
     /// Onset, fraction of the record.
     pub onset_measured: Option<f64>,
-    /// Onset, fraction of the simulated life.
+    /// Onset, fraction of the simulated life ([`Frame::Life`]) or of the record
+    /// ([`Frame::Record`]).
     pub onset_simulated: Option<f64>,
     /// |simulated − measured| onset (fraction).
     pub onset_error: Option<f64>,
     /// Running hours from onset to the end of the record.
     pub onset_to_failure_h_measured: Option<f64>,
-    /// Hours (at 2000 rpm) from the simulated onset to failure.
+    /// Hours (at 2000 rpm) from the simulated onset to failure (on [`Frame::Record`], an
+    /// onset before the simulated life's start reads as the record's start).
     pub onset_to_failure_h_simulated: Option<f64>,
     /// Trajectory distance (dB RMS).
     pub distance_db_rms: f64,
@@ -62,9 +65,61 @@ pub fn end_level(c: &Curve) -> f64 {
     )
 }
 
-/// The figures of simulated life `s` against measured `m`.
-pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str) -> LifeFigures {
-    let sc = s.curve(m.record.feature);
+/// A curve on hours before failure, mapped to `1 − h / span` so that the fraction-of-life
+/// tools read it (0 = `span` hours before failure, 1 = failure); `life_h` is the hours of
+/// the life `c` spans from 0 to 1. Points before the span's start keep their place (t < 0).
+pub fn on_hours(c: &Curve, life_h: f64, span: f64) -> Curve {
+    let t =
+        c.t.iter()
+            .map(|t| 1.0 - (1.0 - t) * life_h / span)
+            .collect();
+    Curve {
+        t,
+        rms: c.rms.clone(),
+    }
+}
+
+/// Normalised curve `c` of a life of `life_h` hours on a record of `span_h` running hours
+/// that ends at the same failure ([`Frame::Record`]): [`on_hours`], cut at the record's
+/// start; a life shorter than the record is read at its own steady level (1 on `c`, the
+/// median of its first half) before its start, at its own window spacing (at least
+/// [`GRID`] points' worth), so that the record's first half has a steady band to test
+/// the onset against; then normalised again on the record's first half.
+pub fn on_record(c: &Curve, life_h: f64, span_h: f64) -> Curve {
+    let h = on_hours(c, life_h, span_h);
+    let (mut t, mut v): (Vec<f64>, Vec<f64>) =
+        h.t.iter()
+            .zip(&h.rms)
+            .filter(|(t, _)| **t >= 0.0)
+            .map(|(t, v)| (*t, *v))
+            .unzip();
+    let start = t.first().copied().unwrap_or(1.0);
+    if start > 0.0 {
+        let spacing = t
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min)
+            .max(start / GRID as f64);
+        let n = ((start / spacing).ceil() as usize).clamp(1, 100 * GRID);
+        let mut pt: Vec<f64> = (0..n).map(|i| start * i as f64 / n as f64).collect();
+        let mut pv = vec![1.0; n];
+        pt.append(&mut t);
+        pv.append(&mut v);
+        (t, v) = (pt, pv);
+    }
+    normalise(t, v)
+}
+
+/// The figures of simulated life `s` against measured `m` on time line `frame`.
+pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str, frame: Frame) -> LifeFigures {
+    let life_h = s.life / revs_per_hour();
+    let (sc, span_h) = match frame {
+        Frame::Life => (s.curve(m.record.feature), life_h),
+        Frame::Record => (
+            on_record(&s.curve(m.record.feature), life_h, m.running_h),
+            m.running_h,
+        ),
+    };
     let sc_raw = match m.record.feature {
         Feature::Rms => &s.rms,
         Feature::MeanAbs => &s.mean_abs,
@@ -79,7 +134,7 @@ pub fn figures(m: &MeasuredRecord, s: &SimLife, role: &str) -> LifeFigures {
         onset_simulated: os,
         onset_error: om.zip(os).map(|(a, b)| (a - b).abs()),
         onset_to_failure_h_measured: om.map(|o| (1.0 - o) * m.running_h),
-        onset_to_failure_h_simulated: os.map(|o| (1.0 - o) * s.life / revs_per_hour()),
+        onset_to_failure_h_simulated: os.map(|o| (1.0 - o) * span_h),
         distance_db_rms: distance_db(&sc, &m.curve),
         end_ratio_measured: em,
         end_ratio_simulated: es,
@@ -108,5 +163,45 @@ pub(super) fn median(mut v: Vec<f64>) -> f64 {
         v[n / 2]
     } else {
         0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A life of `life_h` hours at level 1 that steps to 5 at `onset` of its life, one
+    /// window every 1 % of life.
+    fn stepped(onset: f64) -> Curve {
+        let t: Vec<f64> = (1..=100).map(|i| i as f64 / 100.0).collect();
+        let r = t
+            .iter()
+            .map(|t| if *t >= onset { 5.0 } else { 1.0 })
+            .collect();
+        normalise(t, r)
+    }
+
+    /// Aligned at failure, the hours from onset to failure carry over: a 100 h life that
+    /// climbs 20 h before failure reads on a 400 h record as an onset at 1 − 20/400, on an
+    /// 80 h record (the life cut at the record's start) at 1 − 20/80; the steady level
+    /// before a short life's start is its own, so the record's normalisation stays 1.
+    #[test]
+    fn a_life_on_the_record_keeps_its_hours_before_failure() {
+        let c = stepped(0.8);
+        for (span, want) in [(400.0, 0.95), (80.0, 0.75), (100.0, 0.8)] {
+            let r = on_record(&c, 100.0, span);
+            assert_eq!(r.t.first().copied(), Some(0.0), "{span}");
+            assert_eq!(r.t.last().copied(), Some(1.0), "{span}");
+            assert!(r.t.windows(2).all(|w| w[1] > w[0]), "{span}");
+            let o = onset(&r).unwrap();
+            // One window of the life (1 h) on the record's scale.
+            assert!((o - want).abs() <= 1.0 / span + 1e-12, "{span}: {o}");
+            assert_eq!(r.rms.last().copied(), Some(5.0), "{span}");
+            assert_eq!(end_level(&r), 5.0, "{span}");
+        }
+        // The part of a long record before a short life is read at the life's steady level.
+        let r = on_record(&c, 100.0, 400.0);
+        assert!(r.t.iter().zip(&r.rms).all(|(t, v)| *t >= 0.95 || *v == 1.0));
+        assert!(r.t.iter().filter(|t| **t < 0.75).count() >= 100);
     }
 }

@@ -49,7 +49,7 @@ pub use floor::*;
 pub use record::*;
 pub use sim::*;
 
-use super::calibrate::{calibrate, Secant};
+use super::calibrate::{calibrate, calibrate_shape, Scales, Secant, Shape};
 use super::ims::{distance_db, normalise, onset, Curve};
 use super::{AtCap, LifeError, LifeRun, LifeSpec};
 use crate::io::ims::{read_ims_features, IMS_RPM};
@@ -66,6 +66,11 @@ pub struct Fold {
     pub calibrated_on: String,
     /// Calibrated `material.life_factor`.
     pub life_factor: f64,
+    /// `material.propagation_passes` of the fold's lives: calibrated with
+    /// [`Calibration::Shape`], the material's otherwise.
+    pub propagation_passes: f64,
+    /// What was calibrated.
+    pub calibrated: Calibration,
     /// Measurement floor (m/s² RMS, white), calibrated on the calibration life's end
     /// ratio, or 0 (bearing only).
     pub floor: f64,
@@ -125,23 +130,38 @@ pub fn medians(h: &[LifeFigures]) -> Medians {
 /// ratio, its normalised curve against `m`'s). A model calibrated on `cal` adds something
 /// only where it does better than this on the held-out lives: a persistence baseline, as
 /// forecasts are judged against the forecast "as last observed".
-pub fn copy_calibration(cal: &MeasuredRecord, m: &MeasuredRecord) -> (Option<f64>, f64, f64) {
+/// On [`Frame::Record`] the calibration life's curve is carried on running hours before
+/// failure ([`on_record`]), as a simulated life is.
+pub fn copy_calibration(
+    cal: &MeasuredRecord,
+    m: &MeasuredRecord,
+    frame: Frame,
+) -> (Option<f64>, f64, f64) {
+    let pred = match frame {
+        Frame::Life => cal.curve.clone(),
+        Frame::Record => on_record(&cal.curve, cal.running_h, m.running_h),
+    };
     let onset_error = onset(&m.curve)
-        .zip(onset(&cal.curve))
+        .zip(onset(&pred))
         .map(|(a, b)| (a - b).abs());
     let last = |c: &Curve| c.rms.last().copied().unwrap_or(1.0);
     (
         onset_error,
-        last(&cal.curve) / last(&m.curve),
-        distance_db(&cal.curve, &m.curve),
+        last(&pred) / last(&m.curve),
+        distance_db(&pred, &m.curve),
     )
 }
 
 /// [`Medians`] of [`copy_calibration`] over the pairs (calibration life, held-out life)
 /// `pairs`.
-pub fn copy_calibration_medians(pairs: &[(&MeasuredRecord, &MeasuredRecord)]) -> Medians {
-    let v: Vec<(Option<f64>, f64, f64)> =
-        pairs.iter().map(|(c, m)| copy_calibration(c, m)).collect();
+pub fn copy_calibration_medians(
+    pairs: &[(&MeasuredRecord, &MeasuredRecord)],
+    frame: Frame,
+) -> Medians {
+    let v: Vec<(Option<f64>, f64, f64)> = pairs
+        .iter()
+        .map(|(c, m)| copy_calibration(c, m, frame))
+        .collect();
     Medians::of(
         v.iter().map(|x| x.0.unwrap_or(1.0)).collect(),
         v.iter().map(|x| x.1).collect(),
@@ -188,14 +208,14 @@ pub fn validate_seeds(
     recs: &[MeasuredRecord],
     seeds: std::ops::RangeInclusive<u64>,
     all: bool,
-    mode: FloorMode,
+    p: Protocol,
 ) -> Result<Vec<Validation>, String> {
     let seeds: Vec<u64> = seeds.collect();
     super::parallel::map_indexed(
         seeds.len(),
         super::parallel::default_threads(),
         |i| match seeds.get(i) {
-            Some(&s) => validate_records(recs, s, all, mode),
+            Some(&s) => validate_records(recs, s, all, p),
             None => Err("no such seed".into()),
         },
         &|_| {},
@@ -230,6 +250,10 @@ pub struct Validation {
     pub seed: u64,
     /// How the measurement floor was set.
     pub floor_mode: FloorMode,
+    /// What each fold calibrated (asked for; each fold says what it did).
+    pub calibration: Calibration,
+    /// The time line of the figures.
+    pub frame: Frame,
     /// The measured lives.
     pub records: Vec<MeasuredRecordSummary>,
     /// One fold per calibration life; the first (test 2 bearing 1) is the primary protocol,
@@ -269,60 +293,167 @@ pub fn read_records(data: &Path) -> Result<Vec<MeasuredRecord>, String> {
 }
 
 /// Reads every record, then validates ([`validate_records`]).
-pub fn validate(data: &Path, seed: u64, all: bool, mode: FloorMode) -> Result<Validation, String> {
-    validate_records(&read_records(data)?, seed, all, mode)
+pub fn validate(data: &Path, seed: u64, all: bool, p: Protocol) -> Result<Validation, String> {
+    validate_records(&read_records(data)?, seed, all, p)
+}
+
+/// What a fold calibrates on its calibration life.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Calibration {
+    /// `material.life_factor` alone, on the running revolutions (secant steps with the
+    /// crack-to-failure part held fixed, [`calibrate`]).
+    Length,
+    /// The life factor and the propagation limit `material.propagation_passes` together, on
+    /// the running revolutions and the measured onset of instability ([`calibrate_shape`]:
+    /// the part before the onset and the running hours after it). The propagation limit
+    /// is the wear model's one constant with neither a literature value nor a confirmed
+    /// stress dependence (`shared/docs/life-physics-sources.md` §1); a measured life says
+    /// how long its spall grows. A calibration life without an onset falls back to
+    /// `length`, which the fold's `calibration` records.
+    Shape,
+}
+
+/// The time line on which a simulated life is judged against a measured record.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Frame {
+    /// The simulated life on its own fraction of life against the record's fraction of
+    /// record: both start at 0 and fail at 1.
+    Life,
+    /// The simulated life on the record's running time, aligned at failure: the record's
+    /// end is the failure, its start is where the measurement began, which need not be a
+    /// new bearing (IMS test 2 ran 1.96·10⁷ revolutions against the readme's "more than
+    /// 100 million"). The simulated window `h` running hours before its failure sits at
+    /// `1 − h / record hours`; a simulated life shorter than the record is read at its own
+    /// steady level before its start ([`on_record`]), a longer one is cut at the record's
+    /// start. Only the failure is a shared reference point, so the onset, the hours after
+    /// it and the climb are compared where the record can support them.
+    Record,
+}
+
+/// How a validation is run: the calibration, the time line of the figures and the
+/// measurement floor.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Protocol {
+    /// What each fold calibrates.
+    pub calibration: Calibration,
+    /// The time line of the figures.
+    pub frame: Frame,
+    /// How the measurement floor is set.
+    pub floor: FloorMode,
+}
+
+impl Protocol {
+    /// The validation as it ran before the shape calibration and the record frame: the
+    /// life factor alone, fraction of life, the bearing alone.
+    pub const LENGTH_ON_LIFE: Protocol = Protocol {
+        calibration: Calibration::Length,
+        frame: Frame::Life,
+        floor: FloorMode::None,
+    };
 }
 
 /// A simulated life calibrated on a measured one.
 #[derive(Debug, Clone)]
 pub struct Calibrated {
-    /// Calibrated `material.life_factor`.
-    pub factor: f64,
+    /// Calibrated scales (`material.life_factor`, and with [`Calibration::Shape`]
+    /// `material.propagation_passes`; otherwise the material's).
+    pub scales: Scales,
+    /// What was calibrated ([`Calibration::Length`] also when `Shape` was asked for a
+    /// calibration life without an onset).
+    pub calibration: Calibration,
     /// Revolutions to failure of the uncalibrated life (ISO 281 fatigue, factor 1).
     pub uncalibrated_life: f64,
-    /// The simulated life at `factor` (bearing only, no floor).
+    /// The simulated life at `scales` (bearing only, no floor).
     pub life: SimLife,
 }
 
-/// Calibrates `material.life_factor` on the running revolutions of `cal` (secant steps of
-/// [`super::calibrate`] on the part of life the factor scales), simulating on the site of
-/// its failure.
-pub fn calibrate_on(cal: &MeasuredRecord, seed: u64) -> Result<Calibrated, String> {
+/// Most lives [`Calibration::Shape`] runs after its first (both scales, then the length).
+pub const SHAPE_STEPS: usize = 12;
+
+/// Calibrates on the running revolutions of `cal` (and with [`Calibration::Shape`] on its
+/// measured onset), simulating on the site of its failure: [`Calibration`] says how.
+pub fn calibrate_on(
+    cal: &MeasuredRecord,
+    seed: u64,
+    how: Calibration,
+) -> Result<Calibrated, String> {
     let target = cal.running_h * revs_per_hour();
     let site = cal.record.site;
-    let first = simulate(site, 1.0, seed, 5e8, 0.0)?;
+    // The uncalibrated life: ISO 281 fatigue at factor 1, the material's propagation limit.
+    let start = Scales::with_factor(1.0);
+    let first = simulate(site, start, seed, 5e8, 0.0)?;
     let uncalibrated_life = first.life;
+    let feature = cal.record.feature;
+    if let (Calibration::Shape, Some(u)) = (how, onset(&cal.curve)) {
+        let shape = |s: &SimLife| Shape {
+            life: s.life,
+            onset: onset(&s.curve(feature)),
+        };
+        let c = calibrate_shape(
+            target,
+            u,
+            start,
+            (shape(&first), first),
+            SHAPE_STEPS,
+            |a, n_p| {
+                let s = simulate(
+                    site,
+                    Scales {
+                        life_factor: a,
+                        propagation_passes: n_p,
+                    },
+                    seed,
+                    target,
+                    0.0,
+                )?;
+                Ok::<_, String>((shape(&s), s))
+            },
+        )?;
+        return Ok(Calibrated {
+            scales: Scales {
+                life_factor: c.factor,
+                propagation_passes: c.propagation_passes,
+            },
+            calibration: Calibration::Shape,
+            uncalibrated_life,
+            life: c.last,
+        });
+    }
     let step = Secant {
         fixed: first.fixed,
         min_steps: 1,
         max_steps: 6,
     };
     let c = calibrate(target, (first.life, first), &step, |a| {
-        let s = simulate(site, a, seed, target, 0.0)?;
+        let s = simulate(site, Scales::with_factor(a), seed, target, 0.0)?;
         Ok::<_, String>((s.life, s))
     })?;
     Ok(Calibrated {
-        factor: c.factor,
+        scales: Scales::with_factor(c.factor),
+        calibration: Calibration::Length,
         uncalibrated_life,
         life: c.last,
     })
 }
 
 /// For each calibration life (all of them when `all`, else only the first, test 2
-/// bearing 1) calibrates `life_factor` on its running revolutions and sets the floor by
-/// `mode`, then judges the others.
+/// bearing 1) calibrates as `p.calibration` says and sets the floor by `p.floor`, then
+/// judges the others on `p.frame`.
 pub fn validate_records(
     recs: &[MeasuredRecord],
     seed: u64,
     all: bool,
-    mode: FloorMode,
+    p: Protocol,
 ) -> Result<Validation, String> {
+    let mode = p.floor;
     let mut folds = vec![];
     let mut copies: Vec<(&MeasuredRecord, &MeasuredRecord)> = vec![];
     let n_cal = if all { recs.len() } else { 1 };
     for cal in recs.iter().take(n_cal) {
         let site = cal.record.site;
-        let c = calibrate_on(cal, seed)?;
+        let c = calibrate_on(cal, seed, p.calibration)?;
         let floor = match mode {
             FloorMode::Calibrated => {
                 floor_for_end_ratio(&c.life, cal.curve.rms.last().copied().unwrap_or(1.0))
@@ -335,20 +466,20 @@ pub fn validate_records(
             let bare = if m.record.site == site {
                 c.life.clone()
             } else {
-                simulate(m.record.site, c.factor, seed, c.life.life, 0.0)?
+                simulate(m.record.site, c.scales, seed, c.life.life, 0.0)?
             };
             let f = match mode {
                 FloorMode::Measured { units_per_ms2 } => measured_floor(m, &bare, units_per_ms2),
                 _ => floor,
             };
             if f > 0.0 {
-                Ok((simulate(m.record.site, c.factor, seed, c.life.life, f)?, f))
+                Ok((simulate(m.record.site, c.scales, seed, c.life.life, f)?, f))
             } else {
                 Ok((bare, 0.0))
             }
         };
         let (own, f) = run(cal)?;
-        let mut calibration = figures(cal, &own, "calibration");
+        let mut calibration = figures(cal, &own, "calibration", p.frame);
         calibration.floor = f;
         let mut held_out = vec![];
         let others: Vec<&MeasuredRecord> = recs
@@ -360,17 +491,19 @@ pub fn validate_records(
         copies.extend(pairs.iter().copied());
         for m in others {
             let (s, f) = run(m)?;
-            let mut fig = figures(m, &s, "held-out");
+            let mut fig = figures(m, &s, "held-out", p.frame);
             fig.floor = f;
             held_out.push(fig);
         }
         folds.push(Fold {
             calibrated_on: cal.record.id.into(),
-            life_factor: c.factor,
+            life_factor: c.scales.life_factor,
+            propagation_passes: c.scales.propagation_passes,
+            calibrated: c.calibration,
             floor,
             calibration,
             median: medians(&held_out),
-            copy_calibration: copy_calibration_medians(&pairs),
+            copy_calibration: copy_calibration_medians(&pairs, p.frame),
             held_out,
         });
     }
@@ -378,6 +511,8 @@ pub fn validate_records(
     Ok(Validation {
         seed,
         floor_mode: mode,
+        calibration: p.calibration,
+        frame: p.frame,
         records: recs
             .iter()
             .map(|m| MeasuredRecordSummary {
@@ -390,7 +525,7 @@ pub fn validate_records(
             })
             .collect(),
         leave_one_out: medians(&all_held),
-        leave_one_out_copy: copy_calibration_medians(&copies),
+        leave_one_out_copy: copy_calibration_medians(&copies, p.frame),
         folds,
         over_seeds: None,
     })

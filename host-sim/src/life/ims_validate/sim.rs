@@ -54,13 +54,13 @@ pub fn model_on(site: Site) -> Result<wearsim_core::ModelConfig, String> {
     Ok(m)
 }
 
-/// Runs a life on `site` at `life_factor`, a window every `expected / SIM_SNAPSHOTS`
+/// Runs a life on `site` at `scales` (life factor and propagation limit), a window every `expected / SIM_SNAPSHOTS`
 /// revolutions, with a measurement floor of white noise of RMS `floor` (m/s², the
 /// `sensor` effect's `noise`; 0 = the bearing's own vibration only). The floor is
 /// independent of the model's random stream, so it leaves the wear history unchanged.
 pub fn simulate(
     site: Site,
-    life_factor: f64,
+    scales: Scales,
     seed: u64,
     expected: f64,
     floor: f64,
@@ -77,7 +77,7 @@ pub fn simulate(
     }
     let spec = LifeSpec {
         model,
-        life: crate::life::calibrate::steel_life(life_factor),
+        life: scales.life(),
         seed,
         snapshot_every: (expected / SIM_SNAPSHOTS).max(1000.0),
         window: 0.25,
