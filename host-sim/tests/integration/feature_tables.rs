@@ -665,3 +665,42 @@ fn gap_life_gives_the_same_result_on_both_formats() -> Result<(), Box<dyn std::e
     assert!(x == y, "the diagnoses differ");
     Ok(())
 }
+
+/// `scripts/ims-test1-tables.py` writes IMS test 1 bearings 3 and 4 (channel x) as
+/// documented tables that the reader accepts, on the running time `ims-validate` reads
+/// test 1 on (stops of the rig counted as one median interval): the same 345 running hours,
+/// every snapshot, each bearing's failure site from the IMS readme.
+#[test]
+fn ims_test1_becomes_two_documented_tables_on_running_time(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let Some(data) = wearsim_host::io::data_dir()? else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return Ok(());
+    };
+    let tmp = tempfile::tempdir()?;
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scripts/ims-test1-tables.py");
+    let o = std::process::Command::new("python3")
+        .arg(&script)
+        .arg(&data)
+        .arg(tmp.path())
+        .output()?;
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let recs = wearsim_host::life::ims_validate::read_records(&data)?;
+    let t1 = recs.iter().find(|m| m.record.id == "t1b3").expect("t1b3");
+    for (b, mode) in [(3, "inner-race"), (4, "rolling-element")] {
+        let t = read_feature_table(&tmp.path().join(format!("test1_b{b}x.csv")))?;
+        assert_eq!(t.rows.len(), 2156, "bearing {b}");
+        assert_eq!(t.sidecar.failure_mode, mode);
+        let h = t.rows.last().map_or(0.0, |r| r.time_s) / 3600.0;
+        assert!(
+            (h - t1.running_h).abs() < 0.01,
+            "bearing {b}: {h} h vs {}",
+            t1.running_h
+        );
+        // Kurtosis written as m4/m2² (the feature table's), not excess: a healthy
+        // bearing's is near 3.
+        let k = t.rows.get(100).map_or(0.0, |r| r.kurtosis);
+        assert!((2.5..5.0).contains(&k), "bearing {b}: kurtosis {k}");
+    }
+    Ok(())
+}
