@@ -38,9 +38,7 @@ impl Scales {
             propagation_passes: m.propagation_passes,
         }
     }
-}
 
-impl Scales {
     /// The wear configuration of bearing steel at these scales ([`steel_life_with`]).
     pub fn life(&self) -> wearsim_core::wear::LifeConfig {
         steel_life_with(self.life_factor, self.propagation_passes)

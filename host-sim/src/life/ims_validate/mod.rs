@@ -33,9 +33,14 @@
 //! * *life ratio* — simulated revolutions to failure over the measured running
 //!   revolutions (the time base carried over from the calibration life).
 //!
-//! **Calibrated**: `material.life_factor` only, by the secant steps of
-//! [`super::calibrate`] on the calibration life's running revolutions. Everything else is
-//! the model's physics and is not refitted per life.
+//! **Calibrated** ([`Calibration`]): `material.life_factor` by the secant steps of
+//! [`super::calibrate`] on the calibration life's running revolutions, or with
+//! [`Calibration::Shape`] that and the propagation limit `material.propagation_passes` on
+//! its measured onset too. Everything else is the model's physics and is not refitted per
+//! life.
+//!
+//! **Time line** ([`Frame`]): each curve on its own fraction of life, or the simulated life
+//! on the held-out record's running hours aligned at failure ([`on_record`]).
 
 mod ensemble;
 mod figures;
