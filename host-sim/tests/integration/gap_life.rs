@@ -133,6 +133,29 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
         top.shrink,
         ri.shrink
     );
+    // Where each effect acts: its held-out shrink per stage. The held-out bearings did not
+    // fail, so only the stages before 50 % count, and roughness acts in the steady stage
+    // (its sub-Gaussian kurtosis above), not in the early ones.
+    for r in &at.ranking {
+        let stages: Vec<&str> = r.group_shrink.keys().map(String::as_str).collect();
+        assert_eq!(
+            stages,
+            ["early", "running-in", "settled", "steady"],
+            "{}",
+            r.effect
+        );
+    }
+    let rough = at
+        .ranking
+        .iter()
+        .find(|r| r.effect == "roughness")
+        .ok_or("roughness not ranked")?;
+    let steady = rough.group_shrink.get("steady").copied().unwrap_or(0.0);
+    assert!(
+        steady > 0.4 && steady > rough.shrink,
+        "roughness per stage {:?}",
+        rough.group_shrink
+    );
     // Whole life.
     assert!(
         at.final_holdout < (2.0 / 3.0) * at.baseline_holdout,

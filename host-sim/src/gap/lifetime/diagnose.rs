@@ -12,6 +12,7 @@ use super::{
 use crate::analysis::stats::upper_median;
 use crate::gap::attribute::{attribute, Attribution, Options};
 use crate::gap::fit::Budget;
+use crate::gap::identify;
 use crate::gap::leave_one_out::{leave_one_out, LeaveOneOut};
 use crate::gap::matched::{Evaluator, Gaps};
 use crate::gap::space::FitSpace;
@@ -477,7 +478,12 @@ pub fn diagnose_calibrated(
         exchange: o.exchange,
         ..Options::default()
     };
-    let at = attribute(&spaces, &Effects::NONE, &train, &hold, &ev, &opt)?;
+    let mut at = attribute(&spaces, &Effects::NONE, &train, &hold, &ev, &opt)?;
+    // Identifiability as for records of seconds (`gap::identify`): effects whose cell
+    // signatures along the training life another effect can reproduce form a confounded
+    // set, and each effect's held-out shrink is reported per stage (where it acts).
+    identify::confounded(&mut at, opt.min_shrink);
+    identify::group_shrink(&mut at, &stage_of_cells(&hold));
     // The early-life part: the same attribution on the early stages' cells only (their
     // contrasts to the steady stage), fitted on the training life's early stages and
     // judged on the held-out lives' — ranked by the shrink in the cells where that part
@@ -546,7 +552,6 @@ pub fn diagnose_calibrated(
     cells.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
     let hold_e_final = ev.residuals(&hold_e, &at.final_effects)?;
     let early_after = hold_e_final.total();
-    let mut at = at;
     at.simulations = ev.sims();
     Ok(LifeGap {
         train: vec![label(train_life)],
@@ -582,4 +587,22 @@ pub fn diagnose_calibrated(
         simulations: ev.sims() + cal_runs,
         seconds: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// The stage of every cell that counts, over `lives` in order (the order of their gaps in
+/// an attribution): the groups of [`identify::group_shrink`] along a life.
+fn stage_of_cells(lives: &[LifeTarget]) -> Vec<String> {
+    lives
+        .iter()
+        .flat_map(|t| {
+            let names = &t.reference.names;
+            let idx: Vec<usize> = match &t.only {
+                Some(i) => i.clone(),
+                None => (0..names.len()).collect(),
+            };
+            idx.into_iter()
+                .filter_map(|i| names.get(i).map(|(_, stage, _)| stage.to_string()))
+                .collect::<Vec<_>>()
+        })
+        .collect()
 }
