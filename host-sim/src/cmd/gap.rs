@@ -243,11 +243,6 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
     }
     for (flag, given, why) in [
         (
-            "--validation",
-            a.validation.is_some(),
-            "a lifetime diagnosis fits on the --train life and chooses on the --holdout lives",
-        ),
-        (
             "--no-calibration",
             a.no_calibration,
             "a lifetime diagnosis fits no rig nuisances",
@@ -281,13 +276,32 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
             "--train: a lifetime diagnosis trains on one bearing (the one whose life defines the time line)",
         ));
     };
+    // With --validation the lives named there choose the model and --holdout names the
+    // test part (nothing chosen on it), as for records of seconds; without it the
+    // held-out lives both choose and are judged (two parts).
+    let validation = match &a.validation {
+        Some(s) => bearings(s, "--validation")?,
+        None => vec![],
+    };
+    if validation.contains(train) {
+        return Err(CliError::input(format!(
+            "--train and --validation both hold bearing {train}: a life that chooses the model must not be fitted on"
+        )));
+    }
     let holdout = match &a.holdout {
         Some(s) => bearings(s, "--holdout")?,
-        None => (1..=lives).filter(|b| b != train).collect(),
+        None => (1..=lives)
+            .filter(|b| b != train && !validation.contains(b))
+            .collect(),
     };
     if holdout.contains(train) {
         return Err(CliError::input(format!(
             "--train and --holdout both hold bearing {train}: a held-out life must not be fitted on"
+        )));
+    }
+    if let Some(b) = validation.iter().find(|b| holdout.contains(b)) {
+        return Err(CliError::input(format!(
+            "--validation and --holdout both hold bearing {b}: the test part must not choose the model"
         )));
     }
     if holdout.is_empty() {
@@ -295,6 +309,12 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
             "--holdout: give at least one held-out bearing",
         ));
     }
+    let (holdout, test) = if validation.is_empty() {
+        (holdout, vec![])
+    } else {
+        let test = holdout.clone();
+        (validation.into_iter().chain(holdout).collect(), test)
+    };
     let known = ["running-in", "roughness", "sensor", "edge-shape"];
     for e in &a.effects {
         if wearsim_core::effects::info(e).is_none() {
@@ -312,6 +332,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
     Ok(LifeOptions {
         train: *train,
         holdout,
+        test,
         seed: a.seed,
         jobs: a
             .jobs

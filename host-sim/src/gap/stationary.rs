@@ -26,7 +26,9 @@ pub struct GapArgs {
     /// Measured records (CWRU .mat, CSV/WAV/NPY with sidecar, IMS snapshot); repeatable.
     /// With --life: one IMS feature table (`timefeatures.csv`), diagnosed along life,
     /// --train/--holdout then name its bearings (B1, B2, ...); or documented feature
-    /// tables (docs/feature-tables.md), one life each, --train/--holdout counting them from 1.
+    /// tables (docs/feature-tables.md), one life each, --train/--holdout counting them from 1;
+    /// --validation names lives that choose the model, and then --holdout the test lives
+    /// (without it the held-out lives both choose and are judged).
     #[arg(long = "real", required = true, num_args = 1..)]
     pub real: Vec<PathBuf>,
     /// Bearing of the records: a model preset (`wearsim presets`) or a catalogue bearing of

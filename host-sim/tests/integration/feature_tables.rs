@@ -576,6 +576,7 @@ fn test2_options(jobs: usize) -> LifeOptions {
     LifeOptions {
         train: 1,
         holdout: vec![2, 3, 4],
+        test: vec![],
         seed: 1,
         jobs,
         effects: vec![],

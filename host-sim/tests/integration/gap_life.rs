@@ -30,6 +30,7 @@ fn ims_test2_gap_along_life_and_the_effect_that_closes_early_life(
     let o = LifeOptions {
         train: 1,
         holdout: vec![2, 3, 4],
+        test: vec![],
         seed: 1,
         jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
         effects: if std::env::var_os("WEARSIM_LIFE_ALL_EFFECTS").is_some() {

@@ -480,3 +480,72 @@ fn a_table_without_its_sidecar_is_refused_naming_the_sidecar() {
     refused(&alone, &[s(&side), "missing"]);
     assert!(!out.exists());
 }
+
+/// Three lives: the first trained on, the second choosing the model (`--validation 2`),
+/// the third the test part (`--holdout 3`, issue 13's three parts along lives). The test
+/// life chooses nothing — the ranking, the kept effects and the validation totals are
+/// bit for bit those of the run without it — and carries the reported test totals; a life
+/// named in both parts is refused.
+#[test]
+fn a_test_life_is_judged_and_chooses_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B" }}"#);
+    let a = table(tmp.path(), "a", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b", 2, &bearing, "4000.0");
+    let c = table(tmp.path(), "c", 3, &bearing, "4000.0");
+    let two = gap(&a, &b, &tmp.path().join("two"));
+    assert!(
+        two.status.success(),
+        "{}",
+        String::from_utf8_lossy(&two.stderr)
+    );
+    let three_args = |v: &'static str, h: &'static str| {
+        vec![
+            "--real",
+            s(&c),
+            "--validation",
+            v,
+            "--holdout",
+            h,
+            "--effects",
+            "sensor",
+            "--life-search",
+            "2",
+            "--json",
+        ]
+    };
+    let three = support::gap_life(&a, &b, &tmp.path().join("three"), &three_args("2", "3"));
+    assert!(
+        three.status.success(),
+        "{}",
+        String::from_utf8_lossy(&three.stderr)
+    );
+    let j2: serde_json::Value = serde_json::from_slice(&two.stdout).unwrap();
+    let j3: serde_json::Value = serde_json::from_slice(&three.stdout).unwrap();
+    let chosen = |j: &serde_json::Value| {
+        let r: Vec<(String, String)> = j["ranking"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| (r["effect"].to_string(), r["shrink"].to_string()))
+            .collect();
+        (
+            r,
+            j["kept"].to_string(),
+            j["totals"]["before"].to_string(),
+            j["totals"]["after"].to_string(),
+        )
+    };
+    assert_eq!(chosen(&j2), chosen(&j3));
+    assert!(j2["totals"]["test_before"].is_null());
+    let (tb, ta) = (
+        j3["totals"]["test_before"].as_f64().expect("test totals"),
+        j3["totals"]["test_after"].as_f64().expect("test totals"),
+    );
+    assert!(tb > 0.0 && ta.is_finite(), "{tb} {ta}");
+    assert!(findings(&j3).contains("test part"), "{}", findings(&j3));
+    let out = tmp.path().join("both");
+    let o = support::gap_life(&a, &b, &out, &three_args("2", "2"));
+    refused(&o, &["--validation", "--holdout", "2"]);
+    assert!(!out.exists(), "nothing written");
+}

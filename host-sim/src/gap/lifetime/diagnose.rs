@@ -15,6 +15,7 @@ use crate::gap::fit::Budget;
 use crate::gap::identify;
 use crate::gap::leave_one_out::{leave_one_out, LeaveOneOut};
 use crate::gap::matched::{Evaluator, Gaps};
+use crate::gap::protocol::judge;
 use crate::gap::space::FitSpace;
 use crate::io::ims_life::read_life;
 use serde::Serialize;
@@ -269,6 +270,11 @@ pub struct LifeOptions {
     pub train: usize,
     /// Held-out bearings.
     pub holdout: Vec<usize>,
+    /// Of the held-out bearings, those of the test part: judged with the chosen model
+    /// only, nothing chosen on them (`totals.test_*`); the others choose the model
+    /// (ranking, greedy additions). Empty: every held-out life chooses and is judged (a
+    /// two-part protocol).
+    pub test: Vec<usize>,
     /// Seed of the simulated life.
     pub seed: u64,
     /// Worker threads.
@@ -454,6 +460,20 @@ pub fn diagnose_calibrated(
             only: None,
         });
     }
+    // The test part (issue 13's three parts along lives): set apart before anything is
+    // fitted or chosen.
+    let (mut test, mut choose): (Vec<LifeTarget>, Vec<LifeTarget>) = (vec![], vec![]);
+    for (life, t) in hold_lives.iter().zip(hold) {
+        if o.test.contains(&life.bearing) {
+            test.push(t);
+        } else {
+            choose.push(t);
+        }
+    }
+    let hold = choose;
+    if hold.is_empty() {
+        return Err("--validation: the lives that choose the model are all in the test part; give at least one".into());
+    }
     let ev = Evaluator::new(o.jobs);
     let base = sim.points(&Effects::NONE, ev.counter())?;
     let steady = stage_points(&base, &STAGES[STEADY]);
@@ -484,6 +504,26 @@ pub fn diagnose_calibrated(
     // set, and each effect's held-out shrink is reported per stage (where it acts).
     identify::confounded(&mut at, opt.min_shrink);
     identify::group_shrink(&mut at, &stage_of_cells(&hold));
+    if !test.is_empty() {
+        let noise_test = noise_only(&test, &base);
+        judge(
+            &mut at,
+            &Effects::NONE,
+            &test,
+            &test,
+            &ev,
+            SIGNIFICANCE * noise_test,
+        )?;
+        let names: Vec<String> = hold_lives
+            .iter()
+            .filter(|l| o.test.contains(&l.bearing))
+            .map(label)
+            .collect();
+        at.findings.push(format!(
+            "test part: {} — nothing was fitted or chosen on it; `totals.test_before`/`test_after` are measured there only (a correct model would leave {noise_test:.2} by sampling alone)",
+            names.join(", ")
+        ));
+    }
     // The early-life part: the same attribution on the early stages' cells only (their
     // contrasts to the steady stage), fitted on the training life's early stages and
     // judged on the held-out lives' — ranked by the shrink in the cells where that part
