@@ -365,10 +365,17 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
         "--no-calibration: a lifetime diagnosis fits no rig",
     );
     run(&["--fixed-calibration"], &life, "--fixed-calibration");
+    // --validation names the lives that choose the model (the --holdout lives are then a
+    // test part): a life may not be in two parts.
     run(
-        &["--validation", "B2"],
+        &["--validation", "B1"],
         &life,
-        "--validation: a lifetime diagnosis fits on the --train life",
+        "--train and --validation both hold bearing 1",
+    );
+    run(
+        &["--validation", "B2", "--holdout", "B2,B3"],
+        &life,
+        "--validation and --holdout both hold bearing 2",
     );
     bad(
         &[
