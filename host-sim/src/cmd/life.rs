@@ -7,6 +7,7 @@ use crate::life::lives::{
     against_published, exponent, run_lives, summarise, Initiation, LoadGroup,
     PUBLISHED_LOAD_EXPONENTS_BALL, PUBLISHED_SLOPES,
 };
+use crate::life::phases;
 use crate::life::weibull::Estimate;
 use crate::life::{LifeRun, LifeSpec};
 use clap::Args;
@@ -340,6 +341,11 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     let wall = t0.elapsed().as_secs_f64();
     let exp = exponent(&groups, false);
     let exp_spall = exponent(&groups, true);
+    let shares: Vec<_> = groups.iter().map(|g| (g.load_n, g.phases)).collect();
+    let (crack_trend, post_trend) = (
+        phases::crack_trend(&shares),
+        phases::post_spall_trend(&shares),
+    );
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let mut csv = String::from(
@@ -378,6 +384,8 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         },
         "load_exponent_against_published": exp.as_ref().and_then(|e| against_published(e, point)),
         "first_spall_load_exponent_against_published": exp_spall.as_ref().and_then(|e| against_published(e, point)),
+        "crack_share_trend": crack_trend,
+        "post_spall_share_trend": post_trend,
         "published_slopes": PUBLISHED_SLOPES.iter().map(|(v, s)| json!({"slope": v, "source": s})).collect::<Vec<_>>(),
         "note": "the core draws four independent scatter factors per seed: subsurface fatigue, surface damage (the dent) and surface crack initiation at the dent from Weibulls of slope 1.11 (ISO 281's 10/9, Lundberg-Palmgren), spall propagation from one of slope 1.1 (Hoeprich 1992); the fitted slopes are those inputs combined through the stages (competing surface and subsurface initiation, then propagation), not independent predictions. Published slopes are of endurance tests stopped at the first spall: compare them with first_spall.weibull",
     });
@@ -442,6 +450,45 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         for (s, f) in &g.stage_onsets {
             println!("  {s:<20} median onset {f:.3} of life (failed lives)");
         }
+        let p = &g.phases;
+        for (what, e, of) in [
+            (
+                "crack share of the life to the first spall",
+                p.crack,
+                p.crack_lives,
+            ),
+            (
+                "post-spall share of the life to failure",
+                p.post_spall,
+                p.post_spall_lives,
+            ),
+        ] {
+            if let Some(e) = e {
+                println!("  {what}: median {} over {of} lives", est(&e));
+            }
+        }
+    }
+    for (what, t) in [
+        ("crack share", &crack_trend),
+        ("post-spall share", &post_trend),
+    ] {
+        if let Some(t) = t {
+            println!(
+                "{what} from {:.0} N to {:.0} N: {:?}{}",
+                t.loads_n[0],
+                t.loads_n[1],
+                t.direction,
+                match (t.published, t.agrees) {
+                    (Some(p), Some(a)) => format!(
+                        " — published {p:?}: {}",
+                        if a { "agrees" } else { "disagrees" }
+                    ),
+                    (Some(p), None) => format!(" — published {p:?}: no direction to compare"),
+                    _ => String::new(),
+                }
+            );
+            println!("  ({})", t.source);
+        }
     }
     for (what, e) in [("to failure", exp), ("to the first spall", exp_spall)] {
         match e {
@@ -504,6 +551,7 @@ fn group_json(g: &LoadGroup) -> serde_json::Value {
         "suspended": g.lives.iter().filter(|l| l.suspended).count(),
         "life_min": mn, "life_max": mx, "onset_median": g.onset_median, "onset_found": g.onset_found,
         "stage_onsets": g.stage_onsets,
+        "phases": g.phases,
         "mean_wall_s_per_life": g.lives.iter().map(|l| l.wall_s).sum::<f64>() / g.lives.len().max(1) as f64,
     })
 }

@@ -94,6 +94,9 @@ pub struct LoadGroup {
     /// Median revolutions at which each stage was entered, as a fraction of the life, over
     /// the failed lives.
     pub stage_onsets: Vec<(String, f64)>,
+    /// The shares of the life its crack growth and its post-spall phase take
+    /// ([`super::phases`]).
+    pub phases: super::phases::PhaseShares,
 }
 
 /// Runs the lives of `specs` (one spec per seed) on `threads` threads. An error comes
@@ -201,6 +204,7 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
         onset_found: onsets.len(),
         onset_median: median(onsets),
         stage_onsets,
+        phases: super::phases::shares(&lives, 0x5AA3),
         lives,
     }
 }

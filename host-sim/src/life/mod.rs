@@ -18,6 +18,7 @@ pub mod ims_validate;
 pub mod lives;
 pub mod output;
 pub mod parallel;
+pub mod phases;
 pub mod plot;
 pub mod site_json;
 pub mod state_json;

@@ -552,6 +552,50 @@ fn lives_give_weibull_and_load_exponent() {
             .unwrap();
         assert!(b > 0.3 && b < 20.0, "{g}");
     }
+    // The post-spall share is the median of (life − first spall)/life over the lives of
+    // lives.csv (all failed); the crack share lies inside (0, 1); the trend's direction is
+    // the one its two intervals allow.
+    for g in groups {
+        let scale = g["load_scale"].as_f64().unwrap();
+        let mut post: Vec<f64> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').collect::<Vec<_>>())
+            .filter(|f| f[col("load_scale")].parse::<f64>().unwrap() == scale)
+            .map(|f| {
+                let life: f64 = f[col("life_revs")].parse().unwrap();
+                (life - f[col("first_spall_revs")].parse::<f64>().unwrap()) / life
+            })
+            .collect();
+        post.sort_by(f64::total_cmp);
+        assert_eq!(post.len(), 8);
+        let want = 0.5 * (post[3] + post[4]);
+        let p = &g["phases"];
+        assert_eq!(p["post_spall_lives"], 8, "{p}");
+        let got = p["post_spall"]["value"].as_f64().unwrap();
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+        let c = &p["crack"];
+        let (v, lo, hi) = (
+            c["value"].as_f64().unwrap(),
+            c["lo"].as_f64().unwrap(),
+            c["hi"].as_f64().unwrap(),
+        );
+        assert!(0.0 < lo && lo <= v && v <= hi && hi < 1.0, "{c}");
+    }
+    for key in ["crack_share_trend", "post_spall_share_trend"] {
+        let t = &v[key];
+        let (a, b) = (&t["shares"][0], &t["shares"][1]);
+        let want = if b["hi"].as_f64() < a["lo"].as_f64() {
+            "falls"
+        } else if b["lo"].as_f64() > a["hi"].as_f64() {
+            "rises"
+        } else {
+            "undecided"
+        };
+        assert_eq!(t["direction"], want, "{t}");
+    }
+    assert_eq!(v["crack_share_trend"]["published"], "falls");
+    assert!(v["post_spall_share_trend"]["published"].is_null());
 }
 
 /// Bad `--lives`/`--loads` values: exit 2, the field named, nothing written.
