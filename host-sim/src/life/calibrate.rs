@@ -39,9 +39,20 @@ impl Scales {
         }
     }
 
-    /// The wear configuration of bearing steel at these scales ([`steel_life_with`]).
+    /// The wear configuration of bearing steel at these scales: the material's defaults
+    /// with `life_factor` and `propagation_passes` set, the default tribology, and
+    /// [`CALIBRATED_CAP`].
     pub fn life(&self) -> wearsim_core::wear::LifeConfig {
-        steel_life_with(self.life_factor, self.propagation_passes)
+        use wearsim_core::wear::{LifeConfig, Material};
+        LifeConfig {
+            material: Material {
+                life_factor: self.life_factor as wearsim_core::Real,
+                propagation_passes: self.propagation_passes as wearsim_core::Real,
+                ..Material::BEARING_STEEL
+            },
+            cycle_cap: CALIBRATED_CAP as wearsim_core::Real,
+            ..LifeConfig::DEFAULT
+        }
     }
 
     /// The material's propagation limit with `life_factor`.
@@ -51,31 +62,6 @@ impl Scales {
             ..Scales::steel()
         }
     }
-}
-
-/// The life configuration of bearing steel with its fatigue scaled by `life_factor` (the
-/// one parameter the callers calibrate), the default tribology, and [`CALIBRATED_CAP`].
-pub fn steel_life(life_factor: f64) -> wearsim_core::wear::LifeConfig {
-    use wearsim_core::wear::{LifeConfig, Material};
-    LifeConfig {
-        material: Material {
-            life_factor: life_factor as wearsim_core::Real,
-            ..Material::BEARING_STEEL
-        },
-        cycle_cap: CALIBRATED_CAP as wearsim_core::Real,
-        ..LifeConfig::DEFAULT
-    }
-}
-
-/// [`steel_life`] with the propagation limit `propagation_passes` (`material.propagation_passes`,
-/// the second scale [`calibrate_shape`] sets) instead of the material's default.
-pub fn steel_life_with(
-    life_factor: f64,
-    propagation_passes: f64,
-) -> wearsim_core::wear::LifeConfig {
-    let mut c = steel_life(life_factor);
-    c.material.propagation_passes = propagation_passes as wearsim_core::Real;
-    c
 }
 
 /// Relative tolerance on the life: calibration stops within 1 % of the target.

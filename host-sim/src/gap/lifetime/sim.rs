@@ -9,9 +9,7 @@ use crate::analysis;
 use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
 pub use crate::life::calibrate::Scales;
-use crate::life::calibrate::{
-    calibrate as calibrate_life, calibrate_shape, steel_life_with, Secant, Shape,
-};
+use crate::life::calibrate::{calibrate as calibrate_life, calibrate_shape, Secant, Shape};
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -82,7 +80,7 @@ impl LifeSim {
         Ok(LifeSim {
             model,
             window_samples: rig.window_samples,
-            life: steel_life_with(scales.life_factor, scales.propagation_passes),
+            life: scales.life(),
             seed,
             expected_revs,
             memo: Memo::new(CACHE),
