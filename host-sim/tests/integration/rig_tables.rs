@@ -544,6 +544,38 @@ fn a_test_life_is_judged_and_chooses_nothing() {
     );
     assert!(tb > 0.0 && ta.is_finite(), "{tb} {ta}");
     assert!(findings(&j3).contains("test part"), "{}", findings(&j3));
+    // The early-life part too: chosen on the same lives (same effects, shrinks, sets),
+    // judged on the test life's early stages only when there is one, each effect's test
+    // shrink against the test lives' baseline early gap.
+    let early = |j: &serde_json::Value| {
+        j["early"]["effects"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|e| {
+                (
+                    e["effect"].to_string(),
+                    e["shrink"].to_string(),
+                    e["confounded_with"].to_string(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(early(&j2), early(&j3));
+    assert!(j2["early"]["test"].is_null());
+    let eb = j3["early"]["test"]["before"].as_f64().expect("early test");
+    assert!(eb > 0.0, "{eb}");
+    for e in j3["early"]["effects"].as_array().unwrap() {
+        assert!(e["confounded_with"].is_array(), "{e}");
+        let (g, ts) = (
+            e["test_gap"].as_f64().unwrap(),
+            e["test_shrink"].as_f64().unwrap(),
+        );
+        assert!((ts - (1.0 - g / eb)).abs() < 1e-12, "{e}");
+    }
+    for e in j2["early"]["effects"].as_array().unwrap() {
+        assert!(e["test_shrink"].is_null(), "{e}");
+    }
     let out = tmp.path().join("both");
     let o = support::gap_life(&a, &b, &out, &three_args("2", "2"));
     refused(&o, &["--validation", "--holdout", "2"]);

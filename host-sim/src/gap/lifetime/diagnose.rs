@@ -10,7 +10,7 @@ use super::{
     STEADY,
 };
 use crate::analysis::stats::upper_median;
-use crate::gap::attribute::{attribute, Attribution, Options};
+use crate::gap::attribute::{attribute, Attribution, Options, TestTotals};
 use crate::gap::fit::Budget;
 use crate::gap::identify;
 use crate::gap::leave_one_out::{leave_one_out, LeaveOneOut};
@@ -113,6 +113,13 @@ pub struct EarlyShrink {
     pub gap: f64,
     /// `1 − gap / baseline early gap`.
     pub shrink: f64,
+    /// Effects that can reproduce its early-life cell signature at the fitted point
+    /// (`gap::identify`, as for the whole life): the ranking inside the set is not evidence.
+    pub confounded_with: Vec<String>,
+    /// Early-life gap of the test lives with it alone (none without a test part).
+    pub test_gap: Option<f64>,
+    /// `1 − test_gap / the test lives' baseline early gap` (none without a test part).
+    pub test_shrink: Option<f64>,
 }
 
 /// How one life is compared: over which part of it, against a simulated life of which
@@ -186,6 +193,9 @@ pub struct LifeGap {
     pub early_effect: Option<String>,
     /// Findings of the early-life attribution.
     pub early_findings: Vec<String>,
+    /// The early-life part judged on the test lives (none without a test part): the
+    /// baseline's and the final early-life model's early gap there.
+    pub early_test: Option<TestTotals>,
     /// Noise-only held-out gap of the whole life and of its early part: what a correct
     /// model would leave by sampling alone ([`LifeReference::noise_only`]).
     pub noise_only: (f64, f64),
@@ -539,7 +549,25 @@ pub fn diagnose_calibrated(
         significant_gap: SIGNIFICANCE * noise_early,
         ..opt
     };
-    let early_at = attribute(&spaces, &Effects::NONE, &train_e, &hold_e, &ev, &early_opt)?;
+    let mut early_at = attribute(&spaces, &Effects::NONE, &train_e, &hold_e, &ev, &early_opt)?;
+    // The same identifiability and test part as the whole life: the confounded sets on
+    // the early stages' signatures, and the early-life shrink measured on the test lives'
+    // early stages, which chose nothing.
+    identify::confounded(&mut early_at, early_opt.min_shrink);
+    let test_e: Vec<LifeTarget> = test.iter().filter_map(|t| t.early(EARLY_T_MAX)).collect();
+    let early_test = if test_e.is_empty() {
+        None
+    } else {
+        let significant = SIGNIFICANCE * noise_only(&test_e, &base);
+        Some(judge(
+            &mut early_at,
+            &Effects::NONE,
+            &test_e,
+            &test_e,
+            &ev,
+            significant,
+        )?)
+    };
     let early_before = early_at.baseline_holdout;
     let early: Vec<EarlyShrink> = early_at
         .ranking
@@ -549,6 +577,9 @@ pub fn diagnose_calibrated(
             params: r.params.clone(),
             gap: r.holdout_gap,
             shrink: r.shrink,
+            confounded_with: r.confounded_with.clone(),
+            test_gap: r.test_gap,
+            test_shrink: r.test_shrink,
         })
         .collect();
     // An early life within the snapshots' own variability needs no effect: naming one
@@ -612,6 +643,7 @@ pub fn diagnose_calibrated(
         early,
         early_effect,
         early_findings,
+        early_test,
         noise_only: (noise_whole, noise_early),
         cells,
         attribution: at,

@@ -63,6 +63,9 @@ pub struct Early {
     pub closed_by: Option<String>,
     /// Held-out early-life gap a correct model would leave by sampling alone.
     pub noise_only: f64,
+    /// On the test lives' early stages (none without a test part): the baseline's gap
+    /// and the final early-life model's.
+    pub test: Option<crate::gap::attribute::TestTotals>,
 }
 
 /// The lifetime report (`--json`).
@@ -254,8 +257,26 @@ fn findings(g: &LifeGap) -> Vec<String> {
     match &g.early_effect {
         Some(e) => {
             if let Some(x) = g.early.first() {
+                let set = if x.confounded_with.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        "; confounded with {}: the early-life ranking inside {{{e}, {}}} is not evidence for `{e}`",
+                        x.confounded_with.join(", "),
+                        x.confounded_with.join(", ")
+                    )
+                };
+                let test = match (x.test_shrink, g.early_test) {
+                    (Some(ts), Some(t)) => format!(
+                        "; on the test lives' early stages (chose nothing) {:.2} → {:.2} ({:.0} % smaller)",
+                        t.before,
+                        x.test_gap.unwrap_or(f64::NAN),
+                        100.0 * ts
+                    ),
+                    _ => String::new(),
+                };
                 f.push(format!(
-                    "`{e}` closes the early-life part: held-out early-life gap {:.2} → {:.2} ({:.0} % smaller) with it alone, fitted on the training life's early stages",
+                    "`{e}` closes the early-life part: held-out early-life gap {:.2} → {:.2} ({:.0} % smaller) with it alone, fitted on the training life's early stages{set}{test}",
                     g.early_before,
                     x.gap,
                     100.0 * x.shrink
@@ -297,6 +318,7 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
             effects: g.early.clone(),
             closed_by: g.early_effect.clone(),
             noise_only: g.noise_only.1,
+            test: g.early_test,
         },
         rig: g.rig.clone(),
         kinematics: g.kinematics,
@@ -440,6 +462,28 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         o.early.after,
         o.early.closed_by.as_deref().unwrap_or("none")
     );
+    for e in &o.early.effects {
+        let mut notes = vec![];
+        if !e.confounded_with.is_empty() {
+            notes.push(format!("confounded with {}", e.confounded_with.join(", ")));
+        }
+        if let (Some(g), Some(ts)) = (e.test_gap, e.test_shrink) {
+            notes.push(format!(
+                "test early gap {g:.2} ({:.0} % smaller)",
+                100.0 * ts
+            ));
+        }
+        if !notes.is_empty() {
+            let _ = writeln!(s, "* `{}`: {}", e.effect, notes.join("; "));
+        }
+    }
+    if let Some(t) = &o.early.test {
+        let _ = writeln!(
+            s,
+            "\nTest lives' early-life gap {:.2} (baseline) → {:.2} (the early-life model); nothing was fitted or chosen on them.\n",
+            t.before, t.after
+        );
+    }
     let _ = writeln!(s, "## How far: greedy addition\n");
     greedy_section(&mut s, &o.greedy, &o.dropped, &o.kept);
     let _ = writeln!(
