@@ -130,7 +130,7 @@ pub struct ImsValidateArgs {
     /// of onset, onset-to-failure hours, end level and life, the share of the measured curve
     /// inside the pointwise band, and its distance to the median curve. Writes
     /// `ims-ensemble.md` and `ims-ensemble.json`.
-    #[arg(long, value_name = "N", conflicts_with_all = ["floor", "measured_floor", "calibrate", "frame"])]
+    #[arg(long, value_name = "N", conflicts_with_all = ["floor", "measured_floor"])]
     pub ensemble: Option<u64>,
     /// What each fold calibrates on its calibration life: `length` — `material.life_factor`
     /// on the running revolutions; `shape` — also `material.propagation_passes`, on the
@@ -267,6 +267,20 @@ The calibration life's measured curve as the prediction (no model, the reference
     md
 }
 
+/// The command-line flags of a non-default calibration and time line.
+fn protocol_flags(a: &ImsValidateArgs) -> String {
+    use crate::life::ims_validate::{Calibration, Frame};
+    let c = match a.calibrate {
+        Calibration::Length => "",
+        Calibration::Shape => " --calibrate shape",
+    };
+    let f = match a.frame {
+        Frame::Life => "",
+        Frame::Record => " --frame record",
+    };
+    format!("{c}{f}")
+}
+
 /// Runs `wearsim ims-validate`.
 pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     use crate::life::ims_validate;
@@ -310,15 +324,25 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     if let Some(n) = a.ensemble {
         let cmd = format!(
-            "wearsim ims-validate --seed {} --ensemble {n}{}",
+            "wearsim ims-validate --seed {} --ensemble {n}{}{}",
             a.seed,
+            protocol_flags(a),
             if a.primary_only {
                 " --primary-only"
             } else {
                 ""
             }
         );
-        return super::ims_ensemble::run(&recs, a.seed, n, !a.primary_only, &a.out, a.json, &cmd);
+        return super::ims_ensemble::run(
+            &recs,
+            a.seed,
+            n,
+            !a.primary_only,
+            (a.calibrate, a.frame),
+            &a.out,
+            a.json,
+            &cmd,
+        );
     }
     let mode = match (a.floor, a.measured_floor) {
         (_, Some(u)) if !(u.is_finite() && u > 0.0) => {
@@ -346,16 +370,9 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let cmd = format!(
-        "wearsim ims-validate --seed {}{}{}{}{}{}{}",
+        "wearsim ims-validate --seed {}{}{}{}{}{}",
         a.seed,
-        match a.calibrate {
-            ims_validate::Calibration::Length => "",
-            ims_validate::Calibration::Shape => " --calibrate shape",
-        },
-        match a.frame {
-            ims_validate::Frame::Life => "",
-            ims_validate::Frame::Record => " --frame record",
-        },
+        protocol_flags(a),
         if a.seeds > 1 {
             format!(" --seeds {}", a.seeds)
         } else {

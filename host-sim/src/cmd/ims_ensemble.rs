@@ -3,7 +3,8 @@
 
 use crate::cmd::args::CliError;
 use crate::life::ims_validate::{
-    validate_ensemble, EnsembleLife, EnsembleSummary, EnsembleValidation, MeasuredRecord, Spread,
+    validate_ensemble, Calibration, EnsembleLife, EnsembleSummary, EnsembleValidation, Frame,
+    MeasuredRecord, Spread,
 };
 use std::fmt::Write;
 use std::path::Path;
@@ -59,14 +60,24 @@ the population: about 0.9).\n",
         v.first_seed,
         v.first_seed + v.n - 1
     );
+    if v.calibration == Calibration::Shape {
+        md.push_str("\nWith `--calibrate shape` each fold also sets `propagation_passes` so that the population's median revolutions from onset to failure (over the lives that have an onset) are the calibration life's measured ones.\n");
+    }
+    if v.frame == Frame::Record {
+        md.push_str("\nWith `--frame record` every simulated life is read on the record's running hours, aligned at failure (a shorter life at its own steady level before its start): the per-seed onset, hours, distance and end figures, the hours band and the part after the measured onset.\n");
+    }
     for fold in &v.folds {
         let _ = write!(
             md,
-            "\n## Calibrated on {} (`life_factor` = {:.3e}; median life / record {:.3}, {} populations run)\n\n\
+            "\n## Calibrated on {} (`life_factor` = {:.3e}{}; median life / record {:.3}, {} populations run)\n\n\
 | life | role | onset (fraction) | onset→failure h | end level (last 5 %) | last value | life sim./record | coverage life | coverage hours | dB to median curve (life / hours) | one seed's distance dB [5 · 50 · 95 %] | null curve dB | after the measured onset: median curve / one seed (median) / null dB |\n\
 |---|---|---|---|---|---|---|---:|---:|---|---|---:|---|\n",
             fold.calibrated_on,
             fold.life_factor,
+            match fold.calibrated {
+                Calibration::Shape => format!(", `propagation_passes` = {:.3e}", fold.propagation_passes),
+                Calibration::Length => String::new(),
+            },
             fold.calibration_median_ratio,
             fold.calibration_rounds
         );
@@ -110,16 +121,18 @@ fn row(l: &EnsembleLife) -> String {
 
 /// Runs the ensemble validation and writes `ims-ensemble.md` and `ims-ensemble.json`
 /// under `out` (`cmd`: the command line recorded in the report).
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     recs: &[MeasuredRecord],
     first: u64,
     n: u64,
     all: bool,
+    (how, frame): (Calibration, Frame),
     out: &Path,
     json: bool,
     cmd: &str,
 ) -> Result<(), CliError> {
-    let v = validate_ensemble(recs, first, n, all).map_err(CliError::run)?;
+    let v = validate_ensemble(recs, first, n, all, how, frame).map_err(CliError::run)?;
     std::fs::create_dir_all(out).map_err(|e| CliError::input(format!("{}: {e}", out.display())))?;
     super::report::write_report(out, "ims-ensemble", &markdown(&v, cmd), &v, json)
 }

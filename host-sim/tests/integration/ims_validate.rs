@@ -226,7 +226,7 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
         return;
     };
     let recs = read_records(&data).unwrap();
-    let v = validate_ensemble(&recs, 1, 5, false).unwrap();
+    let v = validate_ensemble(&recs, 1, 5, false, Calibration::Length, Frame::Life).unwrap();
     assert_eq!(v.folds.len(), 1);
     let fold = &v.folds[0];
     assert_eq!(fold.calibrated_on, "t2b1");
@@ -239,7 +239,8 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
     // population's median (3 of 5 below or equal, so 0.4–0.6).
     let pit = fold.calibration.life_ratio.pit.unwrap();
     assert!((0.39..=0.61).contains(&pit), "calibration life PIT {pit}");
-    let alone = validate_ensemble(&recs[..1], 1, 5, false).unwrap();
+    let alone =
+        validate_ensemble(&recs[..1], 1, 5, false, Calibration::Length, Frame::Life).unwrap();
     assert_eq!(
         alone.folds[0].life_factor.to_bits(),
         fold.life_factor.to_bits(),
@@ -300,6 +301,65 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
     }
 }
 
+/// The population with both scales on the record's hours (`--ensemble 5 --calibrate
+/// shape --frame record --primary-only`): the propagation limit puts the population's
+/// median revolutions from onset to failure on test 2 bearing 1's measured ones (the life
+/// factor its median life on the running revolutions), chosen by that life alone (the
+/// same bits with the held-out lives absent). Read on the record's hours, the calibration
+/// life's median onset and median hours from onset to failure are then its measured ones
+/// within 0.03 of the record (the calibration's onset tolerance, 0.02, plus the window
+/// grid and the record frame's own steady band).
+#[test]
+fn a_population_calibrated_in_both_scales_is_read_on_the_records_hours() {
+    let Some(data) = data_dir().expect("data folder required when CI=true") else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return;
+    };
+    let recs = read_records(&data).unwrap();
+    let v = validate_ensemble(&recs, 1, 5, false, Calibration::Shape, Frame::Record).unwrap();
+    assert_eq!(
+        (v.calibration, v.frame),
+        (Calibration::Shape, Frame::Record)
+    );
+    let fold = &v.folds[0];
+    assert_eq!(fold.calibrated, Calibration::Shape);
+    assert!(
+        (fold.calibration_median_ratio - 1.0).abs() <= 0.01,
+        "median life / record {}",
+        fold.calibration_median_ratio
+    );
+    let on = &fold.calibration.onset;
+    let (m, sim) = (on.measured.unwrap(), on.median.unwrap());
+    assert!((m - 0.558).abs() < 0.001, "measured onset {m}");
+    assert!(
+        (sim - m).abs() <= 0.03,
+        "population median onset {sim} against {m}"
+    );
+    let h = &fold.calibration.onset_to_failure_h;
+    let (hm, hs) = (h.measured.unwrap(), h.median.unwrap());
+    assert!((hs - hm).abs() <= 0.03 * 129.7, "{hs} h against {hm} h");
+    let alone =
+        validate_ensemble(&recs[..1], 1, 5, false, Calibration::Shape, Frame::Record).unwrap();
+    let bits = |f: &wearsim_host::life::ims_validate::EnsembleFold| {
+        (f.life_factor.to_bits(), f.propagation_passes.to_bits())
+    };
+    assert_eq!(
+        bits(&alone.folds[0]),
+        bits(fold),
+        "the held-out lives must not move the calibration"
+    );
+    assert_eq!(fold.held_out.len(), 3);
+    for l in &fold.held_out {
+        assert!(l.distance_to_median_hours_db.is_finite() && l.distance_late_flat_db.is_some());
+        eprintln!(
+            "{}: onset {:?} vs median {:?}; onset->failure h {:?} vs {:?}; coverage hours {:.2}; after onset: median {:?} seed {:?} null {:?} dB",
+            l.id, l.onset.measured, l.onset.median, l.onset_to_failure_h.measured,
+            l.onset_to_failure_h.median, l.coverage_hours, l.distance_late_to_median_db,
+            l.distance_late_db.median, l.distance_late_flat_db
+        );
+    }
+}
+
 #[test]
 fn a_bad_ensemble_is_refused_before_anything_is_read() {
     let dir = tempfile::tempdir().unwrap();
@@ -324,14 +384,18 @@ fn a_bad_ensemble_is_refused_before_anything_is_read() {
         &run(&["--ensemble", "5", "--floor"]),
         &["--ensemble", "--floor"],
     );
-    // The population calibrates the life factor on its median life, on fraction of life.
+    // The population takes both calibrations and time lines: the empty data folder, not
+    // the flags, is what stops this one.
     refused(
-        &run(&["--ensemble", "5", "--calibrate", "shape"]),
-        &["--ensemble", "--calibrate"],
-    );
-    refused(
-        &run(&["--ensemble", "5", "--frame", "record"]),
-        &["--ensemble", "--frame"],
+        &run(&[
+            "--ensemble",
+            "5",
+            "--calibrate",
+            "shape",
+            "--frame",
+            "record",
+        ]),
+        &["test2_timefeatures.csv"],
     );
     refused(&run(&["--frame", "clock"]), &["--frame", "life", "record"]);
     refused(

@@ -158,6 +158,12 @@ pub struct EnsembleFold {
     pub calibrated_on: String,
     /// Calibrated `material.life_factor`.
     pub life_factor: f64,
+    /// `material.propagation_passes`: calibrated on the population's median revolutions from onset to failure with
+    /// [`Calibration::Shape`], otherwise the material's.
+    pub propagation_passes: f64,
+    /// What was calibrated ([`Calibration::Length`] also when `Shape` was asked for a
+    /// calibration life without an onset).
+    pub calibrated: Calibration,
     /// Median simulated life over the record's running revolutions on the calibration
     /// life (1 within the calibration tolerance).
     pub calibration_median_ratio: f64,
@@ -210,17 +216,21 @@ pub struct EnsembleValidation {
     pub first_seed: u64,
     /// Seeds in the population.
     pub n: u64,
+    /// What each fold was asked to calibrate.
+    pub calibration: Calibration,
+    /// The time line of the per-seed figures and the degradation part.
+    pub frame: Frame,
     /// One fold per calibration life (the first is the primary protocol).
     pub folds: Vec<EnsembleFold>,
     /// Summary over every held-out life of every fold (leave-one-life-out).
     pub leave_one_out: EnsembleSummary,
 }
 
-/// `N` lives on `site` at `factor`, seeds `first ..`, windows every `expected /`
+/// `N` lives on `site` at `scales`, seeds `first ..`, windows every `expected /`
 /// [`SIM_SNAPSHOTS`] revolutions, on all cores.
 fn population(
     site: Site,
-    factor: f64,
+    scales: Scales,
     seeds: &[u64],
     expected: f64,
 ) -> Result<Vec<SimLife>, String> {
@@ -230,7 +240,7 @@ fn population(
         |i| {
             simulate(
                 site,
-                Scales::with_factor(factor),
+                scales,
                 seeds.get(i).copied().unwrap_or(0),
                 expected,
                 0.0,
@@ -247,26 +257,77 @@ fn median_of(v: impl Iterator<Item = f64>) -> f64 {
     median(v.collect())
 }
 
-/// Calibrates one factor on the median life of the population on `cal`'s site; returns
-/// the factor, the population at it and the rounds run.
+/// The population's typical shape: its median life, and an onset placed so that the part
+/// after it is the median of the lives' revolutions from onset to failure (over the lives
+/// that have an onset; none when fewer than half do). The part after the onset is what the
+/// propagation limit scales and what a record read on its hours before failure compares,
+/// so the median of that part, not of the onset fractions, is what is calibrated.
+fn population_shape(p: &[SimLife], feature: Feature) -> Shape {
+    let life = median_of(p.iter().map(|s| s.life));
+    let post: Vec<f64> = p
+        .iter()
+        .filter_map(|s| onset(&s.curve(feature)).map(|u| (1.0 - u) * s.life))
+        .collect();
+    let onset = (2 * post.len() >= p.len() && !post.is_empty() && life > 0.0)
+        .then(|| (1.0 - median_of(post.into_iter()) / life).clamp(0.0, 1.0));
+    Shape { life, onset }
+}
+
+/// Calibrates the population on `cal` as `how` says — the life factor on its median life
+/// and the calibration life's running revolutions ([`Calibration::Length`]), or with
+/// [`Calibration::Shape`] the propagation limit on the median revolutions from onset to
+/// failure and the measured ones too ([`calibrate_shape`] on [`population_shape`]; a
+/// calibration life without an onset falls back to the length) — on `cal`'s site; returns the scales, the
+/// population at them, the populations run and what was calibrated.
 fn calibrate_population(
     cal: &MeasuredRecord,
     seeds: &[u64],
-) -> Result<(f64, Vec<SimLife>, usize), String> {
+    how: Calibration,
+) -> Result<(Scales, Vec<SimLife>, usize, Calibration), String> {
     let target = cal.running_h * revs_per_hour();
     let site = cal.record.site;
-    let first = population(site, 1.0, seeds, 5e8)?;
+    let start = Scales::with_factor(1.0);
+    let first = population(site, start, seeds, 5e8)?;
+    let life = |p: &[SimLife]| median_of(p.iter().map(|s| s.life));
+    let feature = cal.record.feature;
+    if let (Calibration::Shape, Some(u)) = (how, onset(&cal.curve)) {
+        let shape = |p: &[SimLife]| population_shape(p, feature);
+        let c = calibrate_shape(
+            target,
+            u,
+            start,
+            (shape(&first), first),
+            SHAPE_STEPS,
+            |a, n_p| {
+                let scales = Scales {
+                    life_factor: a,
+                    propagation_passes: n_p,
+                };
+                let p = population(site, scales, seeds, target)?;
+                Ok::<_, String>((shape(&p), p))
+            },
+        )?;
+        let scales = Scales {
+            life_factor: c.factor,
+            propagation_passes: c.propagation_passes,
+        };
+        return Ok((scales, c.last, c.steps + 1, Calibration::Shape));
+    }
     let step = Secant {
         fixed: median_of(first.iter().map(|s| s.fixed)),
         min_steps: 1,
         max_steps: 6,
     };
-    let life = |p: &[SimLife]| median_of(p.iter().map(|s| s.life));
     let c = calibrate(target, (life(&first), first), &step, |a| {
-        let p = population(site, a, seeds, target)?;
+        let p = population(site, Scales::with_factor(a), seeds, target)?;
         Ok::<_, String>((life(&p), p))
     })?;
-    Ok((c.factor, c.last, c.steps + 1))
+    Ok((
+        Scales::with_factor(c.factor),
+        c.last,
+        c.steps + 1,
+        Calibration::Length,
+    ))
 }
 
 /// Coverage of `meas` by the pointwise band of `sims` over the common grid, and the
@@ -292,24 +353,40 @@ fn band_figures(meas: &Curve, sims: &[Curve]) -> (f64, Curve) {
     (inside as f64 / GRID as f64, Curve { t, rms: mid })
 }
 
-/// The figures of record `m` against population `pop` (its own site, one factor).
-pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> EnsembleLife {
-    let figs: Vec<LifeFigures> = pop
-        .iter()
-        .map(|s| figures(m, s, role, Frame::Life))
-        .collect();
+/// The figures of record `m` against population `pop` (its own site, one calibration),
+/// each simulated life read on `frame` for the per-seed figures (onset, hours, distance,
+/// end) and the degradation part. On [`Frame::Life`] the hours axis is [`on_hours`] and
+/// the degradation part is read on the fraction of life, as before the record frame; on
+/// [`Frame::Record`] both are [`on_record`], the per-seed figures' own reading.
+pub fn ensemble_life(
+    m: &MeasuredRecord,
+    pop: &[SimLife],
+    role: &str,
+    frame: Frame,
+) -> EnsembleLife {
+    let figs: Vec<LifeFigures> = pop.iter().map(|s| figures(m, s, role, frame)).collect();
     let curves: Vec<Curve> = pop.iter().map(|s| s.curve(m.record.feature)).collect();
     let span = m.running_h;
     let hours: Vec<Curve> = curves
         .iter()
         .zip(pop)
-        .map(|(c, s)| on_hours(c, s.life / revs_per_hour(), span))
+        .map(|(c, s)| {
+            let life_h = s.life / revs_per_hour();
+            match frame {
+                Frame::Life => on_hours(c, life_h, span),
+                Frame::Record => on_record(c, life_h, span),
+            }
+        })
         .collect();
     let (coverage_life, median_life) = band_figures(&m.curve, &curves);
     let (coverage_hours, median_hours) = band_figures(&m.curve, &hours);
-    // The degradation part: from the measured onset to failure.
+    // The degradation part: from the measured onset to failure, on the frame's time line.
     let late_from = onset(&m.curve);
     let late = |c: &Curve| late_from.map(|from| distance_db_from(c, &m.curve, from));
+    let (late_curves, late_median) = match frame {
+        Frame::Life => (&curves, &median_life),
+        Frame::Record => (&hours, &median_hours),
+    };
     let col = |f: fn(&LifeFigures) -> Option<f64>| figs.iter().map(f).collect::<Vec<_>>();
     let first = figs.first();
     EnsembleLife {
@@ -339,8 +416,8 @@ pub fn ensemble_life(m: &MeasuredRecord, pop: &[SimLife], role: &str) -> Ensembl
         distance_db: Spread::of(None, &col(|f| Some(f.distance_db_rms))),
         distance_flat_db: distance_db(&flat(), &m.curve),
         late_from,
-        distance_late_db: Spread::of(None, &curves.iter().map(late).collect::<Vec<_>>()),
-        distance_late_to_median_db: late(&median_life),
+        distance_late_db: Spread::of(None, &late_curves.iter().map(late).collect::<Vec<_>>()),
+        distance_late_to_median_db: late(late_median),
         distance_late_flat_db: late(&flat()),
     }
 }
@@ -388,6 +465,8 @@ pub fn validate_ensemble(
     first: u64,
     n: u64,
     all: bool,
+    how: Calibration,
+    frame: Frame,
 ) -> Result<EnsembleValidation, String> {
     if !ENSEMBLE_RANGE.contains(&n) {
         return Err(format!(
@@ -401,23 +480,25 @@ pub fn validate_ensemble(
         .collect::<Result<_, _>>()?;
     let mut folds = vec![];
     for cal in recs.iter().take(if all { recs.len() } else { 1 }) {
-        let (factor, own, rounds) = calibrate_population(cal, &seeds)?;
+        let (scales, own, rounds, calibrated) = calibrate_population(cal, &seeds, how)?;
         let target = cal.running_h * revs_per_hour();
         let mut held_out = vec![];
         for m in recs.iter().filter(|m| m.record.id != cal.record.id) {
             let pop = if m.record.site == cal.record.site {
                 own.clone()
             } else {
-                population(m.record.site, factor, &seeds, target)?
+                population(m.record.site, scales, &seeds, target)?
             };
-            held_out.push(ensemble_life(m, &pop, "held-out"));
+            held_out.push(ensemble_life(m, &pop, "held-out", frame));
         }
         folds.push(EnsembleFold {
             calibrated_on: cal.record.id.into(),
-            life_factor: factor,
+            life_factor: scales.life_factor,
+            propagation_passes: scales.propagation_passes,
+            calibrated,
             calibration_median_ratio: median_of(own.iter().map(|s| s.life)) / target,
             calibration_rounds: rounds,
-            calibration: ensemble_life(cal, &own, "calibration"),
+            calibration: ensemble_life(cal, &own, "calibration", frame),
             summary: summarise(&held_out),
             held_out,
         });
@@ -426,6 +507,8 @@ pub fn validate_ensemble(
     Ok(EnsembleValidation {
         first_seed: first,
         n,
+        calibration: how,
+        frame,
         folds,
         leave_one_out: summarise(&all_held),
     })
