@@ -126,7 +126,9 @@ pub struct ImsValidateArgs {
     pub measured_floor: Option<f64>,
     /// Judge against a population of N seeds (`--seed` .. `--seed` + N − 1, 5..=200)
     /// instead of one draw: one `life_factor` per fold puts the population's median life on
-    /// the calibration life; per life, the 5–95 % band and the measured value's rank (PIT)
+    /// the calibration life (with `--calibrate shape` the propagation limit also puts its
+    /// median revolutions from onset to failure on the measured ones; `--frame record` reads
+    /// the per-seed figures and the part after the onset on the record's hours); per life, the 5–95 % band and the measured value's rank (PIT)
     /// of onset, onset-to-failure hours, end level and life, the share of the measured curve
     /// inside the pointwise band, and its distance to the median curve. Writes
     /// `ims-ensemble.md` and `ims-ensemble.json`.
