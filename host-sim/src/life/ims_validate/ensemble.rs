@@ -41,7 +41,6 @@
 //! held-out lives choose nothing. With three held-out lives a PIT is an anecdote, not a
 //! test of calibration: the report lists them, and counts how many fall in [`BAND`].
 
-use super::super::calibrate::{calibrate, Secant};
 use super::super::parallel::{default_threads, map_indexed};
 use super::*;
 use crate::analysis::stats::quantile;
@@ -158,8 +157,8 @@ pub struct EnsembleFold {
     pub calibrated_on: String,
     /// Calibrated `material.life_factor`.
     pub life_factor: f64,
-    /// `material.propagation_passes`: calibrated on the population's median revolutions from onset to failure with
-    /// [`Calibration::Shape`], otherwise the material's.
+    /// `material.propagation_passes`: with [`Calibration::Shape`] calibrated on the
+    /// population's median revolutions from onset to failure, otherwise the material's.
     pub propagation_passes: f64,
     /// What was calibrated ([`Calibration::Length`] also when `Shape` was asked for a
     /// calibration life without an onset).
@@ -273,61 +272,26 @@ fn population_shape(p: &[SimLife], feature: Feature) -> Shape {
     Shape { life, onset }
 }
 
-/// Calibrates the population on `cal` as `how` says — the life factor on its median life
-/// and the calibration life's running revolutions ([`Calibration::Length`]), or with
-/// [`Calibration::Shape`] the propagation limit on the median revolutions from onset to
-/// failure and the measured ones too ([`calibrate_shape`] on [`population_shape`]; a
-/// calibration life without an onset falls back to the length) — on `cal`'s site; returns the scales, the
-/// population at them, the populations run and what was calibrated.
+/// Calibrates the population on `cal` as `how` says ([`calibrate_as`]: the life factor
+/// on its median life, and with [`Calibration::Shape`] the propagation limit on its
+/// median revolutions from onset to failure, [`population_shape`]), on `cal`'s site.
 fn calibrate_population(
     cal: &MeasuredRecord,
     seeds: &[u64],
     how: Calibration,
-) -> Result<(Scales, Vec<SimLife>, usize, Calibration), String> {
+) -> Result<CalibratedAs<Vec<SimLife>>, String> {
     let target = cal.running_h * revs_per_hour();
     let site = cal.record.site;
-    let start = Scales::with_factor(1.0);
-    let first = population(site, start, seeds, 5e8)?;
-    let life = |p: &[SimLife]| median_of(p.iter().map(|s| s.life));
+    let first = population(site, Scales::with_factor(1.0), seeds, 5e8)?;
     let feature = cal.record.feature;
-    if let (Calibration::Shape, Some(u)) = (how, onset(&cal.curve)) {
-        let shape = |p: &[SimLife]| population_shape(p, feature);
-        let c = calibrate_shape(
-            target,
-            u,
-            start,
-            (shape(&first), first),
-            SHAPE_STEPS,
-            |a, n_p| {
-                let scales = Scales {
-                    life_factor: a,
-                    propagation_passes: n_p,
-                };
-                let p = population(site, scales, seeds, target)?;
-                Ok::<_, String>((shape(&p), p))
-            },
-        )?;
-        let scales = Scales {
-            life_factor: c.factor,
-            propagation_passes: c.propagation_passes,
-        };
-        return Ok((scales, c.last, c.steps + 1, Calibration::Shape));
-    }
-    let step = Secant {
-        fixed: median_of(first.iter().map(|s| s.fixed)),
-        min_steps: 1,
-        max_steps: 6,
-    };
-    let c = calibrate(target, (life(&first), first), &step, |a| {
-        let p = population(site, Scales::with_factor(a), seeds, target)?;
-        Ok::<_, String>((life(&p), p))
-    })?;
-    Ok((
-        Scales::with_factor(c.factor),
-        c.last,
-        c.steps + 1,
-        Calibration::Length,
-    ))
+    calibrate_as(
+        cal,
+        how,
+        first,
+        |p: &Vec<SimLife>| population_shape(p, feature),
+        |p| median_of(p.iter().map(|s| s.fixed)),
+        |scales| population(site, scales, seeds, target),
+    )
 }
 
 /// Coverage of `meas` by the pointwise band of `sims` over the common grid, and the
@@ -480,7 +444,8 @@ pub fn validate_ensemble(
         .collect::<Result<_, _>>()?;
     let mut folds = vec![];
     for cal in recs.iter().take(if all { recs.len() } else { 1 }) {
-        let (scales, own, rounds, calibrated) = calibrate_population(cal, &seeds, how)?;
+        let c = calibrate_population(cal, &seeds, how)?;
+        let (scales, own) = (c.scales, c.last);
         let target = cal.running_h * revs_per_hour();
         let mut held_out = vec![];
         for m in recs.iter().filter(|m| m.record.id != cal.record.id) {
@@ -495,9 +460,9 @@ pub fn validate_ensemble(
             calibrated_on: cal.record.id.into(),
             life_factor: scales.life_factor,
             propagation_passes: scales.propagation_passes,
-            calibrated,
+            calibrated: c.calibration,
             calibration_median_ratio: median_of(own.iter().map(|s| s.life)) / target,
-            calibration_rounds: rounds,
+            calibration_rounds: c.runs,
             calibration: ensemble_life(cal, &own, "calibration", frame),
             summary: summarise(&held_out),
             held_out,

@@ -387,59 +387,97 @@ pub fn calibrate_on(
     let target = cal.running_h * revs_per_hour();
     let site = cal.record.site;
     // The uncalibrated life: ISO 281 fatigue at factor 1, the material's propagation limit.
-    let start = Scales::with_factor(1.0);
-    let first = simulate(site, start, seed, 5e8, 0.0)?;
+    let first = simulate(site, Scales::with_factor(1.0), seed, 5e8, 0.0)?;
     let uncalibrated_life = first.life;
     let feature = cal.record.feature;
-    if let (Calibration::Shape, Some(u)) = (how, onset(&cal.curve)) {
-        let shape = |s: &SimLife| Shape {
+    let c = calibrate_as(
+        cal,
+        how,
+        first,
+        |s: &SimLife| Shape {
             life: s.life,
             onset: onset(&s.curve(feature)),
-        };
+        },
+        |s| s.fixed,
+        |scales| simulate(site, scales, seed, target, 0.0),
+    )?;
+    Ok(Calibrated {
+        scales: c.scales,
+        calibration: c.calibration,
+        uncalibrated_life,
+        life: c.last,
+    })
+}
+
+/// What [`calibrate_as`] returns.
+#[derive(Debug, Clone)]
+pub struct CalibratedAs<T> {
+    /// The calibrated scales.
+    pub scales: Scales,
+    /// What was calibrated ([`Calibration::Length`] also when `Shape` was asked for a
+    /// calibration life without an onset).
+    pub calibration: Calibration,
+    /// The last run, at `scales`.
+    pub last: T,
+    /// Runs made, the first (at life factor 1) included.
+    pub runs: usize,
+}
+
+/// The one calibration of `ims-validate`, whatever a run is (one simulated life, or a
+/// population of them): `first` ran at life factor 1 and the material's propagation
+/// limit; `shape` gives a run's length and onset, `fixed` its revolutions the life factor
+/// does not scale (from crack opening to failure), `run` runs at given scales. With
+/// [`Calibration::Shape`] and a measured onset, both scales on the length and the onset
+/// ([`calibrate_shape`], up to [`SHAPE_STEPS`]); otherwise the life factor alone on the
+/// length ([`calibrate`]: secant steps with the fixed part held, up to 6).
+pub fn calibrate_as<T>(
+    cal: &MeasuredRecord,
+    how: Calibration,
+    first: T,
+    shape: impl Fn(&T) -> Shape,
+    fixed: impl Fn(&T) -> f64,
+    mut run: impl FnMut(Scales) -> Result<T, String>,
+) -> Result<CalibratedAs<T>, String> {
+    let target = cal.running_h * revs_per_hour();
+    if let (Calibration::Shape, Some(u)) = (how, onset(&cal.curve)) {
         let c = calibrate_shape(
             target,
             u,
-            start,
+            Scales::with_factor(1.0),
             (shape(&first), first),
             SHAPE_STEPS,
             |a, n_p| {
-                let s = simulate(
-                    site,
-                    Scales {
-                        life_factor: a,
-                        propagation_passes: n_p,
-                    },
-                    seed,
-                    target,
-                    0.0,
-                )?;
-                Ok::<_, String>((shape(&s), s))
+                let t = run(Scales {
+                    life_factor: a,
+                    propagation_passes: n_p,
+                })?;
+                Ok::<_, String>((shape(&t), t))
             },
         )?;
-        return Ok(Calibrated {
+        return Ok(CalibratedAs {
             scales: Scales {
                 life_factor: c.factor,
                 propagation_passes: c.propagation_passes,
             },
             calibration: Calibration::Shape,
-            uncalibrated_life,
-            life: c.last,
+            last: c.last,
+            runs: c.steps + 1,
         });
     }
     let step = Secant {
-        fixed: first.fixed,
+        fixed: fixed(&first),
         min_steps: 1,
         max_steps: 6,
     };
-    let c = calibrate(target, (first.life, first), &step, |a| {
-        let s = simulate(site, Scales::with_factor(a), seed, target, 0.0)?;
-        Ok::<_, String>((s.life, s))
+    let c = calibrate(target, (shape(&first).life, first), &step, |a| {
+        let t = run(Scales::with_factor(a))?;
+        Ok::<_, String>((shape(&t).life, t))
     })?;
-    Ok(Calibrated {
+    Ok(CalibratedAs {
         scales: Scales::with_factor(c.factor),
         calibration: Calibration::Length,
-        uncalibrated_life,
-        life: c.last,
+        last: c.last,
+        runs: c.steps + 1,
     })
 }
 
