@@ -186,9 +186,15 @@ pub fn ims_validation_markdown(v: &crate::life::ims_validate::Validation, cmd: &
             f.calibrated_on,
             f.life_factor,
             f.propagation_passes,
-            match f.calibrated {
-                crate::life::ims_validate::Calibration::Shape => " (calibrated)",
-                crate::life::ims_validate::Calibration::Length => " (the material's)",
+            match (f.calibrated, f.converged) {
+                (crate::life::ims_validate::Calibration::Shape, true) => " (calibrated)",
+                (crate::life::ims_validate::Calibration::Shape, false) => {
+                    " (calibrated; **the calibration did not reach its targets**, the fold is reported as it ended)"
+                }
+                (crate::life::ims_validate::Calibration::Length, true) => " (the material's)",
+                (crate::life::ims_validate::Calibration::Length, false) => {
+                    " (the material's; **the life factor did not reach the running revolutions**, the fold is reported as it ended)"
+                }
             },
             f.floor
         );

@@ -132,6 +132,11 @@ fn held_out_onsets_on_running_hours_after_a_shape_calibration() {
     for v in &runs {
         let fold = &v.folds[0];
         assert_eq!(fold.calibrated, Calibration::Shape);
+        assert!(
+            fold.converged,
+            "seed {}: the shape calibration did not reach its targets",
+            v.seed
+        );
         let c = &fold.calibration;
         eprintln!("seed {}: {fold:?}", v.seed);
         assert!((c.life_ratio - 1.0).abs() < 0.01, "{c:?}");
@@ -230,6 +235,7 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
     assert_eq!(v.folds.len(), 1);
     let fold = &v.folds[0];
     assert_eq!(fold.calibrated_on, "t2b1");
+    assert!(fold.converged);
     assert!(
         (fold.calibration_median_ratio - 1.0).abs() <= 0.01,
         "median life / record {}",
@@ -323,6 +329,10 @@ fn a_population_calibrated_in_both_scales_is_read_on_the_records_hours() {
     );
     let fold = &v.folds[0];
     assert_eq!(fold.calibrated, Calibration::Shape);
+    assert!(
+        fold.converged,
+        "the primary fold's calibration must reach its targets"
+    );
     assert!(
         (fold.calibration_median_ratio - 1.0).abs() <= 0.01,
         "median life / record {}",

@@ -163,6 +163,10 @@ pub struct EnsembleFold {
     /// What was calibrated ([`Calibration::Length`] also when `Shape` was asked for a
     /// calibration life without an onset).
     pub calibrated: Calibration,
+    /// The calibration reached its targets ([`CalibratedAs::converged`], on the
+    /// population's median life and its median part after the onset); a fold that did not is
+    /// reported as it ended.
+    pub converged: bool,
     /// Median simulated life over the record's running revolutions on the calibration
     /// life (1 within the calibration tolerance).
     pub calibration_median_ratio: f64,
@@ -461,6 +465,7 @@ pub fn validate_ensemble(
             life_factor: scales.life_factor,
             propagation_passes: scales.propagation_passes,
             calibrated: c.calibration,
+            converged: c.converged,
             calibration_median_ratio: median_of(own.iter().map(|s| s.life)) / target,
             calibration_rounds: c.runs,
             calibration: ensemble_life(cal, &own, "calibration", frame),

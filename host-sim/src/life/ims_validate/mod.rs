@@ -54,7 +54,9 @@ pub use floor::*;
 pub use record::*;
 pub use sim::*;
 
-use super::calibrate::{calibrate, calibrate_shape, Scales, Secant, Shape};
+use super::calibrate::{
+    calibrate, calibrate_shape, Scales, Secant, Shape, ONSET_TOLERANCE, TOLERANCE,
+};
 use super::ims::{distance_db, normalise, onset, Curve};
 use super::{AtCap, LifeError, LifeRun, LifeSpec};
 use crate::io::ims::{read_ims_features, IMS_RPM};
@@ -76,6 +78,10 @@ pub struct Fold {
     pub propagation_passes: f64,
     /// What was calibrated.
     pub calibrated: Calibration,
+    /// The calibration reached its targets: the simulated life within 1 % of the running
+    /// revolutions, and with [`Calibration::Shape`] its onset within 0.02 of the measured
+    /// one. A fold that did not is reported as it ended, not dropped.
+    pub converged: bool,
     /// Measurement floor (m/s² RMS, white), calibrated on the calibration life's end
     /// ratio, or 0 (bearing only).
     pub floor: f64,
@@ -370,6 +376,8 @@ pub struct Calibrated {
     pub calibration: Calibration,
     /// Revolutions to failure of the uncalibrated life (ISO 281 fatigue, factor 1).
     pub uncalibrated_life: f64,
+    /// The calibration reached its targets ([`CalibratedAs::converged`]).
+    pub converged: bool,
     /// The simulated life at `scales` (bearing only, no floor).
     pub life: SimLife,
 }
@@ -404,6 +412,7 @@ pub fn calibrate_on(
     Ok(Calibrated {
         scales: c.scales,
         calibration: c.calibration,
+        converged: c.converged,
         uncalibrated_life,
         life: c.last,
     })
@@ -421,6 +430,10 @@ pub struct CalibratedAs<T> {
     pub last: T,
     /// Runs made, the first (at life factor 1) included.
     pub runs: usize,
+    /// The last run reached the targets: its length within [`TOLERANCE`] of the running
+    /// revolutions and, with [`Calibration::Shape`], its onset within [`ONSET_TOLERANCE`]
+    /// of the measured one.
+    pub converged: bool,
 }
 
 /// The one calibration of `ims-validate`, whatever a run is (one simulated life, or a
@@ -454,6 +467,10 @@ pub fn calibrate_as<T>(
                 Ok::<_, String>((shape(&t), t))
             },
         )?;
+        let converged = (c.shape.life / target - 1.0).abs() < TOLERANCE
+            && c.shape
+                .onset
+                .is_some_and(|v| (v - u).abs() <= ONSET_TOLERANCE);
         return Ok(CalibratedAs {
             scales: Scales {
                 life_factor: c.factor,
@@ -462,6 +479,7 @@ pub fn calibrate_as<T>(
             calibration: Calibration::Shape,
             last: c.last,
             runs: c.steps + 1,
+            converged,
         });
     }
     let step = Secant {
@@ -476,6 +494,7 @@ pub fn calibrate_as<T>(
     Ok(CalibratedAs {
         scales: Scales::with_factor(c.factor),
         calibration: Calibration::Length,
+        converged: (c.life / target - 1.0).abs() < TOLERANCE,
         last: c.last,
         runs: c.steps + 1,
     })
@@ -543,6 +562,7 @@ pub fn validate_records(
             life_factor: c.scales.life_factor,
             propagation_passes: c.scales.propagation_passes,
             calibrated: c.calibration,
+            converged: c.converged,
             floor,
             calibration,
             median: medians(&held_out),
