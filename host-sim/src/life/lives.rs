@@ -204,9 +204,38 @@ pub fn summarise(load_scale: f64, load_n: f64, iso_l10: f64, lives: Vec<LifeOutc
         onset_found: onsets.len(),
         onset_median: median(onsets),
         stage_onsets,
-        phases: super::phases::shares(&lives, 0x5AA3),
+        phases: phase_shares(&lives),
         lives,
     }
+}
+
+/// The shares of life of the crack growth and of the post-spall phase
+/// ([`super::phases`]): per life that opened a crack and reached its first spall,
+/// `(first spall − crack opening) / first spall`; per failed life with a first spall,
+/// `(failure − first spall) / failure`.
+fn phase_shares(lives: &[LifeOutcome]) -> super::phases::PhaseShares {
+    let at = |l: &LifeOutcome, s: Stage| {
+        l.stages
+            .iter()
+            .find(|(n, _)| n == s.name())
+            .map(|(_, c)| *c)
+    };
+    let crack: Vec<f64> = lives
+        .iter()
+        .filter_map(|l| {
+            let (open, spall) = (at(l, Stage::CrackOpening)?, at(l, Stage::DefectCompletion)?);
+            (spall > 0.0 && open <= spall).then(|| (spall - open) / spall)
+        })
+        .collect();
+    let post: Vec<f64> = lives
+        .iter()
+        .filter(|l| !l.suspended)
+        .filter_map(|l| {
+            let s = l.first_spall?;
+            (l.life > 0.0).then(|| (l.life - s) / l.life)
+        })
+        .collect();
+    super::phases::shares(&crack, &post, BOOTSTRAP, 0x5AA3)
 }
 
 /// A life as a unit of a test to failure: failed at its life, or suspended at the cap.
@@ -321,6 +350,47 @@ mod tests {
 
     fn est(value: f64, lo: f64, hi: f64) -> Estimate {
         Estimate { value, lo, hi }
+    }
+
+    fn life(seed: u64, open: f64, spall: f64, end: f64, suspended: bool) -> LifeOutcome {
+        LifeOutcome {
+            seed,
+            life: end,
+            suspended,
+            first_spall: Some(spall),
+            initiation: None,
+            onset: None,
+            stages: vec![
+                ("crack-opening".into(), open),
+                ("defect-completion".into(), spall),
+                ("failure".into(), end),
+            ],
+            wall_s: 0.0,
+        }
+    }
+
+    /// The phase shares are the stated ratios of the stage times; a suspended life has no
+    /// post-spall share, a life without a spall neither share.
+    #[test]
+    fn phase_shares_are_the_ratios_of_the_stage_times() {
+        let mut lives: Vec<LifeOutcome> =
+            (0..5).map(|i| life(i, 60.0, 80.0, 100.0, false)).collect();
+        lives.push(life(9, 10.0, 20.0, 1e3, true));
+        lives.push(LifeOutcome {
+            first_spall: None,
+            stages: vec![("crack-opening".into(), 5.0)],
+            ..life(10, 5.0, 5.0, 50.0, true)
+        });
+        let s = phase_shares(&lives);
+        // Crack share: (80 − 60)/80 = 0.25 for five lives, 0.5 for the suspended one.
+        assert_eq!(s.crack_lives, 6);
+        let c = s.crack.unwrap();
+        assert!((c.value - 0.25).abs() < 1e-12, "{c:?}");
+        assert!(c.lo <= c.value && c.value <= c.hi && c.hi <= 0.5, "{c:?}");
+        // Post-spall share: (100 − 80)/100 = 0.2, failed lives only.
+        assert_eq!(s.post_spall_lives, 5);
+        let p = s.post_spall.unwrap();
+        assert_eq!((p.value, p.lo, p.hi), (0.2, 0.2, 0.2));
     }
 
     /// The published ball-bearing range is [−4, −3] (n = 9 and 12 over the Hertz point

@@ -23,11 +23,9 @@
 //! not overlap ([`Trend::Undecided`] otherwise), so a direction is never read from
 //! scatter.
 
-use super::lives::{LifeOutcome, BOOTSTRAP};
 use super::weibull::{Estimate, SplitMix};
 use crate::analysis::stats::{median, quantile};
 use serde::Serialize;
-use wearsim_core::wear::Stage;
 
 /// The published direction of the crack share with load and its source.
 pub const CRACK_SHARE_PUBLISHED: (Trend, &str) = (
@@ -84,35 +82,16 @@ pub struct ShareTrend {
     pub agrees: Option<bool>,
 }
 
-/// The phase shares of `lives` (bootstrap seeded by `seed`, [`BOOTSTRAP`] resamples).
-pub fn shares(lives: &[LifeOutcome], seed: u64) -> PhaseShares {
-    let crack: Vec<f64> = lives.iter().filter_map(crack_share).collect();
-    let post: Vec<f64> = lives
-        .iter()
-        .filter(|l| !l.suspended)
-        .filter_map(|l| {
-            let s = l.first_spall?;
-            (l.life > 0.0).then(|| (l.life - s) / l.life)
-        })
-        .collect();
+/// The phase shares of one load's lives from each life's `crack` and `post_spall` share
+/// (`life::lives` takes them from the stage times), each summarised by its median with a
+/// bootstrap interval (`reps` resamples seeded by `seed`).
+pub fn shares(crack: &[f64], post_spall: &[f64], reps: usize, seed: u64) -> PhaseShares {
     PhaseShares {
         crack_lives: crack.len(),
-        crack: median_with_ci(&crack, BOOTSTRAP, seed),
-        post_spall_lives: post.len(),
-        post_spall: median_with_ci(&post, BOOTSTRAP, seed ^ 0x5A11),
+        crack: median_with_ci(crack, reps, seed),
+        post_spall_lives: post_spall.len(),
+        post_spall: median_with_ci(post_spall, reps, seed ^ 0x5A11),
     }
-}
-
-/// The crack share of one life, if it opened a crack and reached its first spall.
-fn crack_share(l: &LifeOutcome) -> Option<f64> {
-    let at = |s: Stage| {
-        l.stages
-            .iter()
-            .find(|(n, _)| n == s.name())
-            .map(|(_, c)| *c)
-    };
-    let (open, spall) = (at(Stage::CrackOpening)?, at(Stage::DefectCompletion)?);
-    (spall > 0.0 && open <= spall).then(|| (spall - open) / spall)
 }
 
 /// Median of `v` with the 5th and 95th percentiles of its bootstrap (`reps` resamples);
@@ -186,47 +165,6 @@ pub fn post_spall_trend(groups: &[(f64, PhaseShares)]) -> Option<ShareTrend> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn life(seed: u64, open: f64, spall: f64, end: f64, suspended: bool) -> LifeOutcome {
-        LifeOutcome {
-            seed,
-            life: end,
-            suspended,
-            first_spall: Some(spall),
-            initiation: None,
-            onset: None,
-            stages: vec![
-                ("crack-opening".into(), open),
-                ("defect-completion".into(), spall),
-                ("failure".into(), end),
-            ],
-            wall_s: 0.0,
-        }
-    }
-
-    /// The shares are the stated ratios of the stage times; a suspended life has no
-    /// post-spall share, a life without a spall neither share.
-    #[test]
-    fn shares_are_the_ratios_of_the_stage_times() {
-        let mut lives: Vec<LifeOutcome> =
-            (0..5).map(|i| life(i, 60.0, 80.0, 100.0, false)).collect();
-        lives.push(life(9, 10.0, 20.0, 1e3, true));
-        lives.push(LifeOutcome {
-            first_spall: None,
-            stages: vec![("crack-opening".into(), 5.0)],
-            ..life(10, 5.0, 5.0, 50.0, true)
-        });
-        let s = shares(&lives, 1);
-        // Crack share: (80 − 60)/80 = 0.25 for five lives, 0.5 for the suspended one.
-        assert_eq!(s.crack_lives, 6);
-        let c = s.crack.unwrap();
-        assert!((c.value - 0.25).abs() < 1e-12, "{c:?}");
-        assert!(c.lo <= c.value && c.value <= c.hi && c.hi <= 0.5, "{c:?}");
-        // Post-spall share: (100 − 80)/100 = 0.2, failed lives only.
-        assert_eq!(s.post_spall_lives, 5);
-        let p = s.post_spall.unwrap();
-        assert_eq!((p.value, p.lo, p.hi), (0.2, 0.2, 0.2));
-    }
 
     /// The bootstrap interval of the median holds the sample median and narrows as the
     /// sample grows.
