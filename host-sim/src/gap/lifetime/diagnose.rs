@@ -559,14 +559,21 @@ pub fn diagnose_calibrated(
         None
     } else {
         let significant = SIGNIFICANCE * noise_only(&test_e, &base);
-        Some(judge(
+        let t = judge(
             &mut early_at,
             &Effects::NONE,
             &test_e,
             &test_e,
             &ev,
             significant,
-        )?)
+        )?;
+        if early_at.kept.is_empty() && t.before >= significant {
+            early_at.findings.push(format!(
+                "no early effect was chosen (the validation lives asked for none), so the test lives' early gap ({:.2}) is the baseline's; `early.effects[].test_shrink` says what each effect alone would have done there",
+                t.before
+            ));
+        }
+        Some(t)
     };
     let early_before = early_at.baseline_holdout;
     let early: Vec<EarlyShrink> = early_at

@@ -260,10 +260,9 @@ fn findings(g: &LifeGap) -> Vec<String> {
                 let set = if x.confounded_with.is_empty() {
                     String::new()
                 } else {
+                    let others = x.confounded_with.join(", ");
                     format!(
-                        "; confounded with {}: the early-life ranking inside {{{e}, {}}} is not evidence for `{e}`",
-                        x.confounded_with.join(", "),
-                        x.confounded_with.join(", ")
+                        "; confounded with {others}: the early-life ranking inside {{{e}, {others}}} is not evidence for `{e}`"
                     )
                 };
                 let test = match (x.test_shrink, g.early_test) {
