@@ -69,7 +69,7 @@ the population: about 0.9).\n",
     for fold in &v.folds {
         let _ = write!(
             md,
-            "\n## Calibrated on {} (`life_factor` = {:.3e}{}; median life / record {:.3}, {} populations run{})\n\n\
+            "\n## Calibrated on {} (`life_factor` = {:.3e}{}; median life / record {:.3}{}, {} populations run{})\n\n\
 | life | role | onset (fraction) | onset→failure h | end level (last 5 %) | last value | life sim./record | coverage life | coverage hours | dB to median curve (life / hours) | one seed's distance dB [5 · 50 · 95 %] | null curve dB | after the measured onset: median curve / one seed (median) / null dB |\n\
 |---|---|---|---|---|---|---|---:|---:|---|---|---:|---|\n",
             fold.calibrated_on,
@@ -79,6 +79,16 @@ the population: about 0.9).\n",
                 Calibration::Length => String::new(),
             },
             fold.calibration_median_ratio,
+            match (
+                fold.calibrated,
+                fold.calibration_median_onset_to_failure_h,
+                fold.calibration.onset_to_failure_h.measured,
+            ) {
+                (Calibration::Shape, Some(h), Some(m)) => format!(
+                    "; median onset→failure {h:.1} h on the lives' own time lines, {m:.1} h measured"
+                ),
+                _ => String::new(),
+            },
             fold.calibration_rounds,
             if fold.converged {
                 ""

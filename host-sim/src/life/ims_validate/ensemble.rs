@@ -172,6 +172,13 @@ pub struct EnsembleFold {
     pub calibration_median_ratio: f64,
     /// Populations of `N` lives run by the calibration (the probe at factor 1 included).
     pub calibration_rounds: usize,
+    /// The calibrated population's median running hours from onset to failure, each life
+    /// read on its own time line ([`population_shape`]: what [`Calibration::Shape`]
+    /// calibrates on the measured hours; `None` when fewer than half the lives have an
+    /// onset). Read on the record's hours (`calibration.onset_to_failure_h` with
+    /// [`Frame::Record`]) a life whose damaged part is longer than the record shows only the
+    /// part inside it, so that median can only be shorter.
+    pub calibration_median_onset_to_failure_h: Option<f64>,
     /// The calibration life (in sample).
     pub calibration: EnsembleLife,
     /// The other lives (held out).
@@ -468,6 +475,10 @@ pub fn validate_ensemble(
             converged: c.converged,
             calibration_median_ratio: median_of(own.iter().map(|s| s.life)) / target,
             calibration_rounds: c.runs,
+            calibration_median_onset_to_failure_h: {
+                let s = population_shape(&own, cal.record.feature);
+                s.onset.map(|u| (1.0 - u) * s.life / revs_per_hour())
+            },
             calibration: ensemble_life(cal, &own, "calibration", frame),
             summary: summarise(&held_out),
             held_out,

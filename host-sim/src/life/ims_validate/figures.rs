@@ -83,7 +83,7 @@ pub fn on_hours(c: &Curve, life_h: f64, span: f64) -> Curve {
 /// that ends at the same failure ([`Frame::Record`]): [`on_hours`], cut at the record's
 /// start; a life shorter than the record is read at its own steady level (1 on `c`, the
 /// median of its first half) before its start, at its own window spacing (at least
-/// [`GRID`] points' worth), so that the record's first half has a steady band to test
+/// [`GRID`] points' worth), so that the record's early part has a steady band to test
 /// the onset against; then normalised again on the record's first half.
 pub fn on_record(c: &Curve, life_h: f64, span_h: f64) -> Curve {
     let h = on_hours(c, life_h, span_h);

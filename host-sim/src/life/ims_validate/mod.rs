@@ -19,7 +19,7 @@
 //!
 //! **What each figure is** (per life):
 //! * *onset* — first snapshot of [`PERSIST`](super::ims::PERSIST) in a row above the steady
-//!   band of the first half of the record ([`super::ims::onset`]), as a fraction of the
+//!   band of the part of the record before it ([`super::ims::onset`]), as a fraction of the
 //!   record (measured) or of the simulated life; and the *time from onset to failure* in
 //!   running hours (simulated: revolutions from onset to failure at 2000 rpm). The IMS
 //!   records need not start at a new bearing (test 2 covers 1.96·10⁷ revolutions against
