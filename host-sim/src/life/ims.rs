@@ -82,8 +82,8 @@ fn first_run_above(c: &Curve, upper: f64) -> Option<usize> {
 /// life whose damaged part passed half its length lost its onset altogether. The first
 /// quarter is the baseline because IMS test 1 shows why a shorter one fails: after a
 /// six-day stop at 0.07 of the record every channel (failed bearings and sound ones alike)
-/// runs 20 % higher for the rest of the test, a rig event, not wear; any baseline ending
-/// before about 0.15 reads it as an onset. `None`: fewer than 5 snapshots in the baseline,
+/// runs 20 % higher for the rest of the test, a rig event, not wear; a baseline ending at
+/// 0.12 or earlier reads it as bearing 3's onset (0.05 and 0.1: bearing 4's as well). `None`: fewer than 5 snapshots in the baseline,
 /// or the curve never leaves its band after it.
 pub fn onset(c: &Curve) -> Option<f64> {
     let baseline: Vec<f64> =
