@@ -76,7 +76,7 @@ fn first_run_above(c: &Curve, upper: f64) -> Option<usize> {
 ///
 /// The band is first estimated on the first [`BASELINE`] of the life, then re-estimated
 /// from every snapshot before the onset it gives, until the onset no longer moves (at most
-/// [`BAND_ROUNDS`] rounds; the last is kept). A steady band taken from a fixed share of the
+/// 8 rounds; the last is kept). A steady band taken from a fixed share of the
 /// life cannot see an onset inside that share: with the first half (the rule until stop 48)
 /// every life that degraded from 0.25–0.5 of its length was read as starting at 0.5, and a
 /// life whose damaged part passed half its length lost its onset altogether. The first

@@ -173,7 +173,7 @@ pub struct EnsembleFold {
     /// Populations of `N` lives run by the calibration (the probe at factor 1 included).
     pub calibration_rounds: usize,
     /// The calibrated population's median running hours from onset to failure, each life
-    /// read on its own time line ([`population_shape`]: what [`Calibration::Shape`]
+    /// read on its own time line (the population's shape: what [`Calibration::Shape`]
     /// calibrates on the measured hours; `None` when fewer than half the lives have an
     /// onset). Read on the record's hours (`calibration.onset_to_failure_h` with
     /// [`Frame::Record`]) a life whose damaged part is longer than the record shows only the
