@@ -210,7 +210,7 @@ fn findings(g: &LifeGap) -> Vec<String> {
             g.simulated_onset.map_or("none".to_string(), |v| format!("{v:.3}"))
         ),
         None => format!(
-            "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not; the training life has no onset of instability (its RMS never leaves its steady band for {} snapshots after the first quarter of its life), so the propagation limit stays the material's {steel:.1e} passes",
+            "the life factor ({:.3e}) is calibrated on the training bearing's measured life ({:.3e} revolutions): the length of the simulated life is in-sample, its shape is not; the training life has no onset of instability that the rule can place (its RMS does not stay above the steady band of the snapshots before it for {} snapshots anywhere after the first quarter of its life: it never rose, or it rose inside that quarter, which is the band's baseline), so the propagation limit stays the material's {steel:.1e} passes",
             g.life_factor,
             g.measured_revs,
             crate::life::ims::PERSIST
