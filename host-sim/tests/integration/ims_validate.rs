@@ -12,13 +12,21 @@ use wearsim_host::life::ims_validate::{
     Medians, Protocol, Validation, RECORDS,
 };
 
-#[test]
-fn the_four_failed_lives_are_read_on_running_time() {
+/// The four failed IMS lives, read from the data folder; `None` (with a message) when the
+/// folder is absent, a failure when `CI=true`.
+fn failed_lives() -> Option<Vec<MeasuredRecord>> {
     let Some(data) = data_dir().expect("data folder required when CI=true") else {
         eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return None;
+    };
+    Some(read_records(&data).unwrap())
+}
+
+#[test]
+fn the_four_failed_lives_are_read_on_running_time() {
+    let Some(r) = failed_lives() else {
         return;
     };
-    let r = read_records(&data).unwrap();
     let by = |id: &str| r.iter().find(|m| m.record.id == id).unwrap();
     // Test 2 runs without stops: 2004-02-12 10:32:39 to 02-19 06:02:39 (two dead final
     // snapshots dropped, IMS README quirk) = 163.5 h at 10-min intervals.
@@ -63,11 +71,9 @@ fn the_four_failed_lives_are_read_on_running_time() {
 /// docs/ims-comparison.md).
 #[test]
 fn held_out_lives_end_within_a_factor_two_of_measured() {
-    let Some(data) = data_dir().expect("data folder required when CI=true") else {
-        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+    let Some(recs) = failed_lives() else {
         return;
     };
-    let recs = read_records(&data).unwrap();
     let runs = validate_seeds(&recs, 1..=5, false, Protocol::LENGTH_ON_LIFE).unwrap();
     for v in &runs {
         let fold = &v.folds[0];
@@ -117,11 +123,9 @@ fn held_out_lives_end_within_a_factor_two_of_measured() {
 /// both checked as what they are (docs/ims-comparison.md, stop 46).
 #[test]
 fn held_out_onsets_on_running_hours_after_a_shape_calibration() {
-    let Some(data) = data_dir().expect("data folder required when CI=true") else {
-        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+    let Some(recs) = failed_lives() else {
         return;
     };
-    let recs = read_records(&data).unwrap();
     let p = Protocol {
         calibration: Calibration::Shape,
         frame: Frame::Record,
@@ -226,11 +230,9 @@ fn the_command_refuses_a_bad_table_and_writes_nothing() {
 /// failure is shorter.
 #[test]
 fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
-    let Some(data) = data_dir().expect("data folder required when CI=true") else {
-        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+    let Some(recs) = failed_lives() else {
         return;
     };
-    let recs = read_records(&data).unwrap();
     let v = validate_ensemble(&recs, 1, 5, false, Calibration::Length, Frame::Life).unwrap();
     assert_eq!(v.folds.len(), 1);
     let fold = &v.folds[0];
@@ -319,11 +321,9 @@ fn the_population_is_calibrated_on_its_median_and_judged_on_held_out_lives() {
 /// move an onset by a window or two), and still past the record's first quarter.
 #[test]
 fn a_population_calibrated_in_both_scales_is_read_on_the_records_hours() {
-    let Some(data) = data_dir().expect("data folder required when CI=true") else {
-        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+    let Some(recs) = failed_lives() else {
         return;
     };
-    let recs = read_records(&data).unwrap();
     let v = validate_ensemble(&recs, 1, 5, false, Calibration::Shape, Frame::Record).unwrap();
     assert_eq!(
         (v.calibration, v.frame),
@@ -647,11 +647,9 @@ fn the_calibration_life_as_the_prediction_gives_its_own_figures() {
 /// (0.199), which the model does not beat either (docs/ims-comparison.md).
 #[test]
 fn another_measured_life_predicts_a_held_out_life_within_three_decibels() {
-    let Some(data) = data_dir().expect("data folder required when CI=true") else {
-        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+    let Some(recs) = failed_lives() else {
         return;
     };
-    let recs = read_records(&data).unwrap();
     let pairs: Vec<(&MeasuredRecord, &MeasuredRecord)> = recs
         .iter()
         .flat_map(|c| {
