@@ -406,7 +406,7 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
             "--out",
             s(&out),
         ]),
-        &["running-in stage"],
+        &["first-tenth stage"],
     );
     assert_eq!(std::fs::read_dir(&out).map_or(0, |d| d.count()), 0);
     // Without --life a feature table is refused with the invocation to use.

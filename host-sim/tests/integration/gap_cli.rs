@@ -407,7 +407,7 @@ fn gap_on_a_lifetime_table_rejects_bad_input_naming_the_field() {
         "5",
     ];
     bad(&five, "bearing 5 is not in the table", &out);
-    run(&[], &few, "fewer than 3 snapshots in the running-in stage");
+    run(&[], &few, "fewer than 3 snapshots in the first-tenth stage");
     // A lifetime table is diagnosed alone.
     let two = [
         "gap", "--life", "--real", &life, "--real", &cwru, "--out", &o,

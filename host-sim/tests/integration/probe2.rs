@@ -227,7 +227,7 @@ fn a_feature_table_and_sidecar_with_a_byte_order_mark_are_read() {
     let out = dir.path().join("gap");
     let o = gap_life(&a, &b, &out, &[]);
     // Read through to the life's own check: 12 snapshots are too few for its stages.
-    refused(&o, &["running-in stage"]);
+    refused(&o, &["first-tenth stage"]);
 }
 
 /// A table's `sample_rate_hz` that the simulator cannot render was refused naming `fs`

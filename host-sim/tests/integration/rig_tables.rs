@@ -581,3 +581,85 @@ fn a_test_life_is_judged_and_chooses_nothing() {
     refused(&o, &["--validation", "--holdout", "2"]);
     assert!(!out.exists(), "nothing written");
 }
+
+/// Keeps every `k`-th snapshot of table `csv` (the same test, sampled more sparsely), and
+/// its sidecar's interval and count to match.
+fn thin(csv: &Path, k: usize) {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let mut lines = text.lines();
+    let mut out = format!("{}\n", lines.next().unwrap());
+    let rows: Vec<&str> = lines.step_by(k).collect();
+    for r in &rows {
+        out.push_str(r);
+        out.push('\n');
+    }
+    std::fs::write(csv, out).unwrap();
+    let side = csv.with_extension("json");
+    let mut j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&side).unwrap()).unwrap();
+    j["snapshot_interval_s"] = (INTERVAL_S * k as f64).into();
+    j["n_snapshots"] = rows.len().into();
+    std::fs::write(&side, j.to_string()).unwrap();
+}
+
+/// Most XJTU-SY lives hold 42–533 snapshots (one a minute), so 2 or fewer fall in the
+/// first 1 % of life: `gap --life` refused them all ("fewer than 3 snapshots in the
+/// running-in stage"). A table too sparse for the fine early stages has them merged —
+/// running-in and early into `start` (0–3 %), the JSON and a finding say so — and is
+/// diagnosed over the same time line; the stages from 10 % on stay as they are.
+#[test]
+fn a_table_too_sparse_for_the_running_in_is_diagnosed_on_merged_early_stages() {
+    let tmp = tempfile::tempdir().unwrap();
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B1" }}"#);
+    let a = table(tmp.path(), "b1", 1, &bearing, "4000.0");
+    let b = table(tmp.path(), "b2", 2, &bearing.replace("B1", "B2"), "4000.0");
+    thin(&a, 3); // 134 snapshots: 2 in the first 1 %, 5 in the first 3 %
+    thin(&b, 7); // 58: 2 in the first 3 %, 6 in the first tenth
+    let out = tmp.path().join("gap");
+    let o = gap(&a, &b, &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["train_span"]["merged_early"], "start");
+    assert_eq!(j["holdout_spans"][0]["merged_early"], "first-tenth");
+    let stages = |key: &str| -> Vec<String> {
+        let mut v: Vec<String> = j[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["stage"].as_str().unwrap().to_string())
+            .collect();
+        v.sort();
+        v
+    };
+    let late = ["degradation", "end", "onset", "steady"];
+    let mut want: Vec<String> = late
+        .iter()
+        .chain(&["settled", "start"])
+        .map(|s| s.to_string())
+        .collect();
+    want.sort();
+    assert_eq!(stages("stages_train"), want);
+    let mut want: Vec<String> = late
+        .iter()
+        .chain(&["first-tenth"])
+        .map(|s| s.to_string())
+        .collect();
+    want.sort();
+    assert_eq!(stages("stages_holdout"), want);
+    let f = findings(&j);
+    assert!(
+        f.contains("first 3 % of life is compared as one stage, `start`"),
+        "{f}"
+    );
+    assert!(
+        f.contains("first 10 % of life is compared as one stage, `first-tenth`"),
+        "{f}"
+    );
+    // The same calibration: the thinned training life keeps its revolutions.
+    let fr = 1800.0 / 60.0;
+    let revs = j["measured_revs"].as_f64().unwrap();
+    assert!(
+        (revs / (133.0 * 3.0 * INTERVAL_S * fr) - 1.0).abs() < 1e-9,
+        "{revs}"
+    );
+}

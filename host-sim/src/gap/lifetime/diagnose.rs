@@ -138,6 +138,9 @@ pub struct LifeSpan {
     pub shared_shaft: bool,
     /// Unit of its RMS.
     pub unit: String,
+    /// The merged early stage that replaced the fine ones (`start` 0–3 % or `first-tenth`
+    /// 0–10 %), if its table is too sparse for them; `None`: every stage resolved.
+    pub merged_early: Option<&'static str>,
 }
 
 /// The part of a held-out life it is judged on: a life that did not fail (`none`) only on
@@ -230,10 +233,7 @@ fn stage_gaps(targets: &[LifeTarget], g: &Gaps, after: &Gaps, sims: &[Vec<f64>])
                 .copied()
                 .unwrap_or(f64::NAN);
             let real = r.mean.get(i).copied().unwrap_or(f64::NAN);
-            let span = STAGES
-                .iter()
-                .find(|s| s.name == *stg)
-                .map_or((0.0, 1.0), |s| (s.lo, s.hi));
+            let span = super::stage_named(stg).map_or((0.0, 1.0), |s| (s.lo, s.hi));
             match out.iter_mut().find(|s| s.stage == *stg) {
                 Some(s) => {
                     s.before += b * b;
@@ -355,7 +355,7 @@ pub fn measured_from(
     rig: RigDescription,
 ) -> Result<MeasuredSet, String> {
     if holdout.is_empty() {
-        return Err("--holdout: give at least one held-out bearing".into());
+        return Err("--holdout: give at least one held-out life (an IMS table: another bearing, e.g. --holdout B2; feature tables: a second --real table) — a lifetime diagnosis fits on one life and judges on another".into());
     }
     let train_ref = LifeReference::new(&label(&train), &train.points, 1.0)?;
     let holdout_ref = holdout
@@ -416,7 +416,7 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     diagnose_calibrated(m, o, &c)
 }
 
-fn span(m: &MeasuredLife, t_max: f64, sim: &LifeSim) -> LifeSpan {
+fn span(m: &MeasuredLife, r: &LifeReference, t_max: f64, sim: &LifeSim) -> LifeSpan {
     LifeSpan {
         life: label(m),
         failure_mode: m.failure_mode.clone(),
@@ -424,6 +424,7 @@ fn span(m: &MeasuredLife, t_max: f64, sim: &LifeSim) -> LifeSpan {
         simulated_site: sim.site().name().to_string(),
         shared_shaft: m.shared_shaft,
         unit: m.unit.clone(),
+        merged_early: r.merged,
     }
 }
 
@@ -463,7 +464,7 @@ pub fn diagnose_calibrated(
                 }
             }
         };
-        holdout_spans.push(span(life, holdout_t_max(life), &own));
+        holdout_spans.push(span(life, r, holdout_t_max(life), &own));
         hold.push(LifeTarget {
             reference: r.clone(),
             sim: own,
@@ -641,7 +642,7 @@ pub fn diagnose_calibrated(
         measured_onset: c.measured_onset,
         simulated_onset: c.simulated_onset,
         measured_revs,
-        train_span: span(train_life, 1.0, &sim),
+        train_span: span(train_life, &m.train_ref, 1.0, &sim),
         holdout_spans,
         stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train)),
         stages_holdout: stage_gaps(&hold, &at.holdout_before, &at.holdout_after, &vals(&hold)),

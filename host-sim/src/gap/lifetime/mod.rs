@@ -93,6 +93,19 @@ pub const STAGES: [LifeStage; 7] = [
 /// Index of the steady stage in [`STAGES`].
 pub const STEADY: usize = 3;
 
+/// Coarser early stages for a table too sparse for the fine ones (fewer than
+/// [`MIN_SNAPSHOTS`] snapshots in the first 1 % or 3 % of its life: under 300 or 100
+/// snapshots over the life, as most XJTU-SY lives): `start` (0–3 %) replaces running-in and
+/// early, `first-tenth` (0–10 %) replaces those and settled. The stages from steady on
+/// never merge ([`LifeReference::new`]).
+pub const MERGED_EARLY: [LifeStage; 2] =
+    [stage("start", 0.0, 0.03), stage("first-tenth", 0.0, 0.1)];
+
+/// The stage called `name`, fine ([`STAGES`]) or merged ([`MERGED_EARLY`]).
+pub fn stage_named(name: &str) -> Option<&'static LifeStage> {
+    STAGES.iter().chain(&MERGED_EARLY).find(|s| s.name == name)
+}
+
 /// Stages before this fraction of life are the "early-life part" of the gap.
 pub const EARLY_T_MAX: f64 = 0.1;
 
@@ -192,6 +205,9 @@ pub struct LifeReference {
     pub label: String,
     /// Stages compared (those with enough measured snapshots, before `t_max`).
     pub stages: Vec<LifeStage>,
+    /// The merged early stage ([`MERGED_EARLY`]) that replaced the fine ones, if the table
+    /// was too sparse for them.
+    pub merged: Option<&'static str>,
     /// Cell names `life:<stage>:<stat>`, with the stage as group.
     pub names: Vec<(String, &'static str, &'static str)>,
     /// Measured cell values.
@@ -205,16 +221,29 @@ pub struct LifeReference {
 }
 
 impl LifeReference {
-    /// Cells of the measured series `pts` over the stages that start before `t_max`
-    /// (and end by it) and hold at least [`MIN_SNAPSHOTS`] snapshots.
+    /// Cells of the measured series `pts` over the stages that end by `t_max`. Each needs
+    /// at least [`MIN_SNAPSHOTS`] snapshots: where the first 1 % (or 3 %) of the life holds
+    /// fewer, the early stages merge into [`MERGED_EARLY`]'s `start` (or `first-tenth`) and
+    /// [`LifeReference::merged`] says so; a stage from steady on, or the first tenth, with
+    /// fewer is an error naming it.
     pub fn new(label: &str, pts: &[LifePoint], t_max: f64) -> Result<Self, String> {
-        let stages: Vec<LifeStage> = STAGES
+        let count = |s: &LifeStage| pts.iter().filter(|p| in_stage(p, s)).count();
+        let mut stages: Vec<LifeStage> = STAGES
             .iter()
             .filter(|s| s.hi <= t_max + 1e-9)
             .copied()
             .collect();
+        let mut merged = None;
+        for m in MERGED_EARLY {
+            let fine = stages.iter().take_while(|s| s.hi <= m.hi + 1e-12).count();
+            let sparse = stages[..fine].iter().any(|s| count(s) < MIN_SNAPSHOTS);
+            if sparse && fine >= 2 {
+                stages.splice(..fine, [m]);
+                merged = Some(m.name);
+            }
+        }
         for s in &stages {
-            let n = pts.iter().filter(|p| in_stage(p, s)).count();
+            let n = count(s);
             if n < MIN_SNAPSHOTS {
                 let what = if s.name == STAGES[STEADY].name {
                     " (the reference of every other stage)"
@@ -222,10 +251,11 @@ impl LifeReference {
                     ""
                 };
                 return Err(format!(
-                    "{label}: fewer than {MIN_SNAPSHOTS} snapshots in the {} stage ({:.0}-{:.0} % of life){what}: it holds {n}; a life gap needs at least {MIN_SNAPSHOTS} in every stage, i.e. a few hundred snapshots spread over the life",
+                    "{label}: fewer than {MIN_SNAPSHOTS} snapshots in the {} stage ({:.0}-{:.0} % of life){what}: it holds {n}; a life gap needs at least {MIN_SNAPSHOTS} in every stage from the first tenth of the life on (the finer early stages merge when the table cannot resolve them), i.e. at least about {} snapshots spread evenly over the life",
                     s.name,
                     100.0 * s.lo,
-                    100.0 * s.hi
+                    100.0 * s.hi,
+                    (MIN_SNAPSHOTS as f64 / (s.hi - s.lo)).ceil()
                 ));
             }
         }
@@ -251,6 +281,7 @@ impl LifeReference {
         let weight = super::group_weights(&names);
         Ok(LifeReference {
             label: label.to_string(),
+            merged,
             stages,
             names,
             mean,
@@ -265,12 +296,8 @@ impl LifeReference {
     /// simulated windows (the simulated series `sim`), both with the measured spread, so
     /// its gap has variance `1/n_m + 1/n_s`; the total weights them like the gaps.
     pub fn noise_only(&self, sim: &[LifePoint]) -> f64 {
-        let n_sim = |stage: &str| {
-            STAGES
-                .iter()
-                .find(|s| s.name == stage)
-                .map_or(1, |s| stage_points(sim, s).len().max(1))
-        };
+        let n_sim =
+            |stage: &str| stage_named(stage).map_or(1, |s| stage_points(sim, s).len().max(1));
         self.names
             .iter()
             .zip(&self.count)
@@ -362,10 +389,58 @@ mod tests {
         assert!(r.noise_only(&sparse) > 2.0 * expect);
     }
 
+    /// Stage names of a reference, in order.
+    fn stage_names(r: &LifeReference) -> Vec<&'static str> {
+        r.stages.iter().map(|s| s.name).collect()
+    }
+
+    #[test]
+    fn a_sparse_table_merges_its_early_stages_and_keeps_the_rest() {
+        let all = [
+            "running-in",
+            "early",
+            "settled",
+            "steady",
+            "onset",
+            "degradation",
+            "end",
+        ];
+        let fine = LifeReference::new("fine", &series(400, 0.0, 0.0), 1.0).expect("cells");
+        assert_eq!((stage_names(&fine), fine.merged), (all.to_vec(), None));
+        // 150 snapshots: 2 in the first 1 % (an XJTU-SY life of that length).
+        let r = LifeReference::new("xjtu", &series(150, 0.0, 0.0), 1.0).expect("cells");
+        assert_eq!(r.merged, Some("start"));
+        assert_eq!(stage_names(&r)[..2], ["start", "settled"]);
+        assert_eq!(stage_names(&r)[2..], all[3..]);
+        // 60 snapshots: 2 in the first 3 %.
+        let r = LifeReference::new("short", &series(60, 0.0, 0.0), 1.0).expect("cells");
+        assert_eq!(r.merged, Some("first-tenth"));
+        assert_eq!(stage_names(&r)[0], "first-tenth");
+        assert_eq!(stage_names(&r)[1..], all[3..]);
+        // The merged stage carries the early bump as the fine ones did: +6 dB on the 2
+        // snapshots of the first 1 %, 2 of the 5 in 0–3 %, is +2.4 dB on the stage mean.
+        let r = LifeReference::new("bump", &series(150, 6.0, 0.0), 1.0).expect("cells");
+        let i = r.names.iter().position(|(n, _, _)| n == "life:start:rms");
+        let start = i.and_then(|i| r.mean.get(i)).copied().unwrap_or(f64::NAN);
+        assert!((start - 6.0 * 2.0 / 5.0).abs() < 0.1, "{start}");
+        // The held-out span of a life that did not fail merges the same way.
+        let r = LifeReference::new("none", &series(150, 0.0, 0.0), 0.5).expect("cells");
+        assert_eq!(stage_names(&r), ["start", "settled", "steady"]);
+    }
+
     #[test]
     fn too_few_snapshots_in_a_stage_is_an_error_naming_it() {
-        let e = LifeReference::new("short", &series(150, 0.0, 0.0), 1.0).unwrap_err();
-        assert!(e.contains("running-in stage"), "{e}");
+        // 20 snapshots: 2 in the first tenth, which does not merge further.
+        let e = LifeReference::new("short", &series(20, 0.0, 0.0), 1.0).unwrap_err();
+        assert!(
+            e.contains("first-tenth stage") && e.contains("about 30"),
+            "{e}"
+        );
+        // A late stage never merges: a life whose last tenth holds 2 snapshots.
+        let mut gap = series(1000, 0.0, 0.0);
+        gap.retain(|p| p.t < 0.9 || p.t > 0.998);
+        let e = LifeReference::new("gap", &gap, 1.0).unwrap_err();
+        assert!(e.contains("end stage"), "{e}");
     }
 
     #[test]

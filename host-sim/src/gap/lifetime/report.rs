@@ -180,6 +180,18 @@ fn span_findings(g: &LifeGap) -> Vec<String> {
         };
         f.push(format!("held-out life {}: {why}", h.life));
     }
+    for sp in std::iter::once(t).chain(&g.holdout_spans) {
+        if let Some(name) = sp.merged_early {
+            let st = lifetime::stage_named(name).map_or(0.0, |s| s.hi);
+            f.push(format!(
+                "{}: its table has fewer than {} snapshots in a fine early stage (running-in 0-1 %, early 1-3 %{}), so its first {:.0} % of life is compared as one stage, `{name}`; a gap inside that part (a running-in bump) is not resolved in time",
+                sp.life,
+                lifetime::MIN_SNAPSHOTS,
+                if st > 0.05 { ", settled 3-10 %" } else { "" },
+                100.0 * st
+            ));
+        }
+    }
     let mut units: Vec<&str> = std::iter::once(t)
         .chain(&g.holdout_spans)
         .map(|s| s.unit.as_str())

@@ -32,9 +32,8 @@ impl LifeTarget {
             .iter()
             .enumerate()
             .filter(|(_, (_, stg, _))| {
-                STAGES.iter().any(|s| {
-                    s.name == *stg && s.hi <= t_max + 1e-9 && s.name != STAGES[STEADY].name
-                })
+                super::stage_named(stg)
+                    .is_some_and(|s| s.hi <= t_max + 1e-9 && s.name != STAGES[STEADY].name)
             })
             .map(|(i, _)| i)
             .collect();
