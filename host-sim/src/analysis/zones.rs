@@ -46,6 +46,19 @@ impl ZoneBands {
     /// fs/2. Errors: a non-positive or non-finite frequency, or a zone that
     /// is empty after clipping (e.g. resonance too close to fs/2).
     pub fn new(ff: &FaultFrequencies, fs: f64) -> Result<Self, AnalysisError> {
+        Self::build(ff, fs, false)
+    }
+
+    /// [`ZoneBands::new`], except that a zone lying wholly at or above fs/2 (a resonance
+    /// beyond the record's band, e.g. a structure stiffened by a heavy load) is kept as the
+    /// empty band `(lo, lo)`: it holds no bin of a spectrum of this rate, so its level
+    /// ([`band_rms`]) is 0 — nothing of it is in the record. For series of windows (a life's
+    /// snapshots) that must report every zone; the other errors are those of `new`.
+    pub fn new_clipped(ff: &FaultFrequencies, fs: f64) -> Result<Self, AnalysisError> {
+        Self::build(ff, fs, true)
+    }
+
+    fn build(ff: &FaultFrequencies, fs: f64, allow_empty: bool) -> Result<Self, AnalysisError> {
         check_fs(fs)?;
         let positive = [
             ("shaft_hz", ff.shaft_hz),
@@ -67,6 +80,8 @@ impl ZoneBands {
             let hi = hi.min(nyquist);
             if lo < hi {
                 Ok((lo, hi))
+            } else if allow_empty && lo >= nyquist {
+                Ok((lo, lo))
             } else {
                 Err(AnalysisError::BadBand {
                     lo,
@@ -216,6 +231,22 @@ mod tests {
         assert!((z.natural.0 - 2100.0).abs() < 1e-9 && (z.natural.1 - 3900.0).abs() < 1e-9);
         assert_eq!(z.high, (3900.0, 6000.0));
         assert!(ZoneBands::new(&with_natural(5000.0), 12_000.0).is_err());
+        // Clipped: a resonance whose zones lie beyond fs/2 leaves them empty, level 0;
+        // the zones below keep their bands.
+        let c = ZoneBands::new_clipped(&with_natural(10_000.0), 12_000.0).unwrap();
+        assert_eq!(
+            (c.natural, c.high),
+            ((7000.0, 7000.0), (13_000.0, 13_000.0))
+        );
+        assert_eq!(c.fault, ZoneBands::new(&ff(), 12_000.0).unwrap().fault);
+        let x = crate::analysis::synth::gaussian_noise(12_000, 1.0, 3);
+        let psd = crate::analysis::welch_psd(&x, 12_000.0, &Default::default()).unwrap();
+        let l = zone_levels(&psd, &c);
+        assert_eq!((l.natural, l.high), (0.0, 0.0));
+        assert!(l.fault > 0.0);
+        // A zone that straddles fs/2 is cut there, as by `new`.
+        let c = ZoneBands::new_clipped(&with_natural(5000.0), 12_000.0).unwrap();
+        assert_eq!((c.natural, c.high), ((3500.0, 6000.0), (6500.0, 6500.0)));
         assert!(ZoneBands::new(&with_natural(0.0), 12_000.0).is_err());
         assert!(ZoneBands::new(&ff(), -1.0).is_err());
         let mut bad = ff();

@@ -135,9 +135,10 @@ pub struct Features {
     pub zone_rotating: f64,
     /// RMS in the fault-frequency zone.
     pub zone_fault: f64,
-    /// RMS in the natural-frequency zone.
+    /// RMS in the natural-frequency zone; 0 when the zone lies beyond fs/2
+    /// ([`ZoneBands::new_clipped`]).
     pub zone_natural: f64,
-    /// RMS in the high-frequency zone.
+    /// RMS in the high-frequency zone; 0 when it lies beyond fs/2.
     pub zone_high: f64,
     /// Envelope-spectrum amplitude at the wear site's pass frequency (BPFO, BPFI or 2·BSF;
     /// `wearsim_core::wear::Site::pass_frequency_hz`).
@@ -371,7 +372,9 @@ impl LifeRun {
             },
         )
         .map_err(err)?;
-        let zones = ZoneBands::new(&ff, fs).map_err(err)?;
+        // A heavy load stiffens the contacts and can move the resonance beyond fs/2: its
+        // zones are then empty, level 0, as `resonance_peak` is 0 with no peak.
+        let zones = ZoneBands::new_clipped(&ff, fs).map_err(err)?;
         let z = analysis::zone_levels(&psd, &zones);
         let env = analysis::envelope_spectrum(x, fs, None).map_err(err)?;
         let f_site = self.life.site().pass_frequency_hz(&ff);

@@ -1,7 +1,8 @@
 //! Gaps a probe found and left open (continued from `probe3.rs`): a column or row of a 2-D
 //! MAT or NPY array chosen with `--channel NAME(:,K)`, an NPY array whose shape does not say
 //! which axis holds the samples, CSV time columns in other units than seconds, and where a
-//! rate or speed came from (`fs_detail`, `rpm_detail`); one test per gap, each named after
+//! rate or speed came from (`fs_detail`, `rpm_detail`), a life whose load moves the resonance
+//! past Nyquist; one test per gap, each named after
 //! what must hold.
 
 use crate::support::{analyze_6205, mat, noise, npy, refused, s, wearsim};
@@ -358,4 +359,55 @@ fn a_cwru_record_names_its_file_name_and_rpm_variable() -> Result<(), wearsim_ho
     assert_eq!(v["rpm_source"], "file");
     assert_eq!(v["rpm_detail"], "MAT variable `X118RPM`");
     Ok(())
+}
+
+/// `life --preset cwru-6205-de --load-scale 20` (inside the documented 0.05..=20) exited 1
+/// after its first window: "band (6993.95, 6000) Hz must satisfy … (zone empty below fs/2)".
+/// Twenty times the load stiffens the contacts and moves the structure's resonance to
+/// about 5.4 kHz, so its high-frequency zone (from 1.3× the resonance) lies beyond the
+/// 12 kHz record's Nyquist. The zone is then empty and its level 0 (nothing of it is in the
+/// record), as `resonance_peak` is 0 without a peak; the life runs to failure.
+#[test]
+fn a_load_that_moves_the_resonance_past_nyquist_still_gives_a_whole_life() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("life");
+    let o = wearsim(&[
+        "life",
+        "--preset",
+        "cwru-6205-de",
+        "--load-scale",
+        "20",
+        "--cycles",
+        "1e9",
+        "--out",
+        s(&out),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json");
+    assert_eq!(j["complete"], true);
+    let text = std::fs::read_to_string(out.join("life-features.csv")).expect("features");
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).expect(n);
+    let (stage, natural, high, rms) = (
+        col("stage"),
+        col("zone_natural"),
+        col("zone_high"),
+        col("rms"),
+    );
+    let mut n = 0;
+    for line in lines {
+        let r: Vec<&str> = line.split(',').collect();
+        let num = |c: usize| r[c].parse::<f64>().expect(r[c]);
+        let numbers = (0..r.len()).filter(|c| *c != stage).map(num);
+        assert!(numbers.clone().all(f64::is_finite), "{line}");
+        assert_eq!(num(high), 0.0, "the high zone lies beyond fs/2: {line}");
+        // The resonance below fs/2 carries most of the signal (a Welch band level, so it
+        // can read a few % above the time-domain RMS).
+        let share = num(natural) / num(rms);
+        assert!((0.5..1.1).contains(&share), "{share}: {line}");
+        n += 1;
+    }
+    assert!(n > 10, "{n} snapshots");
 }
