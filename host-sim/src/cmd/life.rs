@@ -256,6 +256,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
 fn life_error(e: crate::life::LifeError) -> CliError {
     match e {
         crate::life::LifeError::CapReached { .. }
+        | crate::life::LifeError::Unloaded { .. }
         | crate::life::LifeError::Config(_)
         | crate::life::LifeError::SnapshotInterval { .. } => CliError::input(e),
         crate::life::LifeError::WindowCap { .. } => CliError::input(format!(

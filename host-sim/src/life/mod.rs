@@ -96,6 +96,15 @@ pub enum LifeError {
         /// Revolutions run.
         cycles: f64,
     },
+    /// No rolling element carries load in the model's static equilibrium: the bearing
+    /// cannot wear, so its life would never end.
+    #[error("radial load {load:.0} N: no rolling element carries load in the static equilibrium{why}; an unloaded bearing does not wear (no loaded pass, no fatigue) and its life never ends: raise the load (--load-scale, --loads, or `radial_load` in the configuration) or reduce the radial clearance")]
+    Unloaded {
+        /// The (scaled) radial load (N).
+        load: f64,
+        /// Why, where the structure explains it.
+        why: String,
+    },
     /// The life needed more windows than its observer allows.
     #[error("the simulated life did not fail within {windows} windows ({cycles:.3e} revolutions, stage {stage})")]
     WindowCap {
@@ -227,7 +236,25 @@ impl LifeRun {
         }
         wearsim_core::error::check_range("window", spec.window, 0.02, 10.0)?;
         wearsim_core::error::check_range("settle", spec.settle, 0.0, 10.0)?;
-        let static_load = base.static_reference().q_max.max(1e-3);
+        let q_max = base.static_reference().q_max;
+        if !(q_max > 0.0) {
+            let cfg = base.config();
+            let (k, c) = (cfg.structure.stiffness, cfg.clearance);
+            let why = if k * c >= cfg.radial_load {
+                format!(
+                    ": the structure's support stiffness ({k:.3e} N/m) carries up to {:.0} N within the radial clearance ({:.1} µm) before any element touches",
+                    k * c,
+                    c * 1e6
+                )
+            } else {
+                String::new()
+            };
+            return Err(LifeError::Unloaded {
+                load: cfg.radial_load,
+                why,
+            });
+        }
+        let static_load = q_max;
         let calibration_load = match spec.calibration_load {
             Some(radial) => {
                 wearsim_core::error::check_range("calibration_load", radial, 1e-3, 1e8)?;

@@ -2,7 +2,7 @@
 //! MAT or NPY array chosen with `--channel NAME(:,K)`, an NPY array whose shape does not say
 //! which axis holds the samples, CSV time columns in other units than seconds, and where a
 //! rate or speed came from (`fs_detail`, `rpm_detail`), a life whose load moves the resonance
-//! past Nyquist; one test per gap, each named after
+//! past Nyquist, a load that leaves every element unloaded; one test per gap, each named after
 //! what must hold.
 
 use crate::support::{analyze_6205, mat, noise, npy, refused, s, wearsim};
@@ -410,4 +410,33 @@ fn a_load_that_moves_the_resonance_past_nyquist_still_gives_a_whole_life() {
         n += 1;
     }
     assert!(n > 10, "{n} snapshots");
+}
+
+/// `life --preset ims-za2115 --load-scale 0.3` ran to the cycle cap and said "the bearing
+/// did not fail within the cycle cap …; raise --cycles or the load": at 4003 N no rolling
+/// element touches (the model's structure spring, 10⁹ N/m, carries up to 5000 N within the
+/// 5 µm clearance), every wear rate is zero, and no cap would ever be enough. Such a load
+/// is refused before any window, naming the load and why; `--lives --loads` too.
+#[test]
+fn a_load_that_leaves_every_element_unloaded_is_refused_saying_why() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("life");
+    for extra in [
+        &["--load-scale", "0.3"][..],
+        &["--lives", "3", "--loads", "1,0.3"],
+    ] {
+        let mut args = vec!["life", "--preset", "ims-za2115", "--out", s(&out)];
+        args.extend_from_slice(extra);
+        let o = wearsim(&args);
+        refused(
+            &o,
+            &[
+                "radial load 4003 N",
+                "no rolling element carries load",
+                "up to 5000 N within the radial clearance (5.0 µm)",
+                "--load-scale",
+            ],
+        );
+        assert!(!out.exists(), "{extra:?}: nothing is written");
+    }
 }
