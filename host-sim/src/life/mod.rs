@@ -237,7 +237,7 @@ impl LifeRun {
         wearsim_core::error::check_range("window", spec.window, 0.02, 10.0)?;
         wearsim_core::error::check_range("settle", spec.settle, 0.0, 10.0)?;
         let q_max = base.static_reference().q_max;
-        if !(q_max > 0.0) {
+        if q_max.is_nan() || q_max <= 0.0 {
             let cfg = base.config();
             let (k, c) = (cfg.structure.stiffness, cfg.clearance);
             let why = if k * c >= cfg.radial_load {
