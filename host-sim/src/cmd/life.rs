@@ -441,12 +441,22 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
                 ),
             }
         }
+        let failed = g.lives.len() - suspended;
         println!(
-            "  onset of instability: median {} over {} of {} failed lives",
+            "  onset of instability: median {} over {} of {failed} failed lives{}",
             g.onset_median
                 .map_or("none".to_string(), |o| format!("{o:.3} of life")),
             g.onset_found,
-            g.lives.len() - suspended
+            if g.onset_found < failed {
+                // The rule (`life::ims::onset`) needs a steady band before the rise.
+                format!(
+                    "; {} without one: no rise that stays above the steady band after the first quarter of the life, a rise inside that quarter (the band's baseline), or fewer than {} windows in it (a smaller --snapshot-every gives more)",
+                    failed - g.onset_found,
+                    crate::life::ims::MIN_BASELINE
+                )
+            } else {
+                String::new()
+            }
         );
         for (s, f) in &g.stage_onsets {
             println!("  {s:<20} median onset {f:.3} of life (failed lives)");
@@ -514,7 +524,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
                     );
                 }
             }
-            None => println!("life–load exponent: needs --loads with two or more loads"),
+            None => println!("life–load exponent {what}: needs --loads with two or more loads"),
         }
     }
     for (v, s) in PUBLISHED_SLOPES {

@@ -45,10 +45,13 @@ pub const BASELINE: f64 = 0.25;
 /// Rounds of re-estimating the band from the part before the onset found with the last.
 const BAND_ROUNDS: usize = 8;
 
+/// Fewest snapshots a steady band is estimated from (the baseline quarter must hold them).
+pub const MIN_BASELINE: usize = 5;
+
 /// The upper edge of the steady band of `values`: median + max(5 robust σ, 10 % of the
-/// median); `None` under 5 values.
+/// median); `None` under [`MIN_BASELINE`] values.
 fn upper_edge(values: Vec<f64>) -> Option<f64> {
-    if values.len() < 5 {
+    if values.len() < MIN_BASELINE {
         return None;
     }
     let (m, sigma) = robust_sigma(values)?;
