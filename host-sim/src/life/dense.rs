@@ -198,6 +198,7 @@ impl LifeRun {
     /// A string that identifies the run's configuration (a checkpoint only resumes the run
     /// it came from).
     pub fn fingerprint(&self) -> String {
+        // The parts are in the order of `FINGERPRINT_PARTS`.
         format!(
             "{:?}|{:?}|{}|{}|{}|{}",
             self.spec.model,
@@ -246,8 +247,10 @@ impl LifeRun {
             if c.fingerprint != fingerprint {
                 return Err(DenseError::Checkpoint {
                     path: ckpt_path.display().to_string(),
-                    reason: "belongs to a run with other settings; use another --out or remove it"
-                        .into(),
+                    reason: format!(
+                        "belongs to a run with other settings ({}); use another --out, the same settings, or remove it",
+                        fingerprint_difference(&c.fingerprint, &fingerprint)
+                    ),
                 });
             }
             let st = c
@@ -541,4 +544,57 @@ fn read_checkpoint(path: &Path) -> Result<(Checkpoint, Vec<u8>), DenseError> {
         .get(24 + hl..(24 + hl).saturating_add(sl))
         .ok_or_else(|| bad("truncated state"))?;
     Ok((c, state.to_vec()))
+}
+
+/// What the parts of [`LifeRun::fingerprint`] stand for, in its order.
+const FINGERPRINT_PARTS: [&str; 6] = [
+    "the model (preset or configuration, load)",
+    "the life settings (--cycles, --lambda, material)",
+    "--seed",
+    "--snapshot-every",
+    "--window",
+    "the settling time",
+];
+
+/// Which settings differ between a checkpoint's fingerprint `old` and this run's `new`:
+/// the parts by name, with both values where they are one number.
+fn fingerprint_difference(old: &str, new: &str) -> String {
+    let (a, b): (Vec<&str>, Vec<&str>) = (old.split('|').collect(), new.split('|').collect());
+    if a.len() != b.len() || a.len() != FINGERPRINT_PARTS.len() {
+        return "written by another version of wearsim".into();
+    }
+    let diff: Vec<String> = FINGERPRINT_PARTS
+        .iter()
+        .zip(a.iter().zip(&b))
+        .filter(|(_, (x, y))| x != y)
+        .map(
+            |(name, (x, y))| match (x.parse::<f64>(), y.parse::<f64>()) {
+                (Ok(_), Ok(_)) => format!("{name}: {x} in the checkpoint, {y} now"),
+                _ => format!("{name} changed"),
+            },
+        )
+        .collect();
+    diff.join("; ")
+}
+
+#[cfg(test)]
+mod fingerprint_tests {
+    use super::fingerprint_difference;
+
+    #[test]
+    fn a_differing_setting_is_named_with_both_values() {
+        let old = "M|L|1|20000|0.25|0.05";
+        assert_eq!(
+            fingerprint_difference(old, "M|L|7|20000|0.25|0.05"),
+            "--seed: 1 in the checkpoint, 7 now"
+        );
+        assert_eq!(
+            fingerprint_difference(old, "N|L|1|20000|0.5|0.05"),
+            "the model (preset or configuration, load) changed; --window: 0.25 in the checkpoint, 0.5 now"
+        );
+        assert_eq!(
+            fingerprint_difference(old, "M|L|1"),
+            "written by another version of wearsim"
+        );
+    }
 }
