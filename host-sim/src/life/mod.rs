@@ -254,7 +254,7 @@ impl LifeRun {
                 why,
             });
         }
-        let static_load = q_max;
+        let static_load = q_max.max(1e-3);
         let calibration_load = match spec.calibration_load {
             Some(radial) => {
                 wearsim_core::error::check_range("calibration_load", radial, 1e-3, 1e8)?;

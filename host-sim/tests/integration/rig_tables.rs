@@ -91,6 +91,14 @@ fn table_every(
     p
 }
 
+/// The rig's two lives, B1 and B2, in `dir` ([`table`] with seeds 1 and 2, 4000 N).
+fn rig_pair(dir: &Path) -> (PathBuf, PathBuf) {
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B1" }}"#);
+    let a = table(dir, "b1", 1, &bearing, "4000.0");
+    let b = table(dir, "b2", 2, &bearing.replace("B1", "B2"), "4000.0");
+    (a, b)
+}
+
 fn gap(a: &Path, b: &Path, out: &Path) -> Output {
     support::gap_life(
         a,
@@ -150,9 +158,7 @@ fn empty(out: &Path) -> bool {
 #[test]
 fn a_rig_that_is_no_preset_is_diagnosed_from_its_sidecar() {
     let tmp = tempfile::tempdir().unwrap();
-    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B1" }}"#);
-    let a = table(tmp.path(), "b1", 1, &bearing, "4000.0");
-    let b = table(tmp.path(), "b2", 2, &bearing.replace("B1", "B2"), "4000.0");
+    let (a, b) = rig_pair(tmp.path());
     let out = tmp.path().join("gap");
     let o = gap(&a, &b, &out);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -610,9 +616,7 @@ fn thin(csv: &Path, k: usize) {
 #[test]
 fn a_table_too_sparse_for_the_running_in_is_diagnosed_on_merged_early_stages() {
     let tmp = tempfile::tempdir().unwrap();
-    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "B1" }}"#);
-    let a = table(tmp.path(), "b1", 1, &bearing, "4000.0");
-    let b = table(tmp.path(), "b2", 2, &bearing.replace("B1", "B2"), "4000.0");
+    let (a, b) = rig_pair(tmp.path());
     thin(&a, 3); // 134 snapshots: 2 in the first 1 %, 5 in the first 3 %
     thin(&b, 7); // 58: 2 in the first 3 %, 6 in the first tenth
     let out = tmp.path().join("gap");
@@ -621,31 +625,21 @@ fn a_table_too_sparse_for_the_running_in_is_diagnosed_on_merged_early_stages() {
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(j["train_span"]["merged_early"], "start");
     assert_eq!(j["holdout_spans"][0]["merged_early"], "first-tenth");
-    let stages = |key: &str| -> Vec<String> {
-        let mut v: Vec<String> = j[key]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|s| s["stage"].as_str().unwrap().to_string())
-            .collect();
-        v.sort();
-        v
+    let stages = |key: &str| -> std::collections::BTreeSet<String> {
+        let v = j[key].as_array().unwrap().iter();
+        v.map(|s| s["stage"].as_str().unwrap().to_string())
+            .collect()
     };
-    let late = ["degradation", "end", "onset", "steady"];
-    let mut want: Vec<String> = late
-        .iter()
-        .chain(&["settled", "start"])
-        .map(|s| s.to_string())
-        .collect();
-    want.sort();
-    assert_eq!(stages("stages_train"), want);
-    let mut want: Vec<String> = late
-        .iter()
-        .chain(&["first-tenth"])
-        .map(|s| s.to_string())
-        .collect();
-    want.sort();
-    assert_eq!(stages("stages_holdout"), want);
+    let set = |names: &[&str]| names.iter().map(|s| s.to_string()).collect();
+    let late = ["steady", "onset", "degradation", "end"];
+    assert_eq!(
+        stages("stages_train"),
+        set(&[&["start", "settled"][..], &late].concat())
+    );
+    assert_eq!(
+        stages("stages_holdout"),
+        set(&[&["first-tenth"][..], &late].concat())
+    );
     let f = findings(&j);
     assert!(
         f.contains("first 3 % of life is compared as one stage, `start`"),
