@@ -388,29 +388,38 @@ impl ScenarioFile {
             )?,
             None => b0.map(|b| b.contact).unwrap_or(ContactKind::Point),
         };
+        let element_diameter = req(
+            bs.element_diameter,
+            b0.map(|b| b.element_diameter),
+            "bearing.element_diameter",
+        )?;
+        let pitch_diameter = req(
+            bs.pitch_diameter,
+            b0.map(|b| b.pitch_diameter),
+            "bearing.pitch_diameter",
+        )?;
+        // Bore and outside diameter not given: the preset's while its pitch and ball
+        // diameters stand, else the section rule of a bearing that is no preset (a
+        // resized bearing must not inherit the preset's rings).
+        let rings = match b0 {
+            Some(b)
+                if b.pitch_diameter == pitch_diameter && b.element_diameter == element_diameter =>
+            {
+                (b.bore, b.outside_diameter)
+            }
+            _ => crate::geometry::section_diameters(pitch_diameter, element_diameter),
+        };
         let bearing = BearingGeometry {
             elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,
-            element_diameter: req(
-                bs.element_diameter,
-                b0.map(|b| b.element_diameter),
-                "bearing.element_diameter",
-            )?,
-            pitch_diameter: req(
-                bs.pitch_diameter,
-                b0.map(|b| b.pitch_diameter),
-                "bearing.pitch_diameter",
-            )?,
+            element_diameter,
+            pitch_diameter,
             contact_angle: req(
                 bs.contact_angle_deg.map(f64::to_radians),
                 b0.map(|b| b.contact_angle),
                 "bearing.contact_angle_deg",
             )?,
-            bore: req(bs.bore, b0.map(|b| b.bore), "bearing.bore")?,
-            outside_diameter: req(
-                bs.outside_diameter,
-                b0.map(|b| b.outside_diameter),
-                "bearing.outside_diameter",
-            )?,
+            bore: bs.bore.unwrap_or(rings.0),
+            outside_diameter: bs.outside_diameter.unwrap_or(rings.1),
             contact,
             outer_conformity: bs
                 .outer_conformity

@@ -286,8 +286,8 @@ impl GeometrySpec {
             element_diameter: self.ball_mm * mm,
             pitch_diameter: self.pitch_mm * mm,
             contact_angle: self.angle_deg.to_radians(),
-            bore: ((self.pitch_mm - SECTION_BALLS * self.ball_mm) * mm).max(0.0),
-            outside_diameter: (self.pitch_mm + SECTION_BALLS * self.ball_mm) * mm,
+            bore: section_diameters(self.pitch_mm * mm, self.ball_mm * mm).0,
+            outside_diameter: section_diameters(self.pitch_mm * mm, self.ball_mm * mm).1,
             contact: ContactKind::Point,
             roller_length: 0.0,
             ..wearsim_core::presets::SKF_61810
@@ -338,6 +338,16 @@ pub const STRUCTURE_PRESETS: [&str; 4] =
 
 /// Half the radial section of a bearing that is no preset, in ball diameters.
 const SECTION_BALLS: f64 = 1.7;
+
+/// Bore and outside diameter (m) of a bearing whose section is not given, from its pitch
+/// diameter and ball diameter (m): `pitch ∓ 1.7·ball` (a 6205's section is 1.70 balls, a
+/// 6203's 1.74), the bore at least 0.
+pub fn section_diameters(pitch: f64, ball: f64) -> (f64, f64) {
+    (
+        (pitch - SECTION_BALLS * ball).max(0.0),
+        pitch + SECTION_BALLS * ball,
+    )
+}
 
 /// A model of a bearing that is no preset ([`GeometrySpec::model`]).
 #[derive(Debug, Clone, PartialEq)]

@@ -442,3 +442,47 @@ fn a_tiny_or_huge_value_is_named_in_exponent_form() {
         assert!(!out.exists(), "{arg} {value}: output written");
     }
 }
+
+/// A preset resized in `[bearing]` (a 6308's 8 × 15.081 mm on 65 mm over `cwru-6205-de`)
+/// does not inherit the 6205's rings, which no longer fit round its pitch circle: bore and
+/// outside diameter follow the section rule `pitch ∓ 1.7·ball` unless given; an unresized
+/// preset keeps its own, and given values win.
+#[test]
+fn a_resized_preset_gets_rings_that_fit_its_pitch_circle() {
+    let resolve = |text: &str| {
+        wearsim_host::config::ScenarioFile::parse(text, "b.toml")
+            .unwrap()
+            .resolve()
+            .map(|(cfg, _)| cfg.bearing)
+    };
+    let b = resolve(
+        "preset = \"cwru-6205-de\"\n[bearing]\nelements = 8\nelement_diameter = 15.081e-3\npitch_diameter = 65e-3\n",
+    )
+    .unwrap();
+    assert!(
+        (b.bore - (65e-3 - 1.7 * 15.081e-3)).abs() < 1e-12,
+        "{}",
+        b.bore
+    );
+    assert!((b.outside_diameter - (65e-3 + 1.7 * 15.081e-3)).abs() < 1e-12);
+    // Unresized: the preset's own rings (SKF 6205: 25 mm bore, 52 mm outside).
+    let b = resolve("preset = \"cwru-6205-de\"\n[bearing]\nelements = 9\n").unwrap();
+    assert_eq!((b.bore, b.outside_diameter), (25e-3, 52e-3));
+    // Given values win, and a ring that does not fit is still refused by name.
+    let b = resolve(
+        "preset = \"cwru-6205-de\"\n[bearing]\npitch_diameter = 65e-3\nelement_diameter = 15.081e-3\nbore = 40e-3\n",
+    )
+    .unwrap();
+    assert_eq!(b.bore, 40e-3);
+    let e = resolve(
+        "preset = \"cwru-6205-de\"\n[bearing]\npitch_diameter = 65e-3\nelement_diameter = 15.081e-3\noutside_diameter = 52e-3\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("bearing.outside_diameter"), "{e}");
+    // No preset: the section rule, not a missing-key error.
+    let b = resolve(
+        "radial_load = 1000.0\nclearance = 0.0\n[bearing]\nelements = 8\nelement_diameter = 15.081e-3\npitch_diameter = 65e-3\ncontact_angle_deg = 0.0\n[structure]\nmass = 1.0\nstiffness = 1e8\ndamping = 100.0\n[speed]\nrpm = 1500.0\n",
+    );
+    assert!(b.is_ok(), "{b:?}");
+}
