@@ -212,6 +212,35 @@ pub struct Overrides {
     pub channel: Option<String>,
     /// `--fs`.
     pub fs: Option<f64>,
+    /// `--units` (`g` or `m/s^2`).
+    pub units: Option<String>,
+}
+
+/// The factor from a physical acceleration unit to m/s² (`g`: standard gravity), or
+/// `None` for a unit the gap cannot compare with simulated m/s².
+pub fn unit_scale(unit: &str) -> Option<f64> {
+    match unit {
+        "g" | "G" => Some(G),
+        "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => Some(1.0),
+        _ => None,
+    }
+}
+
+/// The error for a record whose samples are in no acceleration unit the gap can compare
+/// with simulated m/s², saying how to give one.
+fn no_acceleration_unit(rec: &Record) -> String {
+    let p = rec.source.display();
+    if rec.unit == "FS" {
+        format!(
+            "{p}: integer WAV samples in unit `FS` (full scale, channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with the physical value of full scale, `\"wav\": {{\"scale\": G_AT_FULL_SCALE, \"unit\": \"g\"}}`",
+            rec.channel
+        )
+    } else {
+        format!(
+            "{p}: samples in unit `{}` (channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give --units g (or m/s^2) when the file states none, or the file a JSON sidecar (`<file>.json`) with `\"units\": {{\"{}\": \"g\"}}` or `\"units\": \"g\"`",
+            rec.unit, rec.channel, rec.channel
+        )
+    }
 }
 
 /// Reads `path` and resolves its metadata; the error names the file and what is missing
@@ -229,21 +258,21 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let p = path.display();
     let mut warnings = vec![];
     let (bearing, base) = base_model(&rec, o, &mut warnings).map_err(|e| format!("{p}: {e}"))?;
-    let scale = match rec.unit.as_str() {
-        "g" | "G" => G,
-        "m/s^2" | "m/s2" | "m/s²" | "m s^-2" => 1.0,
-        "FS" => {
+    let scale = match (o.units.as_deref(), unit_scale(&rec.unit)) {
+        (None, Some(s)) => s,
+        (Some(u), Some(s)) if unit_scale(u) == Some(s) => s,
+        // A file that states no unit takes the argument's; one that states another
+        // (a velocity, volts, full scale) is not overridden.
+        (Some(u), None) if rec.unit == "unknown" => {
+            unit_scale(u).ok_or_else(|| format!("--units `{u}`: allowed g or m/s^2"))?
+        }
+        (Some(u), _) => {
             return Err(format!(
-                "{p}: integer WAV samples in unit `FS` (full scale, channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with the physical value of full scale, `\"wav\": {{\"scale\": G_AT_FULL_SCALE, \"unit\": \"g\"}}`",
-                rec.channel
+                "{p}: --units {u} contradicts the file's unit `{}` (channel `{}`); the gap compares accelerations in g or m/s^2",
+                rec.unit, rec.channel
             ))
         }
-        u => {
-            return Err(format!(
-                "{p}: samples in unit `{u}` (channel `{}`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `\"units\": {{\"{}\": \"g\"}}` or `\"units\": \"g\"`",
-                rec.channel, rec.channel
-            ))
-        }
+        (None, None) => return Err(no_acceleration_unit(&rec)),
     };
     let accel: Vec<f64> = rec.samples.iter().map(|v| v * scale).collect();
     let fs = rec.fs;

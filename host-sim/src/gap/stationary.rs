@@ -77,6 +77,11 @@ pub struct GapArgs {
     /// rate the file or its sidecar states (else exit 2).
     #[arg(long)]
     pub fs: Option<f64>,
+    /// Unit of the samples, `g` or `m/s^2`: for a file that states none (NPY, a CSV
+    /// without a unit in its header, a MAT file of another lab); must agree with a unit
+    /// the file or its sidecar states (else exit 2).
+    #[arg(long)]
+    pub units: Option<String>,
     /// Mains frequency (Hz) of the hum candidate, 40..=70.
     #[arg(long, default_value_t = 60.0)]
     pub mains: f64,
@@ -275,6 +280,10 @@ impl GapArgs {
                 self.mains
             )));
         }
+        if let Some(u) = &self.units {
+            records::unit_scale(u)
+                .ok_or_else(|| GapError::input(format!("--units `{u}`: allowed g or m/s^2")))?;
+        }
         if self.jobs == Some(0) {
             return Err(GapError::input("--jobs 0: give at least 1"));
         }
@@ -359,6 +368,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         defect,
         channel: a.channel.clone(),
         fs: a.fs,
+        units: a.units.clone(),
     };
     let recs: Vec<RealRecord> = a
         .real

@@ -526,3 +526,60 @@ fn gap_refuses_an_fs_contradicting_the_sidecar() {
         &out,
     );
 }
+
+/// `--units`: a record that states no unit (an NPY array, a CSV column named `accel`) takes
+/// the argument's — g scaled by 9.80665 to m/s² — and one that states a unit keeps it: an
+/// argument that disagrees is refused by name, an unknown unit too.
+#[test]
+fn units_argument_fills_a_missing_unit_and_never_overrides_a_stated_one() {
+    use wearsim_host::gap::records::{load, Overrides};
+    let dir = tempfile::tempdir().unwrap();
+    let body = std::fs::read_to_string(csv(dir.path(), "x.csv", 24_000))
+        .unwrap()
+        .replace("accel_m_s2\n", "accel\n");
+    let f = dir.path().join("plain.csv");
+    std::fs::write(&f, body).unwrap();
+    std::fs::write(
+        dir.path().join("plain.json"),
+        r#"{"fs": 12000, "rpm": 1500}"#,
+    )
+    .unwrap();
+    let o = |units: Option<&str>| Overrides {
+        bearing: Some("cwru-6205-de".into()),
+        defect: Some(None),
+        units: units.map(String::from),
+        ..Default::default()
+    };
+    let e = load(&f, &o(None)).unwrap_err();
+    assert!(
+        e.contains("unit `unknown`") && e.contains("--units g"),
+        "{e}"
+    );
+    let g = load(&f, &o(Some("g"))).expect("--units g");
+    let ms2 = load(&f, &o(Some("m/s^2"))).expect("--units m/s^2");
+    assert_eq!(g.accel.len(), ms2.accel.len());
+    for (a, b) in g.accel.iter().zip(&ms2.accel).take(100) {
+        assert!(
+            (a - 9.80665 * b).abs() <= 1e-12 * a.abs().max(1.0),
+            "{a} {b}"
+        );
+    }
+    let e = load(&f, &o(Some("furlongs"))).unwrap_err();
+    assert!(
+        e.contains("--units `furlongs`") && e.contains("g or m/s^2"),
+        "{e}"
+    );
+    // The sidecar states g: the same unit is accepted, another refused.
+    std::fs::write(
+        dir.path().join("plain.json"),
+        r#"{"fs": 12000, "rpm": 1500, "units": "g"}"#,
+    )
+    .unwrap();
+    let stated = load(&f, &o(Some("g"))).expect("agreeing --units");
+    assert_eq!(stated.accel, g.accel);
+    let e = load(&f, &o(Some("m/s^2"))).unwrap_err();
+    assert!(
+        e.contains("--units m/s^2 contradicts the file's unit `g`"),
+        "{e}"
+    );
+}

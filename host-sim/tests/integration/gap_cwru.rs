@@ -47,6 +47,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         effects: vec![],
         channel: None,
         fs: None,
+        units: None,
         mains: 60.0,
         seed: 1,
         jobs: None,
