@@ -156,6 +156,11 @@ pub struct Analysis {
     pub zones: Option<Zones>,
     /// Why the zones are missing, if they are.
     pub zones_note: Option<String>,
+    /// Whether the raw spectrum's shaft line is where `fs` and `rpm` put it
+    /// ([`crate::analysis::shaft_line`]): `consistent: false` says to check `--fs` and
+    /// `--rpm` (the call is not changed). `None`: the record is too short to resolve 2.5 %
+    /// of the shaft frequency with seven averaged segments.
+    pub speed_check: Option<analysis::shaft_line::ShaftLine>,
 }
 
 /// How a record taken at a varying speed was order-tracked (see [`Analysis::order_tracking`]).
@@ -399,6 +404,7 @@ fn analyze_chosen(
         (false, true) => "speed profile of the sidecar's model".to_string(),
         (false, false) => meta_str("rpm_detail").unwrap_or_else(|| rpm_source.clone()),
     };
+    let speed_check = analysis::shaft_line::check(samples, rec.fs, kin.shaft_hz);
     let analysis = Analysis {
         file: rec.source.clone(),
         channel: rec.channel.clone(),
@@ -422,6 +428,7 @@ fn analyze_chosen(
         diagnosis: a.diagnosis,
         zones,
         zones_note,
+        speed_check,
     };
     // The last guard: no NaN/inf (JSON `null`) is ever presented as a result.
     if let Some((path, v)) = analysis::finite::first_non_finite(&analysis) {
@@ -469,6 +476,11 @@ pub fn print_analysis(a: &Analysis) {
         a.bearing,
         a.bearing_source
     );
+    if let Some(r) = a.speed_check.as_ref().and_then(|c| c.reason.as_ref()) {
+        println!(
+            "warning: speed check: {r}; check --fs and --rpm, the diagnosis below assumes them"
+        );
+    }
     if let Some(o) = &a.order_tracking {
         println!(
             "order-tracked: the shaft speed varies {:.3}-{:.3} Hz over the record (model time from {:.3} s); resampled to equal shaft angle, {:.1} revolutions, analysed at the mean {:.3} Hz",

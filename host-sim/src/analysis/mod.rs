@@ -10,6 +10,8 @@
 //! - [`evidence`]: a harmonic family's evidence in an envelope spectrum; fault families.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
 //! - [`shaft_comb`]: envelope lines at shaft orders, which explain a family on them.
+//! - [`shaft_line`]: whether the raw spectrum's shaft line is where the rate and speed
+//!   put it (a wrong `--fs` or `--rpm`).
 //! - [`diagnose`]: calibrated confidence and the call / no-call decision.
 //! - [`order_tracking`]: computed order tracking of records taken at a varying speed.
 //! - [`zones`]: band levels of the four El-Thalji frequency zones.
@@ -34,6 +36,7 @@ pub mod octave_bands;
 pub mod order_tracking;
 pub mod peaks;
 pub mod shaft_comb;
+pub mod shaft_line;
 pub mod spectrum;
 pub mod stats;
 pub mod synth;

@@ -52,6 +52,9 @@ pub struct Row {
     pub rpm: Option<f64>,
     /// Bearing used.
     pub bearing: Option<String>,
+    /// Whether the shaft line is where `fs` and `rpm` put it (`Analysis::speed_check`;
+    /// empty: the record is too short to check).
+    pub speed_consistent: Option<bool>,
     /// The error, for a failed row.
     pub error: Option<String>,
 }
@@ -127,6 +130,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
         fs_detail: None,
         rpm: None,
         bearing: None,
+        speed_consistent: None,
         error: None,
     };
     match analyze(&a) {
@@ -164,6 +168,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
             row.fs_detail = Some(an.fs_detail);
             row.rpm = Some(an.rpm);
             row.bearing = Some(an.bearing);
+            row.speed_consistent = an.speed_check.map(|c| c.consistent);
         }
         Err(e) => {
             row.status = "error".into();
@@ -177,7 +182,7 @@ fn opt<T: ToString>(v: &Option<T>) -> String {
     v.as_ref().map_or(String::new(), T::to_string)
 }
 
-const HEADER: [&str; 13] = [
+const HEADER: [&str; 14] = [
     "file",
     "status",
     "family",
@@ -190,10 +195,11 @@ const HEADER: [&str; 13] = [
     "fs_detail",
     "rpm",
     "bearing",
+    "speed_consistent",
     "error",
 ];
 
-fn cells(r: &Row) -> [String; 13] {
+fn cells(r: &Row) -> [String; 14] {
     [
         r.file.display().to_string(),
         r.status.clone(),
@@ -207,6 +213,7 @@ fn cells(r: &Row) -> [String; 13] {
         opt(&r.fs_detail),
         opt(&r.rpm),
         opt(&r.bearing),
+        opt(&r.speed_consistent),
         opt(&r.error),
     ]
 }

@@ -227,3 +227,38 @@ fn development_race_calls_survive_resampling() -> Result<(), Box<dyn std::error:
     assert_eq!(baselines, 1, "expected the normal baseline");
     Ok(())
 }
+
+/// The speed check (`analysis::shaft_line`) on measured records: at their own rate every
+/// development record's shaft line is where rate and speed put it; analysed as if sampled
+/// at half their rate (the true 1× on ½×) or at 0.8 of it, each is flagged. Thresholds
+/// were set before any record was read; `docs/cwru-detector.md` has every part's figures.
+#[test]
+fn the_speed_check_accepts_the_true_rate_and_flags_wrong_ones(
+) -> Result<(), Box<dyn std::error::Error>> {
+    use wearsim_host::analysis::shaft_line::check;
+    let Some(cwru) = cwru_dir()? else {
+        return Ok(());
+    };
+    for name in [
+        "12k_Drive_End_IR007_0_105.mat",
+        "12k_Drive_End_B014_1_186.mat",
+        "12k_Drive_End_OR007@6_0_130.mat",
+        "12k_Drive_End_OR021@12_1_259.mat",
+    ] {
+        let rec = wearsim_host::io::read_any(
+            cwru.join(name),
+            &wearsim_host::io::ReadOptions {
+                channel: Some("DE".into()),
+                ..Default::default()
+            },
+        )?;
+        let shaft = rec.rpm.ok_or("rpm")? / 60.0;
+        let own = check(&rec.samples, rec.fs, shaft).ok_or("checkable")?;
+        assert!(own.consistent, "{name}: {own:?}");
+        for k in [0.5, 0.8] {
+            let c = check(&rec.samples, k * rec.fs, shaft).ok_or("checkable")?;
+            assert!(!c.consistent, "{name} at {k} x fs: {c:?}");
+        }
+    }
+    Ok(())
+}

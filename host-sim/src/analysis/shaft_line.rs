@@ -1,0 +1,184 @@
+//! Is the shaft where the sample rate and the speed put it?
+//!
+//! A wrong sample rate or a wrong shaft speed scales every frequency the diagnosis looks
+//! for, and a harmonic series scaled by 2 (or ½) still lies on a harmonic series: the CWRU
+//! inner-race record `IR007_0` analysed at twice or half its rate is still called inner
+//! race, and `IR021_2` at half its rate is called outer race at confidence 0.80. The raw
+//! spectrum of a rotating machine nearly always carries a line at the shaft speed
+//! (residual unbalance, ISO 21940), so the record itself can say whether the rate and
+//! speed it was given are right: the 1× line must be there (within the tolerance a speed
+//! stated to a few percent needs), and no line at ½× (where the true 1× sits when the
+//! rate given is half the true one, or the speed twice).
+//!
+//! Thresholds set before looking at any record: a line is a local maximum at least
+//! [`LINE_DB`] = 6 dB (4× in power) over the median of its neighbourhood; tolerance
+//! [`TOLERANCE`] = ±3 % of the shaft frequency. On the CWRU development part (drive end,
+//! 0–1 hp) the 1× lines stand 13–36 dB and the ½× at most 2 dB; the figures on the other
+//! parts are in `docs/cwru-detector.md`. The check reports; it does not change the call.
+
+use super::peaks::peak_over_floor_db;
+use super::spectrum::{welch_psd, Spectrum, WelchParams};
+use super::window::Window;
+use serde::Serialize;
+
+/// Height over the neighbourhood (dB, power) from which a local maximum counts as a line.
+pub const LINE_DB: f64 = 6.0;
+/// Relative tolerance on the expected shaft frequency (a speed stated to a few percent).
+pub const TOLERANCE: f64 = 0.03;
+/// Coarsest resolution (as a fraction of the shaft frequency) at which the check is made:
+/// coarser, the ±3 % window holds barely one bin and a neighbouring line leaks into it.
+pub const MAX_RESOLUTION: f64 = 0.025;
+/// Resolution aimed at (fraction of the shaft frequency) when the record is long enough.
+const TARGET_RESOLUTION: f64 = 0.01;
+/// Half-width of the neighbourhood whose median is a line's floor, as a fraction of the
+/// shaft frequency (±15 %: away from the next shaft harmonic).
+const FLOOR_HALF_WIDTH: f64 = 0.15;
+/// Longest segment: a quarter of the record (seven half-overlapping segments).
+const MIN_SEGMENTS_DIV: usize = 4;
+
+/// What the raw spectrum says about the shaft speed a record was analysed at.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShaftLine {
+    /// Shaft frequency the sample rate and speed put the 1× line at, Hz.
+    pub shaft_hz: f64,
+    /// Frequency resolution of the spectrum checked, Hz.
+    pub resolution_hz: f64,
+    /// Height of the strongest line within ±3 % of `shaft_hz` over its neighbourhood, dB
+    /// (`None`: no local maximum there).
+    pub line_db: Option<f64>,
+    /// The same at half the shaft frequency.
+    pub half_line_db: Option<f64>,
+    /// A 1× line of at least [`LINE_DB`] and none at ½×: the rate and speed agree with the
+    /// record. `false`: the shaft is not where they put it — check `--fs` and `--rpm`.
+    pub consistent: bool,
+    /// Why not, in words (`None` when consistent).
+    pub reason: Option<String>,
+}
+
+/// The shaft-line check of `x` (sampled at `fs` Hz) for a shaft at `shaft_hz`; `None`
+/// when the record is too short to resolve [`MAX_RESOLUTION`] of the shaft frequency
+/// (or the spectrum cannot be computed), i.e. when the check would say nothing.
+pub fn check(x: &[f64], fs: f64, shaft_hz: f64) -> Option<ShaftLine> {
+    if !(fs.is_finite() && fs > 0.0 && shaft_hz.is_finite() && shaft_hz > 0.0) {
+        return None;
+    }
+    if 0.5 * shaft_hz * (1.0 - TOLERANCE) <= 0.0 || shaft_hz * (1.0 + TOLERANCE) >= 0.5 * fs {
+        return None;
+    }
+    let wanted = (fs / (TARGET_RESOLUTION * shaft_hz)).ceil();
+    // At least seven half-overlapping segments: with fewer averages the noise alone makes
+    // 6 dB maxima in a ±3 % window too often. Any length (not a power of two), so that the
+    // resolution follows the record's duration, 4/T Hz, rather than steps of two.
+    let longest = x.len() / MIN_SEGMENTS_DIV;
+    let nperseg = if wanted < longest as f64 {
+        wanted as usize
+    } else {
+        longest
+    };
+    if nperseg < 2 {
+        return None;
+    }
+    let resolution_hz = fs / nperseg as f64;
+    if resolution_hz > MAX_RESOLUTION * shaft_hz {
+        return None;
+    }
+    let psd = welch_psd(
+        x,
+        fs,
+        &WelchParams {
+            nperseg,
+            overlap: 0.5,
+            window: Window::Hann,
+        },
+    )
+    .ok()?;
+    let height = |f: f64| line_height_db(&psd, f);
+    let line_db = height(shaft_hz);
+    let half_line_db = height(0.5 * shaft_hz);
+    let db = |d: Option<f64>| d.map_or("none".to_string(), |d| format!("{d:.1} dB"));
+    let reason = if line_db.is_none_or(|d| d < LINE_DB) {
+        Some(format!(
+            "no shaft line at 1x ({shaft_hz:.2} Hz +-3 %: {}; a line needs {LINE_DB} dB): the sample rate or the speed is wrong, or this machine shows no 1x",
+            db(line_db)
+        ))
+    } else if half_line_db.is_some_and(|d| d >= LINE_DB) {
+        Some(format!(
+            "a line at 1/2x ({:.2} Hz: {}): the sample rate given is half the true one (or the speed twice), or the machine vibrates at half orders (looseness, rub)",
+            0.5 * shaft_hz,
+            db(half_line_db)
+        ))
+    } else {
+        None
+    };
+    Some(ShaftLine {
+        shaft_hz,
+        resolution_hz,
+        line_db,
+        half_line_db,
+        consistent: reason.is_none(),
+        reason,
+    })
+}
+
+/// Height (dB) of the strongest local maximum within ±[`TOLERANCE`] of `f` over the
+/// median of its ±15 % neighbourhood.
+fn line_height_db(psd: &Spectrum, f: f64) -> Option<f64> {
+    peak_over_floor_db(psd, f, TOLERANCE * f, FLOOR_HALF_WIDTH * f).map(|(_, db)| db)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::synth::{gaussian_noise, sine};
+
+    /// A shaft at 29.95 Hz with 2× and 3× harmonics in noise, 20 s at 12 kHz.
+    fn machine(fs: f64) -> Vec<f64> {
+        let n = (20.0 * fs) as usize;
+        let f = 29.95;
+        let noise = gaussian_noise(n, 1.0, 7);
+        sine(n, fs, f, 0.3, 0.1)
+            .iter()
+            .zip(sine(n, fs, 2.0 * f, 0.2, 0.4))
+            .zip(sine(n, fs, 3.0 * f, 0.1, 0.9))
+            .zip(noise)
+            .map(|(((a, b), c), d)| a + b + c + d)
+            .collect()
+    }
+
+    #[test]
+    fn the_right_rate_is_consistent_and_wrong_ones_are_not() {
+        let fs = 12_000.0;
+        let x = machine(fs);
+        let ok = check(&x, fs, 29.95).unwrap();
+        assert!(ok.consistent, "{ok:?}");
+        assert!(ok.line_db.unwrap() > 15.0, "{ok:?}");
+        // Twice the rate (or half the speed): 1× expected where nothing is; half the rate:
+        // the true 1× lands on ½×, though the true 2× lands on 1×. ±10 % and ±25 %: off.
+        for k in [2.0, 0.5, 1.1, 0.9, 1.25, 0.8] {
+            let c = check(&x, fs * k, 29.95).unwrap();
+            assert!(!c.consistent, "rate x{k}: {c:?}");
+        }
+        // The same by a wrong speed instead of a wrong rate.
+        for rpm_factor in [2.0, 0.5, 1.25] {
+            let c = check(&x, fs, 29.95 * rpm_factor).unwrap();
+            assert!(!c.consistent, "speed x{rpm_factor}: {c:?}");
+        }
+        // A speed 2 % off is within the tolerance.
+        assert!(check(&x, fs, 29.95 * 1.02).unwrap().consistent);
+    }
+
+    #[test]
+    fn noise_has_no_shaft_line_and_short_records_are_not_checked() {
+        let fs = 12_000.0;
+        let x = gaussian_noise(240_000, 1.0, 3);
+        let c = check(&x, fs, 29.95).unwrap();
+        assert!(!c.consistent, "{c:?}");
+        // Segments of a quarter of the record resolve 4/T Hz: 6 s, 0.67 Hz = 2.2 % of
+        // 30 Hz, enough; 5 s, 0.8 Hz = 2.7 %, too coarse.
+        assert!(check(&machine(fs)[..72_000], fs, 29.95).unwrap().consistent);
+        assert_eq!(check(&machine(fs)[..60_000], fs, 29.95), None);
+        assert_eq!(check(&[], fs, 29.95), None);
+        assert_eq!(check(&x, fs, f64::NAN), None);
+        assert_eq!(check(&x, fs, 7000.0), None);
+    }
+}
