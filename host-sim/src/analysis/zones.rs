@@ -101,10 +101,13 @@ impl ZoneBands {
 
     /// The zones cut at `top` (Hz): a record that holds nothing above `top`
     /// ([`super::content_band::content_edge`]) informs no level above it. A zone that
-    /// starts at or above `top` is an error naming it.
+    /// starts at or above `top` is an error naming it; one already empty
+    /// ([`ZoneBands::new_clipped`]) stays empty.
     pub fn below(self, top: f64) -> Result<Self, AnalysisError> {
         let cut = |name: &'static str, (lo, hi): (f64, f64)| -> Result<(f64, f64), AnalysisError> {
-            if lo < top {
+            if lo >= hi {
+                Ok((lo, lo))
+            } else if lo < top {
                 Ok((lo, hi.min(top)))
             } else {
                 Err(AnalysisError::BadParameter {

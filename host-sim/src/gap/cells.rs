@@ -71,7 +71,9 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
             ..WelchParams::default()
         },
     )?;
-    let zones = ZoneBands::new(&spec.ff, fs)?;
+    // A zone wholly beyond fs/2 (a record sampled below twice the housing's high zone,
+    // 5–6 kHz for the CWRU rig) is empty: it has no cells, as nothing of it is recorded.
+    let zones = ZoneBands::new_clipped(&spec.ff, fs)?;
     let zones = match spec.band_hz {
         Some(top) => zones.below(top)?,
         None => zones,
@@ -91,6 +93,9 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
         ("natural", natural, 6.0),
         ("high", zones.high, 6.0),
     ] {
+        if band.0 >= band.1 {
+            continue;
+        }
         let level = analysis::zones::band_rms(&psd, band);
         push(&mut v, format!("zone:{name}"), "zone", "dB", db(level));
         if name == "rotating" {

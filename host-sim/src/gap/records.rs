@@ -321,13 +321,25 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         }
         warnings.push(format!("{varies}: --rpm {rpm:.0} used"));
     }
+    let mut contradicted = false;
     if let (Some(f), false) = (from_spectrum, rpm_source == "spectrum") {
         let rel = (60.0 * f / rpm - 1.0).abs();
         if rel > 0.05 {
+            contradicted = true;
             warnings.push(format!(
                 "the stated {rpm:.0} rpm contradicts the spectrum's strongest line near 1x at {:.1} Hz ({:.0} rpm)",
                 f,
                 60.0 * f
+            ));
+        }
+    }
+    // A rate or speed off by a factor (½, 2) leaves no line near 1× for the search above,
+    // or the wrong one: the analysis's speed check names it.
+    if !contradicted {
+        if let Some(r) = analysis::shaft_line::check(&accel, fs, rpm / 60.0).and_then(|c| c.reason)
+        {
+            warnings.push(format!(
+                "speed check: {r}; the matched simulations assume {rpm:.0} rpm at {fs} Hz"
             ));
         }
     }

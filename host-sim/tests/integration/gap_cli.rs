@@ -114,7 +114,7 @@ fn gap_rejects_bad_input_naming_the_field() {
     std::fs::write(&raw, s).unwrap();
     run(
         with(&["--rpm", "1797"], &raw.display().to_string()),
-        r#"channel `x`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give the file a JSON sidecar (`<file>.json`) with `"units": {"x": "g"}`"#,
+        r#"channel `x`) cannot be compared with simulated m/s²; allowed units g or m/s^2: give --units g (or m/s^2) when the file states none, or the file a JSON sidecar (`<file>.json`) with `"units": {"x": "g"}`"#,
     );
 }
 
