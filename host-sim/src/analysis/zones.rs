@@ -100,15 +100,19 @@ impl ZoneBands {
     }
 
     /// The zones cut at `top` (Hz): a record that holds nothing above `top`
-    /// ([`super::content_band::content_edge`]) informs no level above it. A zone that
-    /// starts at or above `top` is an error naming it; one already empty
-    /// ([`ZoneBands::new_clipped`]) stays empty.
+    /// ([`super::content_band::content_edge`]) informs no level above it. The natural or
+    /// high zone starting at or above `top` becomes the empty band `(top, top)` (nothing of
+    /// it is recorded, as with [`ZoneBands::new_clipped`] at fs/2); the rotating or fault
+    /// zone doing so is an error naming it (the record holds nothing of the bearing's
+    /// lines). A zone already empty stays empty.
     pub fn below(self, top: f64) -> Result<Self, AnalysisError> {
         let cut = |name: &'static str, (lo, hi): (f64, f64)| -> Result<(f64, f64), AnalysisError> {
             if lo >= hi {
                 Ok((lo, lo))
             } else if lo < top {
                 Ok((lo, hi.min(top)))
+            } else if matches!(name, "natural zone" | "high zone") {
+                Ok((top, top))
             } else {
                 Err(AnalysisError::BadParameter {
                     name,
@@ -224,6 +228,24 @@ mod tests {
 
     fn with_natural(natural_hz: f64) -> FaultFrequencies {
         FaultFrequencies { natural_hz, ..ff() }
+    }
+
+    /// A record whose content ends at `top` (a low-passed or resampled record): the zones
+    /// are cut there, the natural and high zones beyond it become empty at `top`, and the
+    /// fault zone beyond it is an error naming it.
+    #[test]
+    fn zones_below_a_content_edge() {
+        let z = ZoneBands::new(&ff(), 12_000.0).unwrap();
+        let b = z.below(1600.0).unwrap();
+        assert_eq!((b.rotating, b.fault), (z.rotating, z.fault));
+        assert_eq!((b.natural, b.high), ((1600.0, 1600.0), (1600.0, 1600.0)));
+        let b = z.below(3000.0).unwrap();
+        assert_eq!((b.natural, b.high), ((2100.0, 3000.0), (3000.0, 3000.0)));
+        let e = z.below(40.0).unwrap_err().to_string();
+        assert!(e.contains("fault zone"), "{e}");
+        // Already empty (beyond fs/2): stays empty.
+        let c = ZoneBands::new_clipped(&with_natural(10_000.0), 12_000.0).unwrap();
+        assert_eq!(c.below(5000.0).unwrap().high, (13_000.0, 13_000.0));
     }
 
     #[test]

@@ -637,8 +637,18 @@ pub fn matched_config(r: &RealRecord) -> Result<ModelConfig, String> {
         }
     };
     // Validate now, so a record the model cannot take is named here.
-    wearsim_core::Model::new_checked(cfg.clone())
-        .map_err(|e| format!("{}: the matched model is invalid: {e}", r.file.display()))?;
+    wearsim_core::Model::new_checked(cfg.clone()).map_err(|e| {
+        // The matched simulations run at the record's own rate: one too low for the model's
+        // stiffest mode is a property of the record, and resampling it is the remedy.
+        let hint = match e {
+            wearsim_core::ConfigError::StepTooLarge { .. } => format!(
+                "; the gap simulates at the record's own rate ({} Hz): resample the record to at least that rate (band-limited; the gap then compares below the record's content edge, README \"Records of other rates, sensor positions and rigs\")",
+                r.fs
+            ),
+            _ => String::new(),
+        };
+        format!("{}: the matched model is invalid: {e}{hint}", r.file.display())
+    })?;
     Ok(cfg)
 }
 
