@@ -276,6 +276,7 @@ impl GeometrySpec {
     /// them, no force uses them).
     pub fn bearing(&self) -> Result<BearingGeometry, String> {
         let mm = 1e-3;
+        let (bore, outside_diameter) = section_diameters(self.pitch_mm * mm, self.ball_mm * mm);
         Ok(BearingGeometry {
             elements: u8::try_from(self.elements).map_err(|_| {
                 format!(
@@ -286,8 +287,8 @@ impl GeometrySpec {
             element_diameter: self.ball_mm * mm,
             pitch_diameter: self.pitch_mm * mm,
             contact_angle: self.angle_deg.to_radians(),
-            bore: section_diameters(self.pitch_mm * mm, self.ball_mm * mm).0,
-            outside_diameter: section_diameters(self.pitch_mm * mm, self.ball_mm * mm).1,
+            bore,
+            outside_diameter,
             contact: ContactKind::Point,
             roller_length: 0.0,
             ..wearsim_core::presets::SKF_61810
