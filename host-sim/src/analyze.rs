@@ -140,7 +140,9 @@ pub struct Analysis {
     /// Bearing preset used for the geometry (`custom`: the geometry of a wearsim
     /// sidecar's structured model that is no preset's).
     pub bearing: String,
-    /// Where the bearing came from: `argument`, `file`, `sidecar` or `config` (`--config`).
+    /// Where the bearing came from: `argument`, `file`, `sidecar`, `config` (`--config`)
+    /// or `label` (a CWRU file name's faulty end when the channel is the other bearing's:
+    /// `12k_Drive_End_…` read on `FE` is diagnosed for the drive-end 6205).
     pub bearing_source: String,
     /// Characteristic frequencies at `rpm`, Hz.
     pub kinematics: FaultFrequencies,
@@ -314,8 +316,13 @@ fn analyze_chosen(
         .meta
         .get("sidecar")
         .and_then(|s| crate::io::sidecar::structured_model(s).ok().flatten());
+    // A labelled CWRU fault sits in the bearing its file name names, whichever channel
+    // recorded it (a drive-end fault seen by the fan-end sensor is still the 6205's); the
+    // channel's own bearing otherwise (as `gap` matches it).
+    let labelled = crate::io::mat::cwru_faulty_bearing(&rec.source);
+    let file_bearing = labelled.or(rec.bearing.as_deref());
     let (bearing, bearing_source, file_model) =
-        match (&custom, bearing, choice.scenario, file_model, rec.bearing.as_deref()) {
+        match (&custom, bearing, choice.scenario, file_model, file_bearing) {
             (_, _, Some((m, label)), _, _) => (label.to_string(), "config", Some(m.clone())),
             (Some(c), _, None, _, _) => (c.0.clone(), c.1, None),
             (None, Some(b), None, _, _) => (b.to_string(), "argument", None),
@@ -323,7 +330,12 @@ fn analyze_chosen(
                 (label.unwrap_or("custom").to_string(), "file", Some(m))
             }
             (None, None, None, None, Some(b)) if wearsim_core::presets::by_name(b).is_some() => {
-                (b.to_string(), "file", None)
+                let source = if labelled.is_some() && labelled != rec.bearing.as_deref() {
+                    "label"
+                } else {
+                    "file"
+                };
+                (b.to_string(), source, None)
             }
             (None, None, None, None, other) => {
                 return Err(AnalyzeError::input(format!(

@@ -454,7 +454,7 @@ pub fn base_model(
     // The defect sits in the bearing the file's label names (CWRU: the drive- or fan-end
     // bearing), whichever channel recorded it: a drive-end fault measured at the fan end or
     // on the base plate is the drive-end bearing seen through a longer path.
-    if let Some(faulty) = fault_end_bearing(rec) {
+    if let Some(faulty) = io::mat::cwru_faulty_bearing(&rec.source) {
         if rec.bearing.as_deref() != Some(faulty) {
             warnings.push(format!(
                 "the label puts the defect in the {faulty} bearing and the record is channel {} (whose bearing is {}): the matched simulation is of the faulty bearing, and the path from it to this sensor is left to the rig's calibration and the transfer-path effect",
@@ -582,18 +582,6 @@ pub fn describe_defect(d: Option<DefectSpec>) -> String {
             1e3 * d.depth
         )
     })
-}
-
-/// The bearing preset holding the defect of a CWRU record, from its file name's label
-/// (`12k_Drive_End_…` → the drive-end bearing); `None` for a record without such a label
-/// (or a healthy one).
-fn fault_end_bearing(rec: &Record) -> Option<&'static str> {
-    let name = rec.source.file_name()?.to_string_lossy().into_owned();
-    let label = io::mat::parse_cwru_name(&name)?;
-    if matches!(label.fault, CwruFault::Normal) {
-        return None;
-    }
-    io::mat::cwru_bearing_preset(label.fault_end.as_deref()?)
 }
 
 /// The matched baseline configuration of a record.

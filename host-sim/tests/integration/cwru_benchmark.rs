@@ -262,3 +262,42 @@ fn the_speed_check_accepts_the_true_rate_and_flags_wrong_ones(
     }
     Ok(())
 }
+
+/// A CWRU fault read on the other end's channel is diagnosed for the faulty bearing its
+/// file name names (as `gap` matches it): `12k_Drive_End_IR007_0` on `FE` for the drive-end
+/// 6205 (`bearing_source` `label`) — an inner-race call, where the fan-end 6203's
+/// frequencies gave none; a fan-end fault on `FE` and the normal record keep the channel's
+/// bearing. Measured on all 40 drive-end IR/OR records' `FE` channels in
+/// `docs/cwru-detector.md`.
+#[test]
+fn a_fault_read_on_the_other_channel_is_diagnosed_for_the_faulty_bearing(
+) -> Result<(), Box<dyn std::error::Error>> {
+    use wearsim_host::analyze::{analyze, AnalyzeArgs};
+    let Some(cwru) = cwru_dir()? else {
+        return Ok(());
+    };
+    let run = |name: &str| {
+        let mut a = AnalyzeArgs::for_file(cwru.join(name));
+        a.channel = Some("FE".into());
+        analyze(&a).map(|(an, _)| an)
+    };
+    let de = run("12k_Drive_End_IR007_0_105.mat")?;
+    assert_eq!(
+        (de.bearing.as_str(), de.bearing_source.as_str()),
+        ("cwru-6205-de", "label")
+    );
+    assert_eq!(
+        de.diagnosis.family,
+        FaultFamily::InnerRace,
+        "{:?}",
+        de.diagnosis
+    );
+    let fe = run("12k_Fan_End_IR007_1_279.mat")?;
+    assert_eq!(
+        (fe.bearing.as_str(), fe.bearing_source.as_str()),
+        ("cwru-6203-fe", "file")
+    );
+    let normal = run("normal_0_97.mat")?;
+    assert_eq!(normal.bearing, "cwru-6203-fe");
+    Ok(())
+}

@@ -151,6 +151,18 @@ pub fn cwru_bearing_preset(channel: &str) -> Option<&'static str> {
     }
 }
 
+/// The bearing preset holding the defect of a CWRU record, from its file name's label
+/// (`12k_Drive_End_…` → the drive-end bearing, whichever channel recorded it); `None` for
+/// a file without such a label, or a healthy one (`normal_…`).
+pub fn cwru_faulty_bearing(path: &Path) -> Option<&'static str> {
+    let name = path.file_name()?.to_string_lossy().into_owned();
+    let label = parse_cwru_name(&name)?;
+    if matches!(label.fault, CwruFault::Normal) {
+        return None;
+    }
+    cwru_bearing_preset(label.fault_end.as_deref()?)
+}
+
 /// Numeric prefix of a CWRU variable name: `X118_DE_time` → 118, `X097RPM` → 97.
 fn var_record(name: &str) -> Option<u32> {
     let rest = name.strip_prefix('X')?;
