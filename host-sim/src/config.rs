@@ -388,6 +388,7 @@ impl ScenarioFile {
             )?,
             None => b0.map(|b| b.contact).unwrap_or(ContactKind::Point),
         };
+        let elements = req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?;
         let element_diameter = req(
             bs.element_diameter,
             b0.map(|b| b.element_diameter),
@@ -410,7 +411,7 @@ impl ScenarioFile {
             _ => crate::geometry::section_diameters(pitch_diameter, element_diameter),
         };
         let bearing = BearingGeometry {
-            elements: req(bs.elements, b0.map(|b| b.elements), "bearing.elements")?,
+            elements,
             element_diameter,
             pitch_diameter,
             contact_angle: req(
