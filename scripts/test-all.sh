@@ -44,6 +44,10 @@ step "core: fast-math approximation error; serde round trips in both precisions"
 cargo test -p wearsim-core-f32 --features fast-math --test fast_math
 cargo test -p wearsim-core --features serde --test serde_config
 cargo test -p wearsim-core-f32 --features serde --test serde_config
+# The core as a microcontroller builds it (no `oversample-16`: ratios up to 8, 256-sample
+# lines): low rates refused by name, checkpoints of the other capacity still resume. The
+# workspace run below has the feature on (host-sim enables it).
+cargo test -p wearsim-core --test low_rate --test checkpoint_resume --test lanes --test dynamics
 
 if [ -f firmware-stub/Cargo.toml ]; then
   step "firmware-stub: fmt and clippy"

@@ -3,7 +3,7 @@
 //! uninterrupted run would. Little-endian, every real as `f64` (exact for `f32` builds),
 //! headed by a magic word, a format version and the element capacity.
 
-use crate::decimate::{DelayLine, MAX_TAPS};
+use crate::decimate::{DelayLine, MAX_TAPS, MAX_TAPS_V3};
 use crate::effects::sensor::SensorState;
 use crate::effects::transfer_path::{PathState, MODES};
 use crate::error::ConfigError;
@@ -19,8 +19,16 @@ const MAGIC: u32 = 0x5753_4350; // "WSCP"
 /// 256 running-in steps, so re-deriving it on resume changed the samples). Versions 1 and 2
 /// are still read (their roughness amplitude re-derived as before). The ninth scalar, reserved (0) before ball
 /// defects existed, carries the spin angle of a ball defect; older checkpoints read it as 0,
-/// which is what their (race-defect) states had.
-const VERSION: u32 = 3;
+/// which is what their (race-defect) states had. Version 4 states the capacity of its delay
+/// lines, which depends on the build (512 samples with the `oversample-16` feature, 256
+/// without); lines of another capacity (and the 256-sample lines of versions 1–3) are read
+/// into the newest places of this build's lines, which is all a filter of a ratio both
+/// builds support reads (≤ 8: ≤ 209 taps).
+const VERSION: u32 = 4;
+
+/// Largest line capacity a checkpoint may state (that of the `oversample-16` build).
+const MAX_STORED_TAPS: usize = 512;
+const _: () = assert!(MAX_STORED_TAPS >= MAX_TAPS);
 
 /// Bytes needed to encode a `State<NB>`.
 pub const fn encoded_len(nb: usize) -> usize {
@@ -32,7 +40,7 @@ pub const fn encoded_len(nb: usize) -> usize {
         + 8 * 2 * nb // rough, slip
         + 4 + 4 // armed, phase
         + 1 + 8 * 5 + 1 // topography option, five reals, count
-        + 3 * (8 * 2 * MAX_TAPS + 4) // delay lines
+        + 4 + 3 * (8 * 2 * MAX_TAPS + 4) // line capacity, delay lines
         + 8 * 2 * MODES + 16 + 8 * 2 + 8 * 2 // path, sensor rng, lp, phase, revs, run_in
         + 8 + 8 * nb // rough_sigma, rsqrt cache
 }
@@ -157,6 +165,7 @@ impl<const NB: usize> State<NB> {
                 w.bytes(&[0])?;
             }
         }
+        w.u32(MAX_TAPS as u32)?;
         for line in p.lines.iter() {
             let (buf, pos) = line.raw();
             for v in buf.iter() {
@@ -226,13 +235,41 @@ impl<const NB: usize> State<NB> {
             count,
             debris,
         });
+        // Version 4 states the lines' capacity (that of the build that wrote it); older
+        // versions had 256.
+        let cap = if version >= 4 {
+            r.u32()? as usize
+        } else {
+            MAX_TAPS_V3
+        };
+        if cap == 0 || cap > MAX_STORED_TAPS {
+            return Err(CORRUPT);
+        }
         let mut lines = [DelayLine::default(); 3];
         for line in lines.iter_mut() {
-            let mut buf = [0.0 as Real; 2 * MAX_TAPS];
-            for v in buf.iter_mut() {
-                *v = r.real()?;
+            if cap == MAX_TAPS {
+                let mut buf = [0.0 as Real; 2 * MAX_TAPS];
+                for v in buf.iter_mut() {
+                    *v = r.real()?;
+                }
+                *line = DelayLine::from_raw(buf, r.u32()? as usize);
+            } else {
+                // A line of another capacity, stored twice: its history, oldest first, is
+                // the `cap` samples from its position on; its newest samples (as many as
+                // this build's lines hold) go into a fresh line, all that a filter of a
+                // ratio both builds support reads.
+                let mut buf = [0.0 as Real; 2 * MAX_STORED_TAPS];
+                let stored = buf.get_mut(..2 * cap).ok_or(CORRUPT)?;
+                for v in stored.iter_mut() {
+                    *v = r.real()?;
+                }
+                let pos = r.u32()? as usize % cap;
+                let hist = buf.get(pos..pos + cap).unwrap_or(&[]);
+                let keep = hist.len().saturating_sub(MAX_TAPS);
+                for &x in hist.get(keep..).unwrap_or(&[]) {
+                    line.push(x);
+                }
             }
-            *line = DelayLine::from_raw(buf, r.u32()? as usize);
         }
         let fresh = st.parts();
         let (mut path, mut sensor, mut revs, mut run_in) =

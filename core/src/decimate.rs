@@ -10,9 +10,19 @@
 
 use crate::real::Real;
 
-/// Capacity of the filter (taps). 82 dB (80 dB plus margin) needs about `26·R + 1` taps, so every ratio up to
-/// `MAX_OVERSAMPLE` = 8 meets the specification in full.
+/// Capacity of the filter (taps). 82 dB (80 dB plus margin) needs about `26·R + 1` taps, so
+/// every ratio up to `MAX_OVERSAMPLE` meets the specification in full: 512 with the
+/// `oversample-16` feature (417 taps at 16, and a block of four outputs 48 samples more),
+/// 256 without (209 taps at 8).
+#[cfg(feature = "oversample-16")]
+pub const MAX_TAPS: usize = 512;
+/// Capacity of the filter (taps); see the `oversample-16` feature.
+#[cfg(not(feature = "oversample-16"))]
 pub const MAX_TAPS: usize = 256;
+
+/// The capacity of a delay line in checkpoints of format versions 1–3 (written when
+/// [`MAX_TAPS`] was always 256 and the largest ratio 8); version 4 states its own.
+pub const MAX_TAPS_V3: usize = 256;
 
 /// FIR coefficients of one anti-alias design.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,8 +114,8 @@ impl AntiAlias {
     /// Internal samples a block of [`BLOCK`] outputs, `ratio` samples apart, reads: the
     /// oldest output's window and `(BLOCK − 1)·ratio` newer samples. `None` when they do
     /// not fit the delay line's contiguous window ([`MAX_TAPS`]), so the outputs must be
-    /// taken one at a time (never for the designs of ratios up to `MAX_OVERSAMPLE` = 8:
-    /// at most 209 + 24 samples).
+    /// taken one at a time (never for the designs of ratios up to `MAX_OVERSAMPLE`: at most
+    /// 417 + 48 samples at 16, 209 + 24 at 8).
     pub fn block_span(&self) -> Option<usize> {
         let span = self.len + (BLOCK - 1) * self.ratio as usize;
         (span <= MAX_TAPS).then_some(span)

@@ -70,3 +70,60 @@ fn resume_with_every_effect_is_bit_identical() {
     m2.fill(&mut b, &mut rb);
     assert!(identical(&ra, &rb), "resumed samples differ");
 }
+
+/// A checkpoint of format version 3 (lines of 256 samples, before the capacity depended on
+/// the build) resumes bit-identically at a ratio ≤ 8 whatever this build's capacity: its
+/// lines are read into the newest places of this build's lines, all that such a filter
+/// reads. The version-3 bytes are made from a version-4 checkpoint by rewriting the version,
+/// dropping the stated capacity and cutting each line to its newest 256 samples.
+#[test]
+fn a_version_3_checkpoint_still_resumes_bit_identically() {
+    const NB: usize = 16;
+    const OLD: usize = 256;
+    let mut cfg = wearsim_core::presets::by_name("cwru-6205-de").unwrap();
+    cfg.oversample = Some(8);
+    let model = Model::new_checked(cfg).unwrap();
+    assert!(model.anti_alias().len() <= OLD);
+    let mut a: State<NB> = State::new(&model, 5).unwrap();
+    let mut buf = vec![Sample::default(); 1001];
+    model.fill(&mut a, &mut buf);
+    let mut bytes = vec![0u8; encoded_len(NB)];
+    let n = a.encode(&mut bytes).unwrap();
+    let new = wearsim_core::decimate::MAX_TAPS;
+    // Bytes before the delay lines (as `encoded_len` counts them); version 4 then states the
+    // lines' capacity, which version 3 did not.
+    let head = 12 + 8 * 10 + 8 * 6 + 1 + 8 + 16 + 8 * 2 * NB + 8 + 1 + 8 * 5 + 1;
+    assert_eq!(
+        u32::from_le_bytes(bytes[head..head + 4].try_into().unwrap()) as usize,
+        new
+    );
+    let line_len = 8 * 2 * new + 4;
+    let mut old = bytes[..head].to_vec();
+    old[4..8].copy_from_slice(&3u32.to_le_bytes());
+    for l in 0..3 {
+        let at = head + 4 + l * line_len;
+        let reals: Vec<f64> = (0..2 * new)
+            .map(|i| f64::from_le_bytes(bytes[at + 8 * i..at + 8 * i + 8].try_into().unwrap()))
+            .collect();
+        let pos = u32::from_le_bytes(bytes[at + 16 * new..at + 16 * new + 4].try_into().unwrap())
+            as usize;
+        // The newest 256 samples, oldest first, stored twice, position 0.
+        let hist = &reals[pos + new - OLD..pos + new];
+        for x in hist.iter().chain(hist) {
+            old.extend_from_slice(&x.to_le_bytes());
+        }
+        old.extend_from_slice(&0u32.to_le_bytes());
+    }
+    old.extend_from_slice(&bytes[head + 4 + 3 * line_len..n]);
+    let mut b: State<NB> = State::decode(&model, &old).unwrap();
+    let mut ra = vec![Sample::default(); 3000];
+    let mut rb = ra.clone();
+    model.fill(&mut a, &mut ra);
+    model.fill(&mut b, &mut rb);
+    assert!(
+        identical(&ra, &rb),
+        "a version-3 checkpoint resumed differently"
+    );
+    // Not trivially equal: the samples move.
+    assert!(ra.iter().any(|s| s.accel != 0.0));
+}

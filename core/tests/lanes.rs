@@ -39,7 +39,21 @@ fn effect(cfg: &mut ModelConfig, name: &str, scale: Real) {
 /// Runs the scalar step for every model and the lane stepper for all of them; asserts
 /// every lane's samples (all three channels), contact figures and shaft and cage angles
 /// (what a pass meter observes) are bit-identical.
+///
+/// Runs on a thread with a 64 MiB stack: two groups of 16 lanes are about 800 KB each
+/// (every lane's state holds three anti-alias histories of `2·MAX_TAPS` reals), beyond a
+/// test thread's 2 MiB in a debug build (the host's workers have 16 MiB,
+/// `wearsim_host::lanes::WORKER_STACK`).
 fn assert_lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], samples: usize) {
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(move || lanes_match::<K>(cfgs, seeds, samples))
+        .expect("test thread")
+        .join()
+        .expect("lanes match");
+}
+
+fn lanes_match<const K: usize>(cfgs: [ModelConfig; K], seeds: [u64; K], samples: usize) {
     let models: [Model; K] = cfgs.map(|c| Model::new_checked(c).expect("valid model"));
     let mut group: LaneGroup<K, 16> = LaneGroup::new_checked(&models, &seeds).expect("lanes");
     let mut lane_out = vec![[Sample::default(); K]; samples];

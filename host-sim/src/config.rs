@@ -77,7 +77,7 @@ pub struct ScenarioFile {
     pub settle: Option<f64>,
     /// `rk4`, `exact-zoh` or `exact-foh`.
     pub integrator: Option<String>,
-    /// Internal steps per output sample (2..=8); absent = automatic.
+    /// Internal steps per output sample (2..=`MAX_OVERSAMPLE`, 16 on the host); absent = automatic.
     pub oversample: Option<u32>,
     /// `acceleration` or `all`.
     pub channels: Option<String>,

@@ -130,6 +130,17 @@ pub fn spawn_worker<'scope, T: Send + 'scope>(
         .spawn_scoped(scope, f)
 }
 
+/// Runs `f` on a scoped worker thread with a [`WORKER_STACK`] stack and returns its
+/// result (`None` when the thread cannot be started or panics). A lane group of 16 lanes
+/// is about 800 KB (every lane's state holds three anti-alias histories of
+/// `2·MAX_TAPS` reals since oversampling ratios up to 16), built on the stack before it is
+/// boxed: on a caller's thread of std's 2 MiB default (a test, a library user's thread) it
+/// overflowed. A thread start costs tens of microseconds against a group's milliseconds
+/// or more of stepping.
+fn on_worker_stack<T: Send>(f: impl FnOnce() -> Option<T> + Send) -> Option<T> {
+    std::thread::scope(|s| spawn_worker(s, f).ok()?.join().ok()?)
+}
+
 /// Whether [`plan`] forms lane groups: true unless `WEARSIM_LANES_OFF` is set (that
 /// variable forces the scalar step for every run, to measure the lanes' gain; the output
 /// is the same bits either way).
@@ -324,6 +335,17 @@ pub fn lane_accel<const K: usize>(
     settle: usize,
     n: usize,
 ) -> Option<Vec<Result<Vec<f64>, Vec<f64>>>> {
+    on_worker_stack(|| lane_accel_here(models, seeds, settle, n))
+}
+
+/// [`lane_accel`] on the calling thread's stack.
+#[allow(clippy::type_complexity)]
+fn lane_accel_here<const K: usize>(
+    models: &[Model; K],
+    seeds: &[u64; K],
+    settle: usize,
+    n: usize,
+) -> Option<Vec<Result<Vec<f64>, Vec<f64>>>> {
     let group = LaneGroup::<K, CAPACITY>::new_checked(models, seeds).ok()?;
     let mut group = Box::new(group);
     let mut chunk: Vec<[Sample; K]> = std::iter::repeat_n([Sample::default(); K], 1024).collect();
@@ -362,6 +384,17 @@ pub fn lane_accel<const K: usize>(
 /// life's windows measure their pass loads this way. `None` when the core refuses the
 /// group or any lane gives a non-finite acceleration (the caller runs those scalar).
 pub fn lane_accel_observed<const K: usize>(
+    models: &[Model; K],
+    seeds: &[u64; K],
+    settle: usize,
+    n: usize,
+    observe: impl FnMut(&LaneGroup<'_, K, CAPACITY>) + Send,
+) -> Option<Vec<Vec<f64>>> {
+    on_worker_stack(|| lane_accel_observed_here(models, seeds, settle, n, observe))
+}
+
+/// [`lane_accel_observed`] on the calling thread's stack.
+fn lane_accel_observed_here<const K: usize>(
     models: &[Model; K],
     seeds: &[u64; K],
     settle: usize,
