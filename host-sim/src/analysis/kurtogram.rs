@@ -261,10 +261,14 @@ pub fn hz_grid_kurtogram(
     widths.reverse();
     let mut grid = Vec::with_capacity(widths.len());
     let mut best = (f64::NEG_INFINITY, 0usize, 0usize);
+    // Cell `i` of width `w`, its top edge at most the span: a span a rounding below a
+    // whole number of widths (a rate of 11 999.999 999 999 998 Hz, read from a time
+    // column) keeps its top cell, which must not reach past Nyquist.
+    let cell = |i: usize, w: f64| (i as f64 * w, ((i + 1) as f64 * w).min(span));
     for (r, &w) in widths.iter().enumerate() {
         let cells = ((span + 1e-9) / w).floor() as usize;
         let row: Vec<f64> = (0..cells)
-            .map(|i| band_kurtosis(spec, n, fs, (i as f64 * w, (i + 1) as f64 * w)))
+            .map(|i| band_kurtosis(spec, n, fs, cell(i, w)))
             .collect();
         best = best_cell(best, r, &row);
         grid.push(row);
@@ -274,7 +278,7 @@ pub fn hz_grid_kurtogram(
     let narrowest = widths.last().copied().unwrap_or(span);
     Ok(Kurtogram {
         levels: (nyquist / narrowest).log2().ceil().max(0.0) as usize,
-        best_band: (i as f64 * w, (i + 1) as f64 * w),
+        best_band: cell(i, w),
         best_kurtosis: if best_kurtosis.is_finite() {
             best_kurtosis
         } else {
@@ -566,6 +570,42 @@ mod tests {
         }
         assert_eq!(compared, 5);
         Ok(())
+    }
+
+    /// A rate a rounding below a whole number (as a time column gives it: 11 999.999 999 999
+    /// 998 Hz) keeps the grid of the whole number, and its top cells end at Nyquist, not a
+    /// rounding beyond it (the envelope band of such a record was refused, exit 2).
+    #[test]
+    fn a_rate_a_rounding_below_a_whole_number_keeps_its_top_cell_inside_nyquist(
+    ) -> Result<(), AnalysisError> {
+        let fs = 11_999.999_999_999_998;
+        let mut x = impulsive(12_000.0, 48_000);
+        // Ringing at 5.7 kHz, so that the best cell is a top one.
+        let hf = FaultSignal {
+            fs: 12_000.0,
+            fault_hz: 90.0,
+            mod_hz: 0.0,
+            mod_depth: 0.0,
+            resonance_hz: 5_700.0,
+            damping: 0.02,
+            impulse_amp: 4.0,
+            noise_sigma: 0.0,
+            seed: 3,
+            jitter: 0.0,
+        }
+        .generate(x.len());
+        for (a, b) in x.iter_mut().zip(hf) {
+            *a += b;
+        }
+        let spec = rfft(&x, mean(&x));
+        let kg = hz_grid_kurtogram(&spec, x.len(), fs, 1000.0, fs / 2.0, 12)?;
+        assert_eq!(
+            kg.row_width_hz,
+            [6000.0, 4000.0, 3000.0, 2000.0, 1500.0, 1000.0]
+        );
+        assert!(kg.best_band.1 > 5_500.0, "{:?}", kg.best_band);
+        assert!(kg.best_band.1 <= fs / 2.0, "{:?}", kg.best_band);
+        crate::analysis::error::check_band(kg.best_band, fs)
     }
 
     #[test]
