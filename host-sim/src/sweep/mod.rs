@@ -43,11 +43,47 @@ const MANIFEST: &str = "manifest.json";
 const INDEX: &str = "index.parquet";
 
 /// Checks that every grid cell resolves to a valid scenario (records `0 .. cells`, with
-/// their drawn effects), before anything is written.
+/// their drawn effects), and that every effect parameter's distribution stays inside what
+/// each cell accepts at both ends of its range (one parameter at a time, the effect on,
+/// the others as drawn), before anything is written: some bounds depend on the sample
+/// rate or the bearing (a transfer-path mode below fs/2.5, a sensor corner below fs/2, a
+/// preload the step resolves), which the spec check alone cannot know, and a draw beyond
+/// one would stop the sweep part-way with its later records never regenerable.
 pub fn validate(spec: &SweepSpec) -> Result<(), SweepError> {
     let cells = record::cells(spec);
     for i in 0..spec.records.min(cells.len()) {
-        shard::scenario(spec, &cells, i)?;
+        let rec = record::record(spec, &cells, i);
+        // The cell with every effect off first: what it refuses is no distribution's doing.
+        let mut bare = rec.clone();
+        for fx in bare.effects.iter_mut() {
+            fx.on = false;
+        }
+        shard::scenario_of(spec, &bare)?;
+        for (j, spec_e) in spec.effect.iter().enumerate() {
+            for (name, dist) in &spec_e.params {
+                for v in dist.ends() {
+                    let mut r = rec.clone();
+                    let Some(fx) = r.effects.get_mut(j) else {
+                        continue;
+                    };
+                    fx.on = true;
+                    for (n, x) in fx.params.iter_mut() {
+                        if n == name {
+                            *x = v;
+                        }
+                    }
+                    shard::scenario_of(spec, &r).map_err(|e| {
+                        SweepError::Input(format!(
+                            "effect[{j}].params.{name} ({}): its distribution reaches {v}, which {e}; narrow the distribution",
+                            spec_e.name
+                        ))
+                    })?;
+                }
+            }
+        }
+        // After the ends, so that a distribution reaching too far is named as such even
+        // where this record's draw already does.
+        shard::scenario_of(spec, &rec)?;
     }
     Ok(())
 }

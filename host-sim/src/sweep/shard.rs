@@ -45,9 +45,15 @@ pub fn is_done(dir: &Path, s: u64) -> bool {
 
 /// The validated scenario of one record.
 pub fn scenario(spec: &SweepSpec, cells: &Cells, i: u64) -> Result<Scenario, SweepError> {
-    let rec = record(spec, cells, i);
-    let file = rec.scenario_file(spec);
-    let (cfg, run) = file
+    scenario_of(spec, &record(spec, cells, i))
+}
+
+/// The scenario of record `rec` (as drawn, or altered as the spec's validation alters it);
+/// an error names the record and its grid cell.
+pub fn scenario_of(spec: &SweepSpec, rec: &super::record::Record) -> Result<Scenario, SweepError> {
+    let i = rec.index;
+    let (cfg, run) = rec
+        .scenario_file(spec)
         .resolve()
         .map_err(|e| SweepError::Input(format!("record {i} (grid cell {}): {e}", rec.cell)))?;
     Scenario::new(cfg, run)

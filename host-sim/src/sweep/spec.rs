@@ -95,6 +95,28 @@ pub enum Dist {
     Table(DistTable),
 }
 
+impl Dist {
+    /// The ends of the range a distribution draws from (`uniform`'s bounds, `choice`'s
+    /// smallest and largest value); none for a fixed value, which every record takes.
+    pub fn ends(&self) -> Vec<f64> {
+        match self {
+            Dist::Fixed(_) => vec![],
+            Dist::Table(DistTable {
+                uniform: Some([lo, hi]),
+                ..
+            }) => vec![*lo, *hi],
+            Dist::Table(DistTable {
+                choice: Some(c), ..
+            }) => {
+                let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                [lo, hi].into_iter().filter(|v| v.is_finite()).collect()
+            }
+            Dist::Table(_) => vec![],
+        }
+    }
+}
+
 /// The table forms of [`Dist`].
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]

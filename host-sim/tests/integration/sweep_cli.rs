@@ -208,6 +208,23 @@ fn bad_specs_exit_2_naming_the_field() {
         &SPEC.replace("\"inner\"]", "\"inner\", \"outer\"]"),
         &["grid.fault", "outer twice"],
     );
+    // A distribution inside the registry's bounds whose top the sample rate refuses (a
+    // transfer-path mode above fs/2.5 = 4800 Hz at 12 kHz): refused before anything is
+    // written, not at the first record that draws it (the probe's sweep wrote 12 shards
+    // and stopped at record 50, and a resume stopped there again).
+    bad(
+        &format!(
+            "{SPEC}\n[[effect]]\nname = \"transfer-path\"\nparams = {{ f1 = {{ uniform = [1000.0, 4850.0] }} }}\n"
+        ),
+        &["effect[1].params.f1 (transfer-path)", "reaches 4850", "4800"],
+    );
+    // The same through a choice's largest value.
+    bad(
+        &format!(
+            "{SPEC}\n[[effect]]\nname = \"transfer-path\"\nparams = {{ f1 = {{ choice = [4900.0, 1000.0] }} }}\n"
+        ),
+        &["effect[1].params.f1 (transfer-path)", "reaches 4900"],
+    );
 }
 
 #[test]
