@@ -137,6 +137,15 @@ def test_sweep_names_a_bad_part_or_thread_count(tmp_path, kwargs, field):
     assert not (tmp_path / "set").exists()
 
 
+@pytest.mark.parametrize("out", [None, 5, ""])
+def test_sweep_refuses_an_output_that_is_no_path(tmp_path, monkeypatch, out):
+    # `str(out)` made directories named "None" and "5" in the working folder.
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(wearsim.ConfigError, match="out"):
+        wearsim.sweep(ONE_CELL, out)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_sweep_names_a_spec_file_that_does_not_exist(tmp_path):
     # A missing path was parsed as TOML text ("invalid key").
     missing = tmp_path / "nope" / "spec.toml"

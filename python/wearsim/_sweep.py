@@ -77,7 +77,16 @@ def sweep(
     Returns a report dict (``complete`` is True once every shard and the index exist).
     """
     text = _spec_text(spec)
-    out = str(out)
+    # `str(None)` or `str(5)` would name a directory "None" or "5" in the working folder.
+    if not isinstance(out, (str, os.PathLike)):
+        raise ConfigError(
+            f"out = {out!r}: give the output directory as a str or os.PathLike path"
+        )
+    out = os.fspath(out)
+    if isinstance(out, bytes):
+        out = os.fsdecode(out)
+    if out == "":
+        raise ConfigError("out = '': give the output directory's path")
     part = _part(part)
     if cluster is None:
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
