@@ -139,7 +139,8 @@ pub fn decimals(cell: &str) -> Option<usize> {
 /// 25.6 kHz record's stamps printed to the microsecond are 0.000039, 0.000078, …): each stamp
 /// must lie within twice that rounding (its own and the first stamp's), plus 10⁻³ of the
 /// spacing, of the uniform grid, and the rate is taken from the whole span. Whole numbers are
-/// taken as exact. The allowance is at most a quarter of the spacing, so every stamp still
+/// rounded to their last digit the same way (a 25.6 kHz record stamped in whole
+/// microseconds: 0, 39, 78, 117, …). The allowance is at most a quarter of the spacing, so every stamp still
 /// lies nearest its own sample; stamps printed too coarsely to meet it are refused saying so.
 /// The check runs in the column's unit; the rate is `unit.per_second` over the spacing.
 pub fn fs_from_time(
@@ -165,7 +166,9 @@ pub fn fs_from_time(
     let u = unit.symbol;
     // Half a unit of the last printed digit (0 for full precision and for whole numbers;
     // 10^-d underflows to 0 past f64's exponent range, also full precision).
-    let rounding = decimals.filter(|&d| d > 0).map_or(0.0, |d| {
+    // Whole numbers (`time_us` 0, 39, 78, …) are rounded to their last digit like any
+    // other printed stamp: half a unit.
+    let rounding = decimals.map_or(0.0, |d| {
         0.5 * 10f64.powi(-i32::try_from(d).unwrap_or(i32::MAX))
     });
     let tol = dt * 1e-3 + (2.0 * rounding).min(0.25 * dt);
@@ -173,7 +176,8 @@ pub fn fs_from_time(
         if (ti - (t[0] + i as f64 * dt)).abs() > tol {
             let coarse = match decimals {
                 Some(d) if 2.0 * rounding > 0.25 * dt => format!(
-                    "; printed to {d} decimals, the stamps are too coarse for a spacing of {dt:e} {u}: print more decimals, or drop the column and pass --fs"
+                    "; printed {}, the stamps are too coarse for a spacing of {dt:e} {u}: print more decimals (or a finer unit), or drop the column and pass --fs",
+                    if d == 0 { "as whole numbers".to_string() } else { format!("to {d} decimals") }
                 ),
                 _ => String::new(),
             };
@@ -232,5 +236,43 @@ mod tests {
         let a = fs_from_time(p, "t", &s, None, SECONDS).unwrap();
         let b = fs_from_time(p, "t_ms", &ms, None, unit_ms).unwrap();
         assert_eq!((a, b), (Some(16384.0), Some(16384.0)));
+    }
+    /// Whole-number stamps are rounded to their last digit like printed decimals: a
+    /// 25.6 kHz record stamped in whole microseconds (0, 39, 78, …) and a 12 kHz one (0, 83,
+    /// 167, …) give their rates; a stamp off by more than the rounding is still refused, and
+    /// a 1024 Hz record in whole milliseconds is too coarse, said so.
+    #[test]
+    fn whole_number_stamps_are_rounded_to_their_last_digit() {
+        let p = Path::new("x.csv");
+        let us = time_unit("time_us").unwrap().unwrap();
+        for fs in [25_600.0, 12_000.0] {
+            let t: Vec<f64> = (0..25_600).map(|i| (i as f64 / fs * 1e6).round()).collect();
+            let got = fs_from_time(p, "time_us", &t, Some(0), us)
+                .unwrap()
+                .unwrap();
+            assert!((got - fs).abs() / fs < 1e-6, "{fs}: {got}");
+        }
+        let mut t: Vec<f64> = (0..1000)
+            .map(|i| (i as f64 / 25_600.0 * 1e6).round())
+            .collect();
+        t[500] += 2.0;
+        let e = fs_from_time(p, "time_us", &t, Some(0), us)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("not uniformly spaced") && e.contains("row 500"),
+            "{e}"
+        );
+        let ms = time_unit("time_ms").unwrap().unwrap();
+        let t: Vec<f64> = (0..1000)
+            .map(|i| (i as f64 / 1024.0 * 1e3).round())
+            .collect();
+        let e = fs_from_time(p, "time_ms", &t, Some(0), ms)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("as whole numbers") && e.contains("too coarse"),
+            "{e}"
+        );
     }
 }
