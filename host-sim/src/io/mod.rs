@@ -29,6 +29,7 @@ pub mod sidecar;
 pub mod space_runs;
 pub mod time_column;
 pub mod wav;
+pub mod wav_decode;
 pub mod write;
 
 use std::path::{Path, PathBuf};
