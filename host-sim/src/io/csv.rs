@@ -5,15 +5,21 @@
 //! (spreadsheet exports of locales that write a decimal comma); separated by spaces when the
 //! first line has spaces between values and no comma, semicolon or tab (numpy's `savetxt`,
 //! MATLAB's `save -ascii`: runs of spaces count as one, [`super::space_runs`]). Without
-//! commas as separators a number may use a decimal comma (`-0,125`). Lines starting with `#` are comments; cells are
+//! commas as separators a number may use a decimal comma (`-0,125`); so may the rows of a
+//! one-column file when its first lines say so ([`super::csv_shape::one_column_commas`]). Lines starting with `#` are comments; cells are
 //! trimmed.
 //! The first row is a header if any of its cells is not a number. Every data cell of the chosen
 //! column must parse as a finite `f64` (`NaN`/`inf` cells are [`IoError::NonFinite`]).
 //!
 //! Column choice ([`ReadOptions::channel`]): a header name (exact, then case-insensitive) or a
-//! zero-based index. Default: the sidecar's first column, else the first column that is not a
-//! time column (`time`, `t`, with a unit: `time_s`, `Time (ms)`, `t [us]`;
-//! [`super::time_column`]), else column 0. A column taken by its name (the
+//! zero-based index. Default: the sidecar's first column, else the first column that is
+//! neither a time column by its header (`time`, `t`, `Zeit`, with a unit: `time_s`,
+//! `Time (ms)`, `t [us]`; [`super::time_column`]) nor a ramp by its content (strictly rising,
+//! uniform steps: [`super::time_column::RampScan`], found in a first pass over the rows), else
+//! the first that is not a time column by its header, else column 0. Without a time column
+//! by its header, the first ramp beside the chosen column is the time axis
+//! ([`super::time_column::ramp_role`]: its header's unit, else seconds; a counter or a ramp in
+//! another unit gives no rate). A column taken by its name (the
 //! requested, the sidecar's, the default or the time column) whose name appears more than
 //! once in the header is refused naming both positions: which one was meant is not known
 //! (select it by its index instead).
@@ -29,11 +35,14 @@ use std::path::Path;
 
 use serde_json::json;
 
+use super::csv_shape::{one_column_commas, OneColumn};
 use super::error::IoError;
 use super::record::{check_finite, Record};
 use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
 use super::space_runs::{LineCap, MAX_LINE_BYTES};
-use super::time_column::{decimals, fs_from_time, time_column, time_unit, TimeUnit};
+use super::time_column::{
+    decimals, fs_from_time, ramp_role, time_column, time_unit, RampRole, RampScan, TimeUnit,
+};
 use super::write::unit_from_column_name;
 use super::ReadOptions;
 
@@ -80,7 +89,40 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
                 >= 2
     };
     let spaced = words(first_line) && content.next().is_none_or(words);
-    let delim = if spaced {
+    // A one-column file written with decimal commas (`-0,125`): its rows would split on the
+    // comma into an integer part and a fraction. Read them as one column of numbers when
+    // the rows say so, refuse when they cannot tell ([`one_column_commas`]).
+    let one_column_dc = !spaced
+        && {
+            let complete = if head.len() == 4096 {
+                &head[..head.iter().rposition(|&b| b == b'\n').unwrap_or(0)]
+            } else {
+                &head[..]
+            };
+            let lines: Vec<&str> = complete
+                .split(|&b| b == b'\n')
+                .map(|l| l.strip_prefix(b"\xef\xbb\xbf").unwrap_or(l))
+                .filter_map(|l| std::str::from_utf8(l).ok())
+                .map(str::trim)
+                .filter(|l| !l.starts_with('#') && !l.is_empty())
+                .collect();
+            match one_column_commas(&lines) {
+            OneColumn::DecimalComma => true,
+            OneColumn::Columns => false,
+            OneColumn::Ambiguous(example) => {
+                return Err(IoError::malformed(
+                    path,
+                    format!(
+                        "every row is two whole numbers joined by a comma ({example:?}): a column of numbers with a decimal comma, or two integer columns? Add a header line: one name (`accel`) reads one column with decimal commas, two names (`a,b`) two columns"
+                    ),
+                ))
+            }
+        }
+        };
+    let delim = if one_column_dc {
+        // No separator: each row is one cell, its comma the decimal mark.
+        b';'
+    } else if spaced {
         b' '
     } else if has(b'\t') && !has(b',') {
         b'\t'
@@ -91,6 +133,7 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     };
     // A decimal comma cannot be told from a separator in a comma-separated file.
     let decimal_comma = delim != b',';
+    debug_assert!(!one_column_dc || (decimal_comma && !has(b';')));
     let number = |cell: &str| -> Option<f64> {
         match cell.parse::<f64>() {
             Ok(v) => Some(v),
@@ -100,26 +143,35 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             Err(_) => None,
         }
     };
-    let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
-    let file = LineCap::new(file, MAX_LINE_BYTES);
-    let source: Box<dyn std::io::Read> = if spaced {
-        Box::new(super::space_runs::SpaceRuns::new(file))
-    } else {
-        Box::new(file)
+    let open = || -> Result<_, IoError> {
+        let file = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
+        let file = LineCap::new(file, MAX_LINE_BYTES);
+        let source: Box<dyn std::io::Read> = if spaced {
+            Box::new(super::space_runs::SpaceRuns::new(file))
+        } else {
+            Box::new(file)
+        };
+        Ok(::csv::ReaderBuilder::new()
+            .has_headers(false)
+            .delimiter(delim)
+            .comment(Some(b'#'))
+            .trim(::csv::Trim::All)
+            .flexible(false)
+            .from_reader(std::io::BufReader::new(source)))
     };
-    let mut rdr = ::csv::ReaderBuilder::new()
-        .has_headers(false)
-        .delimiter(delim)
-        .comment(Some(b'#'))
-        .trim(::csv::Trim::All)
-        .flexible(false)
-        .from_reader(std::io::BufReader::new(source));
+    let scans = scan_ramps(path, open()?, &number)?;
+    let ramp = |i: usize| scans.get(i).is_some_and(RampScan::is_ramp);
+    let mut rdr = open()?;
 
     let mut rec = ::csv::StringRecord::new();
     let mut header: Option<Vec<String>> = None;
     let mut ncols = 0usize;
     let mut col = usize::MAX;
     let mut time_col: Option<(usize, TimeUnit)> = None;
+    // How the time column was found (`header` or `content`) and whether its unit (seconds)
+    // was assumed; ramp columns neither analysed nor the time axis.
+    let mut time_found: Option<(&str, bool)> = None;
+    let mut ramps_skipped: Vec<serde_json::Value> = Vec::new();
     let mut samples: Vec<f64> = Vec::new();
     let mut times: Vec<f64> = Vec::new();
     // Most decimals printed in a time cell (`None` once one is in exponent form: full
@@ -142,18 +194,35 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             } else {
                 rec.iter().map(str::to_string).collect()
             };
-            col = choose_column(path, &names, !all_numeric, opts, sidecar.as_ref())?;
-            time_col = if all_numeric {
-                None
-            } else {
-                let mut t = None;
+            col = choose_column(path, &names, !all_numeric, opts, sidecar.as_ref(), &ramp)?;
+            if !all_numeric {
                 for (i, n) in names.iter().enumerate().filter(|&(i, _)| i != col) {
-                    if let (Some(u), None) = (time_column(path, n)?, t) {
-                        t = Some((unique(path, &names, i)?, u));
+                    if let (Some(u), None) = (time_column(path, n)?, time_col) {
+                        time_col = Some((unique(path, &names, i)?, u));
+                        time_found = Some(("header", false));
                     }
                 }
-                t
-            };
+            }
+            // Ramps found by content: the first one in a time unit is the time axis when no
+            // header names one; the others are reported as not analysed.
+            for i in (0..ncols).filter(|&i| i != col && ramp(i)) {
+                if time_col.is_some_and(|(t, _)| t == i) {
+                    continue;
+                }
+                let taken_as = match (ramp_role(&names[i], &scans[i]), time_col) {
+                    (RampRole::Time { unit, assumed }, None) => {
+                        time_col = Some((i, unit));
+                        time_found = Some(("content", assumed));
+                        continue;
+                    }
+                    (RampRole::Time { unit, .. }, Some(_)) => {
+                        format!("a second time axis ({})", unit.symbol)
+                    }
+                    (RampRole::Counter, _) => "a sample counter".to_string(),
+                    (RampRole::Other(u), _) => format!("a ramp in {u}"),
+                };
+                ramps_skipped.push(json!({"index": i, "name": names[i], "taken_as": taken_as}));
+            }
             header = Some(names);
             if !all_numeric {
                 continue;
@@ -197,11 +266,29 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
+    let how = |assumed: bool| match (time_found, assumed) {
+        (Some(("content", _)), true) => {
+            " (found by content: strictly rising, uniform steps; no unit stated, taken as s)"
+        }
+        (Some(("content", _)), false) => " (found by content: strictly rising, uniform steps)",
+        _ => "",
+    };
     let from_time = match time_col {
-        Some((t, unit)) => fs_from_time(path, &names[t], &times, time_decimals, unit)?
-            .map(|f| (f, format!("time column `{}`", names[t]))),
+        Some((t, unit)) => fs_from_time(path, &names[t], &times, time_decimals, unit)?.map(|f| {
+            let assumed = time_found.is_some_and(|(_, a)| a);
+            (f, format!("time column `{}`{}", names[t], how(assumed)))
+        }),
         None => None,
     };
+    let time_meta = time_col.map(|(t, unit)| {
+        json!({
+            "index": t,
+            "name": names[t],
+            "unit": unit.symbol,
+            "found_by": time_found.map_or("header", |(f, _)| f),
+            "unit_assumed": time_found.is_some_and(|(_, a)| a),
+        })
+    });
     let (fs, fs_source, fs_detail) = resolve_fs(
         path,
         opts.fs,
@@ -230,12 +317,49 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "columns": names,
             "column_index": col,
             "n_columns": ncols,
+            "time_column": time_meta,
+            "ramp_columns_not_analysed": ramps_skipped,
             "fs_source": fs_source.name(),
             "fs_detail": fs_detail,
             "rpm_detail": rpm_detail,
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })
+}
+
+/// Per column, whether its values form a ramp ([`RampScan`]): one pass over the data rows
+/// (the first row is left out when it is a header), before the column is chosen. Stops past
+/// the record size limit, which the reading pass then refuses.
+fn scan_ramps<R: std::io::Read>(
+    path: &Path,
+    mut rdr: ::csv::Reader<R>,
+    number: &dyn Fn(&str) -> Option<f64>,
+) -> Result<Vec<RampScan>, IoError> {
+    let mut rec = ::csv::StringRecord::new();
+    let mut scans: Vec<RampScan> = Vec::new();
+    let mut rows = 0usize;
+    let mut first = true;
+    while rdr.read_record(&mut rec).map_err(|e| csv_err(path, e))? {
+        if first {
+            first = false;
+            // One column has no time column beside it.
+            if rec.len() < 2 {
+                return Ok(Vec::new());
+            }
+            scans = vec![RampScan::default(); rec.len()];
+            if !rec.iter().all(|c| number(c).is_some()) {
+                continue;
+            }
+        }
+        rows += 1;
+        if rows > super::record::MAX_RECORD_SAMPLES {
+            break;
+        }
+        for (s, c) in scans.iter_mut().zip(rec.iter()) {
+            s.push(number(c));
+        }
+    }
+    Ok(scans)
 }
 
 fn csv_err(path: &Path, e: ::csv::Error) -> IoError {
@@ -254,10 +378,18 @@ fn csv_err(path: &Path, e: ::csv::Error) -> IoError {
         ::csv::ErrorKind::Io(io) => IoError::io(path, "read", io),
         ::csv::ErrorKind::UnequalLengths {
             expected_len, len, ..
-        } => IoError::malformed(
-            path,
-            format!("{pos}row has {len} fields, the first row has {expected_len}"),
-        ),
+        } => {
+            // One field in the first row, two below: `-86,678957` under `accel`.
+            let hint = if expected_len == 1 && len == 2 {
+                " (a decimal comma? a one-column file is read with decimal commas when every row of its first 4 KiB is `digits,digits`)"
+            } else {
+                ""
+            };
+            IoError::malformed(
+                path,
+                format!("{pos}row has {len} fields, the first row has {expected_len}{hint}"),
+            )
+        }
         ::csv::ErrorKind::Utf8 { err, .. } => {
             IoError::malformed(path, format!("{pos}not UTF-8: {err}"))
         }
@@ -289,6 +421,7 @@ fn choose_column(
     has_header: bool,
     opts: &ReadOptions,
     sidecar: Option<&super::sidecar::Sidecar>,
+    ramp: &dyn Fn(usize) -> bool,
 ) -> Result<usize, IoError> {
     let unknown = |req: &str| IoError::UnknownChannel {
         path: path.to_path_buf(),
@@ -331,7 +464,15 @@ fn choose_column(
                 return unique(path, names, i);
             }
         }
-        if let Some(i) = names.iter().position(|n| time_unit(n).is_none()) {
+    }
+    // Neither a time column by its header nor a ramp by its content (a time axis or a
+    // counter, whatever it is called); else not one by its header.
+    let time_named = |i: usize| has_header && time_unit(&names[i]).is_some();
+    if let Some(i) = (0..names.len()).find(|&i| !time_named(i) && !ramp(i)) {
+        return unique(path, names, i);
+    }
+    if has_header {
+        if let Some(i) = (0..names.len()).find(|&i| !time_named(i)) {
             return unique(path, names, i);
         }
     }

@@ -12,6 +12,7 @@
 //! * [`feature_table`]: the documented per-snapshot feature table of any run-to-failure test.
 
 pub mod csv;
+pub mod csv_shape;
 pub mod error;
 pub mod feature_table;
 pub mod feature_table_write;
@@ -28,6 +29,7 @@ pub mod sidecar;
 pub mod space_runs;
 pub mod time_column;
 pub mod wav;
+pub mod wav_decode;
 pub mod write;
 
 use std::path::{Path, PathBuf};

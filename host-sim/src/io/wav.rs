@@ -1,10 +1,12 @@
-//! WAV reader (RIFF/WAVE PCM integer 8/16/24/32-bit and IEEE float 32-bit via `hound`; IEEE
-//! float 64-bit, which `hound` refuses but numpy/scipy write for float64 arrays, by
-//! `decode_float64`).
+//! WAV reader: RIFF/WAVE PCM integer 8/16/24/32-bit (also `WAVE_FORMAT_EXTENSIBLE` with
+//! fewer valid bits than its container, 24 in 32, 20 in 24) and IEEE float 32/64-bit, decoded
+//! by [`super::wav_decode`] (chunks in any order, odd-sized ones with their pad byte: a
+//! Broadcast WAV's `bext`/`iXML`, a `LIST` of odd size).
 //!
-//! * Integer samples are scaled to ±1 full scale (divided by 2^(bits-1)), unit `"FS"`, unless a
-//!   sidecar gives `wav.scale` (multiplied after normalisation) and a unit (`wav.unit` or
-//!   `units[wav.column]`).
+//! * Integer samples are scaled to ±1 full scale (divided by 2^(container bits − 1); the valid
+//!   bits are the container's top bits, so 24 valid bits in 32 read as 24-bit samples do), unit
+//!   `"FS"`, unless a sidecar gives `wav.scale` (multiplied after normalisation) and a unit
+//!   (`wav.unit` or `units[wav.column]`).
 //! * Float samples are taken as they are (times `wav.scale` if given); unit from the sidecar
 //!   (`wav.unit`, `units[wav.column]`, else `units[channel]` or the file-wide `units`/`unit`),
 //!   else `"unknown"`. The float WAV written by [`crate::io::write_outputs`] holds physical units.
@@ -15,11 +17,10 @@
 //! * Channel: [`ReadOptions::channel`] as a zero-based index (or the sidecar's `wav.column` name);
 //!   default 0.
 //!
-//! Robustness: the data size the header claims is checked against the file size before any
-//! buffer is sized, and `hound` is called under `catch_unwind`, so a decoder panic on a hostile
-//! file becomes an [`IoError::Malformed`] instead of unwinding into the caller.
+//! Robustness: every chunk size is checked against the file size before any buffer is sized,
+//! and the decoder is called under `catch_unwind`, so a decoder panic on a hostile file
+//! becomes an [`IoError::Malformed`] instead of unwinding into the caller.
 
-use std::io::BufReader;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
@@ -28,6 +29,7 @@ use serde_json::json;
 use super::error::IoError;
 use super::record::{check_finite, Record};
 use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::wav_decode::{decode, Decoded};
 use super::ReadOptions;
 
 /// Read one channel of a WAV file as a [`Record`] (see the module doc for the rules).
@@ -49,8 +51,11 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "WAV decoder panicked on this file (corrupt header or data)",
         )
     })??;
-    let Decoded { spec, interleaved } = decoded;
-    let nch = spec.channels as usize;
+    let Decoded {
+        format,
+        interleaved,
+    } = decoded;
+    let nch = usize::from(format.channels);
 
     let available: Vec<String> = (0..nch).map(|i| i.to_string()).collect();
     let index = match opts.channel.as_deref() {
@@ -73,18 +78,13 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             }
         }
     };
-    let int = spec.sample_format == hound::SampleFormat::Int;
-    let full_scale = if int {
-        2f64.powi(i32::from(spec.bits_per_sample) - 1)
-    } else {
-        1.0
-    };
+    let int = !format.float;
     let scale = sidecar.as_ref().and_then(|s| s.wav_scale).unwrap_or(1.0);
     let samples: Vec<f64> = interleaved
         .iter()
         .skip(index)
         .step_by(nch)
-        .map(|&x| x / full_scale * scale)
+        .map(|&x| x * scale)
         .collect();
     if samples.is_empty() {
         return Err(IoError::truncated(path, "no samples in the data chunk"));
@@ -100,7 +100,7 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
-    let header_fs = f64::from(spec.sample_rate);
+    let header_fs = f64::from(format.sample_rate);
     let (fs, fs_source, fs_detail) = resolve_fs(
         path,
         opts.fs,
@@ -145,9 +145,10 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "format": "wav",
             "channels": nch,
             "channel_index": index,
-            "bits_per_sample": spec.bits_per_sample,
+            "bits_per_sample": format.container_bits,
+            "valid_bits_per_sample": format.valid_bits,
             "sample_format": if int { "int" } else { "float" },
-            "header_sample_rate_hz": spec.sample_rate,
+            "header_sample_rate_hz": format.sample_rate,
             "fs_source": fs_source.name(),
             "fs_detail": fs_detail,
             "rpm_detail": rpm_detail,
@@ -155,189 +156,6 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
     })
-}
-
-struct Decoded {
-    spec: hound::WavSpec,
-    interleaved: Vec<f64>,
-}
-
-fn hound_err(path: &Path, e: hound::Error) -> IoError {
-    match e {
-        hound::Error::IoError(io) if io.kind() == std::io::ErrorKind::UnexpectedEof => {
-            IoError::truncated(path, format!("WAV ends early: {io}"))
-        }
-        hound::Error::IoError(io) => IoError::io(path, "read", io),
-        hound::Error::FormatError(m) if m.contains("no RIFF tag") || m.contains("no WAVE tag") => {
-            IoError::BadMagic {
-                path: path.to_path_buf(),
-                expected: "RIFF....WAVE".into(),
-                found: m.to_string(),
-            }
-        }
-        hound::Error::FormatError(m) => IoError::malformed(path, format!("WAV: {m}")),
-        hound::Error::Unsupported => {
-            IoError::unsupported(path, "WAV variant not supported by the decoder")
-        }
-        hound::Error::TooWide => IoError::unsupported(path, "WAV sample wider than 32 bits"),
-        other => IoError::malformed(path, format!("WAV: {other}")),
-    }
-}
-
-fn decode(path: &Path, file_len: u64) -> Result<Decoded, IoError> {
-    if let Some(d) = decode_float64(path, file_len)? {
-        return Ok(d);
-    }
-    let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
-    let mut r = hound::WavReader::new(BufReader::new(f)).map_err(|e| hound_err(path, e))?;
-    let spec = r.spec();
-    if spec.channels == 0 {
-        return Err(IoError::malformed(path, "WAV header declares 0 channels"));
-    }
-    let bytes_per = u64::from(spec.bits_per_sample).div_ceil(8).max(1);
-    let claimed = u64::from(r.len());
-    if claimed.saturating_mul(bytes_per) > file_len {
-        return Err(IoError::truncated(
-            path,
-            format!(
-                "data chunk claims {claimed} samples of {bytes_per} bytes, file has {file_len} bytes"
-            ),
-        ));
-    }
-    let frames = claimed / u64::from(spec.channels);
-    super::record::check_record_size(
-        path,
-        usize::try_from(frames).unwrap_or(usize::MAX),
-        usize::try_from(claimed).unwrap_or(usize::MAX),
-    )?;
-    let cap = usize::try_from(claimed).unwrap_or(0);
-    let mut out = Vec::with_capacity(cap);
-    match (spec.sample_format, spec.bits_per_sample) {
-        (hound::SampleFormat::Float, 32) => {
-            for s in r.samples::<f32>() {
-                out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
-            }
-        }
-        (hound::SampleFormat::Int, 1..=32) => {
-            for s in r.samples::<i32>() {
-                out.push(f64::from(s.map_err(|e| hound_err(path, e))?));
-            }
-        }
-        (fmt, bits) => {
-            return Err(IoError::unsupported(
-                path,
-                format!(
-                "{bits}-bit {fmt:?} WAV samples (supported: 8/16/24/32-bit int, 32/64-bit float)"
-            ),
-            ))
-        }
-    }
-    Ok(Decoded {
-        spec,
-        interleaved: out,
-    })
-}
-
-/// WAVE format tags (Microsoft `mmreg.h`): IEEE float, and the extensible header whose
-/// sub-format GUID starts with the tag it wraps.
-const WAVE_FORMAT_IEEE_FLOAT: u16 = 3;
-const WAVE_FORMAT_EXTENSIBLE: u16 = 0xFFFE;
-
-/// Decode a 64-bit IEEE float WAV (format tag 3, or the extensible header with the float
-/// sub-format), little-endian as RIFF requires. `Ok(None)` for any other file, including one
-/// that is not RIFF/WAVE at all: `hound` then reads it or names what is wrong. The chunk walk
-/// is bounded by the file's length and the data size is checked against it before any buffer
-/// is sized.
-fn decode_float64(path: &Path, file_len: u64) -> Result<Option<Decoded>, IoError> {
-    use std::io::{Read, Seek, SeekFrom};
-    let f = std::fs::File::open(path).map_err(|e| IoError::io(path, "open", e))?;
-    let mut r = BufReader::new(f);
-    let mut head = [0u8; 12];
-    if r.read_exact(&mut head).is_err() || &head[0..4] != b"RIFF" || &head[8..12] != b"WAVE" {
-        return Ok(None);
-    }
-    let mut pos = 12u64;
-    let mut fmt: Option<(u16, u32, u16)> = None; // channels, rate, bits of a float format
-    loop {
-        let mut ch = [0u8; 8];
-        if pos + 8 > file_len || r.read_exact(&mut ch).is_err() {
-            return Ok(None);
-        }
-        let size = u64::from(u32::from_le_bytes([ch[4], ch[5], ch[6], ch[7]]));
-        pos += 8;
-        match &ch[0..4] {
-            b"fmt " => {
-                let mut b = [0u8; 40];
-                let n = size.min(40) as usize;
-                if n < 16 || r.read_exact(&mut b[..n]).is_err() {
-                    return Ok(None);
-                }
-                let u16_at = |i: usize| u16::from_le_bytes([b[i], b[i + 1]]);
-                let tag = u16_at(0);
-                let float = tag == WAVE_FORMAT_IEEE_FLOAT
-                    || (tag == WAVE_FORMAT_EXTENSIBLE
-                        && n >= 26
-                        && u16_at(24) == WAVE_FORMAT_IEEE_FLOAT);
-                let bits = u16_at(14);
-                if !float || bits != 64 {
-                    return Ok(None);
-                }
-                let rate = u32::from_le_bytes([b[4], b[5], b[6], b[7]]);
-                fmt = Some((u16_at(2), rate, bits));
-                r.seek(SeekFrom::Start(pos + size + (size & 1)))
-                    .map_err(|e| IoError::io(path, "seek", e))?;
-            }
-            b"data" => {
-                let Some((channels, sample_rate, bits)) = fmt else {
-                    return Ok(None);
-                };
-                if channels == 0 {
-                    return Err(IoError::malformed(path, "WAV header declares 0 channels"));
-                }
-                if size > file_len - pos {
-                    return Err(IoError::truncated(
-                        path,
-                        format!(
-                            "data chunk claims {size} bytes of 64-bit float samples, {} remain in the file",
-                            file_len - pos
-                        ),
-                    ));
-                }
-                let claimed = size / 8;
-                let frames = claimed / u64::from(channels);
-                super::record::check_record_size(
-                    path,
-                    usize::try_from(frames).unwrap_or(usize::MAX),
-                    usize::try_from(claimed).unwrap_or(usize::MAX),
-                )?;
-                let n = usize::try_from(frames * u64::from(channels)).unwrap_or(0);
-                let mut interleaved = Vec::with_capacity(n);
-                let mut w = [0u8; 8];
-                for _ in 0..n {
-                    r.read_exact(&mut w)
-                        .map_err(|e| IoError::truncated(path, format!("WAV ends early: {e}")))?;
-                    interleaved.push(f64::from_le_bytes(w));
-                }
-                let spec = hound::WavSpec {
-                    channels,
-                    sample_rate,
-                    bits_per_sample: bits,
-                    sample_format: hound::SampleFormat::Float,
-                };
-                return Ok(Some(Decoded { spec, interleaved }));
-            }
-            _ => {
-                pos = pos.saturating_add(size + (size & 1));
-                if pos > file_len {
-                    return Ok(None);
-                }
-                r.seek(SeekFrom::Start(pos))
-                    .map_err(|e| IoError::io(path, "seek", e))?;
-                continue;
-            }
-        }
-        pos += size + (size & 1);
-    }
 }
 
 #[cfg(test)]
