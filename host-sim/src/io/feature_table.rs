@@ -24,6 +24,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::error::IoError;
+pub(crate) use super::feature_sidecar::check_sidecar;
+pub use super::feature_sidecar::{read_sidecar, SIDECAR_KEYS};
 use super::ims_life::{LifePoint, MeasuredLife};
 
 /// Value of the sidecar key `format`.
@@ -65,7 +67,9 @@ pub const UNITS: [&str; 3] = ["g", "m/s^2", "unknown"];
 
 /// Rolling-element bearing geometry of a sidecar without a preset: the keys of a record
 /// sidecar's `bearing_geometry` object ([`crate::geometry::GeometrySpec`]; mm, degrees).
+/// Unknown keys are refused ([`SIDECAR_KEYS`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Geometry {
     /// Rolling elements per row (3..=32, fitting on the pitch circle: the limits of
     /// [`crate::geometry::GeometrySpec::checked`]).
@@ -79,7 +83,9 @@ pub struct Geometry {
 }
 
 /// Which bearing the table describes: a wearsim preset and/or its geometry, its position.
+/// Unknown keys are refused ([`SIDECAR_KEYS`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BearingInfo {
     /// wearsim preset (`wearsim presets`), e.g. `ims-za2115`; required by `gap --life`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -236,7 +242,12 @@ pub enum FeatureTableError {
     },
 }
 
-fn sidecar_err(path: &Path, field: &str, detail: impl Into<String>) -> FeatureTableError {
+/// A [`FeatureTableError::Sidecar`] of sidecar `path` naming `field`.
+pub(crate) fn sidecar_err(
+    path: &Path,
+    field: &str,
+    detail: impl Into<String>,
+) -> FeatureTableError {
     FeatureTableError::Sidecar {
         path: path.to_path_buf(),
         field: field.into(),
@@ -262,208 +273,6 @@ pub fn is_feature_table(path: &Path) -> bool {
 /// and Windows editors put first: it is no part of the first column's name or the JSON.
 pub fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
-}
-
-/// Reads and checks a sidecar on its own (ranges of every field).
-pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
-    let v = super::sidecar::read_json(path)?;
-    if v["format"] != FORMAT {
-        return Err(sidecar_err(
-            path,
-            "format",
-            format!("{} is not \"{FORMAT}\"", v["format"]),
-        ));
-    }
-    let s: FeatureSidecar = serde_json::from_value(v.clone()).map_err(|e| {
-        let msg = e.to_string();
-        let field = mistyped_field(&v)
-            .or_else(|| msg.split('`').nth(1).map(dotted_key))
-            .unwrap_or_else(|| "(the sidecar)".into());
-        sidecar_err(path, &field, msg)
-    })?;
-    check_sidecar(path, &s)?;
-    Ok(s)
-}
-
-/// A key serde names without its place (a missing `id` of `bearing`), dotted as the
-/// documentation names it: the keys of `bearing` and of its `geometry` are no top-level keys.
-fn dotted_key(key: &str) -> String {
-    match key {
-        "preset" | "geometry" | "id" => format!("bearing.{key}"),
-        "elements" | "ball_mm" | "pitch_mm" | "angle_deg" => format!("bearing.geometry.{key}"),
-        _ => key.to_string(),
-    }
-}
-
-/// The first sidecar key (dotted for `bearing.*`) whose value has the wrong JSON type:
-/// serde's message for a wrong type names the type, not the key.
-fn mistyped_field(v: &serde_json::Value) -> Option<String> {
-    use serde_json::Value;
-    let num = |x: &Value| x.is_number();
-    let int = |x: &Value| x.is_u64();
-    let string = |x: &Value| x.is_string();
-    type Check = fn(&Value) -> bool;
-    let top: [(&str, Check); 14] = [
-        ("format", string),
-        ("format_version", int),
-        ("source", string),
-        ("bearing", Value::is_object),
-        ("channel", string),
-        ("unit", string),
-        ("rpm", num),
-        ("radial_load_n", num),
-        ("sample_rate_hz", num),
-        ("snapshot_samples", int),
-        ("snapshot_interval_s", num),
-        ("failure_mode", string),
-        ("n_snapshots", int),
-        ("notes", Value::is_array),
-    ];
-    let bearing: [(&str, Check); 3] = [
-        ("bearing.preset", string),
-        ("bearing.geometry", Value::is_object),
-        ("bearing.id", string),
-    ];
-    let geometry: [(&str, Check); 4] = [
-        ("bearing.geometry.elements", int),
-        ("bearing.geometry.ball_mm", num),
-        ("bearing.geometry.pitch_mm", num),
-        ("bearing.geometry.angle_deg", num),
-    ];
-    let get = |key: &str| {
-        key.split('.')
-            .try_fold(v, |x, k| x.get(k))
-            .filter(|x| !x.is_null())
-    };
-    top.iter()
-        .chain(&bearing)
-        .chain(&geometry)
-        .find(|(k, ok)| get(k).is_some_and(|x| !ok(x)))
-        .map(|(k, _)| (*k).to_string())
-}
-
-pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), FeatureTableError> {
-    if s.format_version != FORMAT_VERSION {
-        return Err(sidecar_err(
-            path,
-            "format_version",
-            format!("{} (this reader knows {FORMAT_VERSION})", s.format_version),
-        ));
-    }
-    let pos = |field: &str, v: f64, lo: f64, hi: f64| {
-        if v.is_finite() && v > lo && v <= hi {
-            Ok(())
-        } else {
-            Err(sidecar_err(
-                path,
-                field,
-                format!("{v} is outside ({lo}, {hi}]"),
-            ))
-        }
-    };
-    pos("rpm", s.rpm, 0.0, 1e6)?;
-    pos("sample_rate_hz", s.sample_rate_hz, 0.0, super::MAX_FS)?;
-    pos("snapshot_interval_s", s.snapshot_interval_s, 0.0, 1e9)?;
-    if !(s.radial_load_n.is_finite() && (0.0..=1e8).contains(&s.radial_load_n)) {
-        return Err(sidecar_err(
-            path,
-            "radial_load_n",
-            format!("{} is outside [0, 1e8] N", s.radial_load_n),
-        ));
-    }
-    if s.snapshot_samples < 2 {
-        return Err(sidecar_err(
-            path,
-            "snapshot_samples",
-            format!("{} (at least 2)", s.snapshot_samples),
-        ));
-    }
-    let length = s.snapshot_samples as f64 / s.sample_rate_hz;
-    if length > s.snapshot_interval_s * (1.0 + 1e-9) {
-        return Err(sidecar_err(
-            path,
-            "snapshot_interval_s",
-            format!(
-                "{} s is shorter than one snapshot (snapshot_samples / sample_rate_hz = {length} s)",
-                s.snapshot_interval_s
-            ),
-        ));
-    }
-    if !FAILURE_MODES.contains(&s.failure_mode.as_str()) {
-        return Err(sidecar_err(
-            path,
-            "failure_mode",
-            format!(
-                "{:?} is not one of {}",
-                s.failure_mode,
-                FAILURE_MODES.join(", ")
-            ),
-        ));
-    }
-    if !UNITS.contains(&s.unit.as_str()) {
-        return Err(sidecar_err(
-            path,
-            "unit",
-            format!("{:?} is not one of {}", s.unit, UNITS.join(", ")),
-        ));
-    }
-    if s.bearing.preset.is_none() && s.bearing.geometry.is_none() {
-        return Err(sidecar_err(
-            path,
-            "bearing",
-            "give `preset` (a wearsim preset) or `geometry` (elements, ball_mm, pitch_mm, angle_deg)",
-        ));
-    }
-    if let Some(p) = &s.bearing.preset {
-        if wearsim_core::presets::by_name(p).is_none() && crate::geometry::catalogue(p).is_none() {
-            return Err(sidecar_err(
-                path,
-                "bearing.preset",
-                format!(
-                    "unknown preset {p:?} (a wearsim preset, see `wearsim presets`, or a catalogue bearing: {})",
-                    crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
-                ),
-            ));
-        }
-    }
-    if let Some(g) = &s.bearing.geometry {
-        // The limits of `--bearing-geometry` (the core's, in mm and degrees).
-        let spec = crate::geometry::GeometrySpec {
-            elements: g.elements,
-            ball_mm: g.ball_mm,
-            pitch_mm: g.pitch_mm,
-            angle_deg: g.angle_deg,
-        };
-        if let Err(m) = spec.checked() {
-            return Err(sidecar_err(path, "bearing.geometry", m));
-        }
-        // A preset is a geometry too: both given must be one bearing.
-        let named = s
-            .bearing
-            .preset
-            .as_deref()
-            .and_then(|p| crate::geometry::named_geometry(p).map(|n| (p, n)));
-        if let Some((p, n)) = named {
-            let stated = crate::geometry::GeometrySpec {
-                elements: g.elements,
-                ball_mm: g.ball_mm,
-                pitch_mm: g.pitch_mm,
-                angle_deg: g.angle_deg,
-            };
-            if !n.same_as(&stated) {
-                return Err(sidecar_err(
-                    path,
-                    "bearing.geometry",
-                    format!(
-                        "{} (mm, degrees) contradicts `bearing.preset` {p}, which is {}; give the preset or the geometry of this bearing, not both",
-                        stated.describe(),
-                        n.describe()
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 pub(crate) fn parse_band(name: &str) -> Option<(f64, f64)> {
