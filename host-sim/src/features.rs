@@ -271,6 +271,7 @@ pub fn convert(
     if listing.files.is_empty() {
         return Err(files::no_file_of(dir, layout));
     }
+    files::check_out(dir, layout, &listing, out, &sidecar_path(out))?;
     let mut rows: Vec<FeatureRow> = vec![];
     let mut skipped = listing.skipped.clone();
     let mut fs = match layout {
