@@ -657,3 +657,21 @@ fn a_table_too_sparse_for_the_running_in_is_diagnosed_on_merged_early_stages() {
         "{revs}"
     );
 }
+
+/// Probe defect: `gap --life --real A --real A` was diagnosed, its "held-out" life the
+/// training life. The same table twice, or a copy of it, is refused naming `--real`,
+/// nothing written.
+#[test]
+fn a_life_given_as_training_and_held_out_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, _) = rig_pair(tmp.path());
+    let out = tmp.path().join("same");
+    refused(&gap(&a, &a, &out), &["--real", "are the same file"]);
+    assert!(empty(&out));
+    let copy = tmp.path().join("copy.csv");
+    std::fs::copy(&a, &copy).unwrap();
+    std::fs::copy(a.with_extension("json"), copy.with_extension("json")).unwrap();
+    let out = tmp.path().join("copy");
+    refused(&gap(&a, &copy, &out), &["--real", "identical contents"]);
+    assert!(empty(&out));
+}
