@@ -123,3 +123,25 @@ fn coarse_blocks_suspend_at_the_cap() {
         "no life reached the cap: the test tests nothing"
     );
 }
+
+/// Probe defect: `life --cycles 0` was reported as a snapshot-interval problem and
+/// `--snapshot-every -5` as "not shorter than the cycle cap". Each argument's own range
+/// is named first; only two valid values that do not fit together get the relation.
+#[test]
+fn each_life_argument_is_checked_against_its_own_range_first() {
+    let err = |every: f64, cap: f64| LifeRun::new(spec(1, every, cap)).unwrap_err().to_string();
+    let e = err(20_000.0, 0.0);
+    assert!(
+        e.contains("cycles") && !e.contains("snapshot interval"),
+        "{e}"
+    );
+    let e = err(-5.0, 5.0e7);
+    assert!(
+        e.contains("snapshot_every") && !e.contains("cycle cap"),
+        "{e}"
+    );
+    let e = err(f64::NAN, 5.0e7);
+    assert!(e.contains("snapshot_every"), "{e}");
+    let e = err(2.0e6, 1.0e6);
+    assert!(e.contains("is not shorter than the cycle cap"), "{e}");
+}
