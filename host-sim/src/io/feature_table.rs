@@ -3,7 +3,8 @@
 //! be written in it (by a lab, or by `wearsim features` from raw snapshot folders) and read
 //! as a [`MeasuredLife`] for `wearsim gap --life`.
 //!
-//! CSV columns (header row required, any order, comma-separated):
+//! CSV columns (header row required, any order, comma-separated; cells may be quoted as
+//! in RFC 4180, so a text column may hold commas):
 //!
 //! | column | unit | required | meaning |
 //! |---|---|---|---|
@@ -181,6 +182,15 @@ pub enum FeatureTableError {
         /// The column.
         column: String,
     },
+    /// The header holds another separator than `,` (a spreadsheet of a decimal-comma
+    /// locale writes `;`), so no required column is found.
+    #[error("{}: the header is separated by `{found}`; a feature table is comma-separated (`,` between cells, `.` as the decimal point): export it with `,` as the separator", path.display())]
+    Separator {
+        /// The CSV.
+        path: PathBuf,
+        /// The separator seen.
+        found: char,
+    },
     /// A column name appears more than once in the header: which one a reader would take
     /// is not defined, so the table is refused.
     #[error("{}: column `{column}` appears more than once in the header (columns {first} and {second}); each column may appear once", path.display())]
@@ -275,6 +285,24 @@ pub fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
+/// The non-blank records of the CSV `text`, one at a time (RFC 4180: a cell in double
+/// quotes may hold commas, line breaks and `""` for a quote; quotes are no part of the
+/// value), each cell trimmed. Records may differ in length; the caller checks them
+/// against the header.
+fn records<'a>(
+    path: &'a Path,
+    text: &'a str,
+) -> impl Iterator<Item = Result<::csv::StringRecord, FeatureTableError>> + 'a {
+    ::csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(::csv::Trim::All)
+        .from_reader(text.as_bytes())
+        .into_records()
+        .filter(|r| r.as_ref().map_or(true, |r| !r.iter().all(str::is_empty)))
+        .map(move |r| r.map_err(|e| IoError::malformed(path, format!("feature table: {e}")).into()))
+}
+
 pub(crate) fn parse_band(name: &str) -> Option<(f64, f64)> {
     let rest = name.strip_prefix("band_")?.strip_suffix("_hz")?;
     let (lo, hi) = rest.split_once('_')?;
@@ -308,12 +336,12 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
     )?;
     let text = String::from_utf8(bytes)
         .map_err(|e| IoError::malformed(path, format!("feature table is not UTF-8 text: {e}")))?;
-    let mut lines = without_bom(&text).lines().filter(|l| !l.trim().is_empty());
+    let mut lines = records(path, without_bom(&text));
     let header: Vec<String> = lines
         .next()
-        .ok_or_else(|| IoError::truncated(path, "no header row"))?
-        .split(',')
-        .map(|c| c.trim().trim_matches('"').to_string())
+        .ok_or_else(|| IoError::truncated(path, "no header row"))??
+        .iter()
+        .map(str::to_string)
         .collect();
     for (j, h) in header.iter().enumerate() {
         if let Some(i) = header[..j].iter().position(|g| g == h) {
@@ -328,9 +356,19 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
     let find = |c: &str| header.iter().position(|h| h == c);
     let mut req = [0usize; 7];
     for (k, c) in REQUIRED.iter().enumerate() {
-        req[k] = find(c).ok_or_else(|| FeatureTableError::MissingColumn {
-            path: path.to_path_buf(),
-            column: (*c).into(),
+        req[k] = find(c).ok_or_else(|| {
+            // A table of another separator is one column named by the whole header.
+            if header.iter().any(|h| h.contains(';')) {
+                FeatureTableError::Separator {
+                    path: path.to_path_buf(),
+                    found: ';',
+                }
+            } else {
+                FeatureTableError::MissingColumn {
+                    path: path.to_path_buf(),
+                    column: (*c).into(),
+                }
+            }
         })?;
     }
     let band_idx: Vec<usize> = (0..header.len())
@@ -344,9 +382,9 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
         .collect();
     let mut rows: Vec<FeatureRow> = vec![];
     let mut bands: Vec<Vec<f64>> = vec![vec![]; band_idx.len()];
-    for (r, line) in lines.enumerate() {
+    for (r, record) in lines.enumerate() {
         let row = r + 1;
-        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let cells = record?;
         if cells.len() != header.len() {
             return Err(IoError::malformed(
                 path,
@@ -359,7 +397,7 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
             .into());
         }
         let num = |i: usize| -> Result<f64, FeatureTableError> {
-            let c = cells.get(i).copied().unwrap_or("");
+            let c = cells.get(i).unwrap_or("");
             match c.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v),
                 _ => Err(FeatureTableError::BadValue {
@@ -594,5 +632,107 @@ impl FeatureTable {
             shared_shaft: false,
             unit: self.sidecar.unit.clone(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SIDECAR: &str = r#"{"format": "wearsim-feature-table", "format_version": 1, "source": "test",
+        "bearing": {"geometry": {"elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "angle_deg": 0.0}, "id": "b1"},
+        "channel": "horiz", "unit": "g", "rpm": 1800.0, "radial_load_n": 4000.0,
+        "sample_rate_hz": 25600.0, "snapshot_samples": 2560, "snapshot_interval_s": 60.0,
+        "failure_mode": "outer-race"}"#;
+
+    /// Writes `csv` with a valid sidecar into `dir` and reads it.
+    fn read(dir: &Path, csv: &str) -> Result<FeatureTable, FeatureTableError> {
+        let p = dir.join("t.csv");
+        std::fs::write(&p, csv).unwrap();
+        std::fs::write(sidecar_path(&p), SIDECAR).unwrap();
+        read_feature_table(&p)
+    }
+
+    /// Ten rows of a valid table, each cell through `cell`, `extra` a last cell per row.
+    fn table(header: &str, cell: impl Fn(String) -> String, extra: Option<&str>) -> String {
+        let mut s = format!("{header}\n");
+        for k in 0..10 {
+            let cells: Vec<String> = [
+                k.to_string(),
+                (60 * k).to_string(),
+                "0.5".into(),
+                "3".into(),
+                "4".into(),
+                "0.1".into(),
+                "2".into(),
+            ]
+            .into_iter()
+            .map(&cell)
+            .chain(extra.map(str::to_string))
+            .collect();
+            s.push_str(&cells.join(","));
+            s.push('\n');
+        }
+        s
+    }
+
+    const HEADER: &str = "snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak";
+
+    /// Probe defects: quotes were stripped from the header only, so a fully quoted CSV
+    /// failed, and a quoted text column holding a comma failed with a cell count. Cells
+    /// are now read as RFC 4180 fields; the rows are those of the unquoted table, and
+    /// the text column is an ignored column.
+    #[test]
+    fn quoted_cells_are_read_as_csv_fields() {
+        let dir = tempfile::tempdir().unwrap();
+        let plain = read(dir.path(), &table(HEADER, |c| c, None)).unwrap();
+        let quoted_header = HEADER
+            .split(',')
+            .map(|h| format!("\"{h}\""))
+            .collect::<Vec<_>>()
+            .join(",");
+        let quoted = read(
+            dir.path(),
+            &table(&quoted_header, |c| format!("\"{c}\""), None),
+        )
+        .unwrap();
+        assert_eq!(quoted.rows, plain.rows);
+        let noted = read(
+            dir.path(),
+            &table(
+                &format!("{HEADER},note"),
+                |c| c,
+                Some("\"rig stopped, restarted \"\"cold\"\"\""),
+            ),
+        )
+        .unwrap();
+        assert_eq!(noted.rows, plain.rows);
+        assert_eq!(noted.ignored_columns, ["note"]);
+        // A row of another length is still refused, naming the row.
+        let mut short = table(HEADER, |c| c, None);
+        short.push_str("10,600,0.5,3,4\n");
+        let e = read(dir.path(), &short).unwrap_err().to_string();
+        assert!(e.contains("row 11: 5 cells, the header has 7"), "{e}");
+    }
+
+    /// Probe defect: a `;`-separated table was refused only with "missing column
+    /// `snapshot`". The separator is named; a comma table missing a column still names
+    /// the column.
+    #[test]
+    fn a_semicolon_table_is_told_the_separator() {
+        let dir = tempfile::tempdir().unwrap();
+        let semi = table(HEADER, |c| c, None).replace(',', ";");
+        match read(dir.path(), &semi) {
+            Err(e @ FeatureTableError::Separator { found: ';', .. }) => {
+                let m = e.to_string();
+                assert!(m.contains("comma-separated (`,`"), "{m}");
+            }
+            other => panic!("expected a separator error, got {other:?}"),
+        }
+        let no_peak = table(HEADER, |c| c, None).replace(",peak", ",pk");
+        assert!(matches!(
+            read(dir.path(), &no_peak),
+            Err(FeatureTableError::MissingColumn { ref column, .. }) if column == "peak"
+        ));
     }
 }
