@@ -630,6 +630,7 @@ impl FeatureTable {
             preset: self.sidecar.bearing.preset.clone(),
             failure_mode: self.sidecar.failure_mode.clone(),
             shared_shaft: false,
+            ignored_columns: self.ignored_columns.clone(),
             unit: self.sidecar.unit.clone(),
         }
     }
