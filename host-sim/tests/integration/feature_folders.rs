@@ -269,3 +269,21 @@ fn the_table_may_not_overwrite_or_join_the_input_snapshots() {
     let o = xjtu(&raw, &raw.join("table.csv"));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Probe defect: `--json`'s `hours` was the last row's `time_s`, not the span, when the
+/// first file of the numbering was missing: XJTU-SY files 3..=14 (the first at 120 s)
+/// span 11 minutes, not 13.
+#[test]
+fn hours_is_the_span_of_the_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("xjtu");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 3..=14 {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * k as f64, true);
+    }
+    let o = xjtu(&raw, &tmp.path().join("o/t.csv"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let hours = j["hours"].as_f64().unwrap();
+    assert!((hours - 11.0 / 60.0).abs() < 1e-12, "hours {hours}");
+}
