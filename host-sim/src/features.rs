@@ -271,6 +271,7 @@ pub fn convert(
     if listing.files.is_empty() {
         return Err(files::no_file_of(dir, layout));
     }
+    files::check_out(dir, layout, &listing, out, &sidecar_path(out))?;
     let mut rows: Vec<FeatureRow> = vec![];
     let mut skipped = listing.skipped.clone();
     let mut fs = match layout {
@@ -451,7 +452,13 @@ pub fn convert(
         snapshots: rows.len(),
         skipped,
         missing: listing.missing,
-        hours: rows.last().map_or(0.0, |r| r.time_s) / 3600.0,
+        // The span of the table, first to last row: the first file of the numbering may be
+        // missing or skipped, so the first row need not be at 0.
+        hours: rows
+            .first()
+            .zip(rows.last())
+            .map_or(0.0, |(a, b)| b.time_s - a.time_s)
+            / 3600.0,
         rms_first_last: (first, last),
         meta: sidecar,
     })

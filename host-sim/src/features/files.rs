@@ -176,6 +176,80 @@ pub(crate) fn list(dir: &Path, layout: RawLayout) -> Result<Listing, FeaturesErr
     })
 }
 
+/// Whether file name `name` has `layout`'s snapshot naming (what [`list`] would take as a
+/// snapshot, or refuse as a malformed one): an IMS time stamp (with or without `.txt`),
+/// FEMTO `acc_NNNNN.csv`, XJTU-SY `N.csv` (`0.csv` included).
+fn has_snapshot_name(layout: RawLayout, name: &str) -> bool {
+    match layout {
+        RawLayout::Ims => !matches!(
+            check_ims_name(name.strip_suffix(".txt").unwrap_or(name)),
+            Ok(None)
+        ),
+        RawLayout::Femto => femto_index(name).is_some(),
+        RawLayout::Xjtu => xjtu_number(name).is_some(),
+        RawLayout::Auto => false,
+    }
+}
+
+/// `path` with its folder resolved (symbolic links, `..`): the file itself need not exist.
+/// `None` when the folder does not exist (nothing can be overwritten there).
+fn resolved(path: &Path) -> Option<PathBuf> {
+    let name = path.file_name()?;
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    Some(parent.canonicalize().ok()?.join(name))
+}
+
+/// Refuses an output table (`out`, and its sidecar `json`) that is one of the snapshot
+/// files `listing` holds of folder `dir`, or that lies in `dir` under a name of `layout`'s
+/// snapshot naming: writing it would replace a raw snapshot of the test, or add a file the
+/// next run over the folder would read as one. Paths are compared resolved (a symbolic
+/// link to a snapshot is that snapshot).
+pub(crate) fn check_out(
+    dir: &Path,
+    layout: RawLayout,
+    listing: &Listing,
+    out: &Path,
+    json: &Path,
+) -> Result<(), FeaturesError> {
+    let dir_real = dir.canonicalize().ok();
+    for target in [out, json] {
+        let real = resolved(target).unwrap_or_else(|| target.to_path_buf());
+        // A link at the file itself is followed too.
+        let real = std::fs::canonicalize(&real).unwrap_or(real);
+        let what = if target == out {
+            "the table".to_string()
+        } else {
+            format!("its sidecar {}", target.display())
+        };
+        if let Some(f) = listing
+            .files
+            .iter()
+            .find(|f| f.path.canonicalize().is_ok_and(|p| p == real))
+        {
+            return Err(FeaturesError::Input(format!(
+                "--out {}: {what} would overwrite {}, a snapshot file this command reads from {}; write the table outside the input folder",
+                out.display(),
+                f.path.display(),
+                dir.display()
+            )));
+        }
+        let name = real.file_name().map(|n| n.to_string_lossy().into_owned());
+        let inside = dir_real.is_some() && real.parent() == dir_real.as_deref();
+        if let Some(name) = name.filter(|n| inside && has_snapshot_name(layout, n)) {
+            return Err(FeaturesError::Input(format!(
+                "--out {}: {what} would be in the input folder {} under the {} layout's snapshot naming ({name}), read as a snapshot of the test by the next run: write the table outside the folder or under another name",
+                out.display(),
+                dir.display(),
+                format!("{layout:?}").to_lowercase()
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The error of a folder in which no file has `layout`'s naming: the naming, and a few of
 /// the files seen.
 pub(crate) fn no_file_of(dir: &Path, layout: RawLayout) -> FeaturesError {
@@ -343,6 +417,48 @@ mod tests {
         c.time(dir, a, 100.0).unwrap();
         let e = c.time(dir, b, 100.0).unwrap_err().to_string();
         assert!(e.contains("acc_00001.csv and acc_00002.csv both start at 00:01:40"));
+    }
+
+    /// Probe defect: `features DIR --layout xjtu --out DIR/1.csv` replaced raw snapshot
+    /// `1.csv`. An output that is a snapshot read, or that has the layout's snapshot naming
+    /// in the input folder, is refused naming `--out`; a table beside the snapshots under
+    /// another name, or in another folder, is not.
+    #[test]
+    fn an_output_over_the_input_snapshots_is_refused() {
+        let dir = std::env::temp_dir().join(format!("wearsim-out-check-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        for n in ["1.csv", "2.csv"] {
+            std::fs::write(dir.join(n), "x").unwrap();
+        }
+        let listing = list(&dir, RawLayout::Xjtu).unwrap();
+        let check = |out: PathBuf| {
+            let json = out.with_extension("json");
+            check_out(&dir, RawLayout::Xjtu, &listing, &out, &json)
+        };
+        let e = check(dir.join("1.csv")).unwrap_err().to_string();
+        assert!(e.starts_with("--out "), "{e}");
+        assert!(e.contains("would overwrite") && e.contains("1.csv"), "{e}");
+        // The same file reached through `sub/..`.
+        let e = check(dir.join("sub").join("..").join("2.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("would overwrite"), "{e}");
+        // Not a file yet, but of the naming: the next run would read it.
+        let e = check(dir.join("7.csv")).unwrap_err().to_string();
+        assert!(e.contains("snapshot naming (7.csv)"), "{e}");
+        assert!(check(dir.join("features.csv")).is_ok());
+        assert!(check(dir.join("sub").join("1.csv")).is_ok());
+        // Another layout's naming in the folder is no snapshot of this one.
+        assert!(check_out(
+            &dir,
+            RawLayout::Femto,
+            &Listing::default(),
+            &dir.join("1.csv"),
+            &dir.join("1.json")
+        )
+        .is_ok());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

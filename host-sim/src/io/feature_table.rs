@@ -3,7 +3,8 @@
 //! be written in it (by a lab, or by `wearsim features` from raw snapshot folders) and read
 //! as a [`MeasuredLife`] for `wearsim gap --life`.
 //!
-//! CSV columns (header row required, any order, comma-separated):
+//! CSV columns (header row required, any order, comma-separated; cells may be quoted as
+//! in RFC 4180, so a text column may hold commas):
 //!
 //! | column | unit | required | meaning |
 //! |---|---|---|---|
@@ -24,6 +25,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::error::IoError;
+pub(crate) use super::feature_sidecar::check_sidecar;
+pub use super::feature_sidecar::{read_sidecar, SIDECAR_KEYS};
 use super::ims_life::{LifePoint, MeasuredLife};
 
 /// Value of the sidecar key `format`.
@@ -65,7 +68,9 @@ pub const UNITS: [&str; 3] = ["g", "m/s^2", "unknown"];
 
 /// Rolling-element bearing geometry of a sidecar without a preset: the keys of a record
 /// sidecar's `bearing_geometry` object ([`crate::geometry::GeometrySpec`]; mm, degrees).
+/// Unknown keys are refused ([`SIDECAR_KEYS`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Geometry {
     /// Rolling elements per row (3..=32, fitting on the pitch circle: the limits of
     /// [`crate::geometry::GeometrySpec::checked`]).
@@ -79,7 +84,9 @@ pub struct Geometry {
 }
 
 /// Which bearing the table describes: a wearsim preset and/or its geometry, its position.
+/// Unknown keys are refused ([`SIDECAR_KEYS`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BearingInfo {
     /// wearsim preset (`wearsim presets`), e.g. `ims-za2115`; required by `gap --life`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -175,6 +182,15 @@ pub enum FeatureTableError {
         /// The column.
         column: String,
     },
+    /// The header holds another separator than `,` (a spreadsheet of a decimal-comma
+    /// locale writes `;`), so no required column is found.
+    #[error("{}: the header is separated by `{found}`; a feature table is comma-separated (`,` between cells, `.` as the decimal point): export it with `,` as the separator", path.display())]
+    Separator {
+        /// The CSV.
+        path: PathBuf,
+        /// The separator seen.
+        found: char,
+    },
     /// A column name appears more than once in the header: which one a reader would take
     /// is not defined, so the table is refused.
     #[error("{}: column `{column}` appears more than once in the header (columns {first} and {second}); each column may appear once", path.display())]
@@ -236,7 +252,12 @@ pub enum FeatureTableError {
     },
 }
 
-fn sidecar_err(path: &Path, field: &str, detail: impl Into<String>) -> FeatureTableError {
+/// A [`FeatureTableError::Sidecar`] of sidecar `path` naming `field`.
+pub(crate) fn sidecar_err(
+    path: &Path,
+    field: &str,
+    detail: impl Into<String>,
+) -> FeatureTableError {
     FeatureTableError::Sidecar {
         path: path.to_path_buf(),
         field: field.into(),
@@ -264,206 +285,22 @@ pub fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
-/// Reads and checks a sidecar on its own (ranges of every field).
-pub fn read_sidecar(path: &Path) -> Result<FeatureSidecar, FeatureTableError> {
-    let v = super::sidecar::read_json(path)?;
-    if v["format"] != FORMAT {
-        return Err(sidecar_err(
-            path,
-            "format",
-            format!("{} is not \"{FORMAT}\"", v["format"]),
-        ));
-    }
-    let s: FeatureSidecar = serde_json::from_value(v.clone()).map_err(|e| {
-        let msg = e.to_string();
-        let field = mistyped_field(&v)
-            .or_else(|| msg.split('`').nth(1).map(dotted_key))
-            .unwrap_or_else(|| "(the sidecar)".into());
-        sidecar_err(path, &field, msg)
-    })?;
-    check_sidecar(path, &s)?;
-    Ok(s)
-}
-
-/// A key serde names without its place (a missing `id` of `bearing`), dotted as the
-/// documentation names it: the keys of `bearing` and of its `geometry` are no top-level keys.
-fn dotted_key(key: &str) -> String {
-    match key {
-        "preset" | "geometry" | "id" => format!("bearing.{key}"),
-        "elements" | "ball_mm" | "pitch_mm" | "angle_deg" => format!("bearing.geometry.{key}"),
-        _ => key.to_string(),
-    }
-}
-
-/// The first sidecar key (dotted for `bearing.*`) whose value has the wrong JSON type:
-/// serde's message for a wrong type names the type, not the key.
-fn mistyped_field(v: &serde_json::Value) -> Option<String> {
-    use serde_json::Value;
-    let num = |x: &Value| x.is_number();
-    let int = |x: &Value| x.is_u64();
-    let string = |x: &Value| x.is_string();
-    type Check = fn(&Value) -> bool;
-    let top: [(&str, Check); 14] = [
-        ("format", string),
-        ("format_version", int),
-        ("source", string),
-        ("bearing", Value::is_object),
-        ("channel", string),
-        ("unit", string),
-        ("rpm", num),
-        ("radial_load_n", num),
-        ("sample_rate_hz", num),
-        ("snapshot_samples", int),
-        ("snapshot_interval_s", num),
-        ("failure_mode", string),
-        ("n_snapshots", int),
-        ("notes", Value::is_array),
-    ];
-    let bearing: [(&str, Check); 3] = [
-        ("bearing.preset", string),
-        ("bearing.geometry", Value::is_object),
-        ("bearing.id", string),
-    ];
-    let geometry: [(&str, Check); 4] = [
-        ("bearing.geometry.elements", int),
-        ("bearing.geometry.ball_mm", num),
-        ("bearing.geometry.pitch_mm", num),
-        ("bearing.geometry.angle_deg", num),
-    ];
-    let get = |key: &str| {
-        key.split('.')
-            .try_fold(v, |x, k| x.get(k))
-            .filter(|x| !x.is_null())
-    };
-    top.iter()
-        .chain(&bearing)
-        .chain(&geometry)
-        .find(|(k, ok)| get(k).is_some_and(|x| !ok(x)))
-        .map(|(k, _)| (*k).to_string())
-}
-
-pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), FeatureTableError> {
-    if s.format_version != FORMAT_VERSION {
-        return Err(sidecar_err(
-            path,
-            "format_version",
-            format!("{} (this reader knows {FORMAT_VERSION})", s.format_version),
-        ));
-    }
-    let pos = |field: &str, v: f64, lo: f64, hi: f64| {
-        if v.is_finite() && v > lo && v <= hi {
-            Ok(())
-        } else {
-            Err(sidecar_err(
-                path,
-                field,
-                format!("{v} is outside ({lo}, {hi}]"),
-            ))
-        }
-    };
-    pos("rpm", s.rpm, 0.0, 1e6)?;
-    pos("sample_rate_hz", s.sample_rate_hz, 0.0, super::MAX_FS)?;
-    pos("snapshot_interval_s", s.snapshot_interval_s, 0.0, 1e9)?;
-    if !(s.radial_load_n.is_finite() && (0.0..=1e8).contains(&s.radial_load_n)) {
-        return Err(sidecar_err(
-            path,
-            "radial_load_n",
-            format!("{} is outside [0, 1e8] N", s.radial_load_n),
-        ));
-    }
-    if s.snapshot_samples < 2 {
-        return Err(sidecar_err(
-            path,
-            "snapshot_samples",
-            format!("{} (at least 2)", s.snapshot_samples),
-        ));
-    }
-    let length = s.snapshot_samples as f64 / s.sample_rate_hz;
-    if length > s.snapshot_interval_s * (1.0 + 1e-9) {
-        return Err(sidecar_err(
-            path,
-            "snapshot_interval_s",
-            format!(
-                "{} s is shorter than one snapshot (snapshot_samples / sample_rate_hz = {length} s)",
-                s.snapshot_interval_s
-            ),
-        ));
-    }
-    if !FAILURE_MODES.contains(&s.failure_mode.as_str()) {
-        return Err(sidecar_err(
-            path,
-            "failure_mode",
-            format!(
-                "{:?} is not one of {}",
-                s.failure_mode,
-                FAILURE_MODES.join(", ")
-            ),
-        ));
-    }
-    if !UNITS.contains(&s.unit.as_str()) {
-        return Err(sidecar_err(
-            path,
-            "unit",
-            format!("{:?} is not one of {}", s.unit, UNITS.join(", ")),
-        ));
-    }
-    if s.bearing.preset.is_none() && s.bearing.geometry.is_none() {
-        return Err(sidecar_err(
-            path,
-            "bearing",
-            "give `preset` (a wearsim preset) or `geometry` (elements, ball_mm, pitch_mm, angle_deg)",
-        ));
-    }
-    if let Some(p) = &s.bearing.preset {
-        if wearsim_core::presets::by_name(p).is_none() && crate::geometry::catalogue(p).is_none() {
-            return Err(sidecar_err(
-                path,
-                "bearing.preset",
-                format!(
-                    "unknown preset {p:?} (a wearsim preset, see `wearsim presets`, or a catalogue bearing: {})",
-                    crate::geometry::CATALOGUE.map(|e| e.name).join(", ")
-                ),
-            ));
-        }
-    }
-    if let Some(g) = &s.bearing.geometry {
-        // The limits of `--bearing-geometry` (the core's, in mm and degrees).
-        let spec = crate::geometry::GeometrySpec {
-            elements: g.elements,
-            ball_mm: g.ball_mm,
-            pitch_mm: g.pitch_mm,
-            angle_deg: g.angle_deg,
-        };
-        if let Err(m) = spec.checked() {
-            return Err(sidecar_err(path, "bearing.geometry", m));
-        }
-        // A preset is a geometry too: both given must be one bearing.
-        let named = s
-            .bearing
-            .preset
-            .as_deref()
-            .and_then(|p| crate::geometry::named_geometry(p).map(|n| (p, n)));
-        if let Some((p, n)) = named {
-            let stated = crate::geometry::GeometrySpec {
-                elements: g.elements,
-                ball_mm: g.ball_mm,
-                pitch_mm: g.pitch_mm,
-                angle_deg: g.angle_deg,
-            };
-            if !n.same_as(&stated) {
-                return Err(sidecar_err(
-                    path,
-                    "bearing.geometry",
-                    format!(
-                        "{} (mm, degrees) contradicts `bearing.preset` {p}, which is {}; give the preset or the geometry of this bearing, not both",
-                        stated.describe(),
-                        n.describe()
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
+/// The non-blank records of the CSV `text`, one at a time (RFC 4180: a cell in double
+/// quotes may hold commas, line breaks and `""` for a quote; quotes are no part of the
+/// value), each cell trimmed. Records may differ in length; the caller checks them
+/// against the header.
+fn records<'a>(
+    path: &'a Path,
+    text: &'a str,
+) -> impl Iterator<Item = Result<::csv::StringRecord, FeatureTableError>> + 'a {
+    ::csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(::csv::Trim::All)
+        .from_reader(text.as_bytes())
+        .into_records()
+        .filter(|r| r.as_ref().map_or(true, |r| !r.iter().all(str::is_empty)))
+        .map(move |r| r.map_err(|e| IoError::malformed(path, format!("feature table: {e}")).into()))
 }
 
 pub(crate) fn parse_band(name: &str) -> Option<(f64, f64)> {
@@ -499,12 +336,12 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
     )?;
     let text = String::from_utf8(bytes)
         .map_err(|e| IoError::malformed(path, format!("feature table is not UTF-8 text: {e}")))?;
-    let mut lines = without_bom(&text).lines().filter(|l| !l.trim().is_empty());
+    let mut lines = records(path, without_bom(&text));
     let header: Vec<String> = lines
         .next()
-        .ok_or_else(|| IoError::truncated(path, "no header row"))?
-        .split(',')
-        .map(|c| c.trim().trim_matches('"').to_string())
+        .ok_or_else(|| IoError::truncated(path, "no header row"))??
+        .iter()
+        .map(str::to_string)
         .collect();
     for (j, h) in header.iter().enumerate() {
         if let Some(i) = header[..j].iter().position(|g| g == h) {
@@ -519,9 +356,19 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
     let find = |c: &str| header.iter().position(|h| h == c);
     let mut req = [0usize; 7];
     for (k, c) in REQUIRED.iter().enumerate() {
-        req[k] = find(c).ok_or_else(|| FeatureTableError::MissingColumn {
-            path: path.to_path_buf(),
-            column: (*c).into(),
+        req[k] = find(c).ok_or_else(|| {
+            // A table of another separator is one column named by the whole header.
+            if header.iter().any(|h| h.contains(';')) {
+                FeatureTableError::Separator {
+                    path: path.to_path_buf(),
+                    found: ';',
+                }
+            } else {
+                FeatureTableError::MissingColumn {
+                    path: path.to_path_buf(),
+                    column: (*c).into(),
+                }
+            }
         })?;
     }
     let band_idx: Vec<usize> = (0..header.len())
@@ -535,9 +382,9 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
         .collect();
     let mut rows: Vec<FeatureRow> = vec![];
     let mut bands: Vec<Vec<f64>> = vec![vec![]; band_idx.len()];
-    for (r, line) in lines.enumerate() {
+    for (r, record) in lines.enumerate() {
         let row = r + 1;
-        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let cells = record?;
         if cells.len() != header.len() {
             return Err(IoError::malformed(
                 path,
@@ -550,7 +397,7 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
             .into());
         }
         let num = |i: usize| -> Result<f64, FeatureTableError> {
-            let c = cells.get(i).copied().unwrap_or("");
+            let c = cells.get(i).unwrap_or("");
             match c.parse::<f64>() {
                 Ok(v) if v.is_finite() => Ok(v),
                 _ => Err(FeatureTableError::BadValue {
@@ -783,7 +630,110 @@ impl FeatureTable {
             preset: self.sidecar.bearing.preset.clone(),
             failure_mode: self.sidecar.failure_mode.clone(),
             shared_shaft: false,
+            ignored_columns: self.ignored_columns.clone(),
             unit: self.sidecar.unit.clone(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SIDECAR: &str = r#"{"format": "wearsim-feature-table", "format_version": 1, "source": "test",
+        "bearing": {"geometry": {"elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "angle_deg": 0.0}, "id": "b1"},
+        "channel": "horiz", "unit": "g", "rpm": 1800.0, "radial_load_n": 4000.0,
+        "sample_rate_hz": 25600.0, "snapshot_samples": 2560, "snapshot_interval_s": 60.0,
+        "failure_mode": "outer-race"}"#;
+
+    /// Writes `csv` with a valid sidecar into `dir` and reads it.
+    fn read(dir: &Path, csv: &str) -> Result<FeatureTable, FeatureTableError> {
+        let p = dir.join("t.csv");
+        std::fs::write(&p, csv).unwrap();
+        std::fs::write(sidecar_path(&p), SIDECAR).unwrap();
+        read_feature_table(&p)
+    }
+
+    /// Ten rows of a valid table, each cell through `cell`, `extra` a last cell per row.
+    fn table(header: &str, cell: impl Fn(String) -> String, extra: Option<&str>) -> String {
+        let mut s = format!("{header}\n");
+        for k in 0..10 {
+            let cells: Vec<String> = [
+                k.to_string(),
+                (60 * k).to_string(),
+                "0.5".into(),
+                "3".into(),
+                "4".into(),
+                "0.1".into(),
+                "2".into(),
+            ]
+            .into_iter()
+            .map(&cell)
+            .chain(extra.map(str::to_string))
+            .collect();
+            s.push_str(&cells.join(","));
+            s.push('\n');
+        }
+        s
+    }
+
+    const HEADER: &str = "snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak";
+
+    /// Probe defects: quotes were stripped from the header only, so a fully quoted CSV
+    /// failed, and a quoted text column holding a comma failed with a cell count. Cells
+    /// are now read as RFC 4180 fields; the rows are those of the unquoted table, and
+    /// the text column is an ignored column.
+    #[test]
+    fn quoted_cells_are_read_as_csv_fields() {
+        let dir = tempfile::tempdir().unwrap();
+        let plain = read(dir.path(), &table(HEADER, |c| c, None)).unwrap();
+        let quoted_header = HEADER
+            .split(',')
+            .map(|h| format!("\"{h}\""))
+            .collect::<Vec<_>>()
+            .join(",");
+        let quoted = read(
+            dir.path(),
+            &table(&quoted_header, |c| format!("\"{c}\""), None),
+        )
+        .unwrap();
+        assert_eq!(quoted.rows, plain.rows);
+        let noted = read(
+            dir.path(),
+            &table(
+                &format!("{HEADER},note"),
+                |c| c,
+                Some("\"rig stopped, restarted \"\"cold\"\"\""),
+            ),
+        )
+        .unwrap();
+        assert_eq!(noted.rows, plain.rows);
+        assert_eq!(noted.ignored_columns, ["note"]);
+        // A row of another length is still refused, naming the row.
+        let mut short = table(HEADER, |c| c, None);
+        short.push_str("10,600,0.5,3,4\n");
+        let e = read(dir.path(), &short).unwrap_err().to_string();
+        assert!(e.contains("row 11: 5 cells, the header has 7"), "{e}");
+    }
+
+    /// Probe defect: a `;`-separated table was refused only with "missing column
+    /// `snapshot`". The separator is named; a comma table missing a column still names
+    /// the column.
+    #[test]
+    fn a_semicolon_table_is_told_the_separator() {
+        let dir = tempfile::tempdir().unwrap();
+        let semi = table(HEADER, |c| c, None).replace(',', ";");
+        match read(dir.path(), &semi) {
+            Err(e @ FeatureTableError::Separator { found: ';', .. }) => {
+                let m = e.to_string();
+                assert!(m.contains("comma-separated (`,`"), "{m}");
+            }
+            other => panic!("expected a separator error, got {other:?}"),
+        }
+        let no_peak = table(HEADER, |c| c, None).replace(",peak", ",pk");
+        assert!(matches!(
+            read(dir.path(), &no_peak),
+            Err(FeatureTableError::MissingColumn { ref column, .. }) if column == "peak"
+        ));
     }
 }

@@ -72,6 +72,10 @@ pub struct MeasuredLife {
     pub shared_shaft: bool,
     /// Unit of the RMS ([`super::feature_table::UNITS`]; `g` for an IMS table).
     pub unit: String,
+    /// Columns of its table that the format does not know and the reader ignored
+    /// ([`super::feature_table::FeatureTable::ignored_columns`]; none for an IMS table):
+    /// reported, so that a misnamed column (`band_2k_4k_hz`) does not vanish silently.
+    pub ignored_columns: Vec<String>,
 }
 
 impl MeasuredLife {
@@ -153,5 +157,6 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
         failure_mode: "unknown".into(),
         shared_shaft: true,
         unit: "g".into(),
+        ignored_columns: vec![],
     })
 }

@@ -287,8 +287,8 @@ pub fn read_femto(path: &Path, sep: u8, channel: Option<&str>) -> Result<Record,
 const FEMTO_COLUMNS: [&str; 6] = ["hour", "minute", "second", "µs", "horiz", "vert"];
 
 /// The error of a FEMTO row whose channel cell is not a number: the first cell of the row
-/// that is not a number, its column, and, for the first row of the file, that the layout
-/// has no header row.
+/// that is not a number, its column, and why it may not be: a decimal comma, or, for the
+/// first row of the file, a header row the layout does not have.
 fn femto_not_a_number(path: &Path, line: usize, cells: &[&str], first_row: bool) -> IoError {
     let (k, cell) = cells
         .iter()
@@ -296,7 +296,11 @@ fn femto_not_a_number(path: &Path, line: usize, cells: &[&str], first_row: bool)
         .enumerate()
         .find(|(_, c)| c.parse::<f64>().is_err())
         .unwrap_or((0, ""));
-    let header = if first_row {
+    // `0,0346` in a `;`-separated file: a spreadsheet of a decimal-comma locale.
+    let decimal_comma = cell.contains(',') && cell.replacen(',', ".", 1).parse::<f64>().is_ok();
+    let header = if decimal_comma {
+        "; it has a decimal comma: FEMTO numbers take `.` as the decimal point (write 0.0346, not 0,0346)"
+    } else if first_row {
         "; a header row? FEMTO files have none: every row is hour, minute, second, µs, horiz, vert, all numbers"
     } else {
         ""
@@ -357,6 +361,23 @@ mod tests {
         std::fs::write(&e, b"").unwrap();
         assert_eq!(first_line(&e).unwrap(), "");
         assert!(first_line(&dir.path().join("missing.csv")).is_err());
+    }
+
+    /// Probe defect: a `;`-separated FEMTO file with decimal commas was answered "a
+    /// header row? FEMTO files have none". The decimal comma is named; a word in the first
+    /// row still gets the header hint.
+    #[test]
+    fn a_decimal_comma_is_named_not_taken_for_a_header() {
+        let p = Path::new("acc_00001.csv");
+        let e = femto_not_a_number(p, 1, &["9", "0", "0", "0", "0,0346", "0,0892"], true);
+        let e = e.to_string();
+        assert!(e.contains("\"0,0346\" (horiz, column 5)"), "{e}");
+        assert!(e.contains("decimal comma") && !e.contains("header"), "{e}");
+        let e = femto_not_a_number(p, 1, &["hour", "min"], true).to_string();
+        assert!(
+            e.contains("a header row?") && !e.contains("decimal comma"),
+            "{e}"
+        );
     }
 
     fn opts(ch: Option<&str>) -> ReadOptions {

@@ -11,6 +11,11 @@
 use super::{AtCap, LifeError, LifeRun};
 use wearsim_core::wear::{LifeState, PassLoads, Stage};
 
+/// Relative rounding of the wear's revolutions within which a block clipped at the cycle
+/// cap is taken to have reached it ([`LifeRun::advance_checked`]): the core's steps sum
+/// to the clipped block within a few ulp.
+const CAP_ROUNDING: f64 = 1e-12;
+
 /// One window of a life, as the driver hands it to its observer.
 #[derive(Debug)]
 pub struct DriverWindow<'a> {
@@ -151,14 +156,23 @@ impl LifeRun {
 
     /// The driver's step: advances the wear by up to `revs` revolutions (less when a
     /// stage transition or a growth step of the defect ends the block early) and checks
-    /// the cycle cap.
+    /// the cycle cap. A block that would pass the cap is clipped there: the wear then
+    /// stands exactly at the cap ([`LifeError::CapReached`], a suspension at the cap with
+    /// [`AtCap::Suspend`]) unless it failed within the clipped block, i.e. at or before the
+    /// cap. A failure beyond the cap is never reached, and a life that fails before the
+    /// cap runs the same steps as without it (the core's steps are bounded by the block's
+    /// revolutions only in the step that would reach the cap).
     pub fn advance_checked(
         &self,
         st: &mut LifeState,
         loads: &PassLoads,
         revs: f64,
     ) -> Result<Block, LifeError> {
-        let mut remaining = revs;
+        let cap = self.spec.life.cycle_cap;
+        let to_cap = cap - st.cycles;
+        // `revs > to_cap` is false for a NaN block, which advances nothing, as before.
+        let clipped = revs > to_cap;
+        let mut remaining = if clipped { to_cap.max(0.0) } else { revs };
         let mut b = Block {
             revs: 0.0,
             entered: None,
@@ -177,6 +191,11 @@ impl LifeRun {
             if adv.revs <= 0.0 {
                 break;
             }
+        }
+        // The clipped block ran to the cap: the sum of the core's steps is the cap within
+        // its rounding, and the life stands exactly there.
+        if clipped && st.stage != Stage::Failure && st.cycles >= cap * (1.0 - CAP_ROUNDING) {
+            st.cycles = cap;
         }
         self.check_cap(st)?;
         Ok(b)

@@ -228,6 +228,10 @@ impl LifeRun {
             defect: None,
             ..spec.model.clone()
         })?;
+        // Each argument's own range first, then how they relate: a cap of 0 is a cap
+        // problem, a negative interval an interval problem.
+        wearsim_core::error::check_range("cycles", spec.life.cycle_cap, 1.0, 1e13)?;
+        wearsim_core::error::check_range("snapshot_every", spec.snapshot_every, 1.0, 1e13)?;
         if !(spec.snapshot_every >= 1.0 && spec.snapshot_every < spec.life.cycle_cap) {
             return Err(LifeError::SnapshotInterval {
                 every: spec.snapshot_every,

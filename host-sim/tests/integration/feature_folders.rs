@@ -241,3 +241,49 @@ fn header_rows_are_named_in_the_messages() {
     );
     nothing_written(&out);
 }
+
+/// Probe defect: `features DIR --layout xjtu --out DIR/1.csv` replaced raw snapshot
+/// `1.csv` with the table. Refused (exit 2, naming `--out`), the snapshot untouched and
+/// nothing written; the same for a name of the naming that is not a file yet.
+#[test]
+fn the_table_may_not_overwrite_or_join_the_input_snapshots() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("xjtu");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 1..=12 {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * k as f64, true);
+    }
+    let first = std::fs::read(raw.join("1.csv")).unwrap();
+    refused(
+        &xjtu(&raw, &raw.join("1.csv")),
+        &["--out", "would overwrite"],
+    );
+    assert_eq!(std::fs::read(raw.join("1.csv")).unwrap(), first);
+    assert!(!raw.join("1.json").exists());
+    refused(
+        &xjtu(&raw, &raw.join("13.csv")),
+        &["--out", "snapshot naming (13.csv)"],
+    );
+    nothing_written(&raw.join("13.csv"));
+    // Beside the snapshots under another name it is written.
+    let o = xjtu(&raw, &raw.join("table.csv"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Probe defect: `--json`'s `hours` was the last row's `time_s`, not the span, when the
+/// first file of the numbering was missing: XJTU-SY files 3..=14 (the first at 120 s)
+/// span 11 minutes, not 13.
+#[test]
+fn hours_is_the_span_of_the_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("xjtu");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 3..=14 {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * k as f64, true);
+    }
+    let o = xjtu(&raw, &tmp.path().join("o/t.csv"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let hours = j["hours"].as_f64().unwrap();
+    assert!((hours - 11.0 / 60.0).abs() < 1e-12, "hours {hours}");
+}

@@ -29,6 +29,7 @@ mod ims_validate;
 mod io_fuzz;
 mod life;
 mod life_ball;
+mod life_cap;
 mod life_sites;
 mod out_dirs;
 mod probe2;

@@ -657,3 +657,53 @@ fn a_table_too_sparse_for_the_running_in_is_diagnosed_on_merged_early_stages() {
         "{revs}"
     );
 }
+
+/// Probe defect: a column the format does not know was ignored without a word, so a
+/// misnamed band column (`band_2k_4k_hz`) vanished. Each life's ignored columns are in the
+/// JSON (`train_span` / `holdout_spans[].ignored_columns`) and in a finding.
+#[test]
+fn ignored_columns_are_reported() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = rig_pair(tmp.path());
+    let text = std::fs::read_to_string(&b).unwrap();
+    let with: String = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match i {
+            0 => format!("{l},band_2k_4k_hz\n"),
+            _ => format!("{l},0.1\n"),
+        })
+        .collect();
+    std::fs::write(&b, with).unwrap();
+    let o = gap(&a, &b, &tmp.path().join("gap"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        j["holdout_spans"][0]["ignored_columns"],
+        serde_json::json!(["band_2k_4k_hz"])
+    );
+    assert_eq!(j["train_span"]["ignored_columns"], serde_json::json!([]));
+    let f = findings(&j);
+    assert!(
+        f.contains("were ignored: `band_2k_4k_hz`") && f.contains("band_<lo>_<hi>_hz"),
+        "{f}"
+    );
+}
+
+/// Probe defect: `gap --life --real A --real A` was diagnosed, its "held-out" life the
+/// training life. The same table twice, or a copy of it, is refused naming `--real`,
+/// nothing written.
+#[test]
+fn a_life_given_as_training_and_held_out_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, _) = rig_pair(tmp.path());
+    let out = tmp.path().join("same");
+    refused(&gap(&a, &a, &out), &["--real", "are the same file"]);
+    assert!(empty(&out));
+    let copy = tmp.path().join("copy.csv");
+    std::fs::copy(&a, &copy).unwrap();
+    std::fs::copy(a.with_extension("json"), copy.with_extension("json")).unwrap();
+    let out = tmp.path().join("copy");
+    refused(&gap(&a, &copy, &out), &["--real", "identical contents"]);
+    assert!(empty(&out));
+}

@@ -141,6 +141,8 @@ pub struct LifeSpan {
     /// The merged early stage that replaced the fine ones (`start` 0–3 % or `first-tenth`
     /// 0–10 %), if its table is too sparse for them; `None`: every stage resolved.
     pub merged_early: Option<&'static str>,
+    /// Columns of its table the reader ignored (not part of the format), in table order.
+    pub ignored_columns: Vec<String>,
 }
 
 /// The part of a held-out life it is judged on: a life that did not fail (`none`) only on
@@ -425,6 +427,7 @@ fn span(m: &MeasuredLife, r: &LifeReference, t_max: f64, sim: &LifeSim) -> LifeS
         shared_shaft: m.shared_shaft,
         unit: m.unit.clone(),
         merged_early: r.merged,
+        ignored_columns: m.ignored_columns.clone(),
     }
 }
 

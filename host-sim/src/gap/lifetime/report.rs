@@ -192,6 +192,19 @@ fn span_findings(g: &LifeGap) -> Vec<String> {
             ));
         }
     }
+    for sp in std::iter::once(t).chain(&g.holdout_spans) {
+        if !sp.ignored_columns.is_empty() {
+            f.push(format!(
+                "{}: columns not part of the feature-table format were ignored: {} (a band level must be named `band_<lo>_<hi>_hz` with lo < hi in Hz; docs/feature-tables.md)",
+                sp.life,
+                sp.ignored_columns
+                    .iter()
+                    .map(|c| format!("`{c}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+    }
     let mut units: Vec<&str> = std::iter::once(t)
         .chain(&g.holdout_spans)
         .map(|s| s.unit.as_str())
