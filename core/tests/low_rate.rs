@@ -47,10 +47,7 @@ fn record(fs: f64, seconds: f64) -> (Vec<f64>, u32) {
     model.fill(&mut st, &mut settle);
     let mut out = vec![Sample::default(); (seconds * fs) as usize];
     model.fill(&mut st, &mut out);
-    (
-        out.iter().map(|s| s.accel as f64).collect(),
-        model.oversample(),
-    )
+    (out.iter().map(|s| s.accel).collect(), model.oversample())
 }
 
 /// Without the `oversample-16` feature (a microcontroller's build, at most 8 steps per

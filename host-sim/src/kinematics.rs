@@ -35,9 +35,10 @@ pub fn of_config(cfg: &ModelConfig, rpm: f64) -> Result<FaultFrequencies, String
         }) => {
             let mut at = cfg.clone();
             at.oversample = None;
-            at.output_rate = (min_internal_rate_hz / f64::from(wearsim_core::model::MAX_OVERSAMPLE))
-                .ceil()
-                .max(at.output_rate as f64 + 1.0) as _;
+            at.output_rate = (min_internal_rate_hz
+                / f64::from(wearsim_core::model::MAX_OVERSAMPLE))
+            .ceil()
+            .max(at.output_rate + 1.0);
             Model::new_checked(at)
         }
         other => other,
@@ -67,9 +68,9 @@ mod tests {
         let shaft = 1797.0 / 60.0;
         let r = 3.969 / 15.0;
         for (got, want, what) in [
-            (f.bpfo as f64, 3.5 * (1.0 - r) * shaft, "BPFO"),
-            (f.bpfi as f64, 3.5 * (1.0 + r) * shaft, "BPFI"),
-            (f.ftf as f64, 0.5 * (1.0 - r) * shaft, "FTF"),
+            (f.bpfo, 3.5 * (1.0 - r) * shaft, "BPFO"),
+            (f.bpfi, 3.5 * (1.0 + r) * shaft, "BPFI"),
+            (f.ftf, 0.5 * (1.0 - r) * shaft, "FTF"),
         ] {
             assert!((got - want).abs() < 1e-9 * want, "{what}: {got} vs {want}");
         }

@@ -1,16 +1,16 @@
 //! The sidecar of a feature table (`docs/feature-tables.md`, "`NAME.json`"): reading it,
 //! refusing unknown keys at every level ([`SIDECAR_KEYS`]) and values of the wrong JSON
-//! type naming their dotted key, and the range checks of every field ([`check_sidecar`]).
+//! type naming their dotted key, and the range checks of every field (`check_sidecar`).
 //! Split from [`super::feature_table`], which re-exports [`read_sidecar`].
 
 use std::path::Path;
 
-use super::feature_table::{
+use super::feature_format::{
     sidecar_err, FeatureSidecar, FeatureTableError, FAILURE_MODES, FORMAT, FORMAT_VERSION, UNITS,
 };
 /// The keys of each object of a sidecar: the top level (`""`), `bearing` and
 /// `bearing.geometry`. Any other key, at any level, is refused naming its dotted path
-/// ([`unknown_key`]): a misspelt optional key (`presett`, `geomtry`) would otherwise be
+/// (`unknown_key`): a misspelt optional key (`presett`, `geomtry`) would otherwise be
 /// silently absent.
 pub const SIDECAR_KEYS: [(&str, &[&str]); 3] = [
     (

@@ -14,6 +14,7 @@
 pub mod csv;
 pub mod csv_shape;
 pub mod error;
+pub mod feature_format;
 pub mod feature_sidecar;
 pub mod feature_table;
 pub mod feature_table_write;
