@@ -59,7 +59,12 @@ pub fn parse_arg(spec: &str) -> Result<EffectSection, String> {
                 v.trim()
             )
         })?;
-        params.insert(k.trim().to_string(), value);
+        if params.insert(k.trim().to_string(), value).is_some() {
+            return Err(format!(
+                "effect `{name}`: parameter `{}` is given twice (in --effect {spec}); give each parameter once",
+                k.trim()
+            ));
+        }
     }
     Ok(EffectSection {
         name: name.to_string(),
@@ -196,5 +201,14 @@ mod tests {
         );
         // Nothing of a refused command line reaches the scenario.
         assert_eq!(f.effect[0].params.get("fraction"), Some(&0.05));
+    }
+
+    /// A parameter given twice in one `--effect` is named (the last value was kept,
+    /// silently).
+    #[test]
+    fn a_parameter_given_twice_is_refused() {
+        let e = super::parse_arg("sensor:noise=1,noise=2").unwrap_err();
+        assert!(e.contains("parameter `noise` is given twice"), "{e}");
+        assert!(super::parse_arg("sensor:noise=1,hum=0.1").is_ok());
     }
 }

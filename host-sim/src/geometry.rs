@@ -212,6 +212,9 @@ impl GeometrySpec {
     /// Parse `elements=N,ball=D,pitch=P[,angle=DEG]` (mm, degrees; angle defaults to 0).
     pub fn parse(s: &str) -> Result<Self, String> {
         let (mut n, mut b, mut p, mut a) = (None, None, None, 0.0);
+        // Keys given so far (aliases as their canonical name): a repeat is refused, as
+        // silently keeping the last of two values hides a typo.
+        let mut seen: Vec<&str> = Vec::new();
         for part in s.split(',').map(str::trim).filter(|x| !x.is_empty()) {
             let (k, v) = part.split_once('=').ok_or_else(|| {
                 format!("bearing-geometry: {part:?} is not KEY=VALUE (expected elements=N,ball=MM,pitch=MM,angle=DEG)")
@@ -220,21 +223,36 @@ impl GeometrySpec {
                 .trim()
                 .parse()
                 .map_err(|_| format!("bearing-geometry.{}: {v:?} is not a number", k.trim()))?;
-            match k.trim() {
-                "elements" | "n" => {
-                    if num.fract() != 0.0 || !(0.0..=1e6).contains(&num) {
-                        return Err(format!("bearing-geometry.elements = {num} is not a whole number of rolling elements (allowed 3..={MAX_SPEC_ELEMENTS})"));
-                    }
-                    n = Some(num as u32)
-                }
-                "ball" | "ball_mm" => b = Some(num),
-                "pitch" | "pitch_mm" => p = Some(num),
-                "angle" | "angle_deg" => a = num,
+            let key = match k.trim() {
+                "elements" | "n" => "elements",
+                "ball" | "ball_mm" => "ball",
+                "pitch" | "pitch_mm" => "pitch",
+                "angle" | "angle_deg" => "angle",
                 other => {
                     return Err(format!(
                         "bearing-geometry: unknown key {other:?} (allowed: elements, ball [mm], pitch [mm], angle [deg])"
                     ))
                 }
+            };
+            if seen.contains(&key) {
+                return Err(format!(
+                    "bearing-geometry.{key} is given twice; give each of elements, ball, pitch, angle once"
+                ));
+            }
+            seen.push(key);
+            match key {
+                "elements" => {
+                    if !(0.0..=1e6).contains(&num) {
+                        return Err(format!("bearing-geometry.elements = {num} is out of range: allowed 3..={MAX_SPEC_ELEMENTS} rolling elements"));
+                    }
+                    if num.fract() != 0.0 {
+                        return Err(format!("bearing-geometry.elements = {num} is not a whole number of rolling elements (allowed 3..={MAX_SPEC_ELEMENTS})"));
+                    }
+                    n = Some(num as u32)
+                }
+                "ball" => b = Some(num),
+                "pitch" => p = Some(num),
+                _ => a = num,
             }
         }
         let missing = |k: &str| {
@@ -400,16 +418,33 @@ pub fn choose(
         }
         return Ok(catalogue(b).map(|e| (b.to_string(), "argument", e.geometry)));
     }
-    if let Some(v) = rec
-        .meta
-        .get("sidecar")
-        .and_then(|s| s.get("bearing_geometry"))
-    {
-        return Ok(Some((
-            "custom".into(),
-            "sidecar",
-            GeometrySpec::from_json(v)?,
-        )));
+    let sidecar = rec.meta.get("sidecar");
+    if let Some(v) = sidecar.and_then(|s| s.get("bearing_geometry")) {
+        let g = GeometrySpec::from_json(v)?;
+        // A sidecar naming a bearing too must name the same one: which of two was meant
+        // cannot be guessed (the geometry was taken, silently).
+        if let Some(name) = sidecar
+            .and_then(|s| s.get("bearing"))
+            .and_then(serde_json::Value::as_str)
+        {
+            let named = match (catalogue(name), wearsim_core::presets::by_name(name)) {
+                (Some(e), _) => Some(e.geometry),
+                (None, Some(p)) => Some(GeometrySpec {
+                    elements: u32::from(p.bearing.elements),
+                    ball_mm: p.bearing.element_diameter * 1e3,
+                    pitch_mm: p.bearing.pitch_diameter * 1e3,
+                    angle_deg: p.bearing.contact_angle.to_degrees(),
+                }),
+                (None, None) => None,
+            };
+            if let Some(n) = named.filter(|n| !n.same_as(&g)) {
+                return Err(format!(
+                    "sidecar: `bearing` = \"{name}\" ({} elements, ball {} mm, pitch {} mm, angle {}°) and `bearing_geometry` ({} elements, ball {} mm, pitch {} mm, angle {}°) are different bearings; give one of them",
+                    n.elements, n.ball_mm, n.pitch_mm, n.angle_deg, g.elements, g.ball_mm, g.pitch_mm, g.angle_deg
+                ));
+            }
+        }
+        return Ok(Some(("custom".into(), "sidecar", g)));
     }
     Ok(rec
         .bearing
@@ -474,6 +509,15 @@ mod tests {
                 "30 balls of 8 mm do not fit on a pitch circle of 39 mm (at most 15 fit)",
             ),
             ("elements=9,ball=8,pitch=11", "more than 1.5 × ball = 12 mm"),
+            // A repeat (also through an alias) is named, not the last value kept.
+            (
+                "elements=9,ball=7.94,pitch=39,ball_mm=8",
+                "bearing-geometry.ball is given twice",
+            ),
+            (
+                "elements=1e20,ball=7.94,pitch=39",
+                "bearing-geometry.elements = 100000000000000000000 is out of range: allowed 3..=32",
+            ),
         ] {
             let e = GeometrySpec::parse(bad).unwrap_err();
             assert!(e.contains(field), "{bad}: {e}");

@@ -51,13 +51,13 @@ pub fn of_config(cfg: &ModelConfig, rpm: f64) -> Result<FaultFrequencies, String
 mod tests {
     use super::*;
 
-    /// A small bearing (7 balls of 3.969 mm on a 15 mm pitch, a 608-size motor bearing)
-    /// whose structure, scaled from a preset, needs an internal rate far above the preset's
-    /// 12 kHz × 16: its frequencies are still given, and they are the closed forms
+    /// A miniature bearing (7 balls of 1.588 mm on a 6.5 mm pitch, a 623-size bearing)
+    /// whose structure, scaled from a preset, needs an internal rate (≈ 300 kHz) above the
+    /// preset's 12 kHz × 16: its frequencies are still given, and they are the closed forms
     /// (thesis eq. 17–19: BPFO = N/2·(1 − d/P)·f, BPFI = N/2·(1 + d/P)·f, FTF = ½(1 − d/P)·f).
     #[test]
     fn a_small_bearings_frequencies_do_not_depend_on_a_simulation_step() {
-        let g = crate::geometry::GeometrySpec::parse("elements=7,ball=3.969,pitch=15,angle=0")
+        let g = crate::geometry::GeometrySpec::parse("elements=7,ball=1.588,pitch=6.5,angle=0")
             .expect("geometry");
         let m = g.model().expect("scaled model").model;
         assert!(
@@ -66,7 +66,7 @@ mod tests {
         );
         let f = of_config(&m, 1797.0).expect("frequencies");
         let shaft = 1797.0 / 60.0;
-        let r = 3.969 / 15.0;
+        let r = 1.588 / 6.5;
         for (got, want, what) in [
             (f.bpfo, 3.5 * (1.0 - r) * shaft, "BPFO"),
             (f.bpfi, 3.5 * (1.0 + r) * shaft, "BPFI"),

@@ -95,6 +95,14 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
         }
         return Ok(Some(toml::Value::Array(a)));
     }
+    // numpy arrays and scalars as the Python lists and numbers they hold (an array has an
+    // `__index__` that fails, so it was refused as "out of the 64-bit integer range").
+    if obj.hasattr("ndim")? && obj.hasattr("tolist")? {
+        let plain = obj.call_method0("tolist")?;
+        if !plain.hasattr("ndim")? {
+            return to_toml(&plain, field);
+        }
+    }
     // Python and numpy integers (anything with `__index__`), then anything with `__float__`.
     if !obj.is_instance_of::<PyFloat>() && obj.hasattr("__index__")? {
         return match obj.extract::<i64>() {
@@ -203,6 +211,13 @@ fn analyze(
     rpm: Option<f64>,
     geometry: Option<String>,
 ) -> PyResult<String> {
+    use wearsim_host::io::record::{MAX_FS, MIN_FS};
+    // Named here: the reader's check would name the temporary file, shown as `signal`.
+    if !(fs.is_finite() && (MIN_FS..=MAX_FS).contains(&fs)) {
+        return Err(cfg_err(format!(
+            "fs = {fs} Hz is out of range: allowed {MIN_FS} Hz ..= {MAX_FS} Hz"
+        )));
+    }
     let x: Vec<f64> = signal.as_array().iter().copied().collect();
     py.detach(move || {
         let dir = tempfile::tempdir().map_err(|e| PyRuntimeError::new_err(e.to_string()))?;

@@ -100,6 +100,9 @@ def test_analyze_accepts_any_real_one_channel_layout(signal):
         ({"rpm": "fast"}, "rpm"),
         ({"bearing": 5}, "bearing"),
         ({"bearing": {"elements": 9}}, "bearing"),
+        # Was named `signal: absurd sample rate`, the temporary file's error.
+        ({"fs": 0.0}, "fs = 0"),
+        ({"fs": float("inf")}, "fs = inf"),
     ],
 )
 def test_analyze_names_an_argument_of_the_wrong_type(signal, kwargs, field):
@@ -243,3 +246,25 @@ def test_a_tiny_or_huge_value_is_named_in_exponent_form():
     with pytest.raises(wearsim.ConfigError, match="duration") as e:
         wearsim.simulate("cwru-6205-de", duration=1e-300)
     assert "1e-300" in str(e.value) and len(str(e.value)) < 200, str(e.value)
+
+
+def test_analyze_takes_a_small_bearing():
+    # 7 balls of 1.588 mm on a 6.5 mm pitch (a miniature 623) was refused with "fs:
+    # internal step too large", the scaled structure's simulation limit: an analysis needs
+    # only the kinematics (BPFO = N/2 (1 - d/P) f).
+    x, meta = wearsim.simulate("cwru-6205-de", duration=1.0)
+    g = {"elements": 7, "ball": 1.588, "pitch": 6.5, "angle": 0.0}
+    r = wearsim.analyze(x, meta["fs"], bearing=g, rpm=1797)
+    want = 3.5 * (1 - 1.588 / 6.5) * 1797 / 60
+    assert abs(r["kinematics"]["bpfo"] - want) < 1e-9 * want
+
+
+def test_numpy_values_in_a_configuration_are_their_numbers():
+    # A numpy array in a dict (a speed table, from np.linspace) was refused as "[0.5] is out
+    # of the 64-bit integer range"; numpy scalars are their Python numbers.
+    table = np.array([[0.0, 25.0], [0.5, 30.0]])
+    x, meta = wearsim.simulate("cwru-6205-de", duration=0.05, speed={"table": table})
+    y, _ = wearsim.simulate("cwru-6205-de", duration=0.05, speed={"table": table.tolist()})
+    assert np.array_equal(x, y)
+    z, _ = wearsim.simulate("cwru-6205-de", duration=np.float64(0.05), seed=np.int64(3))
+    assert z.shape == x.shape

@@ -92,6 +92,38 @@ fn a_sidecar_bearing_geometry_is_not_called_unread() {
     assert!(!err.contains("not read"), "{err}");
 }
 
+/// A sidecar naming a bearing and giving a geometry of another was analysed with the
+/// geometry, silently; now refused naming both (the same bearing twice is accepted).
+#[test]
+fn a_sidecar_naming_two_different_bearings_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let body: String = noise(25_600).iter().map(|v| format!("{v}\n")).collect();
+    let p = dir.path().join("run2.csv");
+    std::fs::write(&p, format!("accel\n{body}")).expect("write");
+    let side = |g: &str| {
+        std::fs::write(
+            dir.path().join("run2.json"),
+            format!(
+                r#"{{"fs": 25600, "rpm": 1797, "units": "g", "bearing": "cwru-6205-de", "bearing_geometry": "{g}"}}"#
+            ),
+        )
+        .expect("sidecar");
+    };
+    side("elements=8,ball=7.92,pitch=34.55,angle=0");
+    let o = wearsim(&["analyze", s(&p), "--json"]);
+    refused(
+        &o,
+        &[
+            "`bearing` = \"cwru-6205-de\"",
+            "`bearing_geometry`",
+            "different bearings",
+        ],
+    );
+    side("elements=9,ball=7.94,pitch=39.04,angle=0");
+    let v = json_ok(&wearsim(&["analyze", s(&p), "--json"]));
+    assert_eq!(v["bearing_source"], "sidecar", "{v}");
+}
+
 /// A MAT file without a usable rate was told to "write a sidecar with `"fs": HZ`", which a
 /// MAT file's sidecar is not read for (one sitting beside it gave the same error), and an
 /// MFPT struct whose `sr` was a char array or a vector was said to store "none". The
