@@ -92,7 +92,10 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     // A one-column file written with decimal commas (`-0,125`): its rows would split on the
     // comma into an integer part and a fraction. Read them as one column of numbers when
     // the rows say so, refuse when they cannot tell ([`one_column_commas`]).
+    // (A `;` anywhere, even on a line not decoded here, rules it out: `;` is then the
+    // separator, and one column uses `;` as its no-separator.)
     let one_column_dc = !spaced
+        && !has(b';')
         && {
             let complete = if head.len() == 4096 {
                 &head[..head.iter().rposition(|&b| b == b'\n').unwrap_or(0)]

@@ -249,7 +249,9 @@ fn parse_fmt(path: &Path, b: &[u8]) -> Result<WavFormat, IoError> {
     let container_bits = if float {
         container_bits
     } else {
-        container_bits.div_ceil(8) * 8
+        // Saturating: a `bits_per_sample` near 65535 (fuzzed) overflowed; any such value
+        // is refused as unsupported just below.
+        container_bits.div_ceil(8).saturating_mul(8)
     };
     let supported: &[u16] = if float { &[32, 64] } else { &[8, 16, 24, 32] };
     if !supported.contains(&container_bits) {
@@ -473,5 +475,16 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("`fmt ` chunk: 14 bytes"), "{e}");
+        // The fuzzer's find: a PCM `bits_per_sample` of 65535 overflowed the rounding to a
+        // whole container (a panic); it is an unsupported size.
+        let mut huge = fmt(1, 8000, 16, None);
+        huge[14..16].copy_from_slice(&u16::MAX.to_le_bytes());
+        let e = read(&riff(&[
+            chunk(b"fmt ", &huge, true),
+            chunk(b"data", &pcm16(&[1, 2, 3]), true),
+        ]))
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("bits_per_sample 65535"), "{e}");
     }
 }
