@@ -83,15 +83,19 @@ pub fn accepted_units() -> String {
         .join(", ")
 }
 
+/// `name` without whitespace, in lower case: how a header is compared.
+fn compact(name: &str) -> String {
+    name.chars()
+        .filter(|c| !c.is_whitespace())
+        .flat_map(char::to_lowercase)
+        .collect()
+}
+
 /// What header `name` says of its column: `None` for a data column, `Some(Ok(unit))` for
 /// a time column in a unit read here, `Some(Err(unit))` for a `time` column in another unit
 /// (see the module doc).
 pub fn time_unit(name: &str) -> Option<Result<TimeUnit, String>> {
-    let compact: String = name
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .flat_map(char::to_lowercase)
-        .collect();
+    let compact = compact(name);
     let known = |u: &str| UNITS.iter().find(|(n, _)| n.contains(&u)).map(|(_, t)| *t);
     for base in ["time", "t", "zeit"] {
         let Some(rest) = compact.strip_prefix(base) else {
@@ -121,11 +125,7 @@ pub fn time_unit(name: &str) -> Option<Result<TimeUnit, String>> {
 /// spaces and case ignored. `None` when the header states no unit, `Some(Ok)` for a time
 /// unit read here, `Some(Err(text))` for any other (`Position [mm]`, `acc_g`).
 pub fn stated_unit(name: &str) -> Option<Result<TimeUnit, String>> {
-    let compact: String = name
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .flat_map(char::to_lowercase)
-        .collect();
+    let compact = compact(name);
     let bracketed = [('(', ')'), ('[', ']')].iter().find_map(|&(o, c)| {
         let inner = compact.strip_suffix(c)?;
         inner
