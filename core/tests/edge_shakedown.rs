@@ -95,3 +95,36 @@ fn a_dent_shoulder_keeps_the_slower_overrolling_law() {
     let kept = dent.topography.unwrap().asperity_height / h0;
     assert!(kept > 0.9, "dent shoulder kept {kept}");
 }
+
+/// The block over which a window's pass loads hold (`Life::representative_revs`): a
+/// sixth of the shakedown passes while a breakout edge is fresh, unbounded once it has
+/// shaken down (after N_sd passes its excess is under a quarter of its height) and for a
+/// dent shoulder, which the slower law of eq. 24 flattens.
+#[test]
+fn a_fresh_edge_bounds_the_block_until_it_has_shaken_down() {
+    let (life, loads) = setup();
+    let m = life.config().material;
+    let n_p = life.passes_per_rev();
+    let h0 = topography::LARGE_DEFECT.asperity_height;
+    let floor = h0 * SPALL_EDGE_RESIDUAL;
+    let mut st = with_edge(&life, Stage::DefectSmoothing, h0, floor);
+    let fresh = life.representative_revs(&st);
+    let want = m.edge_shakedown_passes / (6.0 * n_p);
+    assert!(
+        (fresh / want - 1.0).abs() < 1e-6,
+        "fresh edge: {fresh} revolutions, want N_sd/(6 n_p) = {want}"
+    );
+    run(&life, &mut st, 0.5 * m.edge_shakedown_passes / n_p, &loads);
+    assert_eq!(
+        life.representative_revs(&st),
+        fresh,
+        "half-way through its shakedown the edge is still fresh"
+    );
+    run(&life, &mut st, 0.6 * m.edge_shakedown_passes / n_p, &loads);
+    assert!(
+        life.representative_revs(&st).is_infinite(),
+        "after 1.1 N_sd passes the edge has shaken down"
+    );
+    let dent = with_edge(&life, Stage::Dent, h0, 0.0);
+    assert!(life.representative_revs(&dent).is_infinite());
+}

@@ -185,6 +185,14 @@ pub const INITIATION_WEIBULL_SLOPE: Real = WEIBULL_SLOPE;
 /// smoothed large defect (4 µm) over the large defect (30 µm).
 pub const SPALL_EDGE_RESIDUAL: Real =
     topography::SMOOTHED_LARGE_DEFECT.asperity_height / topography::LARGE_DEFECT.asperity_height;
+/// Share of a breakout edge's height (–) above which its excess over the residual counts
+/// as fresh ([`Life::representative_revs`]): a quarter, reached about
+/// `edge_shakedown_passes` after the breakout (the excess falls as `exp(−3 n/N_sd)`).
+pub const FRESH_EDGE: Real = 0.25;
+/// Windows (–) over a fresh edge's `edge_shakedown_passes` ([`Life::representative_revs`]):
+/// each block then holds loads that the shakedown changes by at most `1 − e^(−1/2)` of
+/// the edge's excess.
+pub const SHAKEDOWN_BLOCKS: Real = 6.0;
 /// Smallest initial crack depth (m): a typical inclusion/micro-crack in bearing steel.
 pub const MIN_FLAW: Real = 5e-6;
 
@@ -737,6 +745,25 @@ impl Life {
     /// Passes over the site per shaft revolution (–): BPFO, BPFI or 2·BSF over `f_r`.
     pub fn passes_per_rev(&self) -> Real {
         self.passes_per_rev
+    }
+
+    /// The longest block (revolutions) over which the pass loads measured for `st` stay
+    /// representative of the wear: unbounded, except while a fresh breakout edge shakes
+    /// down (its excess over the residual more than [`FRESH_EDGE`] of its height), when
+    /// it is `edge_shakedown_passes / (SHAKEDOWN_BLOCKS · passes per revolution)`. A fresh
+    /// edge's pass loads fall within those passes, so a driver that held them for a whole
+    /// snapshot interval grew the spall as if the edge never shook down and shortened
+    /// every life after its first spall, by more the longer the interval.
+    pub fn representative_revs(&self, st: &LifeState) -> Real {
+        match st.topography {
+            Some(t)
+                if st.stage.has_breakout_edge()
+                    && t.asperity_height - st.asperity_floor > FRESH_EDGE * t.asperity_height =>
+            {
+                self.cfg.material.edge_shakedown_passes / (SHAKEDOWN_BLOCKS * self.passes_per_rev)
+            }
+            _ => Real::INFINITY,
+        }
     }
 
     /// The Hertz contact of the site.

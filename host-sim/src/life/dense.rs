@@ -334,9 +334,8 @@ impl LifeRun {
             if st.stage == Stage::Failure {
                 break;
             }
-            let revs = self
-                .advance_checked(&mut st, &loads, self.spec.snapshot_every)?
-                .revs;
+            let block = self.block_revs(&st, self.spec.snapshot_every);
+            let revs = self.advance_checked(&mut st, &loads, block)?.revs;
             let exact = revs / self.shaft_hz * fs + carry;
             let n_block = exact.floor() as u64;
             let next_carry = exact - n_block as f64;

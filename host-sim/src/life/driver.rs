@@ -105,7 +105,8 @@ impl LifeRun {
             if st.stage == Stage::Failure {
                 break;
             }
-            let revs = block(&st);
+            let scheduled_revs = block(&st);
+            let revs = self.block_revs(&st, scheduled_revs);
             let b = match self.advance_checked(&mut st, &loads, revs) {
                 Err(LifeError::CapReached { .. }) if at_cap == AtCap::Suspend => {
                     return Ok(Driven {
@@ -117,7 +118,9 @@ impl LifeRun {
                 b => b?,
             };
             entered = b.entered;
-            scheduled = !b.cut;
+            // A block ended early for a fresh edge is followed by a simulation-only
+            // window, like one at a transition.
+            scheduled = !b.cut && revs >= scheduled_revs;
             if k > max_windows {
                 return Err(LifeError::WindowCap {
                     windows: max_windows,
@@ -152,6 +155,15 @@ impl LifeRun {
             2.. => self.windows_ahead::<2>(model, k),
             _ => None,
         }
+    }
+
+    /// The revolutions of the next block for a schedule asking `scheduled`: that, ended
+    /// early while a fresh breakout edge shakes down, whose pass loads hold for a fraction
+    /// of its shakedown only ([`wearsim_core::wear::Life::representative_revs`]); the next
+    /// window re-measures them. Snapshot and dense mode both take their blocks from here,
+    /// so they keep one wear history.
+    pub fn block_revs(&self, st: &LifeState, scheduled: f64) -> f64 {
+        scheduled.min(self.life.representative_revs(st))
     }
 
     /// The driver's step: advances the wear by up to `revs` revolutions (less when a

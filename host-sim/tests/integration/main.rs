@@ -30,6 +30,7 @@ mod io_fuzz;
 mod life;
 mod life_ball;
 mod life_cap;
+mod life_interval;
 mod life_sites;
 mod out_dirs;
 mod probe2;

@@ -195,8 +195,10 @@ fn simulated_samples_match_the_recorded_hashes() {
 fn life_matches_the_recorded_hashes() {
     let mut failures = Vec::new();
     for (seed, want_features, want_events) in [
-        ("3", 0x80ab5d0b511713a3u64, 0x6b3c56ac99ead816),
-        ("11", 0x1495683f7b89dc5d, 0x70886fd3825220fe),
+        // Stop 52: a fresh breakout edge's loads are re-measured within its shakedown
+        // (`Life::representative_revs`), which changes every window after the first spall.
+        ("3", 0x800567bf9ea4ba40u64, 0x8de1094bc7074ced),
+        ("11", 0xf67cdfea57a92126, 0xa4a754bc631a9f20),
     ] {
         let dir = tempfile::tempdir().unwrap();
         wearsim(&["life", "--seed", seed, "--json"], dir.path());
