@@ -122,8 +122,8 @@ fn doc() -> String {
 const DOC_FLOOR: (f64, &str) = (1.34e7, "at least about 1.34·10⁷ revolutions");
 const DOC_SHAPE_FLOOR: (f64, &str) = (3.59e4, "at least about 3.59·10⁴ revolutions");
 const DOC_FACTOR: (f64, &str) = (159.9, "life factor 159.9");
-const DOC_PROPAGATION: (f64, &str) = (1.797e7, "propagation limit 1.797·10⁷ passes");
-const DOC_SHORT_PROPAGATION: (f64, &str) = (1.95e4, "propagation limit 1.95·10⁴ passes");
+const DOC_PROPAGATION: (f64, &str) = (1.626e7, "propagation limit 1.626·10⁷ passes");
+const DOC_SHORT_PROPAGATION: (f64, &str) = (4.96e4, "propagation limit 4.96·10⁴ passes");
 
 /// `j[key]` as a number, within `rel` of `want.0`, and `want.1` in the doc.
 fn doc_figure(j: &serde_json::Value, key: &str, want: (f64, &str), rel: f64) {
@@ -383,19 +383,22 @@ fn an_accelerated_life_calibrates_its_propagation_limit_on_its_onset() {
     );
 }
 
-/// An accelerated life whose onset comes late (RMS rising from 0.9 of the life: onset
-/// 0.92) asks for a spall growth shorter than the simulated crack growth after the first
+/// An accelerated life whose onset comes late (RMS rising from 0.96 of the life: onset
+/// 0.967) asks for a spall growth shorter than the simulated crack growth after the first
 /// spall, which neither scale shortens: the length is matched, the propagation limit falls
-/// towards its least, and a finding says that the onset is not matched and why.
+/// three orders of magnitude below the material's, and a finding says that the onset is
+/// not matched and why. (Until stop 52 an onset at 0.92 was already out of reach — the
+/// limit fell to 1 pass and the onset stayed at 0.78; with a fresh edge's loads
+/// re-measured within its shakedown, 0.92 is reached within 0.012.)
 #[test]
 fn a_late_onset_the_model_cannot_reach_is_reported_not_refused() {
-    let j = accelerated_life((0.9, 4.0));
+    let j = accelerated_life((0.96, 4.0));
     let m = j["measured_onset"].as_f64().unwrap();
-    // 1 + 4((u − 0.9)/0.1)² reaches 1.15 at u = 0.919.
-    assert!(m > 0.919 && m < 0.95, "measured onset {m}");
+    // 1 + 4((u − 0.96)/0.04)² reaches 1.15 at u = 0.9677.
+    assert!(m > 0.96 && m < 0.98, "measured onset {m}");
     let s = j["simulated_onset"].as_f64().unwrap();
-    assert!(m - s > 0.05, "simulated onset {s} against {m}");
-    assert!(j["propagation_passes"].as_f64().unwrap() < 1e3);
+    assert!(m - s > 0.03, "simulated onset {s} against {m}");
+    assert!(j["propagation_passes"].as_f64().unwrap() < 1e5);
     let f = findings(&j);
     assert!(
         f.contains("did not bring the simulated onset") && f.contains("could not be shortened"),
