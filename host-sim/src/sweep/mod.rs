@@ -44,8 +44,9 @@ const INDEX: &str = "index.parquet";
 
 /// Checks that every grid cell resolves to a valid scenario (records `0 .. cells`, with
 /// their drawn effects), and that every effect parameter's distribution stays inside what
-/// each cell accepts at both ends of its range (one parameter at a time, the effect on,
-/// the others as drawn), before anything is written: some bounds depend on the sample
+/// each cell accepts at both ends of its range (one parameter at a time, its effect alone
+/// on with its other parameters as drawn, so that another effect's draw is never blamed
+/// on it), before anything is written: some bounds depend on the sample
 /// rate or the bearing (a transfer-path mode below fs/2.5, a sensor corner below fs/2, a
 /// preload the step resolves), which the spec check alone cannot know, and a draw beyond
 /// one would stop the sweep part-way with its later records never regenerable.
@@ -61,23 +62,29 @@ pub fn validate(spec: &SweepSpec) -> Result<(), SweepError> {
         shard::scenario_of(spec, &bare)?;
         for (j, spec_e) in spec.effect.iter().enumerate() {
             for (name, dist) in &spec_e.params {
+                let mut alone = bare.clone();
+                let Some(fx) = alone.effects.get_mut(j) else {
+                    continue;
+                };
+                fx.on = true;
                 for v in dist.ends() {
-                    let mut r = rec.clone();
-                    let Some(fx) = r.effects.get_mut(j) else {
-                        continue;
-                    };
-                    fx.on = true;
-                    for (n, x) in fx.params.iter_mut() {
+                    let mut r = alone.clone();
+                    for (n, x) in r.effects[j].params.iter_mut() {
                         if n == name {
                             *x = v;
                         }
                     }
-                    shard::scenario_of(spec, &r).map_err(|e| {
-                        SweepError::Input(format!(
-                            "effect[{j}].params.{name} ({}): its distribution reaches {v}, which {e}; narrow the distribution",
-                            spec_e.name
-                        ))
-                    })?;
+                    if let Err(e) = shard::scenario_of(spec, &r) {
+                        // Blamed on this end only when the effect as drawn passes: a
+                        // failing draw of one of its other parameters is that one's end
+                        // to name (or, if none reaches it, the record's own error below).
+                        if shard::scenario_of(spec, &alone).is_ok() {
+                            return Err(SweepError::Input(format!(
+                                "effect[{j}].params.{name} ({}): its distribution reaches {v}, which {e}; narrow the distribution",
+                                spec_e.name
+                            )));
+                        }
+                    }
                 }
             }
         }

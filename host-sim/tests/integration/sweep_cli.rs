@@ -218,6 +218,16 @@ fn bad_specs_exit_2_naming_the_field() {
         ),
         &["effect[1].params.f1 (transfer-path)", "reaches 4850", "4800"],
     );
+    // Each parameter is checked with its effect alone on: a sensor corner above fs/2 is
+    // named as itself, not as the transfer-path mode checked before it (the probe's spec,
+    // and this one, blamed `effect[0].params.f1` for the drawn corner of record 0).
+    bad(
+        &SPEC.replace("seed = 5", "seed = 7").replace(
+            "name = \"sensor\"\nprobability = 0.5\nparams = { noise = { uniform = [0.01, 0.2] } }",
+            "name = \"transfer-path\"\nparams = { f1 = { uniform = [500.0, 4000.0] } }\n[[effect]]\nname = \"sensor\"\nparams = { corner_hz = { uniform = [1000.0, 20000.0] } }",
+        ),
+        &["effect[1].params.corner_hz (sensor)", "reaches 20000"],
+    );
     // The same through a choice's largest value.
     bad(
         &format!(
