@@ -19,9 +19,9 @@ use wearsim_core::model::{ModelConfig, Structure};
 pub struct GeometrySpec {
     /// Number of rolling elements per row (3..=[`MAX_SPEC_ELEMENTS`]).
     pub elements: u32,
-    /// Rolling-element diameter, mm (> 0).
+    /// Rolling-element diameter, mm (0.1 ..= 500, the core's range).
     pub ball_mm: f64,
-    /// Pitch diameter, mm (> ball diameter, ≤ 10 000).
+    /// Pitch diameter, mm (1 ..= 5 000, the core's range, and more than 1.5 × the ball).
     pub pitch_mm: f64,
     /// Contact angle, degrees, 0 to 45.8 (0.8 rad, the core's limit).
     pub angle_deg: f64,

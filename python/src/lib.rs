@@ -234,7 +234,11 @@ fn analyze(
             json: true,
             ..wearsim_host::analyze::AnalyzeArgs::for_file(path)
         };
-        let named = |m: String| m.replace(&tmp, "signal");
+        // A geometry error is about the `bearing` argument, not the signal.
+        let named = |m: String| {
+            m.replace(&format!("{tmp}: bearing-geometry"), "bearing: bearing-geometry")
+                .replace(&tmp, "signal")
+        };
         let (mut a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
             wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(named(m)),
             wearsim_host::analyze::AnalyzeError::Run(m) => PyRuntimeError::new_err(named(m)),

@@ -202,6 +202,12 @@ def test_analyze_takes_any_bearing_as_a_geometry_dict():
         wearsim.analyze(x, meta["fs"], bearing={"balls": 9}, rpm=1797)
     with pytest.raises(wearsim.ConfigError, match="bearing.ball"):
         wearsim.analyze(x, meta["fs"], bearing=dict(g, ball="7.9"), rpm=1797)
+    # A missing key and an impossible value are about `bearing`, not the signal (the
+    # native check's message named the temporary file, shown as "signal: ...").
+    with pytest.raises(wearsim.ConfigError, match="^bearing: .*pitch"):
+        wearsim.analyze(x, meta["fs"], bearing={"elements": 9, "ball": 7.94}, rpm=1797)
+    with pytest.raises(wearsim.ConfigError, match="^bearing: .*elements"):
+        wearsim.analyze(x, meta["fs"], bearing=dict(g, elements=40), rpm=1797)
 
 
 def test_gap_records_and_dataset_shards_of_the_wrong_kind_are_config_errors(tmp_path):

@@ -31,7 +31,7 @@ pub struct FeaturesArgs {
     /// Radial load, N (IMS: 6000 lbf = 26 689 N; required for FEMTO and XJTU-SY).
     #[arg(long)]
     pub load_n: Option<f64>,
-    /// wearsim preset of the bearing (IMS: ims-za2115, dropped by another --bearing-geometry, --rpm or --load-n); refused when it contradicts the geometry or operating point.
+    /// wearsim preset of the bearing, or a catalogue bearing that stands for its geometry (`mfpt-nice`, `paderborn-6203`, `xjtu-ldk-uer204`) (IMS: ims-za2115, dropped by another --bearing-geometry, --rpm or --load-n); refused when it contradicts the geometry or operating point.
     #[arg(long)]
     pub preset: Option<String>,
     /// Bearing geometry `elements=N,ball=D,pitch=P,angle=DEG` (mm, degrees; XJTU-SY: LDK UER204).
@@ -52,9 +52,13 @@ pub struct FeaturesArgs {
 /// bad input (exit 2) and writes nothing.
 pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
     if let Some(p) = &a.preset {
-        if wearsim_core::presets::by_name(p).is_none() {
+        // A model preset, or a catalogue bearing that stands for its geometry (as in a
+        // sidecar's `bearing.preset`).
+        if crate::geometry::named_geometry(p).is_none() {
+            let catalogue: Vec<&str> = crate::geometry::CATALOGUE.iter().map(|e| e.name).collect();
             return Err(CliError::input(format!(
-                "--preset {p}: unknown (see `wearsim presets`)"
+                "--preset {p}: unknown (a model preset, see `wearsim presets`, or a catalogue bearing: {})",
+                catalogue.join(", ")
             )));
         }
     }

@@ -261,10 +261,20 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             time_decimals = time_decimals.zip(decimals(cell)).map(|(a, b)| a.max(b));
         }
     }
-    let names = header.unwrap_or_default();
     if samples.is_empty() {
-        return Err(IoError::truncated(path, "no data rows"));
+        // A line of text alone was read as the header: say so, rather than "truncated".
+        return Err(match &header {
+            Some(h) => IoError::Malformed {
+                path: path.to_path_buf(),
+                detail: format!(
+                    "no data rows: the only text line ({:?}) was read as a header; a CSV holds one sample per row, a number in each column",
+                    h.join(",")
+                ),
+            },
+            None => IoError::truncated(path, "no data rows"),
+        });
     }
+    let names = header.unwrap_or_default();
     let channel = names[col].clone();
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
