@@ -57,6 +57,41 @@ fn push(v: &mut Vec<CellValue>, name: String, group: &'static str, unit: &'stati
     }
 }
 
+/// Half-width of the envelope-spectrum neighbourhood whose median is a fault line's floor,
+/// as a fraction of the fault frequency (±40 %: clear of the neighbouring harmonics).
+pub const FLOOR_HALF_WIDTH: f64 = 0.4;
+
+/// Periods of the fault fundamental a segment must hold for its envelope cells: the bound
+/// `analyze` puts on a whole record ([`crate::resolvable::MIN_PERIODS`], ten), so that the
+/// envelope spectrum's bins are at most a tenth of the fault frequency and the floor of
+/// ±[`FLOOR_HALF_WIDTH`] around a line holds four bins or more beside its ±2-bin main lobe.
+pub const MIN_ENVELOPE_PERIODS: f64 = crate::resolvable::MIN_PERIODS;
+
+/// The fault frequency (Hz) whose harmonics the envelope cells of `spec` follow: BPFI for
+/// the inner race, twice the BSF for a ball, BPFO otherwise.
+pub fn fault_base_hz(spec: &CellSpec) -> f64 {
+    match spec.family {
+        FaultFamily::InnerRace => spec.ff.bpfi,
+        FaultFamily::Ball => 2.0 * spec.ff.bsf,
+        _ => spec.ff.bpfo,
+    }
+}
+
+/// Whether a segment of `n` samples at `fs` Hz resolves a fault line at `base_hz` and its
+/// floor: it holds at least [`MIN_ENVELOPE_PERIODS`] periods of it. The decision depends on
+/// the segment's length only, so a measured part and its simulation (the same length) have
+/// the same cells.
+pub fn envelope_resolved(n: usize, fs: f64, base_hz: f64) -> bool {
+    fs > 0.0 && base_hz > 0.0 && n as f64 / fs * base_hz >= MIN_ENVELOPE_PERIODS
+}
+
+/// Shortest segment (s) whose envelope cells `spec` resolves ([`envelope_resolved`]);
+/// `None` without a positive fault frequency.
+pub fn min_envelope_segment_s(spec: &CellSpec) -> Option<f64> {
+    let base = fault_base_hz(spec);
+    (base > 0.0 && base.is_finite()).then(|| MIN_ENVELOPE_PERIODS / base)
+}
+
 /// The cells of record `x` (same order and names for every record with the same spec).
 pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError> {
     let mut v = vec![];
@@ -151,26 +186,29 @@ pub fn cells(x: &[f64], spec: &CellSpec) -> Result<Vec<CellValue>, AnalysisError
     push(&mut v, "stat:kurtosis".into(), "stat", "", st.kurtosis);
     push(&mut v, "stat:crest".into(), "stat", "", st.crest_factor);
     push(&mut v, "stat:skewness".into(), "stat", "", st.skewness);
-    // Envelope cells of the family's fault frequency.
-    let base = match spec.family {
-        FaultFamily::InnerRace => spec.ff.bpfi,
-        FaultFamily::Ball => 2.0 * spec.ff.bsf,
-        _ => spec.ff.bpfo,
-    };
+    // Envelope cells of the family's fault frequency, when the segment resolves it.
+    let base = fault_base_hz(spec);
+    if !envelope_resolved(x.len(), fs, base) {
+        return Ok(v);
+    }
     let env = analysis::envelope_spectrum(x, fs, None)?;
     let tol = 0.02 * base + env.df;
-    let floor_w = 0.4 * base;
+    let floor_w = FLOOR_HALF_WIDTH * base;
     let mut levels = vec![];
     let mut f1 = base;
     for h in 1..=5 {
-        let (p, pof) = analysis::peak_over_floor_db(&env, h as f64 * base, h as f64 * tol, floor_w)
-            .map(|(p, d)| (Some(p), d))
-            .unwrap_or((None, 0.0));
+        let p = analysis::peak_near(&env, h as f64 * base, h as f64 * tol);
         if h == 1 {
             if let Some(p) = p {
                 f1 = p.freq;
             }
         }
+        // Line over the median of its neighbourhood, both clamped as `db` does: a floor
+        // of zeros (an envelope without noise) gives a bounded level, not 20·log10 of the
+        // smallest positive number.
+        let pof = p.map_or(0.0, |p| {
+            db(p.value) - db(analysis::noise_floor(&env, p.freq, floor_w))
+        });
         levels.push(p.map(|p| db(p.value)).unwrap_or(-240.0));
         push(&mut v, format!("env:h{h}"), "env", "dB", pof);
     }

@@ -107,20 +107,46 @@ fn wander_db(segs: &[Vec<CellValue>]) -> Option<f64> {
     Some(20.0 * mean_std(&v).1.max(0.01).log10())
 }
 
-/// Cell values of each of `SEGMENTS` equal segments of `x`.
+/// `x` with its mean removed (signal units): the part's DC offset, which an accelerometer's
+/// bias (IEPE, MEMS) adds to a measured record and no simulation has.
+pub fn without_mean(x: &[f64]) -> Vec<f64> {
+    let m = crate::analysis::stats::mean(x);
+    x.iter().map(|v| v - m).collect()
+}
+
+/// Cell values of each of `SEGMENTS` equal segments of `x`, after removing the mean of the
+/// whole of `x` (as `analyze` does): a sensor's DC offset changes no cell, measured or
+/// simulated alike.
 pub fn segment_cells(x: &[f64], spec: &CellSpec) -> Result<Vec<Vec<CellValue>>, AnalysisError> {
-    let band_limited;
     let x = match spec.band_hz {
-        Some(top) => {
-            band_limited = crate::analysis::content_band::low_pass(x, spec.fs, top);
-            &band_limited[..]
-        }
-        None => x,
+        Some(top) => crate::analysis::content_band::low_pass(&without_mean(x), spec.fs, top),
+        None => without_mean(x),
     };
     let len = x.len() / SEGMENTS;
     (0..SEGMENTS)
         .map(|i| cells(&x[i * len..(i + 1) * len], spec))
         .collect()
+}
+
+/// Why a part of `samples` samples has no envelope cells, in words with the part length
+/// that would give them (`None` when its segments resolve them): each of its [`SEGMENTS`]
+/// segments must hold [`cells::MIN_ENVELOPE_PERIODS`] periods of the fault fundamental
+/// ([`cells::envelope_resolved`]).
+pub fn envelope_note(samples: usize, spec: &CellSpec) -> Option<String> {
+    let seg = samples / SEGMENTS;
+    let base = cells::fault_base_hz(spec);
+    if cells::envelope_resolved(seg, spec.fs, base) {
+        return None;
+    }
+    let need_s = cells::min_envelope_segment_s(spec)? * SEGMENTS as f64;
+    let seg_s = seg as f64 / spec.fs;
+    Some(format!(
+        "no envelope cells: a segment of a part ({:.3} s = 1/{SEGMENTS} of {:.2} s) holds {:.1} periods of the fault frequency ({base:.2} Hz), and a line and its floor need {} (as `analyze` needs of a record): parts of at least {need_s:.2} s (--seconds) resolve them at this speed",
+        seg_s,
+        samples as f64 / spec.fs,
+        seg_s * base,
+        cells::MIN_ENVELOPE_PERIODS
+    ))
 }
 
 /// The measured side of a gap, computed once: each cell's mean and (floored) spread over
@@ -288,4 +314,88 @@ pub fn gap(sim: &[f64], real: &[f64], spec: &CellSpec) -> Result<GapReport, Anal
     let r = Reference::new(real, spec)?;
     let s = r.sim_means(sim)?;
     Ok(r.report(&s))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::synth::{gaussian_noise, sine};
+    use crate::analysis::FaultFrequencies;
+
+    fn spec(shaft_hz: f64) -> CellSpec {
+        let s = shaft_hz;
+        CellSpec {
+            fs: 12_000.0,
+            ff: FaultFrequencies {
+                shaft_hz: s,
+                ftf: 0.398 * s,
+                bpfo: 3.585 * s,
+                bpfi: 5.415 * s,
+                bsf: 2.357 * s,
+                natural_hz: 3350.0,
+            },
+            family: crate::analysis::FaultFamily::OuterRace,
+            band_hz: None,
+        }
+    }
+
+    /// Noise with a 30 Hz line and bursts at the BPFO (a crest and a kurtosis above
+    /// Gaussian), 2 s at 12 kHz.
+    fn record() -> Vec<f64> {
+        let n = 24_000;
+        let period = (12_000.0 / (3.585 * 29.95)) as usize;
+        gaussian_noise(n, 1.0, 5)
+            .iter()
+            .zip(sine(n, 12_000.0, 29.95, 0.5, 0.2))
+            .enumerate()
+            .map(|(i, (a, b))| a + b + if i % period < 12 { 6.0 } else { 0.0 })
+            .collect()
+    }
+
+    #[test]
+    fn a_dc_offset_changes_no_cell() {
+        for band in [None, Some(4000.0)] {
+            let sp = CellSpec {
+                band_hz: band,
+                ..spec(29.95)
+            };
+            let x = record();
+            let offset: Vec<f64> = x.iter().map(|v| v + 4.9).collect();
+            let a = segment_cells(&x, &sp).unwrap();
+            let b = segment_cells(&offset, &sp).unwrap();
+            for (sa, sb) in a.iter().zip(&b) {
+                assert_eq!(sa.len(), sb.len());
+                for (ca, cb) in sa.iter().zip(sb) {
+                    assert_eq!(ca.name, cb.name);
+                    assert!(
+                        (ca.value - cb.value).abs() < 1e-6 * (1.0 + ca.value.abs()),
+                        "{band:?} {}: {} vs {}",
+                        ca.name,
+                        ca.value,
+                        cb.value
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn envelope_cells_need_ten_fault_periods_per_segment() {
+        let x = record();
+        // 1797 rpm: 0.25 s segments hold 27 BPFO periods; 300 rpm: 4.5.
+        let fast = segment_cells(&x, &spec(29.95)).unwrap();
+        assert!(fast[0].iter().any(|c| c.name == "env:h1"));
+        assert_eq!(envelope_note(x.len(), &spec(29.95)), None);
+        let slow = segment_cells(&x, &spec(5.0)).unwrap();
+        for seg in &slow {
+            assert!(seg.iter().all(|c| c.group != "env"), "{seg:?}");
+            assert!(seg.iter().all(|c| c.value.abs() < 300.0), "{seg:?}");
+        }
+        let note = envelope_note(x.len(), &spec(5.0)).unwrap();
+        assert!(note.contains("4.46 s"), "{note}");
+        // Exactly ten periods resolve, a sample fewer does not.
+        let n = (10.0 / 17.925 * 12_000.0_f64).ceil() as usize;
+        assert!(cells::envelope_resolved(n, 12_000.0, 17.925));
+        assert!(!cells::envelope_resolved(n - 1, 12_000.0, 17.925));
+    }
 }

@@ -152,11 +152,24 @@ pub struct Fitted {
     pub at_bound: bool,
 }
 
+/// A nuisance left at its described value because the records cannot inform it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NotInformed {
+    /// Nuisance name ([`NAMES`]).
+    pub name: &'static str,
+    /// Why, in words.
+    pub reason: String,
+}
+
 /// The calibration of the rig on the training part.
 #[derive(Debug, Clone, Serialize)]
 pub struct Calibration {
     /// Fitted factors (empty when no nuisance is fitted).
     pub fitted: Vec<Fitted>,
+    /// Nuisances left at their described value (factor 1) because no cell of the training
+    /// records resolves them ([`structure_uninformed`]): not fitted, so not reported at a
+    /// bound.
+    pub not_informed: Vec<NotInformed>,
     /// Training total gap of the nominal rig.
     pub train_before: f64,
     /// Training total gap of the calibrated rig.
@@ -233,6 +246,38 @@ fn totals(
     .collect()
 }
 
+/// Why the training records `train` cannot inform the structure's resonance and damping
+/// (`None` when they can): even at the lowest resonance its tolerance `tol` allows, the
+/// resonance lies above the top of every record's cells (the Nyquist frequency, or the
+/// record's content edge), so no zone or shape cell holds the resonance peak whose
+/// frequency and width these two set; fitted, they would only follow the noise in the
+/// skirt below it and end at a bound (issue 13: "a requested effect that the record cannot
+/// inform is reported as such, not fitted").
+pub fn structure_uninformed(train: &[Matched], tol: &Tolerances) -> Option<String> {
+    let lowest = 1.0 - tol.resonance;
+    let top = |m: &Matched| {
+        let s = m.spec();
+        s.band_hz.map_or(0.5 * s.fs, |b| b.min(0.5 * s.fs))
+    };
+    let out = |m: &Matched| m.spec().ff.natural_hz * lowest >= top(m);
+    if train.is_empty() || !train.iter().all(out) {
+        return None;
+    }
+    let m = train.first()?;
+    Some(format!(
+        "the structure's resonance ({:.0} Hz, {:.0} Hz at the low end of its ±{:.0} % tolerance) lies above the top of the record's cells ({:.0} Hz: {}): no cell resolves it, so it and its damping are left at their described values, not calibrated",
+        m.spec().ff.natural_hz,
+        m.spec().ff.natural_hz * lowest,
+        100.0 * tol.resonance,
+        top(m),
+        if m.spec().band_hz.is_some_and(|b| b < 0.5 * m.spec().fs) {
+            "the record's content edge"
+        } else {
+            "half the sample rate"
+        }
+    ))
+}
+
 /// Fits the rig's nuisances within `tol` on the training records `train` (with the
 /// baseline's effects `fx`): a pattern search from the nominal rig, each round trying ±step
 /// on every axis together and moving to the best improvement, halving the step when none
@@ -250,10 +295,28 @@ pub fn calibrate(train: &[Matched], fx: &Effects, tol: &Tolerances, ev: &Evaluat
         .iter()
         .all(|m| matches!(m.base.speed, SpeedProfile::Constant(_)));
     let ranges = tol.ranges();
+    let structure = structure_uninformed(train, tol);
+    let not_informed: Vec<NotInformed> = match &structure {
+        Some(why) => ["resonance", "damping"]
+            .iter()
+            .filter(|n| {
+                NAMES
+                    .iter()
+                    .position(|x| x == *n)
+                    .is_some_and(|i| ranges[i] > 0.0)
+            })
+            .map(|n| NotInformed {
+                name: n,
+                reason: why.clone(),
+            })
+            .collect(),
+        None => vec![],
+    };
     let axes: Vec<usize> = (0..NAMES.len())
         .filter(|&i| ranges[i] > 0.0)
         .filter(|&i| has_defect || NAMES[i] != "defect_size")
         .filter(|&i| constant || NAMES[i] != "speed")
+        .filter(|&i| not_informed.iter().all(|n| n.name != NAMES[i]))
         .collect();
     let mut u = [0.0; 5];
     let mut best = before;
@@ -311,6 +374,7 @@ pub fn calibrate(train: &[Matched], fx: &Effects, tol: &Tolerances, ev: &Evaluat
                 at_bound: u[i].abs() >= 1.0 - AT_BOUND,
             })
             .collect(),
+        not_informed,
         train_before: before,
         train_after: best,
         simulations: ev.sims() - sims0,

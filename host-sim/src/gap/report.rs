@@ -70,6 +70,9 @@ pub fn markdown(o: &GapOutput) -> String {
                 if f.at_bound { "**yes**" } else { "no" }
             );
         }
+        for n in &c.not_informed {
+            let _ = writeln!(s, "| {} | 1 (not informed) | — | — |", n.name);
+        }
     }
     let _ = writeln!(
         s,

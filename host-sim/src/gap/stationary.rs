@@ -498,7 +498,8 @@ pub fn diagnose(
         .roles
         .iter()
         .find(|r| r.role == "train")
-        .map_or(1.0, |r| rms(&r.meta.accel));
+        // About the mean: a sensor's DC offset does not scale the fit spaces.
+        .map_or(1.0, |r| rms(&super::without_mean(&r.meta.accel)));
     let ctx = space::context(first.spec(), level, a.mains, &first.base);
     let has_defect = p
         .train
@@ -518,6 +519,7 @@ pub fn diagnose(
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
     );
     let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
+    let envelope = super::envelope_note(first.samples, first.spec());
     // The parts on the nominal rig, kept for the calibrations with effects on.
     let nominal = (!a.no_calibration && p.calibration.is_none())
         .then(|| (p.train.clone(), p.valid.clone(), p.test.clone()));
@@ -569,7 +571,17 @@ pub fn diagnose(
         });
     }
     at.findings.extend(uninformed.iter().map(informed::finding));
+    at.findings.extend(envelope);
     if let Some(c) = &p.calibration {
+        // One finding for the nuisances the record cannot inform (they share the reason).
+        if let Some(n) = c.not_informed.first() {
+            let names: Vec<&str> = c.not_informed.iter().map(|n| n.name).collect();
+            at.findings.push(format!(
+                "rig calibration: {} not informed: {}",
+                names.join(" and "),
+                n.reason
+            ));
+        }
         at.findings.extend(c.fitted.iter().filter(|f| f.at_bound).map(|f| {
             format!(
                 "the rig's {} calibrated to the end of its tolerance (factor {:.3}, allowed 1 ± {}): the rig differs from its description by more than that, or an unmodelled mechanism acts through it; effects that act on the same cells may be fitted to make up the rest",
