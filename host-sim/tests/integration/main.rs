@@ -22,6 +22,7 @@ mod gap_cli;
 mod gap_cwru;
 mod gap_life;
 mod gap_own_output;
+mod gap_roles;
 mod gap_validate;
 mod hostile_inputs;
 mod ims_compare;
