@@ -524,6 +524,7 @@ pub fn diagnose_calibrated(
             ..Budget::LIFE
         },
         significant_gap: SIGNIFICANCE * noise_whole,
+        variability: crate::gap::protocol::LIFE_VARIABILITY,
         exchange: o.exchange,
         ..Options::default()
     };
@@ -541,7 +542,7 @@ pub fn diagnose_calibrated(
             &test,
             &test,
             &ev,
-            SIGNIFICANCE * noise_test,
+            (SIGNIFICANCE * noise_test, opt.variability),
         )?;
         let names: Vec<String> = hold_lives
             .iter()
@@ -584,14 +585,8 @@ pub fn diagnose_calibrated(
             &test_e,
             &test_e,
             &ev,
-            significant,
+            (significant, early_opt.variability),
         )?;
-        if early_at.kept.is_empty() && t.before >= significant {
-            early_at.findings.push(format!(
-                "no early effect was chosen (the validation lives asked for none), so the test lives' early gap ({:.2}) is the baseline's; `early.effects[].test_shrink` says what each effect alone would have done there",
-                t.before
-            ));
-        }
         Some(t)
     };
     let early_before = early_at.baseline_holdout;

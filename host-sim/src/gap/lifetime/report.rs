@@ -278,12 +278,8 @@ fn findings(g: &LifeGap) -> Vec<String> {
         g.noise_only.1,
         lifetime::SIGNIFICANCE
     ));
-    if g.early_before < threshold {
-        f.push(format!(
-            "the held-out early-life gap of the baseline ({:.2}) is below {threshold:.2}: within the sampling variability, the early life needs no effect",
-            g.early_before
-        ));
-    }
+    // A baseline early gap below the threshold is said once, by the early-life
+    // attribution's own finding (with the same level, `protocol::level`).
     match &g.early_effect {
         Some(e) => {
             if let Some(x) = g.early.first() {
