@@ -16,8 +16,7 @@ pub const SEGMENT_VARIABILITY: &str = "the measurement's own segment-to-segment 
 /// What the significance level of lives measures, in the findings' words: stage means of
 /// a few measured snapshots against a few simulated windows
 /// ([`super::lifetime::SIGNIFICANCE`] times the noise-only gap).
-pub const LIFE_VARIABILITY: &str =
-    "the lives' own sampling variability (stage means of measured snapshots and simulated windows)";
+pub const LIFE_VARIABILITY: &str = "the sampling variability of the lives' stage means";
 
 /// A significance level (total gap, no unit) as every finding prints it: two decimals,
 /// so that one level never reads as two (1.45 and 1.5).
@@ -175,7 +174,7 @@ mod tests {
         let f = at.findings.join(" | ");
         assert!(!f.contains("the chosen model leaves"), "{f}");
         assert!(
-            f.contains("no effect was chosen") && f.contains("sampling variability (1.45)"),
+            f.contains("no effect was chosen") && f.contains("stage means (1.45)"),
             "{f}"
         );
         // Below the level: the baseline finding prints the same level, in the same words.
