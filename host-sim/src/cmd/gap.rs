@@ -10,6 +10,7 @@ use crate::gap::lifetime::report::{
 };
 use crate::gap::lifetime::{self, LifeOptions};
 use crate::gap::report;
+use crate::gap::roles::{shortened, PartLength};
 use crate::gap::stationary::{diagnose, prepare, stability, where_cells, GapArgs, GapOutput};
 use crate::io::feature_table::{is_feature_table, sidecar_path, FORMAT};
 use std::path::Path;
@@ -84,6 +85,17 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         })
         .collect();
     findings.dedup();
+    let lengths: Vec<PartLength> = parts
+        .roles
+        .iter()
+        .map(|r| PartLength {
+            role: &r.role,
+            file: &r.meta.file,
+            samples: (r.seconds * r.meta.fs).round() as usize,
+            fs: r.meta.fs,
+        })
+        .collect();
+    findings.extend(shortened(&lengths, a.seconds));
     findings.extend(at.findings.iter().cloned());
     let mut out = GapOutput {
         records: parts.roles.clone(),
@@ -103,6 +115,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         recalibration: parts.recalibrated.as_ref().map(|r| r.calibration.clone()),
         stability,
         simulations: ev.sims(),
+        part_seconds: a.seconds,
         seconds: at.seconds,
         files: vec![],
     };

@@ -19,6 +19,7 @@ pub mod nuisance;
 pub mod protocol;
 pub mod records;
 pub mod report;
+pub mod roles;
 pub mod run;
 pub mod signature;
 pub mod space;

@@ -9,20 +9,36 @@ use super::attribute::{Attribution, TestTotals};
 use super::matched::{Evaluator, Target};
 use wearsim_core::effects::Effects;
 
+/// What the significance level of records of seconds measures, in the findings' words:
+/// the cells' spread across a record part's segments.
+pub const SEGMENT_VARIABILITY: &str = "the measurement's own segment-to-segment variability";
+
+/// What the significance level of lives measures, in the findings' words: stage means of
+/// a few measured snapshots against a few simulated windows
+/// ([`super::lifetime::SIGNIFICANCE`] times the noise-only gap).
+pub const LIFE_VARIABILITY: &str = "the sampling variability of the lives' stage means";
+
+/// A significance level (total gap, no unit) as every finding prints it: two decimals,
+/// so that one level never reads as two (1.45 and 1.5).
+pub fn level(x: f64) -> String {
+    format!("{x:.2}")
+}
+
 /// Judges a finished attribution on the test part `test` (never seen by the fit or the
 /// choice): the baseline `base`, every ranked effect alone at its training fit, and the
 /// final model — the last on `test_final`, the test part with the rig calibrated for the
 /// final model's effects (`test` itself when the rig is not recalibrated). Fills [`super::attribute::Ranked::test_shrink`] and
 /// [`Attribution::test`]; when the final model leaves a test gap at or above
-/// `significant` (the measurement's variability, [`super::attribute::Options`]), a
-/// finding says that the library does not close the gap.
+/// `significant` (the variability `variability` names, [`super::attribute::Options`]), a
+/// finding says that the library does not close the gap — or, when no effect was chosen,
+/// that the test gap is the baseline's.
 pub fn judge<T: Target>(
     at: &mut Attribution,
     base: &Effects,
     test: &[T],
     test_final: &[T],
     ev: &Evaluator,
-    significant: f64,
+    (significant, variability): (f64, &str),
 ) -> Result<TestTotals, String> {
     let before = ev.residuals(test, base)?.total();
     for r in &mut at.ranking {
@@ -37,9 +53,14 @@ pub fn judge<T: Target>(
         shrink: 1.0 - after / before,
         closed: after < significant,
     };
-    if !t.closed && before >= significant {
+    let lv = level(significant);
+    if !t.closed && before >= significant && at.kept.is_empty() {
         at.findings.push(format!(
-            "the chosen model leaves a test gap of {after:.2} (from {before:.2}), above the measurement's own variability ({significant:.1}): the effect library does not close the gap, a mechanism outside it remains"
+            "no effect was chosen (the validation part asked for none), so the test gap ({before:.2}) is the baseline's, above {variability} ({lv}); each effect's test shrink alone is reported with the ranking"
+        ));
+    } else if !t.closed && before >= significant {
+        at.findings.push(format!(
+            "the chosen model leaves a test gap of {after:.2} (from {before:.2}), above {variability} ({lv}): the effect library does not close the gap, a mechanism outside it remains"
         ));
     }
     at.test = Some(t);
@@ -88,7 +109,15 @@ mod tests {
         let t = [Floor(floor)];
         let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
         assert_eq!(at.kept, ["roughness"]);
-        let tt = judge(&mut at, &Effects::NONE, &t, &t, &ev, opt.significant_gap).unwrap();
+        let tt = judge(
+            &mut at,
+            &Effects::NONE,
+            &t,
+            &t,
+            &ev,
+            (opt.significant_gap, opt.variability),
+        )
+        .unwrap();
         (tt, at.findings)
     }
 
@@ -103,5 +132,59 @@ mod tests {
         let (t, findings) = judged(0.5);
         assert!(t.closed);
         assert!(!findings.iter().any(|f| f.contains("does not close")));
+    }
+
+    /// Probe defect 6: with nothing chosen a finding said "the chosen model leaves a test
+    /// gap of 1.62 (from 1.62)", lifetime findings printed one level as 1.5 and 1.45, and
+    /// called it "segment-to-segment variability". The level is printed once, one way
+    /// ([`level`]), in the words of the variability it measures.
+    #[test]
+    fn a_level_reads_one_way_in_the_words_of_its_variability() {
+        let ctx = Context {
+            fs: 12_000.0,
+            shaft_hz: 30.0,
+            rms: 1.0,
+            mains_hz: 60.0,
+            preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
+        };
+        let rough: Vec<_> = spaces(&ctx)
+            .into_iter()
+            .filter(|s| s.effect == "roughness")
+            .collect();
+        let ev = Evaluator::new(1);
+        // Roughness does not help (its gap stays 4): nothing is chosen.
+        let t = [Floor(4.0)];
+        let lives = |significant_gap| Options {
+            significant_gap,
+            variability: LIFE_VARIABILITY,
+            ..Options::default()
+        };
+        let opt = lives(1.449);
+        let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
+        assert!(at.kept.is_empty());
+        judge(
+            &mut at,
+            &Effects::NONE,
+            &t,
+            &t,
+            &ev,
+            (opt.significant_gap, opt.variability),
+        )
+        .unwrap();
+        let f = at.findings.join(" | ");
+        assert!(!f.contains("the chosen model leaves"), "{f}");
+        assert!(
+            f.contains("no effect was chosen") && f.contains("stage means (1.45)"),
+            "{f}"
+        );
+        // Below the level: the baseline finding prints the same level, in the same words.
+        let opt = lives(4.5);
+        let at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
+        let f = at.findings.join(" | ");
+        assert!(
+            f.contains("sampling variability") && f.contains("(< 4.50)"),
+            "{f}"
+        );
+        assert!(!f.contains("segment-to-segment"), "{f}");
     }
 }

@@ -12,6 +12,7 @@ use super::matched::{Evaluator, Matched};
 use super::nuisance::{self, Calibration, Tolerances};
 use super::protocol::judge;
 use super::records::{self, Overrides, RealRecord, MIN_PART_S};
+use super::roles;
 use super::space;
 use crate::analysis::stats::rms;
 use clap::Args;
@@ -59,12 +60,16 @@ pub struct GapArgs {
     #[arg(long)]
     pub holdout: Option<String>,
     /// Validation records, on which the model is chosen (ranking, greedy addition,
-    /// dropping) (same syntax; default: one record → its second part; three or more →
-    /// the second record; two → a part of each training record right after its
-    /// training part, disjoint from it).
+    /// dropping) (same syntax; default: one record → its second part; with --holdout →
+    /// the records neither trained on nor held out; without it, three or more → the
+    /// first record not trained on; none left → a part of each training record right
+    /// after its training part, disjoint from it). Every record takes one role: with all
+    /// three of --train, --validation, --holdout given, a record in none is refused.
     #[arg(long)]
     pub validation: Option<String>,
-    /// Seconds of each record (or record part) analysed, 0.5..=30.
+    /// Seconds of each record (or record part) analysed, 0.5..=30: at most, a record too
+    /// short for disjoint parts of this length gives shorter ones, stated in a finding
+    /// and `records[].seconds` (the gap's scale depends on the part length).
     #[arg(long, default_value_t = 2.0)]
     pub seconds: f64,
     /// Candidate effects to try, comma-separated (default: all that act on the records).
@@ -206,6 +211,9 @@ pub struct GapOutput {
     pub stability: Option<Vec<super::stability::ParamStability>>,
     /// Simulations run.
     pub simulations: usize,
+    /// Part length `--seconds` asked (s); each part's own, which a short record makes
+    /// shorter, is `records[].seconds`.
+    pub part_seconds: f64,
     /// Wall-clock time of the attribution (s).
     pub seconds: f64,
     /// Files written.
@@ -219,6 +227,9 @@ pub struct RecordRole {
     pub role: String,
     /// Part label.
     pub part: String,
+    /// Length of the part actually used (s): `--seconds`, or less when the record does
+    /// not hold disjoint parts of that length (a finding then says so).
+    pub seconds: f64,
     /// Resolved metadata.
     pub meta: RealRecord,
 }
@@ -376,6 +387,8 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         .map(|p| records::load(p, &o))
         .collect::<Result<_, _>>()
         .map_err(GapError::input)?;
+    roles::distinct(&recs).map_err(GapError::input)?;
+    roles::one_bearing(&recs).map_err(GapError::input)?;
     let mut p = Parts {
         roles: vec![],
         train: vec![],
@@ -389,6 +402,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         p.roles.push(RecordRole {
             role: tag.into(),
             part: m.label.clone(),
+            seconds: len as f64 / r.fs,
             meta: r.clone(),
         });
         match tag {
@@ -421,42 +435,23 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         }
         return Ok(p);
     }
-    let ti = match &a.train {
-        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--train: {e}")))?,
-        None => vec![0],
+    let pick = |spec: &Option<String>, flag: &str| -> Result<Option<Vec<usize>>, GapError> {
+        spec.as_deref()
+            .map(|s| select(s, &recs).map_err(|e| GapError::input(format!("{flag}: {e}"))))
+            .transpose()
     };
-    let vi = match &a.validation {
-        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--validation: {e}")))?,
-        None if recs.len() >= 3 && a.holdout.is_none() => (0..recs.len())
-            .filter(|i| !ti.contains(i))
-            .take(1)
-            .collect(),
-        None => vec![],
-    };
-    let hi = match &a.holdout {
-        Some(s) => select(s, &recs).map_err(|e| GapError::input(format!("--holdout: {e}")))?,
-        None => (0..recs.len())
-            .filter(|i| !ti.contains(i) && !vi.contains(i))
-            .collect(),
-    };
-    let clash = |x: &[usize], y: &[usize], what: &str| {
-        match x.iter().find(|i| y.contains(i)) {
-        Some(i) => Err(GapError::input(format!(
-            "{what} both hold {}: a held-out record must not be fitted on, nor the test part chosen on (one role per record: training, validation or test)",
-            recs.get(*i)
+    let r = roles::assign(
+        recs.len(),
+        pick(&a.train, "--train")?,
+        pick(&a.validation, "--validation")?,
+        pick(&a.holdout, "--holdout")?,
+        |i| {
+            recs.get(i)
                 .map_or_else(String::new, |r| r.file.display().to_string())
-        ))),
-        None => Ok(()),
-    }
-    };
-    clash(&ti, &hi, "--train and --holdout")?;
-    clash(&ti, &vi, "--train and --validation")?;
-    clash(&vi, &hi, "--validation and --holdout")?;
-    if ti.is_empty() || hi.is_empty() {
-        return Err(GapError::input(
-            "--train/--holdout: give at least one training and one held-out (test) record",
-        ));
-    }
+        },
+    )
+    .map_err(GapError::input)?;
+    let (ti, vi, hi) = (r.train, r.validation, r.test);
     let window = |r: &RealRecord| r.accel.len().min((a.seconds * r.fs).round() as usize);
     for (k, i) in ti.iter().enumerate() {
         let Some(r) = recs.get(*i) else { continue };
@@ -607,7 +602,7 @@ pub fn diagnose(
         &p.test,
         test_final,
         &ev,
-        opt.significant_gap,
+        (opt.significant_gap, opt.variability),
     )
     .map_err(GapError::run)?;
     Ok((at, spaces, ev))

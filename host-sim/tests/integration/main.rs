@@ -23,6 +23,7 @@ mod gap_cwru;
 mod gap_life;
 mod gap_own_output;
 mod gap_probe_c;
+mod gap_roles;
 mod gap_validate;
 mod hostile_inputs;
 mod ims_compare;

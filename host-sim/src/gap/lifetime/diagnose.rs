@@ -145,11 +145,13 @@ pub struct LifeSpan {
     pub ignored_columns: Vec<String>,
 }
 
-/// The part of a held-out life it is judged on: a life that did not fail (`none`) only on
-/// the stages before [`HOLDOUT_T_MAX`] of its test (it has no end of life, so its late
-/// stages are not those of a failing bearing); any other the whole life.
+/// The part of a held-out life it is judged on: a life that did not fail (`none`), or one
+/// not known to have failed that shared its shaft with the bearings of its test (an IMS
+/// table of no known test), only on the stages before [`HOLDOUT_T_MAX`] of its test (it
+/// has no known end of life, and its late stages may carry a failing neighbour's
+/// vibration); any other the whole life.
 pub fn holdout_t_max(m: &MeasuredLife) -> f64 {
-    if m.failure_mode == "none" {
+    if m.failure_mode == "none" || (m.shared_shaft && !m.failed()) {
         HOLDOUT_T_MAX
     } else {
         1.0
@@ -329,20 +331,33 @@ fn label(m: &MeasuredLife) -> String {
     )
 }
 
-/// Reads the training and held-out lives of `path` and builds their cells.
+/// Reads the training and held-out lives of `path` and builds their cells. Where the
+/// table is one of the IMS tests ([`crate::io::ims_life::IMS_FAILURES`]), each bearing is
+/// known to have failed or not: a training bearing that did not fail is refused (its
+/// length would calibrate the life factor to a life that never ended), and a held-out
+/// bearing that failed is judged as a failed life.
 pub fn measured(path: &Path, o: &LifeOptions) -> Result<MeasuredSet, String> {
     let train = read_life(path, o.train)?;
-    // The IMS premise: the held-out bearings are the failed one's neighbours on its
-    // shaft, which did not fail.
+    if train.failure_mode == "none" {
+        let failed = crate::io::ims_life::failures_of(path);
+        let names: Vec<String> = failed
+            .iter()
+            .map(|f| format!("B{} ({})", f.bearing, f.mode))
+            .collect();
+        return Err(format!(
+            "--train B{}: bearing {} of {} did not fail (IMS test {}, end-of-test finding: failed {}); the training life must have run to failure: its length calibrates the life factor, and a life that did not fail would set it to a life that never ended; give --train B{}",
+            o.train,
+            o.train,
+            path.display(),
+            failed.first().map_or(0, |f| f.test),
+            names.join(", "),
+            failed.first().map_or(1, |f| f.bearing)
+        ));
+    }
     let holdout: Vec<MeasuredLife> = o
         .holdout
         .iter()
-        .map(|b| {
-            read_life(path, *b).map(|m| MeasuredLife {
-                failure_mode: "none".into(),
-                ..m
-            })
-        })
+        .map(|b| read_life(path, *b))
         .collect::<Result<_, _>>()?;
     let rig = RigDescription::preset(train.preset.as_deref().unwrap_or("ims-za2115"))?;
     measured_from(train, holdout, rig)
@@ -509,6 +524,7 @@ pub fn diagnose_calibrated(
             ..Budget::LIFE
         },
         significant_gap: SIGNIFICANCE * noise_whole,
+        variability: crate::gap::protocol::LIFE_VARIABILITY,
         exchange: o.exchange,
         ..Options::default()
     };
@@ -526,7 +542,7 @@ pub fn diagnose_calibrated(
             &test,
             &test,
             &ev,
-            SIGNIFICANCE * noise_test,
+            (SIGNIFICANCE * noise_test, opt.variability),
         )?;
         let names: Vec<String> = hold_lives
             .iter()
@@ -569,14 +585,8 @@ pub fn diagnose_calibrated(
             &test_e,
             &test_e,
             &ev,
-            significant,
+            (significant, early_opt.variability),
         )?;
-        if early_at.kept.is_empty() && t.before >= significant {
-            early_at.findings.push(format!(
-                "no early effect was chosen (the validation lives asked for none), so the test lives' early gap ({:.2}) is the baseline's; `early.effects[].test_shrink` says what each effect alone would have done there",
-                t.before
-            ));
-        }
         Some(t)
     };
     let early_before = early_at.baseline_holdout;

@@ -31,9 +31,14 @@
 //! grows it ([`sim::failure_site`]: outer race, inner race, rolling element). A life that
 //! did not fail (`failure_mode` `none`) has no end of life: its time line is its test's,
 //! not a life's, so it is judged only on the stages before [`HOLDOUT_T_MAX`] of its test.
-//! On IMS tables the held-out bearings are such lives: they ran on one shaft with the
-//! failed one, were new together and did not fail, so their late stages carry the
-//! failing neighbour's vibration through the shaft rather than their own wear.
+//! On a table of a known IMS test ([`crate::io::ims_life::IMS_FAILURES`]) each bearing
+//! is known to have failed or not: one that did not fail is refused as the training life
+//! and, held out, is such a life (it ran on one shaft with the failed one, was new with it,
+//! so its late stages carry the failing neighbour's vibration rather than its own wear);
+//! the failed one held out is judged over its whole life. On a table of the IMS layout
+//! from no known test, a held-out bearing's end is not known: it is judged on the stages
+//! before [`HOLDOUT_T_MAX`] as well (its late stages may carry a neighbour's failure), and
+//! the report does not say it did not fail.
 //!
 //! **The early-life part** is attributed again on the early stages' cells alone (their
 //! contrasts to the steady stage), so that the steady level, which dominates the total,
