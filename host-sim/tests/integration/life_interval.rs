@@ -22,7 +22,10 @@ fn life(seed: u64, every: f64) -> (f64, f64) {
     })
     .unwrap();
     assert!(!l.suspended, "seed {seed} at {every}: suspended");
-    (l.life, l.first_spall.expect("a failed life has a first spall"))
+    (
+        l.life,
+        l.first_spall.expect("a failed life has a first spall"),
+    )
 }
 
 /// Seeds 1 and 2 at a snapshot every 5 000 and every 500 000 revolutions: the first spall
