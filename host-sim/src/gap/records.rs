@@ -423,6 +423,19 @@ pub fn base_model(
                   source: &str,
                   g: crate::geometry::GeometrySpec,
                   warnings: &mut Vec<String>| {
+        // A geometry that is a preset's (as `GeometrySpec::same_as` compares: elements
+        // equal, diameters within 0.1 %, angle within 0.1°) is that preset: the 6205's
+        // geometry typed on the command line gets the 6205's model, not one scaled from it.
+        let same = presets::NAMES.iter().find(|n| {
+            crate::geometry::named_geometry(n).is_some_and(|p| p.same_as(&g))
+        });
+        if let Some(p) = same.and_then(|n| presets::by_name(n).map(|m| (n, m))) {
+            warnings.push(format!(
+                "the bearing ({name}, from the {source}) has model preset `{}`'s geometry (elements equal, diameters within 0.1 %, angle within 0.1 deg): the preset's model is used",
+                p.0
+            ));
+            return Ok::<_, String>((p.0.to_string(), p.1));
+        }
         let m = g.model()?;
         warnings.push(format!(
             "the bearing ({name}, from the {source}: {} elements of {:.3} mm on {:.3} mm, {:.1} deg) is no model preset: its model is `{}`'s with this geometry and the structure scaled by geometric similitude (s = {:.3}: mass x s^3, stiffness x s, damping x s^2); an assumption, so the zone levels and the rig's calibration start from it",

@@ -98,12 +98,14 @@ fn gap_rejects_bad_input_naming_the_field() {
         run(with(&a, &long), message);
     }
     run(with(&["--rpm", "-5"], &long), "rpm");
-    // A held-out record must not be fitted on.
+    // A held-out record must not be fitted on (two different records: one given twice is
+    // refused before the roles, `gap_roles.rs`).
+    let other = csv(dir.path(), "noise2.csv", 24_001);
     let mut v = with(
         &["--rpm", "1797", "--train", "1", "--holdout", "1,2"],
         &long,
     );
-    v.insert(3, long.clone());
+    v.insert(3, other);
     run(v, "must not be fitted on");
     // A record of unknown unit: the message names the channel and the sidecar key.
     let mut s = String::from("x\n");
@@ -233,6 +235,22 @@ fn gap_matches_a_bearing_that_is_no_preset() {
         wearsim_core::presets::by_name("cwru-6205-de").unwrap()
     );
     assert!(!p.warnings.iter().any(|w| w.contains("is no model preset")));
+    // The 6205's geometry typed on the command line (to 0.03 %, as a user copies it from a
+    // catalogue) is the 6205 preset, not a bearing scaled from it (the probe's run said
+    // "no model preset ... s = 1.000" and gave another gap).
+    side("");
+    let typed = load(
+        &f,
+        &o(None, Some("elements=9,ball=7.94,pitch=39.04,angle=0")),
+    )
+    .expect("the 6205's geometry");
+    assert_eq!(typed.bearing, "cwru-6205-de");
+    assert_eq!(typed.base, p.base);
+    assert!(
+        typed.warnings.iter().any(|w| w.contains("model preset `cwru-6205-de`'s geometry")),
+        "{:?}",
+        typed.warnings
+    );
     // A name that is neither, from the file.
     side(r#", "bearing": "skf-6310""#);
     let e = load(&f, &o(None, None)).unwrap_err();
