@@ -43,4 +43,5 @@ mod readers;
 mod reference_hashes;
 mod rig_tables;
 mod slip_jitter;
+mod slow_rig;
 mod sweep_cli;

@@ -3,7 +3,7 @@
 //! lives, and the early-life part again on the early stages alone.
 
 use super::rig::RigDescription;
-use super::sim::{calibrate, failure_site, LifeSim, Scales};
+use super::sim::{calibrate, failure_site, LifeSim, OnsetBasis, Scales};
 use super::target::{life_spaces, noise_only, LifeTarget, SIGNIFICANCE};
 use super::{
     stage_points, LifePoint, LifeReference, MeasuredLife, EARLY_T_MAX, HOLDOUT_T_MAX, STAGES,
@@ -178,6 +178,9 @@ pub struct LifeGap {
     pub measured_onset: Option<f64>,
     /// Onset of instability of the calibrated simulated life (fraction of life).
     pub simulated_onset: Option<f64>,
+    /// What the simulated onset was read from: its RMS, or (where the RMS never leaves its
+    /// steady band) its wear stages.
+    pub simulated_onset_basis: OnsetBasis,
     /// Revolutions of the measured (training) life.
     pub measured_revs: f64,
     /// How the training life is compared (whole life, its failure site).
@@ -406,6 +409,8 @@ pub struct Calibration {
     pub measured_onset: Option<f64>,
     /// Onset of instability of the calibrated simulated life.
     pub simulated_onset: Option<f64>,
+    /// What [`Calibration::simulated_onset`] was read from.
+    pub simulated_onset_basis: OnsetBasis,
 }
 
 /// Calibrates the scales of `m`'s simulated life on its training life ([`calibrate`]: its
@@ -424,6 +429,7 @@ pub fn calibrated(m: &MeasuredSet, o: &LifeOptions) -> Result<Calibration, Strin
         measured_revs,
         measured_onset,
         simulated_onset: c.onset,
+        simulated_onset_basis: c.onset_basis,
     })
 }
 
@@ -654,6 +660,7 @@ pub fn diagnose_calibrated(
         propagation_passes: scales.propagation_passes,
         measured_onset: c.measured_onset,
         simulated_onset: c.simulated_onset,
+        simulated_onset_basis: c.simulated_onset_basis,
         measured_revs,
         train_span: span(train_life, &m.train_ref, 1.0, &sim),
         holdout_spans,

@@ -121,6 +121,11 @@ pub struct LifeGapOutput {
     pub measured_onset: Option<f64>,
     /// The calibrated simulated life's onset of instability (fraction of life).
     pub simulated_onset: Option<f64>,
+    /// What `simulated_onset` was read from: `rms` (the measured life's rule on the
+    /// simulated RMS) or `wear-stages` (its RMS never left its steady band, e.g. on a slow
+    /// rig: the start of its first spall or of its new defects after the first quarter of
+    /// its life).
+    pub simulated_onset_basis: &'static str,
     /// Training bearing's measured life (revolutions).
     pub measured_revs: f64,
     /// Held-out gap of the whole life a correct model would leave by sampling alone.
@@ -263,6 +268,13 @@ fn findings(g: &LifeGap) -> Vec<String> {
             ));
         }
     }
+    if g.simulated_onset_basis == lifetime::sim::OnsetBasis::WearStages {
+        f.push(format!(
+            "the simulated life's RMS never leaves its steady band at {:.0} rpm (its defect's impacts, which weaken with speed, stay within the steady vibration of the simulated structure), so its onset of instability ({}) is read from its wear stages: the start of its first spall or of its new defects after the first quarter of its life, where the RMS shows the onset at ordinary speeds; the measured RMS rise is then itself part of the gap",
+            60.0 * g.rig.shaft_hz,
+            g.simulated_onset.map_or("none".to_string(), |v| format!("{v:.3}"))
+        ));
+    }
     f.extend(span_findings(g));
     for a in &g.rig.assumptions {
         f.push(format!(
@@ -351,6 +363,7 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         propagation_passes: g.propagation_passes,
         measured_onset: g.measured_onset,
         simulated_onset: g.simulated_onset,
+        simulated_onset_basis: g.simulated_onset_basis.name(),
         measured_revs: g.measured_revs,
         noise_only: g.noise_only.0,
         findings: findings(g),

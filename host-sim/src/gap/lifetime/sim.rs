@@ -11,11 +11,12 @@ use crate::gap::memo::Memo;
 pub use crate::life::calibrate::Scales;
 use crate::life::calibrate::{calibrate as calibrate_life, calibrate_shape, Secant, Shape};
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
+use std::cell::RefCell;
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
 use wearsim_core::effects::Effects;
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
-use wearsim_core::wear::{LifeConfig, Site};
+use wearsim_core::wear::{LifeConfig, Site, Stage};
 
 /// Window schedule of a simulated life, as fractions of the expected life: blocks of
 /// `step` until `until`. Fine where running-in lives (10 windows in the first 1 % of life,
@@ -110,6 +111,13 @@ impl LifeSim {
     /// Runs the life with effects `fx`: snapshot statistics on the normalised time line
     /// and the revolutions to failure.
     pub fn run(&self, fx: &Effects) -> Result<(Vec<LifePoint>, f64), String> {
+        let l = self.run_life(fx)?;
+        Ok((l.points, l.revs))
+    }
+
+    /// [`LifeSim::run`] with the revolutions at which the life's wear entered each of
+    /// [`ONSET_STAGES`].
+    pub fn run_life(&self, fx: &Effects) -> Result<SimulatedLife, String> {
         let mut model = self.model.clone();
         merge(&mut model.effects, fx);
         let fs = model.output_rate;
@@ -124,12 +132,20 @@ impl LifeSim {
         })
         .map_err(|e| e.to_string())?;
         let mut raw: Vec<(f64, analysis::Stats)> = vec![];
+        let mut stage_starts = [None; ONSET_STAGES.len()];
         let d = run
             .drive(
                 |st| self.block(st.cycles),
                 MAX_WINDOWS,
                 AtCap::Refuse,
                 |w| {
+                    // A transition ends its block, so the first window in a stage is
+                    // rendered at the revolution the stage began.
+                    for (start, st) in stage_starts.iter_mut().zip(ONSET_STAGES) {
+                        if start.is_none() && w.state.stage >= st {
+                            *start = Some(w.state.cycles);
+                        }
+                    }
                     // Stage means of a periodic measurement: windows at transitions feed the
                     // wear only (see `DriverWindow::scheduled`).
                     if !w.scheduled {
@@ -155,13 +171,86 @@ impl LifeSim {
                 skewness: s.skewness,
             })
             .collect();
-        Ok((pts, end))
+        Ok(SimulatedLife {
+            points: pts,
+            revs: end,
+            stage_starts,
+        })
     }
 
     /// The life with effects `fx`, from the cache when it was run before; `sims` counts
     /// the lives actually run.
     pub fn points(&self, fx: &Effects, sims: &AtomicUsize) -> Result<Arc<Vec<LifePoint>>, String> {
         self.memo.get_or_run(fx, sims, || Ok(self.run(fx)?.0))
+    }
+}
+
+/// The wear stages whose start a simulated life's RMS shows as its onset of instability
+/// where its defect's impacts stand out of the steady vibration: the first spall (defect
+/// completion) and the spawns of new defects (damage growth). On the 8-ball rig of
+/// 7.92/34.55 mm at 2100 rpm and 12 kN the RMS onset followed the start of the first of
+/// them after the first quarter of the life by 0.007–0.03 of life (one or two windows of
+/// the late schedule) in every life of its calibration. The propagation limit scales the life from the completed
+/// spall on, the life factor the part before the first spall.
+pub const ONSET_STAGES: [Stage; 2] = [Stage::DefectCompletion, Stage::DamageGrowth];
+
+/// A simulated life ([`LifeSim::run_life`]).
+#[derive(Debug, Clone)]
+pub struct SimulatedLife {
+    /// Snapshot statistics on the normalised time line.
+    pub points: Vec<LifePoint>,
+    /// Revolutions to failure (at least 1).
+    pub revs: f64,
+    /// Revolutions at which the wear entered each of [`ONSET_STAGES`] (`None`: never).
+    pub stage_starts: [Option<f64>; ONSET_STAGES.len()],
+}
+
+impl SimulatedLife {
+    /// The onset of instability of the life's wear (fraction of life): the start of the
+    /// first of [`ONSET_STAGES`] after the first quarter of the life
+    /// ([`crate::life::ims::BASELINE`], before which the RMS rule looks for no onset
+    /// either); `None` when both began before it or never. Where the simulated RMS shows
+    /// an onset, it comes one or two windows after this one ([`ONSET_STAGES`]).
+    pub fn wear_onset(&self) -> Option<f64> {
+        self.stage_starts
+            .iter()
+            .flatten()
+            .map(|c| c / self.revs)
+            .find(|u| *u > crate::life::ims::BASELINE && *u < 1.0)
+    }
+
+    /// The life's onset of instability (fraction of life) and what it was read from: its
+    /// RMS ([`super::onset`], the rule the measured life is read with), or, where the RMS
+    /// never leaves its steady band, its wear stages ([`SimulatedLife::wear_onset`]).
+    pub fn onset(&self) -> (Option<f64>, OnsetBasis) {
+        match super::onset(&self.points) {
+            Some(u) => (Some(u), OnsetBasis::Rms),
+            None => match self.wear_onset() {
+                Some(u) => (Some(u), OnsetBasis::WearStages),
+                None => (None, OnsetBasis::Rms),
+            },
+        }
+    }
+}
+
+/// What a simulated life's onset of instability was read from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OnsetBasis {
+    /// Its RMS, by the rule of the measured life ([`super::onset`]).
+    Rms,
+    /// Its wear stages ([`SimulatedLife::wear_onset`]): the RMS never left its steady
+    /// band (at a low speed the defect's impacts stay within the steady vibration).
+    WearStages,
+}
+
+impl OnsetBasis {
+    /// The JSON name (`rms`, `wear-stages`).
+    pub fn name(self) -> &'static str {
+        match self {
+            OnsetBasis::Rms => "rms",
+            OnsetBasis::WearStages => "wear-stages",
+        }
     }
 }
 
@@ -191,8 +280,11 @@ pub struct Calibrated {
     pub scales: Scales,
     /// Its revolutions to failure.
     pub revs: f64,
-    /// Its onset of instability (fraction of life), `None` if its RMS never left its band.
+    /// Its onset of instability (fraction of life), `None` if neither its RMS nor its wear
+    /// stages show one ([`SimulatedLife::onset`]).
     pub onset: Option<f64>,
+    /// What [`Calibrated::onset`] was read from.
+    pub onset_basis: OnsetBasis,
     /// Lives run to calibrate it.
     pub runs: usize,
 }
@@ -200,17 +292,49 @@ pub struct Calibrated {
 /// Most lives the shape calibration runs after its first.
 const SHAPE_STEPS: usize = 12;
 
+/// One life run by [`calibrate`]: its scales, revolutions and onset (fraction of life).
+#[derive(Debug, Clone, Copy)]
+struct Tried {
+    scales: Scales,
+    revs: f64,
+    onset: Option<f64>,
+}
+
+/// The range the calibration's lives covered, for a message that says what was tried:
+/// life factor, propagation limit (passes), simulated lives (revolutions) and how many
+/// had an onset of instability.
+fn bracket(tried: &[Tried]) -> String {
+    let range = |f: &dyn Fn(&Tried) -> f64| {
+        let lo = tried.iter().map(f).fold(f64::INFINITY, f64::min);
+        let hi = tried.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
+        format!("{lo:.3e} … {hi:.3e}")
+    };
+    format!(
+        "bracket tried over {} lives: life factor {}, propagation limit {} passes, simulated lives {} revolutions, {} of them with an onset of instability",
+        tried.len(),
+        range(&|t| t.scales.life_factor),
+        range(&|t| t.scales.propagation_passes),
+        range(&|t| t.revs),
+        tried.iter().filter(|t| t.onset.is_some()).count()
+    )
+}
+
 /// Calibrates the simulated baseline life on the training life: its length `target`
 /// (revolutions) within 1 %, and, when the training life has an onset of instability
 /// `onset` (fraction of life, [`super::onset`]), that onset within
 /// [`crate::life::calibrate::ONSET_TOLERANCE`] ([`calibrate_shape`]: the life factor scales
 /// the part before the onset, the propagation limit the part after it; the onset may stay
 /// off when the part after it cannot shrink to the measured one, which the report says;
-/// the length may not stay off by more than 5 %). Without an onset
+/// the length may not stay off by more than 5 %). The simulated onset is read from the
+/// simulated RMS by the measured life's rule, or, where that RMS never leaves its steady
+/// band (a slow rig: at 60 rpm the defect's impacts stay within the steady vibration), from
+/// the life's wear stages ([`SimulatedLife::onset`]). Without an onset
 /// only the life factor is calibrated (secant steps with no fixed part, up to 8; its
 /// crack-to-failure part then does not scale, so a life shorter than it is refused with
 /// the length it needs). `wearsim ims-compare` calibrates the life factor alone, with the
-/// crack-to-failure part held fixed.
+/// crack-to-failure part held fixed. An error starts `calibration: not converged` and names
+/// the reason and the bracket of scales and lives tried: the last life is never returned
+/// as a calibration unless it is within 5 % of the length.
 pub fn calibrate(
     rig: &RigDescription,
     seed: u64,
@@ -221,12 +345,25 @@ pub fn calibrate(
     // The first life: ISO 281 fatigue at factor 1 and the material's propagation limit,
     // the scales both calibrations step from.
     let steel = Scales::with_factor(1.0);
+    let tried: RefCell<Vec<Tried>> = RefCell::new(vec![]);
     // The schedule needs an expected life; every run uses the target.
-    let run = |sc: Scales| -> Result<(Shape, ()), String> {
-        let (pts, life) = LifeSim::new(rig, sc, seed, target, site)?.run(&Effects::NONE)?;
-        let onset = super::onset(&pts);
-        Ok((Shape { life, onset }, ()))
+    let run = |sc: Scales| -> Result<(Shape, OnsetBasis), String> {
+        let l = LifeSim::new(rig, sc, seed, target, site)?.run_life(&Effects::NONE)?;
+        let (onset, basis) = l.onset();
+        tried.borrow_mut().push(Tried {
+            scales: sc,
+            revs: l.revs,
+            onset,
+        });
+        Ok((
+            Shape {
+                life: l.revs,
+                onset,
+            },
+            basis,
+        ))
     };
+    let hours = |revs: f64| revs / (3600.0 * rig.shaft_hz);
     let first = run(steel)?;
     if let Some(u) = onset {
         let c = calibrate_shape(target, u, steel, first, SHAPE_STEPS, |a, n_p| {
@@ -236,6 +373,8 @@ pub fn calibrate(
             })
         })?;
         if (c.shape.life / target - 1.0).abs() > 0.05 {
+            let tried_so_far = bracket(&tried.borrow());
+            let with_onset = tried.borrow().iter().any(|t| t.onset.is_some());
             // Most likely too short for the crack stages, which neither scale shortens:
             // say how long the training life must be.
             let floor = run(Scales {
@@ -247,14 +386,18 @@ pub fn calibrate(
             let why = if target < floor {
                 format!(
                     "the simulated life of this bearing lasts at least {floor:.3e} revolutions at the smallest life factor and propagation limit (its crack stages, which neither scale shortens, at this bearing's load): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table)",
-                    floor / (3600.0 * rig.shaft_hz)
+                    hours(floor)
+                )
+            } else if !with_onset {
+                format!(
+                    "no simulated life had an onset of instability to step on (its RMS never left its steady band, and its wear reached neither a spall nor new defects after the first quarter of its life), so the two scales could not be told apart; the shortest simulated life is {floor:.3e} revolutions"
                 )
             } else {
                 format!("the steps did not converge (the shortest simulated life is {floor:.3e} revolutions)")
             };
             return Err(format!(
-                "the simulated life did not reach the training life's length and onset of instability ({target:.3e} revolutions, {:.3} h at {:.0} rpm, onset at {u:.3} of life) in {} lives: it lasts {:.3e} revolutions with its onset at {} (life factor {:.3e}, propagation limit {:.3e} passes); {why}",
-                target / (3600.0 * rig.shaft_hz),
+                "calibration: not converged: the simulated life did not reach the training life's length and onset of instability ({target:.3e} revolutions, {:.3} h at {:.0} rpm, onset at {u:.3} of life) in {} lives: it lasts {:.3e} revolutions with its onset at {} (life factor {:.3e}, propagation limit {:.3e} passes); {why}; {tried_so_far}",
+                hours(target),
                 60.0 * rig.shaft_hz,
                 c.steps,
                 c.shape.life,
@@ -270,17 +413,18 @@ pub fn calibrate(
             },
             revs: c.shape.life,
             onset: c.shape.onset,
+            onset_basis: c.last,
             runs: c.steps + 1,
         });
     }
-    let run = |a: f64| -> Result<(f64, Option<f64>), String> {
-        let (s, ()) = run(Scales {
+    let run = |a: f64| -> Result<(f64, (Option<f64>, OnsetBasis)), String> {
+        let (s, basis) = run(Scales {
             life_factor: a,
             ..steel
         })?;
-        Ok((s.life, s.onset))
+        Ok((s.life, (s.onset, basis)))
     };
-    let first = (first.0.life, first.0.onset);
+    let first = (first.0.life, (first.0.onset, first.1));
     let context = |e: String| {
         format!(
             "calibrating the life factor to the training life's {target:.3e} revolutions (the training life has no onset of instability, so its propagation limit stays the material's; the simulated life lasts {:.3e} at factor 1; its crack-to-failure part does not scale with the factor, so a measured life shorter than that part cannot be reached): {e}",
@@ -297,20 +441,22 @@ pub fn calibrate(
         match run(wearsim_core::wear::material::MIN_LIFE_FACTOR) {
             Ok((floor, _)) if target < floor => format!(
                 "the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {floor:.3e} revolutions at any life factor (its crack-to-failure part does not scale with the factor): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table); {}",
-                target / (3600.0 * rig.shaft_hz),
+                hours(target),
                 60.0 * rig.shaft_hz,
-                floor / (3600.0 * rig.shaft_hz),
+                hours(floor),
                 context(e)
             ),
             _ => context(e),
         }
     };
-    let c = calibrate_life(target, first, &step, run).map_err(short)?;
+    let c = calibrate_life(target, first, &step, run)
+        .map_err(|e| format!("calibration: not converged: {}", short(e)))?;
     if (c.life / target - 1.0).abs() > 0.05 {
-        return Err(context(format!(
-            "the life factor did not converge: {:.3e} revolutions against the measured {target:.3e}",
-            c.life
-        )));
+        return Err(format!("calibration: not converged: {}", context(format!(
+            "the life factor did not converge: {:.3e} revolutions against the measured {target:.3e}; {}",
+            c.life,
+            bracket(&tried.borrow())
+        ))));
     }
     Ok(Calibrated {
         scales: Scales {
@@ -318,7 +464,8 @@ pub fn calibrate(
             ..steel
         },
         revs: c.life,
-        onset: c.last,
+        onset: c.last.0,
+        onset_basis: c.last.1,
         runs: c.steps + 1,
     })
 }
