@@ -426,9 +426,9 @@ pub fn base_model(
         // A geometry that is a preset's (as `GeometrySpec::same_as` compares: elements
         // equal, diameters within 0.1 %, angle within 0.1°) is that preset: the 6205's
         // geometry typed on the command line gets the 6205's model, not one scaled from it.
-        let same = presets::NAMES.iter().find(|n| {
-            crate::geometry::named_geometry(n).is_some_and(|p| p.same_as(&g))
-        });
+        let same = presets::NAMES
+            .iter()
+            .find(|n| crate::geometry::named_geometry(n).is_some_and(|p| p.same_as(&g)));
         if let Some(p) = same.and_then(|n| presets::by_name(n).map(|m| (n, m))) {
             warnings.push(format!(
                 "the bearing ({name}, from the {source}) has model preset `{}`'s geometry (elements equal, diameters within 0.1 %, angle within 0.1 deg): the preset's model is used",

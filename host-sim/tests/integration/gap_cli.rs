@@ -247,7 +247,10 @@ fn gap_matches_a_bearing_that_is_no_preset() {
     assert_eq!(typed.bearing, "cwru-6205-de");
     assert_eq!(typed.base, p.base);
     assert!(
-        typed.warnings.iter().any(|w| w.contains("model preset `cwru-6205-de`'s geometry")),
+        typed
+            .warnings
+            .iter()
+            .any(|w| w.contains("model preset `cwru-6205-de`'s geometry")),
         "{:?}",
         typed.warnings
     );
