@@ -79,10 +79,10 @@ pub struct Options {
     pub tie: f64,
     /// A held-out baseline gap below this is within the measurement's own variability:
     /// no effect is named (every effect is still fitted and ranked). Default
-    /// [`SIGNIFICANT_GAP`]; printed by [`super::protocol::level`].
+    /// [`SIGNIFICANT_GAP`]; printed by [`super::significance::level`].
     pub significant_gap: f64,
     /// What [`Self::significant_gap`] measures, in the findings' words (default
-    /// [`super::protocol::SEGMENT_VARIABILITY`]; lives: [`super::protocol::LIFE_VARIABILITY`]).
+    /// [`super::significance::SEGMENT_VARIABILITY`]; lives: [`super::significance::LIFE_VARIABILITY`]).
     pub variability: &'static str,
     /// How far each fit may search.
     pub budget: Budget,
@@ -113,7 +113,7 @@ impl Default for Options {
             greedy_candidates: usize::MAX,
             tie: 0.02,
             significant_gap: SIGNIFICANT_GAP,
-            variability: super::protocol::SEGMENT_VARIABILITY,
+            variability: super::significance::SEGMENT_VARIABILITY,
             budget: Budget::DEFAULT,
             backfit: false,
             exchange: false,
@@ -467,7 +467,7 @@ pub fn attribute_with<T: Target>(
         findings.push(format!(
             "the baseline's held-out total gap ({hold0:.2}) is within {} (< {}): no effect is needed, and the ranking is not evidence for any",
             opt.variability,
-            super::protocol::level(opt.significant_gap)
+            super::significance::level(opt.significant_gap)
         ));
     }
     // An effect is named only where there is a gap to explain: below the significance

@@ -22,6 +22,7 @@ pub mod report;
 pub mod roles;
 pub mod run;
 pub mod signature;
+pub mod significance;
 pub mod space;
 pub mod stability;
 pub mod stationary;

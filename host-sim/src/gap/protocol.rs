@@ -7,22 +7,8 @@
 
 use super::attribute::{Attribution, TestTotals};
 use super::matched::{Evaluator, Target};
+use super::significance::level;
 use wearsim_core::effects::Effects;
-
-/// What the significance level of records of seconds measures, in the findings' words:
-/// the cells' spread across a record part's segments.
-pub const SEGMENT_VARIABILITY: &str = "the measurement's own segment-to-segment variability";
-
-/// What the significance level of lives measures, in the findings' words: stage means of
-/// a few measured snapshots against a few simulated windows
-/// ([`super::lifetime::SIGNIFICANCE`] times the noise-only gap).
-pub const LIFE_VARIABILITY: &str = "the sampling variability of the lives' stage means";
-
-/// A significance level (total gap, no unit) as every finding prints it: two decimals,
-/// so that one level never reads as two (1.45 and 1.5).
-pub fn level(x: f64) -> String {
-    format!("{x:.2}")
-}
 
 /// Judges a finished attribution on the test part `test` (never seen by the fit or the
 /// choice): the baseline `base`, every ranked effect alone at its training fit, and the
@@ -71,6 +57,7 @@ pub fn judge<T: Target>(
 mod tests {
     use super::*;
     use crate::gap::attribute::{attribute, Options};
+    use crate::gap::significance::LIFE_VARIABILITY;
     use crate::gap::space::{spaces, Context};
     use std::sync::atomic::{AtomicUsize, Ordering};
     use wearsim_core::effects::EffectKind;

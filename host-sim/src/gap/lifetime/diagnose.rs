@@ -530,7 +530,7 @@ pub fn diagnose_calibrated(
             ..Budget::LIFE
         },
         significant_gap: SIGNIFICANCE * noise_whole,
-        variability: crate::gap::protocol::LIFE_VARIABILITY,
+        variability: crate::gap::significance::LIFE_VARIABILITY,
         exchange: o.exchange,
         ..Options::default()
     };

@@ -291,7 +291,7 @@ fn findings(g: &LifeGap) -> Vec<String> {
         lifetime::SIGNIFICANCE
     ));
     // A baseline early gap below the threshold is said once, by the early-life
-    // attribution's own finding (with the same level, `protocol::level`).
+    // attribution's own finding (with the same level, `significance::level`).
     match &g.early_effect {
         Some(e) => {
             if let Some(x) = g.early.first() {
