@@ -79,7 +79,8 @@ mod tests {
         }
     }
 
-    fn judged(floor: f64) -> (TestTotals, Vec<String>) {
+    /// The roughness effect's search space alone, at 12 kHz and 30 Hz.
+    fn roughness_only() -> Vec<crate::gap::space::FitSpace> {
         let ctx = Context {
             fs: 12_000.0,
             shaft_hz: 30.0,
@@ -87,10 +88,14 @@ mod tests {
             mains_hz: 60.0,
             preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
         };
-        let rough: Vec<_> = spaces(&ctx)
+        spaces(&ctx)
             .into_iter()
             .filter(|s| s.effect == "roughness")
-            .collect();
+            .collect()
+    }
+
+    fn judged(floor: f64) -> (TestTotals, Vec<String>) {
+        let rough = roughness_only();
         let ev = Evaluator::new(1);
         let opt = Options::default();
         let t = [Floor(floor)];
@@ -127,17 +132,7 @@ mod tests {
     /// ([`level`]), in the words of the variability it measures.
     #[test]
     fn a_level_reads_one_way_in_the_words_of_its_variability() {
-        let ctx = Context {
-            fs: 12_000.0,
-            shaft_hz: 30.0,
-            rms: 1.0,
-            mains_hz: 60.0,
-            preload_max: crate::gap::space::CATALOGUE_PRELOAD_MAX,
-        };
-        let rough: Vec<_> = spaces(&ctx)
-            .into_iter()
-            .filter(|s| s.effect == "roughness")
-            .collect();
+        let rough = roughness_only();
         let ev = Evaluator::new(1);
         // Roughness does not help (its gap stays 4): nothing is chosen.
         let t = [Floor(4.0)];

@@ -37,58 +37,20 @@ fn table_every(
     interval: f64,
     rise: (f64, f64),
 ) -> PathBuf {
-    let mut st = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut g = move || {
-        // Sum of four uniforms: roughly Gaussian, unit variance.
-        (0..4)
-            .map(|_| {
-                st ^= st << 13;
-                st ^= st >> 7;
-                st ^= st << 17;
-                (st >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .sum::<f64>()
-            * 3f64.sqrt()
-    };
-    let mut csv = String::from("snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak\n");
-    for k in 0..N {
-        let u = k as f64 / (N - 1) as f64;
-        let rise = if u > rise.0 {
-            1.0 + rise.1 * ((u - rise.0) / (1.0 - rise.0)).powi(2)
-        } else {
-            1.0
-        };
-        let rms = 0.5 * rise * (1.0 + 0.03 * g());
-        let kurt = 3.0 + 0.1 * g() + if u > 0.8 { 2.0 * (u - 0.8) / 0.2 } else { 0.0 };
-        let crest = 4.5 + 0.2 * g();
-        csv.push_str(&format!(
-            "{k},{},{rms},{kurt},{crest},{},{}\n",
-            interval * k as f64,
-            0.02 * g(),
-            rms * crest
-        ));
-    }
-    let p = dir.join(format!("{name}.csv"));
-    std::fs::write(&p, csv).unwrap();
-    let side = format!(
-        r#"{{
-  "format": "wearsim-feature-table",
-  "format_version": 1,
-  "source": "synthetic FEMTO-like rig (tests/integration/rig_tables.rs)",
-  "bearing": {bearing},
-  "channel": "horiz",
-  "unit": "g",
-  "rpm": 1800.0,
-  "radial_load_n": {load},
-  "sample_rate_hz": 25600.0,
-  "snapshot_samples": 2560,
-  "snapshot_interval_s": {interval},
-  "failure_mode": "outer-race",
-  "n_snapshots": {N}
-}}"#
-    );
-    std::fs::write(dir.join(format!("{name}.json")), side).unwrap();
-    p
+    support::rig_table(
+        dir,
+        name,
+        &support::RigTable {
+            n: N,
+            seed,
+            bearing,
+            load,
+            rpm: 1800.0,
+            interval,
+            rise,
+            source: "synthetic FEMTO-like rig (tests/integration/rig_tables.rs)",
+        },
+    )
 }
 
 /// The rig's two lives, B1 and B2, in `dir` ([`table`] with seeds 1 and 2, 4000 N).

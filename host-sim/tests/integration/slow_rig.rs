@@ -19,58 +19,21 @@ const GEOMETRY: &str = r#"{ "elements": 13, "ball_mm": 3.5, "pitch_mm": 25.6, "a
 /// over its last 40 % to 5× its steady level (onset about 0.7 of life), with scatter from
 /// a fixed generator seeded by `seed`; the sidecar says it failed at the outer race.
 fn table(dir: &Path, name: &str, seed: u64, rpm: f64, interval: f64) -> PathBuf {
-    let mut st = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut g = move || {
-        // Sum of four uniforms: roughly Gaussian, unit variance.
-        (0..4)
-            .map(|_| {
-                st ^= st << 13;
-                st ^= st >> 7;
-                st ^= st << 17;
-                (st >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .sum::<f64>()
-            * 3f64.sqrt()
-    };
-    let mut csv = String::from("snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak\n");
-    for k in 0..N {
-        let u = k as f64 / (N - 1) as f64;
-        let rise = if u > 0.6 {
-            1.0 + 4.0 * ((u - 0.6) / 0.4).powi(2)
-        } else {
-            1.0
-        };
-        let rms = 0.5 * rise * (1.0 + 0.03 * g());
-        let kurt = 3.0 + 0.1 * g() + if u > 0.8 { 2.0 * (u - 0.8) / 0.2 } else { 0.0 };
-        let crest = 4.5 + 0.2 * g();
-        csv.push_str(&format!(
-            "{k},{},{rms},{kurt},{crest},{},{}\n",
-            interval * k as f64,
-            0.02 * g(),
-            rms * crest
-        ));
-    }
-    let p = dir.join(format!("{name}.csv"));
-    std::fs::write(&p, csv).unwrap();
-    let side = format!(
-        r#"{{
-  "format": "wearsim-feature-table",
-  "format_version": 1,
-  "source": "synthetic slow rig (tests/integration/slow_rig.rs)",
-  "bearing": {{ "geometry": {GEOMETRY}, "id": "{name}" }},
-  "channel": "horiz",
-  "unit": "g",
-  "rpm": {rpm:.1},
-  "radial_load_n": 4000.0,
-  "sample_rate_hz": 25600.0,
-  "snapshot_samples": 2560,
-  "snapshot_interval_s": {interval},
-  "failure_mode": "outer-race",
-  "n_snapshots": {N}
-}}"#
-    );
-    std::fs::write(dir.join(format!("{name}.json")), side).unwrap();
-    p
+    let bearing = format!(r#"{{ "geometry": {GEOMETRY}, "id": "{name}" }}"#);
+    support::rig_table(
+        dir,
+        name,
+        &support::RigTable {
+            n: N,
+            seed,
+            bearing: &bearing,
+            load: "4000.0",
+            rpm,
+            interval,
+            rise: (0.6, 4.0),
+            source: "synthetic slow rig (tests/integration/slow_rig.rs)",
+        },
+    )
 }
 
 /// `gap --life` (quick check: `--effects sensor --life-search 2`) on two lives at `rpm`

@@ -173,3 +173,86 @@ pub fn npy(dir: &Path, name: &str, shape: &[u64], data: &[f64]) -> PathBuf {
     std::fs::write(&p, buf).expect("write npy");
     p
 }
+
+/// A synthetic run-to-failure life in the documented feature-table format
+/// (`docs/feature-tables.md`), for [`rig_table`].
+pub struct RigTable<'a> {
+    /// Snapshots.
+    pub n: usize,
+    /// Seed of the snapshot-to-snapshot scatter (varies it between bearings).
+    pub seed: u64,
+    /// The sidecar's `bearing` object (JSON text).
+    pub bearing: &'a str,
+    /// Radial load, N (JSON number text).
+    pub load: &'a str,
+    /// Shaft speed, rpm.
+    pub rpm: f64,
+    /// Seconds between snapshots.
+    pub interval: f64,
+    /// The RMS rises from `rise.0` of the life to `1 + rise.1` times its steady level at
+    /// the end (`rise.1` = 0: a flat life, with no onset of instability).
+    pub rise: (f64, f64),
+    /// The sidecar's `source`.
+    pub source: &'a str,
+}
+
+/// Writes `dir/name.csv` and its sidecar: a bearing whose RMS rises as `t.rise` (kurtosis
+/// rising over the last 20 %), with scatter from a fixed xorshift generator seeded by
+/// `t.seed`; the sidecar says it failed at the outer race (25.6 kHz snapshots of 2560
+/// samples). Returns the CSV's path.
+pub fn rig_table(dir: &Path, name: &str, t: &RigTable) -> PathBuf {
+    let mut st = t.seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut g = move || {
+        // Sum of four uniforms: roughly Gaussian, unit variance.
+        (0..4)
+            .map(|_| {
+                st ^= st << 13;
+                st ^= st >> 7;
+                st ^= st << 17;
+                (st >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .sum::<f64>()
+            * 3f64.sqrt()
+    };
+    let n = t.n;
+    let mut csv = String::from("snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak\n");
+    for k in 0..n {
+        let u = k as f64 / (n - 1) as f64;
+        let rise = if u > t.rise.0 {
+            1.0 + t.rise.1 * ((u - t.rise.0) / (1.0 - t.rise.0)).powi(2)
+        } else {
+            1.0
+        };
+        let rms = 0.5 * rise * (1.0 + 0.03 * g());
+        let kurt = 3.0 + 0.1 * g() + if u > 0.8 { 2.0 * (u - 0.8) / 0.2 } else { 0.0 };
+        let crest = 4.5 + 0.2 * g();
+        csv.push_str(&format!(
+            "{k},{},{rms},{kurt},{crest},{},{}\n",
+            t.interval * k as f64,
+            0.02 * g(),
+            rms * crest
+        ));
+    }
+    let p = dir.join(format!("{name}.csv"));
+    std::fs::write(&p, csv).unwrap();
+    let side = format!(
+        r#"{{
+  "format": "wearsim-feature-table",
+  "format_version": 1,
+  "source": "{}",
+  "bearing": {},
+  "channel": "horiz",
+  "unit": "g",
+  "rpm": {:.1},
+  "radial_load_n": {},
+  "sample_rate_hz": 25600.0,
+  "snapshot_samples": 2560,
+  "snapshot_interval_s": {},
+  "failure_mode": "outer-race",
+  "n_snapshots": {n}
+}}"#,
+        t.source, t.bearing, t.rpm, t.load, t.interval
+    );
+    std::fs::write(dir.join(format!("{name}.json")), side).unwrap();
+    p
+}
