@@ -262,17 +262,18 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
         }
     }
     if samples.is_empty() {
-        // A line of text alone was read as the header: say so, rather than "truncated".
-        return Err(match &header {
-            Some(h) => IoError::Malformed {
-                path: path.to_path_buf(),
-                detail: format!(
-                    "no data rows: the only text line ({:?}) was read as a header; a CSV holds one sample per row, a number in each column",
+        // A header alone may be a file cut short after its first line, or a text file that
+        // is no CSV at all: the message shows the line it read as the header.
+        return Err(IoError::truncated(
+            path,
+            match &header {
+                Some(h) => format!(
+                    "no data rows after the header line {:?} (a CSV holds one sample per row, a number in each column)",
                     h.join(",")
                 ),
+                None => "no data rows".into(),
             },
-            None => IoError::truncated(path, "no data rows"),
-        });
+        ));
     }
     let names = header.unwrap_or_default();
     let channel = names[col].clone();
@@ -622,6 +623,13 @@ mod tests {
             read_csv(&p, &opts(None, Some(1.0))),
             Err(IoError::Truncated { .. })
         ));
+        // A word of text alone: the message shows the line read as the header (the probe's
+        // `notes.txt` said only "truncated: no data rows").
+        std::fs::write(&p, "hello\n").unwrap();
+        let e = read_csv(&p, &opts(None, Some(1.0)))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("after the header line \"hello\""), "{e}");
         // Absurd fs in the sidecar names the sidecar.
         std::fs::write(&p, "a\n1\n2\n").unwrap();
         let side = dir.path().join("x.json");
