@@ -75,10 +75,12 @@ pub fn validate(spec: &SweepSpec) -> Result<(), SweepError> {
                         }
                     }
                     if let Err(e) = shard::scenario_of(spec, &r) {
-                        // Blamed on this end only when the effect as drawn passes: a
-                        // failing draw of one of its other parameters is that one's end
-                        // to name (or, if none reaches it, the record's own error below).
-                        if shard::scenario_of(spec, &alone).is_ok() {
+                        // Blamed on this end when the error names this parameter
+                        // (`sensor.corner_hz = …`) or the effect as drawn passes: a failing
+                        // draw of one of its other parameters is that one's end to name
+                        // (or, if none reaches it, the record's own error below).
+                        let names_it = e.to_string().contains(&format!("{}.{name} =", spec_e.name));
+                        if names_it || shard::scenario_of(spec, &alone).is_ok() {
                             return Err(SweepError::Input(format!(
                                 "effect[{j}].params.{name} ({}): its distribution reaches {v}, which {e}; narrow the distribution",
                                 spec_e.name
