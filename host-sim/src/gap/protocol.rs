@@ -94,13 +94,13 @@ mod tests {
             .collect()
     }
 
-    fn judged(floor: f64) -> (TestTotals, Vec<String>) {
+    /// The roughness-only attribution of a `Floor(floor)` record under `opt`, judged on
+    /// the same record as its test part: (test totals, the attribution).
+    fn attributed_and_judged(floor: f64, opt: &Options) -> (TestTotals, Attribution) {
         let rough = roughness_only();
         let ev = Evaluator::new(1);
-        let opt = Options::default();
         let t = [Floor(floor)];
-        let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
-        assert_eq!(at.kept, ["roughness"]);
+        let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, opt).unwrap();
         let tt = judge(
             &mut at,
             &Effects::NONE,
@@ -110,6 +110,12 @@ mod tests {
             (opt.significant_gap, opt.variability),
         )
         .unwrap();
+        (tt, at)
+    }
+
+    fn judged(floor: f64) -> (TestTotals, Vec<String>) {
+        let (tt, at) = attributed_and_judged(floor, &Options::default());
+        assert_eq!(at.kept, ["roughness"]);
         (tt, at.findings)
     }
 
@@ -132,27 +138,14 @@ mod tests {
     /// ([`level`]), in the words of the variability it measures.
     #[test]
     fn a_level_reads_one_way_in_the_words_of_its_variability() {
-        let rough = roughness_only();
-        let ev = Evaluator::new(1);
         // Roughness does not help (its gap stays 4): nothing is chosen.
-        let t = [Floor(4.0)];
         let lives = |significant_gap| Options {
             significant_gap,
             variability: LIFE_VARIABILITY,
             ..Options::default()
         };
-        let opt = lives(1.449);
-        let mut at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
+        let (_, at) = attributed_and_judged(4.0, &lives(1.449));
         assert!(at.kept.is_empty());
-        judge(
-            &mut at,
-            &Effects::NONE,
-            &t,
-            &t,
-            &ev,
-            (opt.significant_gap, opt.variability),
-        )
-        .unwrap();
         let f = at.findings.join(" | ");
         assert!(!f.contains("the chosen model leaves"), "{f}");
         assert!(
@@ -161,7 +154,16 @@ mod tests {
         );
         // Below the level: the baseline finding prints the same level, in the same words.
         let opt = lives(4.5);
-        let at = attribute(&rough, &Effects::NONE, &t, &t, &ev, &opt).unwrap();
+        let t = [Floor(4.0)];
+        let at = attribute(
+            &roughness_only(),
+            &Effects::NONE,
+            &t,
+            &t,
+            &Evaluator::new(1),
+            &opt,
+        )
+        .unwrap();
         let f = at.findings.join(" | ");
         assert!(
             f.contains("sampling variability") && f.contains("(< 4.50)"),
