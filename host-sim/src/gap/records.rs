@@ -326,7 +326,20 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     // speed far from the nominal one it is whatever line falls there (at 300 rpm, twice
     // the BPFO of the 6205 at 35.9 Hz). A record too short to resolve 2.5 % of the shaft
     // frequency is not checked (`analyze`'s `speed_check: null`).
-    if let Some(r) = analysis::shaft_line::check(&accel, fs, rpm / 60.0).and_then(|c| c.reason) {
+    // A speed the gap read from the spectrum itself must pass the check: the strongest
+    // line near the nominal speed may be a bearing line (at 300 rpm on a 6205 preset, twice
+    // the BPFO, whose fundamental then stands at ½x), and a whole attribution at a wrong
+    // speed is worse than asking for it.
+    let checked = analysis::shaft_line::check(&accel, fs, rpm / 60.0);
+    if rpm_source == "spectrum" {
+        if let Some(r) = checked.as_ref().and_then(|c| c.reason.as_ref()) {
+            return Err(format!(
+                "{p}: the shaft speed is not in the file, and the line the spectrum suggests ({rpm:.0} rpm, the strongest within ±25 % of the preset's {:.0} rpm) fails the shaft-line check: {r}; give --rpm",
+                60.0 * nominal
+            ));
+        }
+    }
+    if let Some(r) = checked.and_then(|c| c.reason) {
         warnings.push(format!(
             "speed check: {r}; the matched simulations assume {rpm:.0} rpm at {fs} Hz"
         ));

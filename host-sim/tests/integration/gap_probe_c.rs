@@ -114,3 +114,35 @@ fn gap_leaves_a_resonance_above_nyquist_uncalibrated() {
         None
     );
 }
+
+/// The same 300 rpm record with the speed taken out of its sidecar: the strongest line
+/// within ±25 % of the preset's 1797 rpm is twice the BPFO (35.9 Hz), whose fundamental
+/// stands at half of it. The gap used to take 2 154 rpm from it and attribute the whole
+/// record at that speed; the estimate now has to pass the shaft-line check, and fails here
+/// with a message that asks for `--rpm`.
+#[test]
+fn a_speed_read_from_a_bearing_line_is_refused_and_rpm_asked_for() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let wav = simulated(dir.path(), "sim300", "300", "12000", "7");
+    let side = wav.with_extension("json");
+    let mut meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&side).expect("sidecar")).expect("json");
+    let obj = meta.as_object_mut().expect("object");
+    assert!(obj.remove("rpm").is_some() && obj.remove("rpm_range").is_some());
+    std::fs::write(&side, meta.to_string()).expect("write sidecar");
+    let e = records::load(&wav, &Overrides::default()).expect_err("a wrong speed is refused");
+    assert!(
+        e.contains("fails the shaft-line check") && e.contains("1/2x") && e.contains("give --rpm"),
+        "{e}"
+    );
+    // Stated, the same record loads at its true speed.
+    let r = records::load(
+        &wav,
+        &Overrides {
+            rpm: Some(300.0),
+            ..Overrides::default()
+        },
+    )
+    .expect("load with --rpm");
+    assert!((r.rpm - 300.0).abs() < 1e-9, "{}", r.rpm);
+}
