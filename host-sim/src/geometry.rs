@@ -89,18 +89,22 @@ pub fn catalogue(name: &str) -> Option<&'static CatalogueEntry> {
 /// The geometry a wearsim preset or a catalogue bearing `name` stands for (mm, degrees).
 pub fn named_geometry(name: &str) -> Option<GeometrySpec> {
     if let Some(m) = wearsim_core::presets::by_name(name) {
-        let g = m.bearing;
-        return Some(GeometrySpec {
-            elements: u32::from(g.elements),
-            ball_mm: g.element_diameter * 1e3,
-            pitch_mm: g.pitch_diameter * 1e3,
-            angle_deg: g.contact_angle.to_degrees(),
-        });
+        return Some(GeometrySpec::of(&m.bearing));
     }
     catalogue(name).map(|e| e.geometry)
 }
 
 impl GeometrySpec {
+    /// The geometry of a model's bearing, in the flag's units (mm, degrees).
+    pub fn of(g: &BearingGeometry) -> Self {
+        GeometrySpec {
+            elements: u32::from(g.elements),
+            ball_mm: g.element_diameter * 1e3,
+            pitch_mm: g.pitch_diameter * 1e3,
+            angle_deg: g.contact_angle.to_degrees(),
+        }
+    }
+
     /// The geometry as `--bearing-geometry` takes it, to 4 decimals:
     /// `elements=16,ball=8.4074,pitch=71.501,angle=15.17`.
     pub fn describe(&self) -> String {
@@ -429,12 +433,7 @@ pub fn choose(
         {
             let named = match (catalogue(name), wearsim_core::presets::by_name(name)) {
                 (Some(e), _) => Some(e.geometry),
-                (None, Some(p)) => Some(GeometrySpec {
-                    elements: u32::from(p.bearing.elements),
-                    ball_mm: p.bearing.element_diameter * 1e3,
-                    pitch_mm: p.bearing.pitch_diameter * 1e3,
-                    angle_deg: p.bearing.contact_angle.to_degrees(),
-                }),
+                (None, Some(p)) => Some(GeometrySpec::of(&p.bearing)),
                 (None, None) => None,
             };
             if let Some(n) = named.filter(|n| !n.same_as(&g)) {

@@ -4,6 +4,7 @@
 //! used stated when it is shorter than `--seconds` asked.
 
 use super::records::RealRecord;
+use crate::geometry::GeometrySpec;
 use std::path::Path;
 
 /// Record indices (0-based, in `--real` order) of each role.
@@ -117,13 +118,26 @@ pub fn one_bearing(recs: &[RealRecord]) -> Result<(), String> {
     let Some(first) = recs.first() else {
         return Ok(());
     };
-    if recs.iter().all(|r| r.bearing == first.bearing) {
+    // By name and by geometry: two records whose sidecars give different geometries are
+    // both `custom`.
+    let geometry = |r: &RealRecord| GeometrySpec::of(&r.base.bearing);
+    if recs
+        .iter()
+        .all(|r| r.bearing == first.bearing && geometry(r).same_as(&geometry(first)))
+    {
         return Ok(());
     }
     let each: Vec<String> = recs
         .iter()
         .enumerate()
-        .map(|(i, r)| format!("{} is {}", arg_name(i, &r.file), r.bearing))
+        .map(|(i, r)| {
+            format!(
+                "{} is {} ({})",
+                arg_name(i, &r.file),
+                r.bearing,
+                geometry(r).describe()
+            )
+        })
         .collect();
     Err(format!(
         "--real: the records are of different bearings ({}); one diagnosis fits one rig and one set of effect parameters on the training part and judges them on the others, so all its records must be of one bearing: diagnose each bearing separately (or give --bearing if a file names its bearing wrongly)",
@@ -214,5 +228,39 @@ mod tests {
         assert!(e.starts_with("--real r3: in no role"), "{e}");
         let e = roles(3, Some(&[0]), None, Some(&[0, 1])).unwrap_err();
         assert!(e.contains("--train and --holdout both hold r0"), "{e}");
+    }
+
+    /// A record of `bearing` with the model `preset`'s rig and its bearing's `elements`.
+    fn record(file: &str, bearing: &str, elements: u8) -> RealRecord {
+        let mut base = wearsim_core::presets::by_name("cwru-6205-de").expect("preset");
+        base.bearing.elements = elements;
+        RealRecord {
+            file: file.into(),
+            accel: vec![],
+            fs: 12_000.0,
+            rpm: 1797.0,
+            rpm_source: "argument".into(),
+            bearing: bearing.into(),
+            base,
+            defect: None,
+            defect_source: "none",
+            defect_model: None,
+            unit: "g".into(),
+            content_hz: None,
+            warnings: vec![],
+        }
+    }
+
+    /// Probe finding (stop 52, left then): two records whose sidecars give different
+    /// geometries are both `custom`, and the names alone let them through as one bearing.
+    #[test]
+    fn records_of_one_name_and_two_geometries_are_refused() {
+        let same = [record("a.wav", "custom", 9), record("b.wav", "custom", 9)];
+        assert!(one_bearing(&same).is_ok());
+        let two = [record("a.wav", "custom", 9), record("b.wav", "custom", 8)];
+        let e = one_bearing(&two).unwrap_err();
+        assert!(e.contains("elements=9") && e.contains("elements=8"), "{e}");
+        let names = [record("a.wav", "custom", 9), record("b.wav", "6205", 9)];
+        assert!(one_bearing(&names).is_err());
     }
 }
