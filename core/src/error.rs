@@ -49,6 +49,10 @@ pub enum ConfigError {
         /// then be at least `min_internal_rate_hz / max_oversample`. `None` when the
         /// configuration fixed the oversample.
         max_oversample: Option<u32>,
+        /// The races' waviness passing frequency (Hz) when it, not the stiffest mode, sets
+        /// `min_internal_rate_hz` (it must stay below 0.45 of the internal rate; it grows
+        /// with the shaft speed). `None`: the stiffest mode sets it.
+        waviness_hz: Option<f64>,
     },
     /// A feature of the model that this version does not implement.
     Unsupported {
@@ -97,13 +101,24 @@ impl core::fmt::Display for ConfigError {
                 limit,
                 min_internal_rate_hz,
                 max_oversample,
+                waviness_hz,
             } => {
-                write!(
-                    f,
-                    "{field}: internal step too large for the stiffest mode (omega*h = \
-                     {omega_h:.3}, limit {limit}); use an internal rate of at least \
-                     {min_internal_rate_hz:.0} Hz"
-                )?;
+                match waviness_hz {
+                    Some(w) => write!(
+                        f,
+                        "{field}: internal step too large for the races' waviness, which \
+                         passes at {w:.0} Hz at this shaft speed and must stay below 0.45 of \
+                         the internal rate (the stiffest mode's omega*h = {omega_h:.3} is \
+                         within its limit {limit}); use an internal rate of at least \
+                         {min_internal_rate_hz:.0} Hz"
+                    )?,
+                    None => write!(
+                        f,
+                        "{field}: internal step too large for the stiffest mode (omega*h = \
+                         {omega_h:.3}, limit {limit}); use an internal rate of at least \
+                         {min_internal_rate_hz:.0} Hz"
+                    )?,
+                }
                 match max_oversample {
                     Some(r) if r > 0 => write!(
                         f,

@@ -204,6 +204,50 @@ fn too_large_step_is_an_error() {
     assert!(Model::new_checked(presets::by_name("thesis-as-printed").unwrap()).is_ok());
 }
 
+/// Probe finding (stop 53): at 60 000 rpm the races' waviness, not the stiffest mode, sets
+/// the internal rate, and the error said "omega*h = 0.262, limit 0.6" — a refusal whose
+/// numbers said the step was fine. It now names the waviness frequency, and the output
+/// rate it states is accepted.
+#[test]
+fn a_step_too_coarse_for_the_waviness_says_so() {
+    let cfg = ModelConfig {
+        speed: SpeedProfile::Constant(1000.0),
+        ..presets::by_name("cwru-6205-de").unwrap()
+    };
+    match Model::new_checked(cfg.clone()) {
+        Err(
+            e @ ConfigError::StepTooLarge {
+                omega_h,
+                limit,
+                max_oversample: Some(k),
+                min_internal_rate_hz,
+                waviness_hz: Some(w),
+                ..
+            },
+        ) => {
+            let msg = e.to_string();
+            assert!(omega_h <= limit, "{msg}");
+            assert!(
+                msg.contains("waviness") && msg.contains(&format!("{w:.0} Hz")),
+                "{msg}"
+            );
+            // The waviness passes at a whole multiple of the cage's rotation relative to
+            // the shaft: far above the shaft's 1 kHz, and it sets the rate.
+            assert!(
+                w > 10_000.0 && (min_internal_rate_hz - w / 0.45).abs() < 1e-6 * w,
+                "{msg}"
+            );
+            let fs = (min_internal_rate_hz / k as f64).ceil() + 1.0;
+            let ok = Model::new_checked(ModelConfig {
+                output_rate: fs as _,
+                ..cfg
+            });
+            assert!(ok.is_ok(), "{fs} Hz: {ok:?}");
+        }
+        other => panic!("expected a waviness StepTooLarge, got {other:?}"),
+    }
+}
+
 #[test]
 fn every_preset_validates() {
     for name in presets::NAMES {

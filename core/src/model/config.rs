@@ -375,17 +375,14 @@ fn oversampling(
     match cfg.oversample {
         Some(r) => {
             if !accepts(r) {
-                let min_rate = if wave_hz >= 0.45 * fs * r as f64 {
-                    wave_hz / 0.45
-                } else {
-                    omega / limit
-                };
+                let waviness = wave_hz >= 0.45 * fs * r as f64;
                 return Err(ConfigError::StepTooLarge {
                     field: "oversample",
                     omega_h: omega / (fs * r as f64),
                     limit,
-                    min_internal_rate_hz: min_rate,
+                    min_internal_rate_hz: (omega / limit).max(wave_hz / 0.45),
                     max_oversample: None,
+                    waviness_hz: waviness.then_some(wave_hz),
                 });
             }
             Ok(r)
@@ -398,6 +395,7 @@ fn oversampling(
                 limit,
                 min_internal_rate_hz: (omega / limit).max(wave_hz / 0.45),
                 max_oversample: Some(MAX_OVERSAMPLE),
+                waviness_hz: (wave_hz / 0.45 > omega / limit).then_some(wave_hz),
             }),
         },
     }

@@ -230,9 +230,11 @@ impl RigDescription {
                 field: "fs",
                 min_internal_rate_hz,
                 max_oversample: Some(k),
+                waviness_hz,
                 ..
             }) => Err(format!(
-                "{fs} Hz is too low to simulate this bearing: its stiffest contact mode needs a sample rate of at least {:.0} Hz ({k} internal steps per sample at most), allowed up to {hi} Hz",
+                "{fs} Hz is too low to simulate this bearing: {} needs a sample rate of at least {:.0} Hz ({k} internal steps per sample at most), allowed up to {hi} Hz",
+                waviness_hz.map_or("its stiffest contact mode".to_string(), |w| format!("the races' waviness, passing at {w:.0} Hz at this speed,")),
                 (min_internal_rate_hz / f64::from(k)).ceil(),
             )),
             _ => Ok(()),
