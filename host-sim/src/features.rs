@@ -162,6 +162,25 @@ fn notes(layout: RawLayout, skipped: &[String], missing: &[String]) -> Vec<Strin
     n
 }
 
+/// A note for a table that the format holds but a simulated life cannot take (`gap
+/// --life`): a speed outside [`crate::config::MIN_SIM_RPM`]..=[`crate::config::MAX_SIM_RPM`],
+/// or no load (the load wears the bearing). The table is still written: it is data.
+fn simulation_limits(rpm: f64, load_n: f64) -> Vec<String> {
+    use crate::config::{MAX_SIM_RPM, MIN_SIM_RPM};
+    let mut n = vec![];
+    if !(MIN_SIM_RPM..=MAX_SIM_RPM).contains(&rpm) {
+        n.push(format!(
+            "rpm {rpm} is outside what a simulated life takes ({MIN_SIM_RPM}..={MAX_SIM_RPM} rpm): `gap --life` will refuse this table"
+        ));
+    }
+    if load_n <= 0.0 {
+        n.push(
+            "radial_load_n 0: a simulated life needs the load that wears the bearing: `gap --life` will refuse this table".into(),
+        );
+    }
+    n
+}
+
 /// A check of the table made from folder `dir` failed: the error names the flag whose
 /// value the sidecar field holds, or else the folder.
 fn about_input(dir: &Path, e: FeatureTableError) -> FeaturesError {
@@ -401,7 +420,10 @@ pub fn convert(
         snapshot_interval_s: median_step(&rows),
         failure_mode,
         n_snapshots: Some(rows.len() as u64),
-        notes: notes(layout, &skipped, &listing.missing),
+        notes: notes(layout, &skipped, &listing.missing)
+            .into_iter()
+            .chain(simulation_limits(rpm, load_n))
+            .collect(),
     };
     // The table's own checks, made here on the input so that a refusal names the folder
     // (and the flag or the files at fault), not the table that was never written.

@@ -261,7 +261,9 @@ impl LifeRun {
         let static_load = q_max.max(1e-3);
         let calibration_load = match spec.calibration_load {
             Some(radial) => {
-                wearsim_core::error::check_range("calibration_load", radial, 1e-3, 1e8)?;
+                // The calibration load is the scenario's own `radial_load` (before
+                // `--load-scale`): named as the user wrote it. A life needs a load.
+                wearsim_core::error::check_range("radial_load", radial, 1e-3, 1e8)?;
                 Model::new_checked(ModelConfig {
                     defect: None,
                     radial_load: radial,

@@ -287,3 +287,47 @@ fn hours_is_the_span_of_the_table() {
     let hours = j["hours"].as_f64().unwrap();
     assert!((hours - 11.0 / 60.0).abs() < 1e-12, "hours {hours}");
 }
+
+/// Probe finding (stop 53): `features` accepted `--rpm 100000` and `--load-n 0` (the
+/// format's ranges) and wrote tables that `gap --life` then refused (a simulated life takes
+/// 0.06..=60 000 rpm and needs a load). The tables are still written — they are data — and
+/// their sidecar notes say what `gap --life` will refuse.
+#[test]
+fn a_table_no_life_can_simulate_says_so_in_its_notes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("xjtu");
+    std::fs::create_dir_all(&raw).unwrap();
+    for k in 1..=40 {
+        xjtu_file(&raw, &format!("{k}.csv"), 0.1 * k as f64, true);
+    }
+    let notes = |rpm: &str, load: &str| -> Vec<String> {
+        let out = tmp.path().join(format!("o{rpm}-{load}/t.csv"));
+        let o = wearsim(&[
+            "features",
+            s(&raw),
+            "--layout",
+            "xjtu",
+            "--out",
+            s(&out),
+            "--rpm",
+            rpm,
+            "--load-n",
+            load,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let side: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(sidecar_path(&out)).unwrap()).unwrap();
+        side["notes"]
+            .as_array()
+            .map(|a| a.iter().map(|n| n.as_str().unwrap().to_string()).collect())
+            .unwrap_or_default()
+    };
+    assert!(notes("2100", "12000").is_empty());
+    let n = notes("100000", "0");
+    assert!(
+        n.iter()
+            .any(|t| t.starts_with("rpm 100000 is outside") && t.contains("gap --life"))
+            && n.iter().any(|t| t.starts_with("radial_load_n 0")),
+        "{n:?}"
+    );
+}

@@ -151,6 +151,17 @@ fn life_with(load_scale: f64, lambda: f64, seed: u64, every: f64) -> (f64, LifeR
     (r.state.cycles, run)
 }
 
+/// Probe finding (stop 53): a scenario with `radial_load = 0` was refused as
+/// "calibration_load = 0 is out of range", a key the user never wrote. The error now names
+/// the scenario's `radial_load`.
+#[test]
+fn a_life_without_load_names_radial_load() {
+    let mut spec = reference(1, 2e4, 0.05);
+    spec.calibration_load = Some(0.0);
+    let e = LifeRun::new(spec).err().expect("refused").to_string();
+    assert!(e.starts_with("radial_load = 0 is out of range"), "{e}");
+}
+
 /// No NaN over whole lives at the corners of the load and lubrication ranges.
 #[test]
 fn corners_of_the_parameter_ranges() {
