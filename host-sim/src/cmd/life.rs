@@ -377,6 +377,11 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         "groups": groups.iter().map(group_json).collect::<Vec<_>>(),
         "load_exponent": exp,
         "first_spall_load_exponent": exp_spall,
+        "load_exponent_note": (exp.is_none() || exp_spall.is_none()).then(|| if groups.len() < 2 {
+            "an exponent needs --loads with two or more loads".to_string()
+        } else {
+            "an exponent needs at least two loads whose lives (to failure, or to the first spall) hold three failures each: see groups[].no_fit".to_string()
+        }),
         "load_exponent_iso": [-3.0, -10.0 / 3.0],
         "load_exponent_published": if point {
             PUBLISHED_LOAD_EXPONENTS_BALL.iter().map(|(v, s)| json!({"exponent": v, "source": s})).collect::<Vec<_>>()
@@ -541,7 +546,19 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Why a group's Weibull fit is `null`: `k` of `n` lives give the fit's data, and a fit
+/// needs three failures ([`crate::life::weibull::fit_units`]) that are not all equal.
+fn no_fit(k: usize, n: usize, what: &str) -> String {
+    if k < 3 {
+        format!("{k} of {n} {what}: a Weibull fit needs at least 3 (the rest are suspensions at --cycles)")
+    } else {
+        format!("{k} of {n} {what}, all at one time: no Weibull fit")
+    }
+}
+
 fn group_json(g: &LoadGroup) -> serde_json::Value {
+    let failed = g.lives.iter().filter(|l| !l.suspended).count();
+    let spalled = g.lives.iter().filter(|l| l.first_spall.is_some()).count();
     let lives: Vec<f64> = g.lives.iter().map(|l| l.life).collect();
     let (mn, mx) = lives
         .iter()
@@ -549,16 +566,18 @@ fn group_json(g: &LoadGroup) -> serde_json::Value {
     json!({
         "load_scale": g.load_scale, "load_n": g.load_n, "iso_l10_revs": g.iso_l10,
         "weibull": g.weibull, "l10_over_iso": g.weibull.as_ref().map(|w| w.l10.value / g.iso_l10),
+        "no_fit": g.weibull.is_none().then(|| no_fit(failed, g.lives.len(), "failures")),
         "first_spall": {
             "weibull": g.first_spall_weibull,
             "l10_over_iso": g.first_spall_weibull.as_ref().map(|w| w.l10.value / g.iso_l10),
-            "reached": g.lives.iter().filter(|l| l.first_spall.is_some()).count(),
+            "reached": spalled,
+            "no_fit": g.first_spall_weibull.is_none().then(|| no_fit(spalled, g.lives.len(), "lives reached the first spall")),
         },
         "initiation": {
             "surface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Surface)).count(),
             "subsurface": g.lives.iter().filter(|l| l.initiation == Some(Initiation::Subsurface)).count(),
         },
-        "failed": g.lives.iter().filter(|l| !l.suspended).count(),
+        "failed": failed,
         "suspended": g.lives.iter().filter(|l| l.suspended).count(),
         "life_min": mn, "life_max": mx, "onset_median": g.onset_median, "onset_found": g.onset_found,
         "stage_onsets": g.stage_onsets,

@@ -459,6 +459,41 @@ fn life_command_outputs_and_errors() {
     }
 }
 
+/// Probe finding (stop 53): with every life suspended at `--cycles`, twelve fields of
+/// `lives.json` were `null` with nothing in the JSON saying why. Each null fit and exponent
+/// now comes with its reason.
+#[test]
+fn null_fits_say_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("lives");
+    let o = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args([
+            "life", "--lives", "3", "--cycles", "2e5", "--window", "0.05", "--json", "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let g = &v["groups"][0];
+    assert_eq!(g["suspended"], 3, "{g}");
+    assert!(g["weibull"].is_null() && g["first_spall"]["weibull"].is_null());
+    let why = g["no_fit"].as_str().unwrap();
+    assert!(
+        why.starts_with("0 of 3 failures") && why.contains("at least 3"),
+        "{why}"
+    );
+    assert!(g["first_spall"]["no_fit"]
+        .as_str()
+        .unwrap()
+        .starts_with("0 of 3 lives reached"));
+    assert!(v["load_exponent"].is_null());
+    assert!(v["load_exponent_note"]
+        .as_str()
+        .unwrap()
+        .contains("two or more loads"));
+}
+
 /// `life --lives N` at two loads: every life fails, the Weibull fit and the life–load
 /// exponent come with intervals that contain their estimates, and the exponent has the
 /// sign and size of a fatigue law (ISO 281: −3 for ball bearings; the lives carry
@@ -503,6 +538,7 @@ fn lives_give_weibull_and_load_exponent() {
         assert!(b > 0.3 && b < 20.0 && lo <= b && b <= hi, "{w}");
         assert!(g["iso_l10_revs"].as_f64().unwrap() > 0.0);
     }
+    assert!(v["load_exponent_note"].is_null() && groups.iter().all(|g| g["no_fit"].is_null()));
     let e = &v["load_exponent"];
     let x = e["value"].as_f64().unwrap();
     assert!((-6.0..=-1.0).contains(&x), "life–load exponent {e}");
