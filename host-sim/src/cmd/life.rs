@@ -222,6 +222,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
             "windows": windows,
             "dense": dense_info,
             "files": files,
+            "units": crate::life::output::units(),
         });
         println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
     } else {

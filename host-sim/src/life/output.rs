@@ -77,6 +77,30 @@ pub fn timeline(st: &LifeState) -> Vec<Span> {
 }
 
 /// Writes features, timeline, events and summary into `dir`; returns the files written.
+/// Units of the columns of `life-features.csv` (and the fields of `life-features.json`'s
+/// snapshots and their `features`), stated in `life-summary.json`: the windows are
+/// simulated acceleration at the sensor in m/s².
+pub fn units() -> serde_json::Value {
+    json!({
+        "cycles": "revolutions of the shaft",
+        "life_fraction": "1 (cycles / cycles to failure)",
+        "rms": "m/s^2",
+        "kurtosis": "1 (m4/m2^2, 3 for Gaussian noise; not the excess)",
+        "crest_factor": "1 (peak / rms)",
+        "zone_rotating": "m/s^2 (RMS in the band)",
+        "zone_fault": "m/s^2 (RMS in the band)",
+        "zone_natural": "m/s^2 (RMS in the band; 0 when the band lies beyond fs/2)",
+        "zone_high": "m/s^2 (RMS in the band; 0 when the band lies beyond fs/2)",
+        "fault_peak": "m/s^2 (envelope-spectrum amplitude at the wear site's pass frequency)",
+        "resonance_peak": "m/s^2 (amplitude-spectrum peak within ±30 % of the natural frequency; 0 when none)",
+        "asperity_m": "m", "length_m": "m", "crack_m": "m",
+        "count": "1 (defects)",
+        "debris": "1 (debris level)",
+        "zone_load_n": "N (power mean of the pass loads in the load zone)",
+        "edge_load_n": "N (cubic mean of the defect-edge loads)",
+    })
+}
+
 pub fn write_life(
     dir: &Path,
     run: &LifeRun,
@@ -159,6 +183,7 @@ pub fn write_life(
         "initiation_scatter": st.initiation_scatter,
         "dent_scatter": st.dent_scatter,
         "seed": run.spec.seed,
+        "units": units(),
         "run": extra,
     });
     let p = dir.join(SUMMARY);

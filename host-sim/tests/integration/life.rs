@@ -380,6 +380,24 @@ fn life_command_outputs_and_errors() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v["cycles_to_failure"].as_f64().unwrap() > 1e5);
+    // Every column of the features table has its unit, in the summary and on stdout
+    // (probe finding, stop 53: none was stated anywhere).
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("life-summary.json")).unwrap()).unwrap();
+    let header = std::fs::read_to_string(out.join("life-features.csv")).unwrap();
+    for col in header
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .filter(|c| *c != "stage")
+    {
+        assert!(
+            summary["units"][col].is_string() && v["units"][col].is_string(),
+            "{col}"
+        );
+    }
+    assert_eq!(summary["units"]["rms"], "m/s^2");
     for f in [
         "life-features.csv",
         "life-timeline.csv",
