@@ -15,9 +15,9 @@
 //! | `crest_factor` | - | yes | peak / rms, ≥ 1 |
 //! | `skewness` | - | yes | m3/m2^1.5 |
 //! | `peak` | record unit | yes | max \|x\| |
-//! | `band_<lo>_<hi>_hz` | record unit | no | RMS in the band lo..hi Hz |
+//! | `band_<lo>_<hi>_hz` | record unit | no | RMS in the band lo..hi Hz, hi ≤ sample_rate_hz / 2 |
 //!
-//! Other columns are ignored (listed in [`FeatureTable::ignored_columns`]). The writer
+//! Other columns (and bands reaching above the Nyquist frequency) are ignored (listed in [`FeatureTable::ignored_columns`]). The writer
 //! and the conversion of an IMS table are in [`super::feature_table_write`].
 
 use std::path::{Path, PathBuf};
@@ -174,8 +174,11 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
             }
         })?;
     }
+    // A band reaching above the Nyquist frequency holds no level the snapshots can have
+    // (the band of a table at another rate): ignored, and so listed.
+    let nyquist = 0.5 * sidecar.sample_rate_hz * (1.0 + 1e-9);
     let band_idx: Vec<usize> = (0..header.len())
-        .filter(|i| parse_band(&header[*i]).is_some())
+        .filter(|i| parse_band(&header[*i]).is_some_and(|(_, hi)| hi <= nyquist))
         .collect();
     let ignored_columns: Vec<String> = header
         .iter()
@@ -517,6 +520,26 @@ mod tests {
         short.push_str("10,600,0.5,3,4\n");
         let e = read(dir.path(), &short).unwrap_err().to_string();
         assert!(e.contains("row 11: 5 cells, the header has 7"), "{e}");
+    }
+
+    /// Probe finding (stop 53): a band reaching above the Nyquist frequency of the
+    /// sidecar's rate (`band_0_20000_hz` at 25.6 kHz) was read as a band. It is ignored and
+    /// listed; a band up to Nyquist is read.
+    #[test]
+    fn a_band_above_nyquist_is_ignored_and_listed() {
+        let dir = tempfile::tempdir().unwrap();
+        let t = read(
+            dir.path(),
+            &table(
+                &format!("{HEADER},band_0_20000_hz,band_6400_12800_hz"),
+                |c| c,
+                Some("0.1,0.2"),
+            ),
+        )
+        .unwrap();
+        assert_eq!(t.ignored_columns, ["band_0_20000_hz"]);
+        assert_eq!(t.bands.len(), 1);
+        assert_eq!(t.bands[0].0, "band_6400_12800_hz");
     }
 
     /// Probe defect: a `;`-separated table was refused only with "missing column
