@@ -323,8 +323,9 @@ pub fn read_ims_features(path: impl AsRef<Path>) -> Result<ImsFeatures, IoError>
         return Err(IoError::unsupported(
             path,
             format!(
-                "header {:?} is not one of the known IMS feature layouts",
-                header.iter().take(4).collect::<Vec<_>>()
+                "header {:?} is not one of the known IMS feature layouts (`ims-compare` and `ims-validate` read the IMS tests' tables only; a run-to-failure test of another rig enters as a documented feature table, docs/feature-tables.md, through `gap --life`){}",
+                header.iter().take(4).collect::<Vec<_>>(),
+                if h.first() == Some(&"snapshot") { " — this looks like such a table" } else { "" }
             ),
         ));
     };
@@ -500,6 +501,27 @@ pub fn read_ims_features(path: impl AsRef<Path>) -> Result<ImsFeatures, IoError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Probe finding (stop 53): a lab's own feature table given to `ims-compare` was
+    /// refused as "not one of the known IMS feature layouts", with no word that these
+    /// commands are IMS-only or of the way in for another rig.
+    #[test]
+    fn a_documented_feature_table_is_pointed_to_gap_life() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("t.csv");
+        std::fs::write(
+            &p,
+            "snapshot,time_s,rms,kurtosis,crest_factor,skewness,peak
+0,0,1,3,4,0,4
+",
+        )
+        .unwrap();
+        let e = read_ims_features(&p).unwrap_err().to_string();
+        assert!(
+            e.contains("gap --life") && e.contains("looks like such a table"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn names_and_timestamps() {
