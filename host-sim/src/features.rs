@@ -146,8 +146,28 @@ pub fn detect(dir: &Path) -> Result<RawLayout, FeaturesError> {
 }
 
 /// The sidecar's notes: files not read (with the reason) and gaps in the layout's numbering.
-fn notes(layout: RawLayout, skipped: &[String], missing: &[String]) -> Vec<String> {
+fn notes(
+    layout: RawLayout,
+    skipped: &[String],
+    missing: &[String],
+    others: &[String],
+) -> Vec<String> {
     let mut n: Vec<String> = skipped.iter().map(|s| format!("skipped: {s}")).collect();
+    if !others.is_empty() {
+        const SHOWN: usize = 5;
+        n.push(format!(
+            "not read: {} file(s) not named as {} snapshots ({}{})",
+            others.len(),
+            format!("{layout:?}").to_lowercase(),
+            others
+                .iter()
+                .take(SHOWN)
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(", "),
+            if others.len() > SHOWN { ", …" } else { "" }
+        ));
+    }
     if !missing.is_empty() {
         n.push(format!(
             "missing: {} (no such file; the layout numbers its files from 1 and each row's snapshot index is its file's number{})",
@@ -420,7 +440,7 @@ pub fn convert(
         snapshot_interval_s: median_step(&rows),
         failure_mode,
         n_snapshots: Some(rows.len() as u64),
-        notes: notes(layout, &skipped, &listing.missing)
+        notes: notes(layout, &skipped, &listing.missing, &listing.others)
             .into_iter()
             .chain(simulation_limits(rpm, load_n))
             .collect(),

@@ -38,6 +38,10 @@ pub(crate) struct Listing {
     pub skipped: Vec<String>,
     /// Gaps in the layout's numbering 1, 2, …: a file name, or a range of them.
     pub missing: Vec<String>,
+    /// Names of the folder's other files (not of the layout's snapshot naming), sorted:
+    /// not read, and counted in the sidecar's notes so that a folder mixing two layouts
+    /// or tests does not pass silently.
+    pub others: Vec<String>,
 }
 
 fn femto_index(name: &str) -> Option<u64> {
@@ -92,13 +96,28 @@ pub(crate) fn list(dir: &Path, layout: RawLayout) -> Result<Listing, FeaturesErr
     // (path, number or time stamp)
     let mut found: Vec<(PathBuf, i64)> = vec![];
     let mut skipped = vec![];
+    // Numbers of entries of the layout's naming that are no readable file (a directory, a
+    // broken link): listed as skipped, not as missing.
+    let mut not_files: Vec<u64> = vec![];
+    let mut others: Vec<String> = vec![];
     for e in rd {
         let e = e.map_err(|e| IoError::io(dir, "read directory", e))?;
         let p = e.path();
+        let name = e.file_name().to_string_lossy().into_owned();
         if !p.is_file() {
+            if has_snapshot_name(layout, &name) {
+                skipped.push(format!(
+                    "{}: not read: named as a snapshot but no regular file (a directory or a broken link)",
+                    p.display()
+                ));
+                not_files.extend(femto_index(&name).or_else(|| xjtu_number(&name)));
+            }
             continue;
         }
-        let name = e.file_name().to_string_lossy().into_owned();
+        if !has_snapshot_name(layout, &name) {
+            others.push(name);
+            continue;
+        }
         let key = match layout {
             RawLayout::Ims => check_ims_name(name.strip_suffix(".txt").unwrap_or(&name))
                 .map_err(|why| {
@@ -163,16 +182,21 @@ pub(crate) fn list(dir: &Path, layout: RawLayout) -> Result<Listing, FeaturesErr
         .collect();
     let missing = match layout {
         RawLayout::Femto | RawLayout::Xjtu => {
-            let numbers: Vec<u64> = found.iter().map(|f| f.1 as u64).collect();
+            let mut numbers: Vec<u64> = found.iter().map(|f| f.1 as u64).collect();
+            numbers.extend(not_files);
+            numbers.sort_unstable();
+            numbers.dedup();
             gaps(layout, &numbers)
         }
         _ => vec![],
     };
     skipped.sort();
+    others.sort();
     Ok(Listing {
         files,
         skipped,
         missing,
+        others,
     })
 }
 

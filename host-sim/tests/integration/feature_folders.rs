@@ -331,3 +331,32 @@ fn a_table_no_life_can_simulate_says_so_in_its_notes() {
         "{n:?}"
     );
 }
+
+/// Probe findings (stop 53): a FEMTO folder holding XJTU-SY files and a README converted
+/// without a word about them, and a directory named `acc_00006.csv` was listed as "missing
+/// (no such file)". The other files are counted and named in the notes; the directory is
+/// skipped as no regular file, and not listed as missing.
+#[test]
+fn other_files_and_a_directory_of_a_snapshot_name_are_noted() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("femto");
+    femto_folder(&raw, 12, &[6]);
+    std::fs::create_dir(raw.join("acc_00006.csv")).unwrap();
+    xjtu_file(&raw, "1.csv", 0.1, true);
+    std::fs::write(raw.join("README.txt"), "rig 3").unwrap();
+    let out = tmp.path().join("o/femto.csv");
+    let o = femto(&raw, &out, true);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    assert_eq!(t.rows.len(), 11);
+    let notes = t.sidecar.notes.join("\n");
+    assert!(
+        notes.contains("not read: 2 file(s) not named as femto snapshots (1.csv, README.txt)"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("acc_00006.csv: not read: named as a snapshot but no regular file")
+            && !notes.contains("missing:"),
+        "{notes}"
+    );
+}
