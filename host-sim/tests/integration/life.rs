@@ -158,7 +158,10 @@ fn life_with(load_scale: f64, lambda: f64, seed: u64, every: f64) -> (f64, LifeR
 fn a_life_without_load_names_radial_load() {
     let mut spec = reference(1, 2e4, 0.05);
     spec.calibration_load = Some(0.0);
-    let e = LifeRun::new(spec).err().expect("refused").to_string();
+    let Err(e) = LifeRun::new(spec) else {
+        panic!("a life without load was accepted")
+    };
+    let e = e.to_string();
     assert!(e.starts_with("radial_load = 0 is out of range"), "{e}");
 }
 
