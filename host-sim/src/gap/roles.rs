@@ -7,6 +7,17 @@ use super::records::RealRecord;
 use crate::geometry::GeometrySpec;
 use std::path::Path;
 
+/// Role of the data every parameter is fitted on (`records[].role`, lifetime
+/// `where[].role`, `train_span.role`). The three role names are defined here once, for
+/// records of seconds and lives alike.
+pub const TRAIN: &str = "train";
+/// Role of the data the model is chosen on (ranking, greedy addition, dropping): its
+/// totals (`totals.before`/`after`) are biased upwards by that choice.
+pub const VALIDATION: &str = "validation";
+/// Role of the data the reported figure is measured on, which chose nothing
+/// (`totals.test_before`/`test_after`).
+pub const TEST: &str = "test";
+
 /// Record indices (0-based, in `--real` order) of each role.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Roles {

@@ -223,7 +223,7 @@ pub struct GapOutput {
 /// A record in the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct RecordRole {
-    /// `train`, `validation` or `test`.
+    /// [`roles::TRAIN`], [`roles::VALIDATION`] or [`roles::TEST`].
     pub role: String,
     /// Part label.
     pub part: String,
@@ -406,8 +406,8 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
             meta: r.clone(),
         });
         match tag {
-            "train" => p.train.push(m),
-            "validation" => p.valid.push(m),
+            roles::TRAIN => p.train.push(m),
+            roles::VALIDATION => p.valid.push(m),
             _ => p.test.push(m),
         }
         Ok::<(), GapError>(())
@@ -429,7 +429,10 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         }
         let third = r.accel.len() / 3;
         let len = third.min((a.seconds * r.fs).round() as usize);
-        for (k, tag) in ["train", "validation", "test"].iter().enumerate() {
+        for (k, tag) in [roles::TRAIN, roles::VALIDATION, roles::TEST]
+            .iter()
+            .enumerate()
+        {
             let start = k * third;
             push(&mut p, r, start, len, a.seed + start as u64, tag)?;
         }
@@ -460,13 +463,13 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
             // Validation from the training record itself, right after the training part.
             let half = r.accel.len() / 2;
             let len = window(r).min(half);
-            push(&mut p, r, 0, len, seed, "train")?;
-            push(&mut p, r, half, len, seed + 500, "validation")?;
+            push(&mut p, r, 0, len, seed, roles::TRAIN)?;
+            push(&mut p, r, half, len, seed + 500, roles::VALIDATION)?;
         } else {
-            push(&mut p, r, 0, window(r), seed, "train")?;
+            push(&mut p, r, 0, window(r), seed, roles::TRAIN)?;
         }
     }
-    for (idx, tag) in [(&vi, "validation"), (&hi, "test")] {
+    for (idx, tag) in [(&vi, roles::VALIDATION), (&hi, roles::TEST)] {
         for (k, i) in idx.iter().enumerate() {
             let Some(r) = recs.get(*i) else { continue };
             let seed = a.seed + 1000 * k as u64 + 7 * *i as u64;
@@ -492,7 +495,7 @@ pub fn diagnose(
     let level = p
         .roles
         .iter()
-        .find(|r| r.role == "train")
+        .find(|r| r.role == roles::TRAIN)
         // About the mean: a sensor's DC offset does not scale the fit spaces.
         .map_or(1.0, |r| rms(&super::without_mean(&r.meta.accel)));
     let ctx = space::context(first.spec(), level, a.mains, &first.base);

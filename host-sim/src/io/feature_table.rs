@@ -410,7 +410,8 @@ pub(crate) fn check_against_table(
 impl FeatureTable {
     /// The life of this table on its own normalised time line (time over the span from
     /// the first to the last snapshot), for `gap --life`. `bearing` is the life's number
-    /// in the diagnosis (its position among the tables given).
+    /// in the diagnosis (its position among the tables given); the bearing it is, is the
+    /// sidecar's `bearing.id` ([`MeasuredLife::id`]).
     pub fn to_life(&self, bearing: usize) -> MeasuredLife {
         let hours: Vec<f64> = self.rows.iter().map(|r| r.time_s / 3600.0).collect();
         let h0 = hours.first().copied().unwrap_or(0.0);
@@ -430,6 +431,8 @@ impl FeatureTable {
         MeasuredLife {
             file: self.path.display().to_string(),
             bearing,
+            id: self.sidecar.bearing.id.clone(),
+            source: self.sidecar.source.clone(),
             points,
             hours: h1 - h0,
             dropped: 0,

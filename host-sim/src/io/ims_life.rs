@@ -50,10 +50,19 @@ pub fn live_snapshots(f: &ImsFeatures) -> Vec<bool> {
 /// A measured life: one bearing's snapshots on the normalised time line of the test.
 #[derive(Debug, Clone, Serialize)]
 pub struct MeasuredLife {
-    /// File read.
+    /// File read (the path as given).
     pub file: String,
-    /// Bearing (1-based, test 2: channel = bearing).
+    /// The life's number in the diagnosis, as `--train`/`--validation`/`--holdout` count
+    /// lives: on an IMS table its bearing (1-based, channel = bearing); on a documented
+    /// feature table its position among the `--real` tables (1-based), which says nothing
+    /// of which bearing it is ([`MeasuredLife::id`] does).
     pub bearing: usize,
+    /// Which bearing it is: a feature table's sidecar `bearing.id`; on an IMS table
+    /// `test N bearing k` (a known IMS test) or `bearing k` (a table of no known test).
+    pub id: String,
+    /// Where the data come from: a feature table's sidecar `source`; on an IMS table the
+    /// test it is recognised as, or that it is of no known test.
+    pub source: String,
     /// Snapshots (dead final snapshots dropped).
     pub points: Vec<LifePoint>,
     /// Duration of the test up to its last live snapshot (h).
@@ -79,6 +88,17 @@ pub struct MeasuredLife {
 }
 
 impl MeasuredLife {
+    /// How the life is named in reports: its [`MeasuredLife::id`] and its file, e.g.
+    /// `B1_2 (lab2/run.csv)` or `test 2 bearing 1 (test2_timefeatures.csv)`. Two lives of
+    /// one diagnosis never share it: their files differ (the same file twice is refused),
+    /// or, on one IMS table, their bearings.
+    pub fn label(&self) -> String {
+        match self.id.trim() {
+            "" => self.file.clone(),
+            id => format!("{id} ({})", self.file),
+        }
+    }
+
     /// Whether the life is stated to have run to failure (a failure site, not `none` or
     /// `unknown`).
     pub fn failed(&self) -> bool {
@@ -221,9 +241,18 @@ pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
         (false, Some(k)) => k.mode,
         (false, None) => "none",
     };
+    let test = known.first().map(|k| k.test);
     Ok(MeasuredLife {
         file: path.display().to_string(),
         bearing,
+        id: match test {
+            Some(t) => format!("test {t} bearing {bearing}"),
+            None => format!("bearing {bearing}"),
+        },
+        source: match test {
+            Some(t) => format!("IMS test {t} feature table (recognised by its first snapshot)"),
+            None => "IMS-layout feature table of no known IMS test".into(),
+        },
         points,
         hours: h1 - h0,
         dropped: n - keep.len(),

@@ -21,6 +21,7 @@ mod gap_cells;
 mod gap_cli;
 mod gap_cwru;
 mod gap_life;
+mod gap_life_roles;
 mod gap_own_output;
 mod gap_probe_c;
 mod gap_roles;

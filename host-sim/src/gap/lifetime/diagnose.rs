@@ -16,6 +16,7 @@ use crate::gap::identify;
 use crate::gap::leave_one_out::{leave_one_out, LeaveOneOut};
 use crate::gap::matched::{Evaluator, Gaps};
 use crate::gap::protocol::judge;
+use crate::gap::roles;
 use crate::gap::space::FitSpace;
 use crate::io::ims_life::read_life;
 use serde::Serialize;
@@ -41,9 +42,10 @@ pub struct StageGap {
 /// One cell of one life, before and after ("where").
 #[derive(Debug, Clone, Serialize)]
 pub struct LifeCell {
-    /// Record (file and bearing).
+    /// The life ([`MeasuredLife::label`]: its bearing id and file).
     pub record: String,
-    /// `train` or `holdout`.
+    /// [`roles::TRAIN`], [`roles::VALIDATION`] (chose the model) or [`roles::TEST`]
+    /// (judged only).
     pub role: String,
     /// Cell name `life:<stage>:<stat>`.
     pub cell: String,
@@ -126,8 +128,21 @@ pub struct EarlyShrink {
 /// wear site.
 #[derive(Debug, Clone, Serialize)]
 pub struct LifeSpan {
-    /// The life (file and bearing).
+    /// The life ([`MeasuredLife::label`]: its bearing id and file).
     pub life: String,
+    /// Its role: [`roles::TRAIN`] (fitted on), [`roles::VALIDATION`] (chose the model) or
+    /// [`roles::TEST`] (judged only; chose nothing).
+    pub role: &'static str,
+    /// Its number as `--train`/`--validation`/`--holdout` count lives: the bearing of an
+    /// IMS table, a feature table's position among the `--real` tables.
+    pub number: usize,
+    /// Its file, as given.
+    pub path: String,
+    /// Which bearing it is (a feature table's sidecar `bearing.id`; IMS: `test N bearing
+    /// k`).
+    pub id: String,
+    /// Where its data come from (a feature table's sidecar `source`).
+    pub source: String,
     /// Its failure mode as its source states it (`unknown` for an IMS table).
     pub failure_mode: String,
     /// Compared on the stages that end by this fraction of its life (1: the whole life).
@@ -145,6 +160,10 @@ pub struct LifeSpan {
     pub ignored_columns: Vec<String>,
 }
 
+/// Why a diagnosis without a test part has no test figure (`test_note`, and a finding);
+/// `{lives}` is replaced by the held-out lives.
+pub const NO_TEST_PART: &str = "no separate test part: the held-out lives ({lives}) both chose the model (ranking, greedy additions) and were judged, so the held-out totals (`totals.before`/`after`, `early.before`/`after`) are biased upwards by that choice and are no clean test figure; `totals.test_*` and `early.test` are null because no life was kept apart from the choice (give --validation LIST: those lives choose, and the --holdout lives become a test part that chooses nothing)";
+
 /// The part of a held-out life it is judged on: a life that did not fail (`none`), or one
 /// not known to have failed that shared its shaft with the bearings of its test (an IMS
 /// table of no known test), only on the stages before [`HOLDOUT_T_MAX`] of its test (it
@@ -161,10 +180,21 @@ pub fn holdout_t_max(m: &MeasuredLife) -> f64 {
 /// The lifetime diagnosis.
 #[derive(Debug, Clone, Serialize)]
 pub struct LifeGap {
-    /// Training life.
+    /// Training life ([`roles::TRAIN`]): every parameter is fitted on it.
     pub train: Vec<String>,
-    /// Held-out lives.
+    /// Validation lives ([`roles::VALIDATION`]): the model is chosen on them (ranking,
+    /// greedy additions), and `stages_holdout` and the held-out totals are theirs. Without
+    /// a test part these are all the held-out lives, which then both choose and are judged.
+    pub validation: Vec<String>,
+    /// Test lives ([`roles::TEST`]): judged with the chosen model only, nothing fitted or
+    /// chosen on them; empty without a test part (`--validation` not given).
+    pub test: Vec<String>,
+    /// Every life not trained on: the validation lives, then the test lives (the order of
+    /// `holdout_spans`).
     pub holdout: Vec<String>,
+    /// Why there is no test figure, when there is none: the held-out lives chose the model
+    /// and were judged, so their totals are no clean test figure.
+    pub test_note: Option<String>,
     /// The simulated bearing (from the preset or the sidecar) and its assumptions.
     pub rig: RigDescription,
     /// Its closed-form defect frequencies.
@@ -189,8 +219,10 @@ pub struct LifeGap {
     pub holdout_spans: Vec<LifeSpan>,
     /// Stages ranked by their baseline gap on the training life ("where along life").
     pub stages_train: Vec<StageGap>,
-    /// Stages of the held-out lives.
+    /// Stages of the validation lives (those that chose the model).
     pub stages_holdout: Vec<StageGap>,
+    /// Stages of the test lives (empty without a test part).
+    pub stages_test: Vec<StageGap>,
     /// Held-out early-life gap of the baseline (total over the cells of the stages
     /// before [`EARLY_T_MAX`]).
     pub early_before: f64,
@@ -324,16 +356,6 @@ pub struct MeasuredSet {
     pub rig: RigDescription,
 }
 
-fn label(m: &MeasuredLife) -> String {
-    format!(
-        "{} bearing {}",
-        Path::new(&m.file)
-            .file_name()
-            .map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
-        m.bearing
-    )
-}
-
 /// Reads the training and held-out lives of `path` and builds their cells. Where the
 /// table is one of the IMS tests ([`crate::io::ims_life::IMS_FAILURES`]), each bearing is
 /// known to have failed or not: a training bearing that did not fail is refused (its
@@ -377,10 +399,10 @@ pub fn measured_from(
     if holdout.is_empty() {
         return Err("--holdout: give at least one held-out life (an IMS table: another bearing, e.g. --holdout B2; feature tables: a second --real table) — a lifetime diagnosis fits on one life and judges on another".into());
     }
-    let train_ref = LifeReference::new(&label(&train), &train.points, 1.0)?;
+    let train_ref = LifeReference::new(&train.label(), &train.points, 1.0)?;
     let holdout_ref = holdout
         .iter()
-        .map(|m| LifeReference::new(&label(m), &m.points, holdout_t_max(m)))
+        .map(|m| LifeReference::new(&m.label(), &m.points, holdout_t_max(m)))
         .collect::<Result<_, _>>()?;
     Ok(MeasuredSet {
         train,
@@ -439,9 +461,20 @@ pub fn diagnose(m: &MeasuredSet, o: &LifeOptions) -> Result<LifeGap, String> {
     diagnose_calibrated(m, o, &c)
 }
 
-fn span(m: &MeasuredLife, r: &LifeReference, t_max: f64, sim: &LifeSim) -> LifeSpan {
+fn span(
+    m: &MeasuredLife,
+    role: &'static str,
+    r: &LifeReference,
+    t_max: f64,
+    sim: &LifeSim,
+) -> LifeSpan {
     LifeSpan {
-        life: label(m),
+        life: m.label(),
+        role,
+        number: m.bearing,
+        path: m.file.clone(),
+        id: m.id.clone(),
+        source: m.source.clone(),
         failure_mode: m.failure_mode.clone(),
         t_max,
         simulated_site: sim.site().name().to_string(),
@@ -488,7 +521,12 @@ pub fn diagnose_calibrated(
                 }
             }
         };
-        holdout_spans.push(span(life, r, holdout_t_max(life), &own));
+        let role = if o.test.contains(&life.bearing) {
+            roles::TEST
+        } else {
+            roles::VALIDATION
+        };
+        holdout_spans.push(span(life, role, r, holdout_t_max(life), &own));
         hold.push(LifeTarget {
             reference: r.clone(),
             sim: own,
@@ -506,6 +544,15 @@ pub fn diagnose_calibrated(
         }
     }
     let hold = choose;
+    let labels = |role: &str| -> Vec<String> {
+        hold_lives
+            .iter()
+            .zip(&holdout_spans)
+            .filter(|(_, sp)| sp.role == role)
+            .map(|(l, _)| l.label())
+            .collect()
+    };
+    let (validation_lives, test_lives) = (labels(roles::VALIDATION), labels(roles::TEST));
     if hold.is_empty() {
         return Err("--validation: the lives that choose the model are all in the test part; give at least one".into());
     }
@@ -550,15 +597,17 @@ pub fn diagnose_calibrated(
             &ev,
             (SIGNIFICANCE * noise_test, opt.variability),
         )?;
-        let names: Vec<String> = hold_lives
-            .iter()
-            .filter(|l| o.test.contains(&l.bearing))
-            .map(label)
-            .collect();
         at.findings.push(format!(
-            "test part: {} — nothing was fitted or chosen on it; `totals.test_before`/`test_after` are measured there only (a correct model would leave {noise_test:.2} by sampling alone)",
-            names.join(", ")
+            "test part: {} — nothing was fitted or chosen on it; `totals.test_before`/`test_after` are measured there only (a correct model would leave {noise_test:.2} by sampling alone); the model was chosen on the validation lives {}",
+            test_lives.join(", "),
+            validation_lives.join(", ")
         ));
+    }
+    let test_note = test
+        .is_empty()
+        .then(|| NO_TEST_PART.replace("{lives}", &validation_lives.join(", ")));
+    if let Some(n) = &test_note {
+        at.findings.push(n.clone());
     }
     // The early-life part: the same attribution on the early stages' cells only (their
     // contrasts to the steady stage), fitted on the training life's early stages and
@@ -645,15 +694,28 @@ pub fn diagnose_calibrated(
             .collect()
     };
     let fx = (&Effects::NONE, &at.final_effects);
-    let mut cells = life_cells("train", &train, fx, ev.counter());
-    cells.extend(life_cells("holdout", &hold, fx, ev.counter()));
+    let mut cells = life_cells(roles::TRAIN, &train, fx, ev.counter());
+    cells.extend(life_cells(roles::VALIDATION, &hold, fx, ev.counter()));
+    cells.extend(life_cells(roles::TEST, &test, fx, ev.counter()));
     cells.sort_by(|a, b| b.gap.abs().total_cmp(&a.gap.abs()));
+    let stages_test = if test.is_empty() {
+        vec![]
+    } else {
+        let (tb, ta) = (
+            ev.residuals(&test, &Effects::NONE)?,
+            ev.residuals(&test, &at.final_effects)?,
+        );
+        stage_gaps(&test, &tb, &ta, &vals(&test))
+    };
     let hold_e_final = ev.residuals(&hold_e, &at.final_effects)?;
     let early_after = hold_e_final.total();
     at.simulations = ev.sims();
     Ok(LifeGap {
-        train: vec![label(train_life)],
-        holdout: hold_lives.iter().map(label).collect(),
+        train: vec![train_life.label()],
+        validation: validation_lives,
+        test: test_lives,
+        holdout: holdout_spans.iter().map(|sp| sp.life.clone()).collect(),
+        test_note,
         rig: m.rig.clone(),
         kinematics,
         life_factor: scales.life_factor,
@@ -662,10 +724,11 @@ pub fn diagnose_calibrated(
         simulated_onset: c.simulated_onset,
         simulated_onset_basis: c.simulated_onset_basis,
         measured_revs,
-        train_span: span(train_life, &m.train_ref, 1.0, &sim),
+        train_span: span(train_life, roles::TRAIN, &m.train_ref, 1.0, &sim),
         holdout_spans,
         stages_train: stage_gaps(&train, &train_before, &train_after, &vals(&train)),
         stages_holdout: stage_gaps(&hold, &at.holdout_before, &at.holdout_after, &vals(&hold)),
+        stages_test,
         early_before,
         early_after,
         early,
@@ -682,7 +745,7 @@ pub fn diagnose_calibrated(
         ],
         measured: std::iter::once(train_life)
             .chain(hold_lives)
-            .map(|m| (label(m), m.points.clone()))
+            .map(|m| (m.label(), m.points.clone()))
             .collect(),
         simulations: ev.sims() + cal_runs,
         seconds: t0.elapsed().as_secs_f64(),

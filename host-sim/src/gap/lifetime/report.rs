@@ -12,6 +12,7 @@ use crate::gap::report::{
     draw_gap_bars, findings_section, finish, fmt_params, greedy_section, leave_one_out_section,
     render_lines, Series, BASE_C, FINAL_C, REAL_C,
 };
+use crate::gap::roles;
 use crate::plot::{register_fonts, render};
 use plotters::style::RGBColor;
 use serde::Serialize;
@@ -73,21 +74,33 @@ pub struct Early {
 pub struct LifeGapOutput {
     /// `lifetime`.
     pub mode: &'static str,
-    /// Training lives.
+    /// Training lives (role `train`: every parameter fitted on them). Each life is named
+    /// by its bearing id and its file ([`lifetime::MeasuredLife::label`]).
     pub train: Vec<String>,
-    /// Held-out lives.
+    /// Validation lives (role `validation`: the model was chosen on them). Without a test
+    /// part, all held-out lives, which then also were judged (`totals.test_note`).
+    pub validation: Vec<String>,
+    /// Test lives (role `test`: judged only, chose nothing; `totals.test_*`); empty
+    /// without a test part.
+    pub test: Vec<String>,
+    /// Every life not trained on: `validation` then `test` (kept for readers of earlier
+    /// reports; the order of `holdout_spans`).
     pub holdout: Vec<String>,
-    /// Every cell of every life ranked by |baseline gap| ("where").
+    /// Every cell of every life, each with its life's role, ranked by |baseline gap|
+    /// ("where").
     #[serde(rename = "where")]
     pub where_: Vec<LifeCell>,
     /// Stages ranked by their baseline gap, training life.
     pub stages_train: Vec<StageGap>,
-    /// Stages of the held-out lives.
+    /// Stages of the validation lives (which chose the model).
     pub stages_holdout: Vec<StageGap>,
-    /// How the training life is compared (whole life, simulated wear site).
+    /// Stages of the test lives (empty without a test part).
+    pub stages_test: Vec<StageGap>,
+    /// How the training life is compared (whole life, simulated wear site), and which
+    /// life it is (`path`, `id`, `source`, `number`, `role`).
     pub train_span: lifetime::LifeSpan,
-    /// How each held-out life is compared: its failure mode, the part of its life judged
-    /// (`t_max`), the simulated wear site.
+    /// How each life not trained on is compared: its failure mode, the part of its life
+    /// judged (`t_max`), the simulated wear site; which life it is and its role.
     pub holdout_spans: Vec<lifetime::LifeSpan>,
     /// Effects ranked by held-out shrink.
     pub ranking: Vec<Ranked>,
@@ -99,8 +112,10 @@ pub struct LifeGapOutput {
     pub exchanged: Vec<crate::gap::exchange::Exchanged>,
     /// Effects of the final model.
     pub kept: Vec<String>,
-    /// Held-out totals.
-    pub totals: Totals,
+    /// Totals: `before`/`after` on the validation lives (they chose the model: biased
+    /// upwards), `test_*` on the test lives (null without a test part, `test_note` says
+    /// why).
+    pub totals: LifeTotals,
     /// Effect named first.
     pub identified: Option<String>,
     /// Effects tied with it.
@@ -140,6 +155,18 @@ pub struct LifeGapOutput {
     pub seconds: f64,
     /// Files written.
     pub files: Vec<PathBuf>,
+}
+
+/// The totals of a lifetime diagnosis: those of records of seconds ([`Totals`], the same
+/// keys) and, when the `test_*` figures are null, why.
+#[derive(Debug, Clone, Serialize)]
+pub struct LifeTotals {
+    /// The totals.
+    #[serde(flatten)]
+    pub totals: Totals,
+    /// Why `test_*` are null (no test part: the held-out lives chose the model and were
+    /// judged); `null` when a test part was judged.
+    pub test_note: Option<String>,
 }
 
 /// What the failure modes of the lives mean for the comparison: which part of each
@@ -188,7 +215,7 @@ fn span_findings(g: &LifeGap) -> Vec<String> {
                 h.failure_mode, h.simulated_site
             )
         };
-        f.push(format!("held-out life {}: {why}", h.life));
+        f.push(format!("held-out {} life {}: {why}", h.role, h.life));
     }
     for sp in std::iter::once(t).chain(&g.holdout_spans) {
         if let Some(name) = sp.merged_early {
@@ -334,10 +361,13 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
     LifeGapOutput {
         mode: "lifetime",
         train: g.train.clone(),
+        validation: g.validation.clone(),
+        test: g.test.clone(),
         holdout: g.holdout.clone(),
         where_: g.cells.clone(),
         stages_train: g.stages_train.clone(),
         stages_holdout: g.stages_holdout.clone(),
+        stages_test: g.stages_test.clone(),
         train_span: g.train_span.clone(),
         holdout_spans: g.holdout_spans.clone(),
         ranking: at.ranking.clone(),
@@ -345,7 +375,10 @@ pub fn output(g: &LifeGap) -> LifeGapOutput {
         dropped: at.dropped.clone(),
         exchanged: at.exchanged.clone(),
         kept: at.kept.clone(),
-        totals: Totals::of(at),
+        totals: LifeTotals {
+            totals: Totals::of(at),
+            test_note: g.test_note.clone(),
+        },
         identified: at.identified.clone(),
         tied_with: at.tied_with.clone(),
         early: Early {
@@ -418,15 +451,42 @@ fn alone_table<'a>(
     }
 }
 
+/// What the lives that chose the model are called: `validation` beside a test part,
+/// `held-out` without one (they were also judged).
+fn held_word(o: &LifeGapOutput) -> &'static str {
+    if o.test.is_empty() {
+        "held-out"
+    } else {
+        roles::VALIDATION
+    }
+}
+
+/// The roles of the lives, for the report's first lines.
+fn roles_line(o: &LifeGapOutput) -> String {
+    let mut s = format!("Training life (fitted): {}.", o.train.join(", "));
+    if o.test.is_empty() {
+        s += &format!(
+            " Held-out (chose the model and judged; no separate test part): {}.",
+            o.validation.join(", ")
+        );
+    } else {
+        s += &format!(
+            " Validation (chose the model): {}. Test (judged only, chose nothing): {}.",
+            o.validation.join(", "),
+            o.test.join(", ")
+        );
+    }
+    s
+}
+
 /// The report as Markdown.
 pub fn markdown(o: &LifeGapOutput) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Sim-to-real gap along a life\n");
     let _ = writeln!(
         s,
-        "Training life: {}. Held-out: {}. Simulated: {} ({} elements, ball {:.3} mm, pitch {:.3} mm, {:.2}°; {:.1} rpm, {:.0} N; structure: {}; BPFO {:.2} Hz, BPFI {:.2} Hz, natural frequency {:.0} Hz) with the core's stress-driven wear, life factor {:.3e} and propagation limit {:.3e} passes (calibrated on the training life, {:.3e} revolutions, onset of instability at {}).\n",
-        o.train.join(", "),
-        o.holdout.join(", "),
+        "{} Simulated: {} ({} elements, ball {:.3} mm, pitch {:.3} mm, {:.2}°; {:.1} rpm, {:.0} N; structure: {}; BPFO {:.2} Hz, BPFI {:.2} Hz, natural frequency {:.0} Hz) with the core's stress-driven wear, life factor {:.3e} and propagation limit {:.3e} passes (calibrated on the training life, {:.3e} revolutions, onset of instability at {}).\n",
+        roles_line(o),
         o.rig.origin,
         o.rig.elements,
         o.rig.ball_mm,
@@ -449,27 +509,40 @@ pub fn markdown(o: &LifeGapOutput) -> String {
         "## Where along life\n\nCells: the steady stage (10–50 % of life) holds the absolute kurtosis, crest factor and skewness; every other stage its contrast to the steady stage (RMS in dB re the steady median, differences of the others). Gap = (simulated − measured) / the measured snapshot-to-snapshot spread of the stage.\n"
     );
     stage_table(&mut s, "Training life", &o.stages_train);
-    stage_table(&mut s, "Held-out lives", &o.stages_holdout);
+    let chose = if o.test.is_empty() {
+        "Held-out lives (chose the model and judged: no separate test part)"
+    } else {
+        "Validation lives (chose the model)"
+    };
+    stage_table(&mut s, chose, &o.stages_holdout);
+    if !o.test.is_empty() {
+        stage_table(
+            &mut s,
+            "Test lives (judged only, chose nothing)",
+            &o.stages_test,
+        );
+    }
     let _ = writeln!(s, "Largest cells:\n");
     let _ = writeln!(
         s,
-        "| record | cell | measured | simulated | spread | gap | simulated after | gap after |"
+        "| life | role | cell | measured | simulated | spread | gap | simulated after | gap after |"
     );
-    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|");
+    let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|---:|---:|");
     for c in o.where_.iter().take(12) {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3} | {:.3} | {:.3} | {:+.2} | {:.3} | {:+.2} |",
-            c.record, c.cell, c.real, c.sim, c.spread, c.gap, c.sim_after, c.gap_after
+            "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:+.2} | {:.3} | {:+.2} |",
+            c.record, c.role, c.cell, c.real, c.sim, c.spread, c.gap, c.sim_after, c.gap_after
         );
     }
+    let held = held_word(o);
     let _ = writeln!(
         s,
-        "\n## Which: each effect alone (fitted on the training life, judged on the held-out lives)\n"
+        "\n## Which: each effect alone (fitted on the training life, judged on the {held} lives)\n"
     );
     alone_table(
         &mut s,
-        "held-out gap",
+        &format!("{held} gap"),
         o.ranking.iter().map(|r| {
             (
                 r.effect.as_str(),
@@ -481,12 +554,12 @@ pub fn markdown(o: &LifeGapOutput) -> String {
     );
     let _ = writeln!(
         s,
-        "\n### The early-life part (stages before {:.0} % of life)\n\nEach effect fitted on the training life's early stages alone and judged on the held-out lives' early stages (their contrasts to the steady stage).\n",
+        "\n### The early-life part (stages before {:.0} % of life)\n\nEach effect fitted on the training life's early stages alone and judged on the {held} lives' early stages (their contrasts to the steady stage).\n",
         100.0 * o.early.until
     );
     alone_table(
         &mut s,
-        "held-out early gap",
+        &format!("{held} early gap"),
         o.early
             .effects
             .iter()
@@ -494,7 +567,7 @@ pub fn markdown(o: &LifeGapOutput) -> String {
     );
     let _ = writeln!(
         s,
-        "\nHeld-out early-life gap {:.2} (baseline; {:.2} by sampling alone) → {:.2} (final model of the whole life); closed by: {}.\n",
+        "\nEarly-life gap of the {held} lives {:.2} (baseline; {:.2} by sampling alone) → {:.2} (final model of the whole life); closed by: {}.\n",
         o.early.before,
         o.early.noise_only,
         o.early.after,
@@ -526,13 +599,32 @@ pub fn markdown(o: &LifeGapOutput) -> String {
     greedy_section(&mut s, &o.greedy, &o.dropped, &o.kept);
     let _ = writeln!(
         s,
-        "\nTotal held-out gap {:.2} → {:.2} ({:.0} % smaller; {:.2} by sampling alone); training life before: {:.2}.",
-        o.totals.before,
-        o.totals.after,
-        100.0 * o.totals.shrink,
+        "\nTotal {} gap {:.2} → {:.2} ({:.0} % smaller; {:.2} by sampling alone); training life before: {:.2}.",
+        if o.test.is_empty() {
+            "held-out (chose the model and judged)"
+        } else {
+            "validation (chose the model, biased upwards)"
+        },
+        o.totals.totals.before,
+        o.totals.totals.after,
+        100.0 * o.totals.totals.shrink,
         o.noise_only,
-        o.totals.train_before
+        o.totals.totals.train_before
     );
+    let t = &o.totals.totals;
+    match (t.test_before, t.test_after, &o.totals.test_note) {
+        (Some(b), Some(a), _) => {
+            let _ = writeln!(
+                s,
+                "\n**Total test gap** (chose nothing): {b:.2} → {a:.2} ({:.0} % smaller).",
+                100.0 * (1.0 - a / b)
+            );
+        }
+        (_, _, Some(n)) => {
+            let _ = writeln!(s, "\n**No test figure**: {n}.");
+        }
+        _ => {}
+    }
     if let Some(loo) = &o.leave_one_out {
         leave_one_out_section(&mut s, loo);
     }
@@ -596,6 +688,7 @@ pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>,
             &ser,
         )?);
     }
+    let held = held_word(o);
     let rows: Vec<(String, f64, f64)> = o
         .stages_train
         .iter()
@@ -603,12 +696,17 @@ pub fn write(dir: &Path, o: &LifeGapOutput, g: &LifeGap) -> Result<Vec<PathBuf>,
         .chain(
             o.stages_holdout
                 .iter()
-                .map(|s| (format!("held-out {}", s.stage), s.before, s.after)),
+                .map(|s| (format!("{} {}", held, s.stage), s.before, s.after)),
+        )
+        .chain(
+            o.stages_test
+                .iter()
+                .map(|s| (format!("test {}", s.stage), s.before, s.after)),
         )
         .collect();
     let title = format!(
-        "stage gaps: held-out total {:.2} → {:.2}",
-        o.totals.before, o.totals.after
+        "stage gaps: {held} total {:.2} → {:.2}",
+        o.totals.totals.before, o.totals.totals.after
     );
     files.extend(render(
         dir,
