@@ -318,9 +318,11 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
         )));
     }
     if holdout.is_empty() {
-        return Err(CliError::input(
-            "--holdout: give at least one held-out bearing",
-        ));
+        return Err(CliError::input(if lives < 2 {
+            "--real: the input holds one life; the lifetime diagnosis fits on one life and judges on another: give a second table (--real), another bearing of the rig run to failure".to_string()
+        } else {
+            format!("--holdout: give at least one held-out bearing (of 1..={lives}, not the training one)")
+        }));
     }
     let (holdout, test) = if validation.is_empty() {
         (holdout, vec![])

@@ -176,3 +176,23 @@ fn the_roles_of_the_lives_are_stated_in_the_report() {
         .all(|c| c["role"] == "train" || c["role"] == "validation"));
     assert!(md.contains("no separate test part"), "{md}");
 }
+
+/// Probe finding (stop 53): one table alone was refused with "--holdout: give at least one
+/// held-out bearing", though no flag was given and the table holds one life: the message
+/// now asks for a second table.
+#[test]
+fn one_table_alone_is_asked_for_a_second() {
+    let tmp = tempfile::tempdir().unwrap();
+    let a = life(&tmp.path().join("lab1"), "run", 1, "B1_1", "lab 1");
+    support::refused(
+        &wearsim(&[
+            "gap",
+            "--life",
+            "--real",
+            s(&a),
+            "--out",
+            s(&tmp.path().join("o")),
+        ]),
+        &["the input holds one life", "give a second table (--real)"],
+    );
+}

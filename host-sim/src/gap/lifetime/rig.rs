@@ -37,7 +37,8 @@ pub const RPM_TOL: f64 = 0.01;
 /// Everything the simulated life of a measured bearing is built from.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RigDescription {
-    /// Where the description comes from: `preset ims-za2115`, `sidecar geometry`.
+    /// Where the description comes from: `preset ims-za2115`, `sidecar geometry`,
+    /// `catalogue bearing xjtu-ldk-uer204 (sidecar bearing.preset)`.
     pub origin: String,
     /// The preset whose other settings the model keeps (the named one, or the one the
     /// structure is scaled from).
@@ -198,13 +199,18 @@ impl RigDescription {
                     ),
                 )
             })?;
-        let d = Self::scaled(
+        let mut d = Self::scaled(
             spec,
             s.rpm / 60.0,
             s.radial_load_n,
             s.sample_rate_hz,
             window,
         )?;
+        // Say where the geometry came from: a catalogue bearing the sidecar names, or its
+        // own numbers.
+        if let Some(name) = s.bearing.preset.as_deref() {
+            d.origin = format!("catalogue bearing {name} (sidecar bearing.preset)");
+        }
         d.check_rate().map_err(|e| field("sample_rate_hz", e))?;
         Ok(d)
     }
@@ -316,18 +322,22 @@ impl RigDescription {
                 d.elements, d.ball_mm, d.pitch_mm, d.angle_deg
             )
         };
+        // The geometry first (what a reader can check against the sidecars), then the
+        // simulated structure: a model preset against a geometry scaled from one, or two
+        // presets. Where the geometry came from (a catalogue name or its numbers) is no
+        // difference.
         let f = [
-            (
-                "bearing",
-                self.origin != other.origin || self.base != other.base,
-                format!("{} ({})", self.origin, self.base),
-                format!("{} ({})", other.origin, other.base),
-            ),
             (
                 "bearing.geometry",
                 self.geometry != other.geometry,
                 geometry(self),
                 geometry(other),
+            ),
+            (
+                "bearing",
+                self.structure_origin != other.structure_origin || self.base != other.base,
+                format!("{}: structure of {}", self.origin, self.structure_origin),
+                format!("{}: structure of {}", other.origin, other.structure_origin),
             ),
             (
                 "rpm",
@@ -426,8 +436,24 @@ mod tests {
         let d = RigDescription::from_sidecar(&side(Some("xjtu-ldk-uer204")), p).unwrap();
         assert_eq!(
             (d.origin.as_str(), d.elements, d.ball_mm, d.pitch_mm),
-            ("sidecar geometry", 8, 7.92, 34.55)
+            (
+                "catalogue bearing xjtu-ldk-uer204 (sidecar bearing.preset)",
+                8,
+                7.92,
+                34.55
+            )
         );
+        // The same geometry typed into the sidecar is the same bearing.
+        let mut typed = side(None);
+        typed.bearing.geometry = Some(crate::io::feature_table::Geometry {
+            elements: 8,
+            ball_mm: 7.92,
+            pitch_mm: 34.55,
+            angle_deg: 0.0,
+        });
+        let t = RigDescription::from_sidecar(&typed, p).unwrap();
+        assert_eq!(t.origin, "sidecar geometry");
+        assert!(d.differs(&t).is_none(), "{:?}", d.differs(&t));
         assert_eq!(d.window_samples, 32_768);
         let e = RigDescription::from_sidecar(&side(None), p).unwrap_err();
         assert!(e.contains("`bearing.geometry`"), "{e}");
