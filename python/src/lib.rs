@@ -28,6 +28,7 @@ fn sweep_err(e: SweepError) -> PyErr {
     match e {
         SweepError::Input(m) => cfg_err(m),
         SweepError::Run(m) => PyRuntimeError::new_err(m),
+        e @ SweepError::Cancelled => PyRuntimeError::new_err(e.to_string()),
     }
 }
 
@@ -48,16 +49,34 @@ fn merge(base: &mut toml::Value, over: toml::Value) {
     }
 }
 
+/// Deepest nesting of dicts and lists [`to_toml`] converts: a configuration is a few levels
+/// deep (`effect[0].params.noise`). Without a bound a dict holding itself, or a list
+/// nested some 10 000 deep, overflowed the native stack and killed the interpreter.
+pub const MAX_DEPTH: usize = 32;
+
 /// `obj` (a dict with string keys, list, tuple, str, bool, int, float, or a numpy scalar)
 /// as a TOML value, `None` for Python's `None` (an absent key: the default). TOML rather
 /// than JSON, because TOML holds NaN and infinities: they reach the field's own range check,
 /// which names the field. `field` names `obj` in errors (`speed.rpm`, `effect[0]`).
 fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>> {
+    to_toml_at(obj, field, 0)
+}
+
+/// [`to_toml`] of `obj` found `depth` dicts and lists deep.
+fn to_toml_at(obj: &Bound<'_, PyAny>, field: &str, depth: usize) -> PyResult<Option<toml::Value>> {
     use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
     let bad = |what: String| match field {
         "" => cfg_err(what),
         _ => cfg_err(format!("{field}: {what}")),
     };
+    let nested = obj.is_instance_of::<PyDict>()
+        || obj.is_instance_of::<PyList>()
+        || obj.is_instance_of::<PyTuple>();
+    if nested && depth >= MAX_DEPTH {
+        return Err(bad(format!(
+            "nested more than {MAX_DEPTH} dicts or lists deep (a configuration is a few levels deep: does a dict or list contain itself?)"
+        )));
+    }
     if obj.is_none() {
         return Ok(None);
     }
@@ -78,7 +97,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
             } else {
                 format!("{field}.{k}")
             };
-            if let Some(v) = to_toml(&v, &name)? {
+            if let Some(v) = to_toml_at(&v, &name, depth + 1)? {
                 t.insert(k, v);
             }
         }
@@ -88,7 +107,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
         let mut a = Vec::new();
         for (i, v) in obj.try_iter()?.enumerate() {
             let name = format!("{field}[{i}]");
-            match to_toml(&v?, &name)? {
+            match to_toml_at(&v?, &name, depth + 1)? {
                 Some(v) => a.push(v),
                 None => return Err(cfg_err(format!("{name}: None is not allowed in a list"))),
             }
@@ -100,7 +119,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
     if obj.hasattr("ndim")? && obj.hasattr("tolist")? {
         let plain = obj.call_method0("tolist")?;
         if !plain.hasattr("ndim")? {
-            return to_toml(&plain, field);
+            return to_toml_at(&plain, field, depth);
         }
     }
     // Python and numpy integers (anything with `__index__`), then anything with `__float__`.
@@ -236,8 +255,11 @@ fn analyze(
         };
         // A geometry error is about the `bearing` argument, not the signal.
         let named = |m: String| {
-            m.replace(&format!("{tmp}: bearing-geometry"), "bearing: bearing-geometry")
-                .replace(&tmp, "signal")
+            m.replace(
+                &format!("{tmp}: bearing-geometry"),
+                "bearing: bearing-geometry",
+            )
+            .replace(&tmp, "signal")
         };
         let (mut a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
             wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(named(m)),
