@@ -10,8 +10,10 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use wearsim_host::config::ScenarioFile;
-use wearsim_host::simulate::{run as run_scenario, Scenario};
+use wearsim_host::simulate::Scenario;
 use wearsim_host::sweep::{self, SweepError, SweepSpec};
+
+mod interrupt;
 
 create_exception!(
     _wearsim,
@@ -175,7 +177,8 @@ fn scenario_file(
         .map_err(|e| cfg_err(format!("configuration: {e}")))
 }
 
-/// simulate(source, overrides) -> (accel ndarray, meta JSON)
+/// simulate(source, overrides) -> (accel ndarray, meta JSON); interruptible (Ctrl-C
+/// stops the run within one chunk of samples and raises KeyboardInterrupt).
 #[pyfunction]
 fn simulate<'py>(
     py: Python<'py>,
@@ -185,9 +188,10 @@ fn simulate<'py>(
     let file = scenario_file(source, overrides)?;
     let (cfg, run) = file.resolve().map_err(cfg_err)?;
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
-    let out = py
-        .detach(|| run_scenario(&sc, |_, _| {}))
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let out = interrupt::run(py, |cancel| {
+        wearsim_host::simulate::run_cancellable(&sc, |_, _| {}, cancel)
+    })?
+    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let meta = serde_json::json!({
         "fs": out.fs,
         "duration_s": sc.run.duration,
@@ -374,9 +378,10 @@ fn sweep_run(
     check_part(part)?;
     let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
-    let r = py
-        .detach(|| sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {}))
-        .map_err(sweep_err)?;
+    let r = interrupt::run(py, |cancel| {
+        sweep::run_cancellable(&s, &out, &shards, threads.max(1), &|_, _| {}, cancel)
+    })?
+    .map_err(sweep_err)?;
     serde_json::to_string(&r).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
@@ -407,6 +412,16 @@ fn read_record<'py>(
 /// The native module.
 #[pymodule]
 fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C API and rust-numpy's borrow-checking API are imported lazily on first use,
+    // and a failure there panics: a Ctrl-C pending at the first `simulate` of a process
+    // raised PanicException ("Failed to access NumPy array API capsule: KeyboardInterrupt"),
+    // which `except Exception` does not catch. Loaded once here, at import (`wearsim`
+    // imports numpy first, so both are lookups of modules already loaded).
+    {
+        use numpy::PyArrayMethods;
+        let probe = PyArray1::<f64>::zeros(m.py(), 0, false);
+        drop(probe.readonly());
+    }
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;

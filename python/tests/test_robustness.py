@@ -65,3 +65,72 @@ def test_the_depth_bound_is_32_levels():
     assert "nested more than" not in str(within.value)
     with pytest.raises(wearsim.ConfigError, match="nested more than 32"):
         wearsim.simulate("cwru-6205-de", duration=wrapped(32))
+
+
+# The watcher thread needs the GIL to send the signal; with a switch interval of 1000 s
+# the main thread keeps it until the call releases it, so the signal arrives during the
+# call, whatever the machine's load (no sleeps).
+_DURING_THE_CALL = """
+import os, signal, sys, threading
+import wearsim
+signal.signal(signal.SIGINT, signal.default_int_handler)
+sys.setswitchinterval(1000.0)
+gate = threading.Lock()
+gate.acquire()
+def fire():
+    gate.acquire()
+    {wait}
+    os.kill(os.getpid(), signal.SIGINT)
+threading.Thread(target=fire, daemon=True).start()
+gate.release()
+try:
+    {call}
+    print("returned")
+except KeyboardInterrupt:
+    print("KeyboardInterrupt")
+"""
+
+
+def test_ctrl_c_in_the_first_simulate_is_a_prompt_keyboard_interrupt():
+    # Was a PanicException ("Failed to access NumPy array API capsule: KeyboardInterrupt",
+    # not an Exception) once the whole 300 s had been simulated.
+    code = _DURING_THE_CALL.format(wait="", call='wearsim.simulate("cwru-6205-de", duration=300.0)')
+    p = _python(code)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "KeyboardInterrupt", p.stdout + p.stderr
+    assert "PanicException" not in p.stderr
+
+
+SWEEP = """seed = 3
+records = 1000
+records_per_shard = 2
+duration = 0.05
+fs = 12000.0
+[grid]
+preset = ["cwru-6205-de"]
+rpm = [1797.0]
+fault = ["inner", "outer"]
+stage = ["mild-defect"]
+"""
+
+
+def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
+    # Was held until all 500 shards were written (then raised, losing the report).
+    out = tmp_path / "set"
+    wait = (
+        "import time, pathlib\n"
+        "    while not (pathlib.Path(sys.argv[2]) / 'shards' / 'shard-00000.done.json').exists():\n"
+        "        time.sleep(0.001)"
+    )
+    code = _DURING_THE_CALL.format(wait=wait, call="wearsim.sweep(sys.argv[1], sys.argv[2], threads=1)")
+    p = _python(code, SWEEP, str(out))
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "KeyboardInterrupt", p.stdout + p.stderr
+    done = sorted((out / "shards").glob("*.done.json"))
+    assert 1 <= len(done) < 500
+    assert not (out / "manifest.json").exists() and not (out / "index.parquet").exists()
+    assert not [f for f in (out / "shards").iterdir() if ".tmp-" in f.name]
+    r = wearsim.sweep(SWEEP, out, threads=2)
+    assert r["complete"] and r["shards_skipped"] == len(done)
+    index, signals = wearsim.load_dataset(out)
+    assert len(index) == 1000 and signals(499).shape == (2, 600)

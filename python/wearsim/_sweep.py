@@ -75,6 +75,8 @@ def sweep(
     (a ``LocalCluster``, a scheduler address): one task per pending shard. ``part=(I,
     N)`` generates only shards with index mod N == I (like ``--shard I/N``).
     Returns a report dict (``complete`` is True once every shard and the index exist).
+    Ctrl-C stops a local sweep once each thread has written the shards it is on (complete,
+    kept; no index or manifest) and raises ``KeyboardInterrupt``: the same call resumes.
     """
     text = _spec_text(spec)
     # `str(None)` or `str(5)` would name a directory "None" or "5" in the working folder.
