@@ -141,11 +141,15 @@ fn to_toml_at(obj: &Bound<'_, PyAny>, field: &str, depth: usize) -> PyResult<Opt
 }
 
 /// The scenario file of `source` (a preset name, TOML text, or a dict) with the dict
-/// `overrides` merged over it.
+/// `overrides` merged over it. A repeated effect is refused in the source and in the
+/// result by the command line's own check (`effects::check_unique`), as `wearsim simulate`
+/// refuses it (the dict and the merge bypass the TOML parser, which runs that check).
 fn scenario_file(
     source: &Bound<'_, PyAny>,
     overrides: &Bound<'_, PyAny>,
 ) -> PyResult<ScenarioFile> {
+    let (source, seed_src) = take_big_seed(source)?;
+    let (overrides, seed_over) = take_big_seed(overrides)?;
     let mut v = if let Ok(text) = source.extract::<String>() {
         if wearsim_core::presets::by_name(text.trim()).is_some() {
             toml::Value::Table(toml::map::Map::from_iter([(
@@ -161,7 +165,7 @@ fn scenario_file(
             )));
         }
     } else {
-        match to_toml(source, "")? {
+        match to_toml(&source, "")? {
             Some(t @ toml::Value::Table(_)) => t,
             _ => {
                 return Err(cfg_err(
@@ -170,11 +174,63 @@ fn scenario_file(
             }
         }
     };
-    if let Some(o) = to_toml(overrides, "")? {
+    if let Ok(f) = v.clone().try_into::<ScenarioFile>() {
+        check_effects(&f)?;
+    }
+    if let Some(o) = to_toml(&overrides, "")? {
         merge(&mut v, o);
     }
-    v.try_into()
-        .map_err(|e| cfg_err(format!("configuration: {e}")))
+    let mut file: ScenarioFile = v
+        .try_into()
+        .map_err(|e| cfg_err(format!("configuration: {e}")))?;
+    check_effects(&file)?;
+    // A big seed as the dicts gave it: the overrides' seed, if any, wins over the source's.
+    let over_has_seed = match overrides.cast::<pyo3::types::PyDict>() {
+        Ok(d) => d.get_item("seed")?.is_some_and(|v| !v.is_none()),
+        Err(_) => false,
+    };
+    if let Some(seed) = seed_over.or(seed_src.filter(|_| !over_has_seed)) {
+        file.seed = Some(seed);
+    }
+    Ok(file)
+}
+
+/// Refuses a repeated effect (the command line's rule and message).
+fn check_effects(file: &ScenarioFile) -> PyResult<()> {
+    wearsim_host::effects::check_unique(
+        file.effect.iter().map(|e| e.name.as_str()),
+        "effect",
+        ".name",
+    )
+    .map_err(cfg_err)
+}
+
+/// `obj` without its `seed` key when `obj` is a dict whose seed is an integer above
+/// TOML's (i64) range but within u64's, and that seed: seeds are u64, as on the command
+/// line (`--seed 18446744073709551615`), but the conversion goes through TOML integers.
+fn take_big_seed<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyAny>, Option<u64>)> {
+    use pyo3::types::{PyBool, PyDict, PyFloat};
+    let Ok(d) = obj.cast::<PyDict>() else {
+        return Ok((obj.clone(), None));
+    };
+    let Some(seed) = d.get_item("seed")? else {
+        return Ok((obj.clone(), None));
+    };
+    let int = !seed.is_instance_of::<PyBool>()
+        && !seed.is_instance_of::<PyFloat>()
+        && seed.hasattr("__index__")?;
+    if !int || seed.extract::<i64>().is_ok() {
+        return Ok((obj.clone(), None));
+    }
+    let Ok(big) = seed.extract::<u64>() else {
+        return Err(cfg_err(format!(
+            "seed = {seed} is out of range: allowed 0 ..= {}",
+            u64::MAX
+        )));
+    };
+    let rest = d.copy()?;
+    rest.del_item("seed")?;
+    Ok((rest.into_any(), Some(big)))
 }
 
 /// simulate(source, overrides) -> (accel ndarray, meta JSON); interruptible (Ctrl-C
@@ -187,6 +243,11 @@ fn simulate<'py>(
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, String)> {
     let file = scenario_file(source, overrides)?;
     let (cfg, run) = file.resolve().map_err(cfg_err)?;
+    if cfg.channels == wearsim_core::Channels::All {
+        return Err(cfg_err(
+            "channels = \"all\": simulate returns the acceleration only (velocity and displacement are columns of `wearsim simulate`'s CSV); leave `channels` out or use \"acceleration\"",
+        ));
+    }
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
     let out = interrupt::run(py, |cancel| {
         wearsim_host::simulate::run_cancellable(&sc, |_, _| {}, cancel)

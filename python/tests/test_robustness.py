@@ -134,3 +134,40 @@ def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
     assert r["complete"] and r["shards_skipped"] == len(done)
     index, signals = wearsim.load_dataset(out)
     assert len(index) == 1000 and signals(499).shape == (2, 600)
+
+
+def test_a_repeated_effect_is_refused_naming_it():
+    # The first entry was silently dropped; the command line exits 2 with this message.
+    two = [{"name": "sensor", "params": {"noise": 1}}, {"name": "sensor", "params": {"noise": 50}}]
+    with pytest.raises(wearsim.ConfigError, match=r'`effect\[1\].name` = "sensor" repeats `effect\[0\]`'):
+        wearsim.simulate("cwru-6205-de", duration=0.05, effect=two)
+    text = 'preset = "cwru-6205-de"\nduration = 0.05\n' + "".join(
+        f'[[effect]]\nname = "sensor"\nparams = {{ noise = {n} }}\n' for n in (1, 50)
+    )
+    with pytest.raises(wearsim.ConfigError, match="repeats"):
+        wearsim.simulate(text)
+    with pytest.raises(wearsim.ConfigError, match="repeats"):
+        wearsim.simulate({"preset": "cwru-6205-de", "effect": two}, duration=0.05)
+
+
+def test_channels_all_is_refused_rather_than_ignored():
+    with pytest.raises(wearsim.ConfigError, match="channels"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, channels="all")
+    x, _ = wearsim.simulate("cwru-6205-de", duration=0.05, channels="acceleration")
+    assert x.ndim == 1
+
+
+def test_seeds_take_the_whole_u64_range():
+    # 2**63 and above were refused ("out of the 64-bit integer range"); the CLI takes them.
+    for seed in (2**63, 2**64 - 1):
+        x, meta = wearsim.simulate("cwru-6205-de", duration=0.05, seed=seed)
+        assert meta["seed"] == seed and meta["scenario"]["seed"] == seed
+        y, _ = wearsim.simulate(meta["scenario"])
+        assert (x == y).all()
+    # The overrides' seed wins over the source's, big or not.
+    _, meta = wearsim.simulate({"preset": "cwru-6205-de", "seed": 2**64 - 1}, duration=0.05, seed=5)
+    assert meta["seed"] == 5
+    _, meta = wearsim.simulate({"preset": "cwru-6205-de", "seed": 5}, duration=0.05, seed=2**63)
+    assert meta["seed"] == 2**63
+    with pytest.raises(wearsim.ConfigError, match="seed"):
+        wearsim.simulate("cwru-6205-de", duration=0.05, seed=2**64)

@@ -46,7 +46,9 @@ def simulate(
 
     Returns ``(accel, meta)``: the acceleration in m/s² (float64, ``meta["fs"]`` Hz) and
     the metadata, whose ``"config"`` is the resolved model configuration and
-    ``"scenario"`` the scenario file that produced it.
+    ``"scenario"`` the scenario file that produced it (``simulate(meta["scenario"])``
+    reproduces the run). ``channels="all"`` is refused: only the acceleration is returned.
+    Ctrl-C stops the run and raises ``KeyboardInterrupt``.
     """
     x, meta = _wearsim.simulate(preset_or_config, overrides)
     return x, json.loads(meta)
