@@ -15,8 +15,11 @@ use wearsim_host::sweep::{self, SweepError, SweepSpec};
 
 mod interrupt;
 
+// Module `wearsim`, where the class is public: pickle finds it there (as `_wearsim`, a
+// name no import resolves, a ConfigError raised in a multiprocessing worker could not be
+// sent back), and tracebacks read `wearsim.ConfigError`.
 create_exception!(
-    _wearsim,
+    wearsim,
     ConfigError,
     PyValueError,
     "Bad input: the message names the field and its allowed range."

@@ -157,6 +157,46 @@ def test_channels_all_is_refused_rather_than_ignored():
     assert x.ndim == 1
 
 
+@pytest.mark.parametrize("call", ["life", "gap"])
+def test_a_non_path_out_is_refused_before_running(call, tmp_path, monkeypatch):
+    # The whole command once ran into ./7, then raised TypeError.
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(wearsim.ConfigError, match="out = 7"):
+        if call == "life":
+            wearsim.life(out=7, preset="thesis-61810")
+        else:
+            wearsim.gap(str(tmp_path / "none.npy"), out=7)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_life_returns_only_the_files_it_wrote(tmp_path):
+    # Every *.json/*.csv in `out` was returned as this run's: a stale features table of an
+    # earlier run, the user's notes.csv, and a malformed config.json raised JSONDecodeError
+    # after the run had finished.
+    out = tmp_path / "life"
+    out.mkdir()
+    (out / "notes.csv").write_text("mine\n")
+    (out / "config.json").write_text("{not json")
+    (out / "life-features.csv").write_text("stale\n")
+    r = wearsim.life(out=str(out), preset="thesis-61810", dense=True, stop_after=1)
+    assert r["out"] == str(out)
+    assert r["files"], r
+    assert not {"notes.csv", "config.json", "life-features.csv"} & set(r["files"])
+    assert (out / "notes.csv").read_text() == "mine\n"
+
+
+def test_config_error_pickles_with_its_message():
+    # Its module was `_wearsim`, which no import finds: multiprocessing lost the error.
+    e = pickle.loads(pickle.dumps(wearsim.ConfigError("duration = 0 is out of range")))
+    assert type(e) is wearsim.ConfigError and str(e) == "duration = 0 is out of range"
+    assert wearsim.ConfigError.__module__ == "wearsim"
+    try:
+        wearsim.simulate("cwru-6205-de", duration=0.0)
+    except wearsim.ConfigError as raised:
+        again = pickle.loads(pickle.dumps(raised))
+        assert "duration" in str(again)
+
+
 def test_seeds_take_the_whole_u64_range():
     # 2**63 and above were refused ("out of the 64-bit integer range"); the CLI takes them.
     for seed in (2**63, 2**64 - 1):

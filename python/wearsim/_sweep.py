@@ -12,7 +12,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _wearsim
+from . import _out_dir, _wearsim  # _out_dir: defined before __init__ imports this module
 from ._wearsim import ConfigError
 
 
@@ -79,16 +79,7 @@ def sweep(
     kept; no index or manifest) and raises ``KeyboardInterrupt``: the same call resumes.
     """
     text = _spec_text(spec)
-    # `str(None)` or `str(5)` would name a directory "None" or "5" in the working folder.
-    if not isinstance(out, (str, os.PathLike)):
-        raise ConfigError(
-            f"out = {out!r}: give the output directory as a str or os.PathLike path"
-        )
-    out = os.fspath(out)
-    if isinstance(out, bytes):
-        out = os.fsdecode(out)
-    if out == "":
-        raise ConfigError("out = '': give the output directory's path")
+    out = _out_dir(out)
     part = _part(part)
     if cluster is None:
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
