@@ -399,6 +399,7 @@ fn sweep_plan(spec: &str, part: Option<(u64, u64)>) -> PyResult<String> {
     sweep::validate(&s).map_err(sweep_err)?;
     Ok(serde_json::json!({
         "shards": s.shards(), "records": s.records, "samples_per_record": s.samples(),
+        "duration": s.duration,
     })
     .to_string())
 }

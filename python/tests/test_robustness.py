@@ -211,3 +211,18 @@ def test_seeds_take_the_whole_u64_range():
     assert meta["seed"] == 2**63
     with pytest.raises(wearsim.ConfigError, match="seed"):
         wearsim.simulate("cwru-6205-de", duration=0.05, seed=2**64)
+
+
+def test_wrong_argument_types_are_config_errors(tmp_path):
+    # Were TypeError ("channel=1"), a stat error of a file named "None", OverflowError, and a
+    # TypeError from Client(5) after `out` had been initialised.
+    with pytest.raises(wearsim.ConfigError, match="channel"):
+        wearsim.read_record(str(tmp_path / "x.npy"), channel=1)
+    with pytest.raises(wearsim.ConfigError, match="path"):
+        wearsim.read_record(None)
+    with pytest.raises(wearsim.ConfigError, match="threads"):
+        wearsim.sweep(SWEEP, tmp_path / "a", threads=2**64)
+    pytest.importorskip("dask.distributed")
+    with pytest.raises(wearsim.ConfigError, match="cluster"):
+        wearsim.sweep(SWEEP, tmp_path / "b", cluster=5)
+    assert not (tmp_path / "b").exists()

@@ -131,7 +131,11 @@ def read_record(path: Union[str, os.PathLike], channel: Optional[str] = None) ->
     """Read a measurement file (CWRU ``.mat`` — channel ``"DE"`` by default —, CSV, WAV,
     NPY, IMS snapshot) like ``wearsim analyze``: ``(samples, meta)`` with ``meta["fs"]``,
     ``meta["rpm"]``, ``meta["unit"]`` and the file's labels in ``meta["meta"]``."""
-    x, meta = _wearsim.read_record(str(path), channel)
+    if not isinstance(path, (str, os.PathLike)):
+        raise ConfigError(f"path: expected a str or os.PathLike path, got {type(path).__name__}")
+    if channel is not None and not isinstance(channel, str):
+        raise ConfigError(f"channel: expected a channel name (str) such as \"DE\", got {type(channel).__name__}")
+    x, meta = _wearsim.read_record(os.fsdecode(os.fspath(path)), channel)
     return x, json.loads(meta)
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import numbers
 import os
+import time
 from pathlib import Path
 from typing import Any, Dict, Optional, Tuple, Union
 
@@ -85,22 +86,47 @@ def sweep(
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
         if n == 0:  # as `wearsim sweep --threads 0` (was run on 1 thread, silently)
             raise ConfigError("threads = 0: use 1 or more")
+        if n > 2**64 - 1:  # was an OverflowError on the way to the native usize
+            raise ConfigError(f"threads = {n} is out of range: allowed 1 ..= {2**64 - 1}")
         return json.loads(_wearsim.sweep_run(text, out, n, part))
     from dask.distributed import Client
 
     plan = json.loads(_wearsim.sweep_plan(text, part))
-    _wearsim.sweep_prepare(text, out)
-    client = cluster if isinstance(cluster, Client) else Client(cluster)
-    shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]
-    futures = client.map(_shard_task, [text] * len(shards), [out] * len(shards), shards, pure=False)
-    generated = sum(client.gather(futures))
-    complete, nbytes = _wearsim.sweep_finalize(text, out)
-    return {
-        "records_generated": generated,
-        "shards": len(shards),
-        "complete": complete,
-        "bytes": nbytes,
-    }
+    # The client first: a bad `cluster` once left an initialised `out` (sweep.json,
+    # shards/) behind it. A client made here is closed here.
+    if isinstance(cluster, Client):
+        client, own = cluster, False
+    else:
+        try:
+            client, own = Client(cluster), True
+        except (TypeError, ValueError) as e:
+            raise ConfigError(
+                f"cluster = {cluster!r}: expected a dask.distributed Client, a cluster or a scheduler address ({e})"
+            ) from None
+    try:
+        t0 = time.perf_counter()
+        _wearsim.sweep_prepare(text, out)
+        shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]
+        futures = client.map(_shard_task, [text] * len(shards), [out] * len(shards), shards, pure=False)
+        per_shard = client.gather(futures)
+        complete, nbytes = _wearsim.sweep_finalize(text, out)
+        generated = sum(per_shard)
+        written = sum(1 for n in per_shard if n > 0)
+        # The local report's keys (`shards` kept for earlier callers), `workers` for `threads`.
+        return {
+            "records_generated": generated,
+            "shards_written": written,
+            "shards_skipped": len(shards) - written,
+            "shards": len(shards),
+            "complete": complete,
+            "simulated_s": generated * plan["duration"],
+            "wall_s": time.perf_counter() - t0,
+            "workers": len(client.scheduler_info().get("workers", {})),
+            "bytes": nbytes,
+        }
+    finally:
+        if own:
+            client.close()
 
 
 def load_dataset(path: Union[str, os.PathLike], mmap: bool = True):
