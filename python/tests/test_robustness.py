@@ -102,7 +102,7 @@ def test_ctrl_c_in_the_first_simulate_is_a_prompt_keyboard_interrupt():
 
 
 SWEEP = """seed = 3
-records = 1000
+records = 2000
 records_per_shard = 2
 duration = 0.05
 fs = 12000.0
@@ -115,7 +115,7 @@ stage = ["mild-defect"]
 
 
 def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
-    # Was held until all 500 shards were written (then raised, losing the report).
+    # Was held until all 1000 shards were written (then raised, losing the report).
     out = tmp_path / "set"
     wait = (
         "import time, pathlib\n"
@@ -127,13 +127,13 @@ def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
     assert p.returncode == 0, p.stderr
     assert p.stdout.strip() == "KeyboardInterrupt", p.stdout + p.stderr
     done = sorted((out / "shards").glob("*.done.json"))
-    assert 1 <= len(done) < 500
+    assert 1 <= len(done) < 1000
     assert not (out / "manifest.json").exists() and not (out / "index.parquet").exists()
     assert not [f for f in (out / "shards").iterdir() if ".tmp-" in f.name]
     r = wearsim.sweep(SWEEP, out, threads=2)
     assert r["complete"] and r["shards_skipped"] == len(done)
     index, signals = wearsim.load_dataset(out)
-    assert len(index) == 1000 and signals(499).shape == (2, 600)
+    assert len(index) == 2000 and signals(999).shape == (2, 600)
 
 
 def test_a_repeated_effect_is_refused_naming_it():
