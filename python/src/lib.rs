@@ -10,11 +10,16 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use wearsim_host::config::ScenarioFile;
-use wearsim_host::simulate::{run as run_scenario, Scenario};
+use wearsim_host::simulate::Scenario;
 use wearsim_host::sweep::{self, SweepError, SweepSpec};
 
+mod interrupt;
+
+// Module `wearsim`, where the class is public: pickle finds it there (as `_wearsim`, a
+// name no import resolves, a ConfigError raised in a multiprocessing worker could not be
+// sent back), and tracebacks read `wearsim.ConfigError`.
 create_exception!(
-    _wearsim,
+    wearsim,
     ConfigError,
     PyValueError,
     "Bad input: the message names the field and its allowed range."
@@ -28,6 +33,7 @@ fn sweep_err(e: SweepError) -> PyErr {
     match e {
         SweepError::Input(m) => cfg_err(m),
         SweepError::Run(m) => PyRuntimeError::new_err(m),
+        e @ SweepError::Cancelled => PyRuntimeError::new_err(e.to_string()),
     }
 }
 
@@ -48,16 +54,34 @@ fn merge(base: &mut toml::Value, over: toml::Value) {
     }
 }
 
+/// Deepest nesting of dicts and lists [`to_toml`] converts: a configuration is a few levels
+/// deep (`effect[0].params.noise`). Without a bound a dict holding itself, or a list
+/// nested some 10 000 deep, overflowed the native stack and killed the interpreter.
+pub const MAX_DEPTH: usize = 32;
+
 /// `obj` (a dict with string keys, list, tuple, str, bool, int, float, or a numpy scalar)
 /// as a TOML value, `None` for Python's `None` (an absent key: the default). TOML rather
 /// than JSON, because TOML holds NaN and infinities: they reach the field's own range check,
 /// which names the field. `field` names `obj` in errors (`speed.rpm`, `effect[0]`).
 fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>> {
+    to_toml_at(obj, field, 0)
+}
+
+/// [`to_toml`] of `obj` found `depth` dicts and lists deep.
+fn to_toml_at(obj: &Bound<'_, PyAny>, field: &str, depth: usize) -> PyResult<Option<toml::Value>> {
     use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString, PyTuple};
     let bad = |what: String| match field {
         "" => cfg_err(what),
         _ => cfg_err(format!("{field}: {what}")),
     };
+    let nested = obj.is_instance_of::<PyDict>()
+        || obj.is_instance_of::<PyList>()
+        || obj.is_instance_of::<PyTuple>();
+    if nested && depth >= MAX_DEPTH {
+        return Err(bad(format!(
+            "nested more than {MAX_DEPTH} dicts or lists deep (a configuration is a few levels deep: does a dict or list contain itself?)"
+        )));
+    }
     if obj.is_none() {
         return Ok(None);
     }
@@ -78,7 +102,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
             } else {
                 format!("{field}.{k}")
             };
-            if let Some(v) = to_toml(&v, &name)? {
+            if let Some(v) = to_toml_at(&v, &name, depth + 1)? {
                 t.insert(k, v);
             }
         }
@@ -88,7 +112,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
         let mut a = Vec::new();
         for (i, v) in obj.try_iter()?.enumerate() {
             let name = format!("{field}[{i}]");
-            match to_toml(&v?, &name)? {
+            match to_toml_at(&v?, &name, depth + 1)? {
                 Some(v) => a.push(v),
                 None => return Err(cfg_err(format!("{name}: None is not allowed in a list"))),
             }
@@ -100,7 +124,7 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
     if obj.hasattr("ndim")? && obj.hasattr("tolist")? {
         let plain = obj.call_method0("tolist")?;
         if !plain.hasattr("ndim")? {
-            return to_toml(&plain, field);
+            return to_toml_at(&plain, field, depth);
         }
     }
     // Python and numpy integers (anything with `__index__`), then anything with `__float__`.
@@ -120,11 +144,15 @@ fn to_toml(obj: &Bound<'_, PyAny>, field: &str) -> PyResult<Option<toml::Value>>
 }
 
 /// The scenario file of `source` (a preset name, TOML text, or a dict) with the dict
-/// `overrides` merged over it.
+/// `overrides` merged over it. A repeated effect is refused in the source and in the
+/// result by the command line's own check (`effects::check_unique`), as `wearsim simulate`
+/// refuses it (the dict and the merge bypass the TOML parser, which runs that check).
 fn scenario_file(
     source: &Bound<'_, PyAny>,
     overrides: &Bound<'_, PyAny>,
 ) -> PyResult<ScenarioFile> {
+    let (source, seed_src) = take_big_seed(source)?;
+    let (overrides, seed_over) = take_big_seed(overrides)?;
     let mut v = if let Ok(text) = source.extract::<String>() {
         if wearsim_core::presets::by_name(text.trim()).is_some() {
             toml::Value::Table(toml::map::Map::from_iter([(
@@ -140,7 +168,7 @@ fn scenario_file(
             )));
         }
     } else {
-        match to_toml(source, "")? {
+        match to_toml(&source, "")? {
             Some(t @ toml::Value::Table(_)) => t,
             _ => {
                 return Err(cfg_err(
@@ -149,14 +177,67 @@ fn scenario_file(
             }
         }
     };
-    if let Some(o) = to_toml(overrides, "")? {
+    if let Ok(f) = v.clone().try_into::<ScenarioFile>() {
+        check_effects(&f)?;
+    }
+    if let Some(o) = to_toml(&overrides, "")? {
         merge(&mut v, o);
     }
-    v.try_into()
-        .map_err(|e| cfg_err(format!("configuration: {e}")))
+    let mut file: ScenarioFile = v
+        .try_into()
+        .map_err(|e| cfg_err(format!("configuration: {e}")))?;
+    check_effects(&file)?;
+    // A big seed as the dicts gave it: the overrides' seed, if any, wins over the source's.
+    let over_has_seed = match overrides.cast::<pyo3::types::PyDict>() {
+        Ok(d) => d.get_item("seed")?.is_some_and(|v| !v.is_none()),
+        Err(_) => false,
+    };
+    if let Some(seed) = seed_over.or(seed_src.filter(|_| !over_has_seed)) {
+        file.seed = Some(seed);
+    }
+    Ok(file)
 }
 
-/// simulate(source, overrides) -> (accel ndarray, meta JSON)
+/// Refuses a repeated effect (the command line's rule and message).
+fn check_effects(file: &ScenarioFile) -> PyResult<()> {
+    wearsim_host::effects::check_unique(
+        file.effect.iter().map(|e| e.name.as_str()),
+        "effect",
+        ".name",
+    )
+    .map_err(cfg_err)
+}
+
+/// `obj` without its `seed` key when `obj` is a dict whose seed is an integer above
+/// TOML's (i64) range but within u64's, and that seed: seeds are u64, as on the command
+/// line (`--seed 18446744073709551615`), but the conversion goes through TOML integers.
+fn take_big_seed<'py>(obj: &Bound<'py, PyAny>) -> PyResult<(Bound<'py, PyAny>, Option<u64>)> {
+    use pyo3::types::{PyBool, PyDict, PyFloat};
+    let Ok(d) = obj.cast::<PyDict>() else {
+        return Ok((obj.clone(), None));
+    };
+    let Some(seed) = d.get_item("seed")? else {
+        return Ok((obj.clone(), None));
+    };
+    let int = !seed.is_instance_of::<PyBool>()
+        && !seed.is_instance_of::<PyFloat>()
+        && seed.hasattr("__index__")?;
+    if !int || seed.extract::<i64>().is_ok() {
+        return Ok((obj.clone(), None));
+    }
+    let Ok(big) = seed.extract::<u64>() else {
+        return Err(cfg_err(format!(
+            "seed = {seed} is out of range: allowed 0 ..= {}",
+            u64::MAX
+        )));
+    };
+    let rest = d.copy()?;
+    rest.del_item("seed")?;
+    Ok((rest.into_any(), Some(big)))
+}
+
+/// simulate(source, overrides) -> (accel ndarray, meta JSON); interruptible (Ctrl-C
+/// stops the run within one chunk of samples and raises KeyboardInterrupt).
 #[pyfunction]
 fn simulate<'py>(
     py: Python<'py>,
@@ -165,10 +246,16 @@ fn simulate<'py>(
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, String)> {
     let file = scenario_file(source, overrides)?;
     let (cfg, run) = file.resolve().map_err(cfg_err)?;
+    if cfg.channels == wearsim_core::Channels::All {
+        return Err(cfg_err(
+            "channels = \"all\": simulate returns the acceleration only (velocity and displacement are columns of `wearsim simulate`'s CSV); leave `channels` out or use \"acceleration\"",
+        ));
+    }
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
-    let out = py
-        .detach(|| run_scenario(&sc, |_, _| {}))
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let out = interrupt::run(py, |cancel| {
+        wearsim_host::simulate::run_cancellable(&sc, |_, _| {}, cancel)
+    })?
+    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let meta = serde_json::json!({
         "fs": out.fs,
         "duration_s": sc.run.duration,
@@ -236,8 +323,11 @@ fn analyze(
         };
         // A geometry error is about the `bearing` argument, not the signal.
         let named = |m: String| {
-            m.replace(&format!("{tmp}: bearing-geometry"), "bearing: bearing-geometry")
-                .replace(&tmp, "signal")
+            m.replace(
+                &format!("{tmp}: bearing-geometry"),
+                "bearing: bearing-geometry",
+            )
+            .replace(&tmp, "signal")
         };
         let (mut a, _) = wearsim_host::analyze::analyze(&args).map_err(|e| match e {
             wearsim_host::analyze::AnalyzeError::Input(m) => cfg_err(named(m)),
@@ -309,6 +399,7 @@ fn sweep_plan(spec: &str, part: Option<(u64, u64)>) -> PyResult<String> {
     sweep::validate(&s).map_err(sweep_err)?;
     Ok(serde_json::json!({
         "shards": s.shards(), "records": s.records, "samples_per_record": s.samples(),
+        "duration": s.duration,
     })
     .to_string())
 }
@@ -352,9 +443,10 @@ fn sweep_run(
     check_part(part)?;
     let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
-    let r = py
-        .detach(|| sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {}))
-        .map_err(sweep_err)?;
+    let r = interrupt::run(py, |cancel| {
+        sweep::run_cancellable(&s, &out, &shards, threads.max(1), &|_, _| {}, cancel)
+    })?
+    .map_err(sweep_err)?;
     serde_json::to_string(&r).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
@@ -385,6 +477,16 @@ fn read_record<'py>(
 /// The native module.
 #[pymodule]
 fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C API and rust-numpy's borrow-checking API are imported lazily on first use,
+    // and a failure there panics: a Ctrl-C pending at the first `simulate` of a process
+    // raised PanicException ("Failed to access NumPy array API capsule: KeyboardInterrupt"),
+    // which `except Exception` does not catch. Loaded once here, at import (`wearsim`
+    // imports numpy first, so both are lookups of modules already loaded).
+    {
+        use numpy::PyArrayMethods;
+        let probe = PyArray1::<f64>::zeros(m.py(), 0, false);
+        drop(probe.readonly());
+    }
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;

@@ -55,6 +55,9 @@ def test_dask_two_workers_byte_identical(reference, tmp_path):
         with distributed.Client(cl) as client:
             r = wearsim.sweep(SPEC, tmp_path / "set", cluster=client)
     assert r["complete"]
+    # The local report's keys (the Dask one had `shards` only, no written/skipped/time).
+    assert r["records_generated"] == 24 and r["shards_written"] == 4 and r["shards_skipped"] == 0
+    assert r["simulated_s"] == pytest.approx(24 * 0.1) and r["wall_s"] > 0 and r["workers"] == 2
     assert tree(tmp_path / "set") == tree(reference)
 
 

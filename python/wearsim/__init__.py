@@ -46,7 +46,9 @@ def simulate(
 
     Returns ``(accel, meta)``: the acceleration in m/s² (float64, ``meta["fs"]`` Hz) and
     the metadata, whose ``"config"`` is the resolved model configuration and
-    ``"scenario"`` the scenario file that produced it.
+    ``"scenario"`` the scenario file that produced it (``simulate(meta["scenario"])``
+    reproduces the run). ``channels="all"`` is refused: only the acceleration is returned.
+    Ctrl-C stops the run and raises ``KeyboardInterrupt``.
     """
     x, meta = _wearsim.simulate(preset_or_config, overrides)
     return x, json.loads(meta)
@@ -129,7 +131,11 @@ def read_record(path: Union[str, os.PathLike], channel: Optional[str] = None) ->
     """Read a measurement file (CWRU ``.mat`` — channel ``"DE"`` by default —, CSV, WAV,
     NPY, IMS snapshot) like ``wearsim analyze``: ``(samples, meta)`` with ``meta["fs"]``,
     ``meta["rpm"]``, ``meta["unit"]`` and the file's labels in ``meta["meta"]``."""
-    x, meta = _wearsim.read_record(str(path), channel)
+    if not isinstance(path, (str, os.PathLike)):
+        raise ConfigError(f"path: expected a str or os.PathLike path, got {type(path).__name__}")
+    if channel is not None and not isinstance(channel, str):
+        raise ConfigError(f"channel: expected a channel name (str) such as \"DE\", got {type(channel).__name__}")
+    x, meta = _wearsim.read_record(os.fsdecode(os.fspath(path)), channel)
     return x, json.loads(meta)
 
 
@@ -149,20 +155,53 @@ def _argv(command: str, kwargs: Dict[str, Any]) -> List[str]:
     return argv
 
 
-def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Optional[str]) -> Dict[str, Any]:
+def _out_dir(out: Any) -> str:
+    """``out`` as a directory path (str), or ConfigError: ``str(7)`` would name a folder
+    "7" in the working directory, which the whole command would fill before a TypeError."""
+    if not isinstance(out, (str, os.PathLike)):
+        raise ConfigError(f"out = {out!r}: give the output directory as a str or os.PathLike path")
+    p = os.fspath(out)
+    if isinstance(p, bytes):
+        p = os.fsdecode(p)
+    if p == "":
+        raise ConfigError("out = '': give the output directory's path")
+    return p
+
+
+def _stats(out: str) -> Dict[str, Tuple[int, int, int]]:
+    """Identity of every file in ``out`` (inode, mtime in ns, size); empty if none."""
+    try:
+        with os.scandir(out) as it:
+            return {e.name: _stat_key(e.stat()) for e in it if e.is_file()}
+    except (FileNotFoundError, NotADirectoryError):
+        return {}
+
+
+def _stat_key(st: os.stat_result) -> Tuple[int, int, int]:
+    return (st.st_ino, st.st_mtime_ns, st.st_size)
+
+
+def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) -> Dict[str, Any]:
     tmp = None
     if out is None:
         tmp = tempfile.TemporaryDirectory(prefix=f"wearsim-{command}-")
         out = os.path.join(tmp.name, "out")
-    argv = _argv(command, kwargs) + list(args) + ["--out", str(out)]
+    out = _out_dir(out)
+    argv = _argv(command, kwargs) + list(args) + ["--out", out]
+    # Only what this run wrote is returned: files from an earlier run (another seed's
+    # features), or the user's own (notes.csv, an unrelated config.json), are not. The
+    # commands write every file anew (a new file, or renamed over the old one).
+    before = _stats(out)
     code, message = _wearsim.cli(argv)
     try:
         if code == 2:
             raise ConfigError(message)
         if code != 0:
             raise RuntimeError(message)
-        result: Dict[str, Any] = {"out": str(out), "files": {}}
+        result: Dict[str, Any] = {"out": out, "files": {}}
         for p in sorted(Path(out).glob("*")):
+            if not p.is_file() or before.get(p.name) == _stat_key(p.stat()):
+                continue
             if p.suffix == ".json":
                 result["files"][p.name] = json.loads(p.read_text())
             elif p.suffix == ".csv":
@@ -173,15 +212,16 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Optiona
             tmp.cleanup()
 
 
-def life(out: Optional[str] = None, **kwargs: Any) -> Dict[str, Any]:
+def life(out: Union[str, os.PathLike, None] = None, **kwargs: Any) -> Dict[str, Any]:
     """Run a whole wear life like ``wearsim life`` (keyword arguments are its options,
     ``preset="cwru-6205-de"``, ``config="life.toml"``, ...). Wraps the command at file
     level: it writes into ``out`` (a temporary directory when ``None``) and returns
-    ``{"out": ..., "files": {name: parsed JSON or CSV text}}``."""
+    ``{"out": ..., "files": {name: parsed JSON or CSV text}}`` with the JSON and CSV files
+    this run wrote (not older files in ``out``)."""
     return _run_cli("life", [], kwargs, out)
 
 
-def gap(records: Union[str, List[str]], out: Optional[str] = None, **kwargs: Any) -> Dict[str, Any]:
+def gap(records: Union[str, List[str]], out: Union[str, os.PathLike, None] = None, **kwargs: Any) -> Dict[str, Any]:
     """Diagnose the sim-to-real gap of measured records like ``wearsim gap`` (keyword
     arguments are its options). File level, like :func:`life`."""
     if isinstance(records, (str, os.PathLike)):

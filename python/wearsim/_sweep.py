@@ -7,12 +7,13 @@ from __future__ import annotations
 import json
 import numbers
 import os
+import time
 from pathlib import Path
 from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _wearsim
+from . import _out_dir, _wearsim  # _out_dir: defined before __init__ imports this module
 from ._wearsim import ConfigError
 
 
@@ -75,39 +76,57 @@ def sweep(
     (a ``LocalCluster``, a scheduler address): one task per pending shard. ``part=(I,
     N)`` generates only shards with index mod N == I (like ``--shard I/N``).
     Returns a report dict (``complete`` is True once every shard and the index exist).
+    Ctrl-C stops a local sweep once each thread has written the shards it is on (complete,
+    kept; no index or manifest) and raises ``KeyboardInterrupt``: the same call resumes.
     """
     text = _spec_text(spec)
-    # `str(None)` or `str(5)` would name a directory "None" or "5" in the working folder.
-    if not isinstance(out, (str, os.PathLike)):
-        raise ConfigError(
-            f"out = {out!r}: give the output directory as a str or os.PathLike path"
-        )
-    out = os.fspath(out)
-    if isinstance(out, bytes):
-        out = os.fsdecode(out)
-    if out == "":
-        raise ConfigError("out = '': give the output directory's path")
+    out = _out_dir(out)
     part = _part(part)
     if cluster is None:
         n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
         if n == 0:  # as `wearsim sweep --threads 0` (was run on 1 thread, silently)
             raise ConfigError("threads = 0: use 1 or more")
+        if n > 2**64 - 1:  # was an OverflowError on the way to the native usize
+            raise ConfigError(f"threads = {n} is out of range: allowed 1 ..= {2**64 - 1}")
         return json.loads(_wearsim.sweep_run(text, out, n, part))
     from dask.distributed import Client
 
     plan = json.loads(_wearsim.sweep_plan(text, part))
-    _wearsim.sweep_prepare(text, out)
-    client = cluster if isinstance(cluster, Client) else Client(cluster)
-    shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]
-    futures = client.map(_shard_task, [text] * len(shards), [out] * len(shards), shards, pure=False)
-    generated = sum(client.gather(futures))
-    complete, nbytes = _wearsim.sweep_finalize(text, out)
-    return {
-        "records_generated": generated,
-        "shards": len(shards),
-        "complete": complete,
-        "bytes": nbytes,
-    }
+    # The client first: a bad `cluster` once left an initialised `out` (sweep.json,
+    # shards/) behind it. A client made here is closed here.
+    if isinstance(cluster, Client):
+        client, own = cluster, False
+    else:
+        try:
+            client, own = Client(cluster), True
+        except (TypeError, ValueError) as e:
+            raise ConfigError(
+                f"cluster = {cluster!r}: expected a dask.distributed Client, a cluster or a scheduler address ({e})"
+            ) from None
+    try:
+        t0 = time.perf_counter()
+        _wearsim.sweep_prepare(text, out)
+        shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]
+        futures = client.map(_shard_task, [text] * len(shards), [out] * len(shards), shards, pure=False)
+        per_shard = client.gather(futures)
+        complete, nbytes = _wearsim.sweep_finalize(text, out)
+        generated = sum(per_shard)
+        written = sum(1 for n in per_shard if n > 0)
+        # The local report's keys (`shards` kept for earlier callers), `workers` for `threads`.
+        return {
+            "records_generated": generated,
+            "shards_written": written,
+            "shards_skipped": len(shards) - written,
+            "shards": len(shards),
+            "complete": complete,
+            "simulated_s": generated * plan["duration"],
+            "wall_s": time.perf_counter() - t0,
+            "workers": len(client.scheduler_info().get("workers", {})),
+            "bytes": nbytes,
+        }
+    finally:
+        if own:
+            client.close()
 
 
 def load_dataset(path: Union[str, os.PathLike], mmap: bool = True):

@@ -31,6 +31,7 @@ impl From<SweepError> for CliError {
         match e {
             SweepError::Input(m) => CliError::input(m),
             SweepError::Run(m) => CliError::run(m),
+            e @ SweepError::Cancelled => CliError::run(e.to_string()),
         }
     }
 }

@@ -15,9 +15,13 @@
 //! failing command with `--out NEW` writes nothing, not even `NEW/` (docs: "nothing
 //! written"). A directory that existed before is never removed.
 //!
-//! A process may take the lock of a directory it already holds (e.g. the dense life driver
-//! and the writer of the life set): the registry below counts the holders, and the lock is
-//! released with the last one.
+//! The thread holding a directory's lock may take it again (e.g. the dense life driver
+//! and the writer of the life set, both inside `wearsim life`): the registry below counts
+//! the holders, and the lock is released with the last one. Another thread of the same
+//! process is refused like another process: the registry answers before `flock(2)` is
+//! asked (which would refuse a second open file description even within one process), and
+//! it once let any thread in, so two threads of one Python process (`wearsim.life` from a
+//! thread pool, the GIL released) both ran into one directory.
 
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
@@ -34,6 +38,8 @@ pub const LOCK_FILE: &str = ".wearsim.lock";
 
 struct Held {
     file: File,
+    /// The thread that took the lock: only it may take it again.
+    thread: std::thread::ThreadId,
     path: PathBuf,
     count: usize,
     /// The outermost directory this lock created (canonical), if it created any: removed
@@ -96,6 +102,12 @@ impl DirLock {
         let created = top.and_then(|t| std::fs::canonicalize(t).ok());
         let mut reg = registry().lock().unwrap_or_else(|e| e.into_inner());
         if let Some(h) = reg.get_mut(&key) {
+            if h.thread != std::thread::current().id() {
+                return Err(IoError::Locked {
+                    path: dir.to_path_buf(),
+                    owner: format!("pid {}, another thread of this process", std::process::id()),
+                });
+            }
             h.count += 1;
             return Ok(DirLock { key });
         }
@@ -148,6 +160,7 @@ impl DirLock {
                 key.clone(),
                 Held {
                     file,
+                    thread: std::thread::current().id(),
                     path,
                     count: 1,
                     created,
@@ -215,5 +228,26 @@ mod tests {
         assert!(dir2.is_dir());
         drop(outer);
         assert!(!dir2.exists());
+    }
+
+    /// Another thread of the holding process is refused, as another process is; the
+    /// holding thread may take the lock again, and once it is released another thread
+    /// takes it.
+    #[test]
+    fn another_thread_of_this_process_is_refused() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("out");
+        let lock = DirLock::try_acquire(&dir).unwrap();
+        let other = std::thread::scope(|s| s.spawn(|| DirLock::try_acquire(&dir).map(drop)).join());
+        match other.expect("thread") {
+            Err(IoError::Locked { owner, .. }) => {
+                assert!(owner.contains("another thread"), "{owner}")
+            }
+            r => panic!("a second thread took the held lock: {r:?}"),
+        }
+        drop(DirLock::try_acquire(&dir).expect("the holding thread again"));
+        drop(lock);
+        let after = std::thread::scope(|s| s.spawn(|| DirLock::try_acquire(&dir).map(drop)).join());
+        assert!(after.expect("thread").is_ok());
     }
 }

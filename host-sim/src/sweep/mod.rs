@@ -19,7 +19,7 @@ pub use record::record_seed;
 pub use spec::{SpecError, SweepSpec};
 
 use std::path::Path;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 
 /// Why a sweep stopped.
 #[derive(Debug, thiserror::Error)]
@@ -30,6 +30,12 @@ pub enum SweepError {
     /// The run failed (I/O while writing, a numerical failure; exit code 1).
     #[error("{0}")]
     Run(String),
+    /// The caller's cancel flag was set ([`run_cancellable`]): the shards finished before
+    /// are complete on disk, nothing else was presented as written; run again to resume.
+    #[error(
+        "the sweep was interrupted; the shards finished so far are kept, run it again to resume"
+    )]
+    Cancelled,
 }
 
 impl From<SpecError> for SweepError {
@@ -185,6 +191,29 @@ pub fn run(
     threads: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<SweepReport, SweepError> {
+    run_cancellable(
+        spec,
+        dir,
+        shards,
+        threads,
+        progress,
+        &AtomicBool::new(false),
+    )
+}
+
+/// [`run`], stopping once `cancel` is set: each thread finishes the batch of shards it is
+/// on (at most [`batch::MAX_BATCH_SHARDS`] shards, written complete with their markers),
+/// takes no other, and the run returns [`SweepError::Cancelled`] without writing the index
+/// or the manifest; a later run resumes from the complete shards. An embedding such as the
+/// Python package sets the flag from another thread when the user interrupts.
+pub fn run_cancellable(
+    spec: &SweepSpec,
+    dir: &Path,
+    shards: &[u64],
+    threads: usize,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    cancel: &AtomicBool,
+) -> Result<SweepReport, SweepError> {
     validate(spec)?;
     prepare_dir(spec, dir)?;
     let t0 = std::time::Instant::now();
@@ -198,7 +227,9 @@ pub fn run(
     std::thread::scope(|sc| {
         for _ in 0..threads {
             let worker = crate::lanes::spawn_worker(sc, || loop {
-                if first_err.lock().map(|e| e.is_some()).unwrap_or(true) {
+                if cancel.load(Ordering::Relaxed)
+                    || first_err.lock().map(|e| e.is_some()).unwrap_or(true)
+                {
                     return;
                 }
                 // A few shards at a time, their records pooled into lane groups.
@@ -232,6 +263,9 @@ pub fn run(
     });
     if let Some(e) = first_err.into_inner().ok().flatten() {
         return Err(e);
+    }
+    if cancel.load(Ordering::Relaxed) {
+        return Err(SweepError::Cancelled);
     }
     let gen = generated.into_inner();
     let wr = written.into_inner();
@@ -300,4 +334,67 @@ pub fn finalize(spec: &SweepSpec, dir: &Path) -> Result<(bool, u64), SweepError>
             .as_bytes(),
     )?;
     Ok((true, bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cancelled run keeps the batch it was on (complete shards with their markers),
+    /// takes no other, writes neither index nor manifest, and a later run resumes from the
+    /// complete shards; a flag set before the run writes no shard at all.
+    #[test]
+    fn a_cancelled_sweep_keeps_finished_shards_and_resumes() {
+        let spec = SweepSpec::parse(
+            r#"
+seed = 5
+records = 40
+records_per_shard = 2
+duration = 0.02
+fs = 12000.0
+
+[grid]
+preset = ["cwru-6205-de"]
+rpm = [1797.0]
+fault = ["inner", "outer"]
+stage = ["large-defect"]
+"#,
+            "test",
+        )
+        .expect("spec");
+        let dir = tempfile::tempdir().expect("tmp");
+        let shards = shard_set(&spec, None);
+        let done = |d: &Path| (0..spec.shards()).filter(|&s| shard::is_done(d, s)).count();
+        let err = run_cancellable(
+            &spec,
+            dir.path(),
+            &shards,
+            1,
+            &|_, _| {},
+            &AtomicBool::new(true),
+        )
+        .expect_err("cancelled before it starts");
+        assert!(matches!(err, SweepError::Cancelled), "{err}");
+        assert_eq!(done(dir.path()), 0);
+        // Cancelled after the first shard: the rest of its batch is written, nothing more.
+        let cancel = AtomicBool::new(false);
+        let err = run_cancellable(
+            &spec,
+            dir.path(),
+            &shards,
+            1,
+            &|_, _| cancel.store(true, Ordering::Relaxed),
+            &cancel,
+        )
+        .expect_err("cancelled after the first shard");
+        assert!(matches!(err, SweepError::Cancelled), "{err}");
+        let per_batch = batch::batch_len(&spec, shards.len(), 1);
+        assert_eq!(done(dir.path()), per_batch);
+        assert!(per_batch < shards.len());
+        assert!(!dir.path().join(MANIFEST).exists() && !dir.path().join(INDEX).exists());
+        let r = run(&spec, dir.path(), &shards, 1, &|_, _| {}).expect("resumed");
+        assert!(r.complete);
+        assert_eq!(r.shards_skipped, per_batch as u64);
+        assert_eq!(done(dir.path()), shards.len());
+    }
 }
