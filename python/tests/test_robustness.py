@@ -104,7 +104,7 @@ def test_ctrl_c_in_the_first_simulate_is_a_prompt_keyboard_interrupt():
 SWEEP = """seed = 3
 records = 2000
 records_per_shard = 2
-duration = 0.05
+duration = 0.2
 fs = 12000.0
 [grid]
 preset = ["cwru-6205-de"]
@@ -133,7 +133,7 @@ def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
     r = wearsim.sweep(SWEEP, out, threads=2)
     assert r["complete"] and r["shards_skipped"] == len(done)
     index, signals = wearsim.load_dataset(out)
-    assert len(index) == 2000 and signals(999).shape == (2, 600)
+    assert len(index) == 2000 and signals(999).shape == (2, 2400)
 
 
 def test_a_repeated_effect_is_refused_naming_it():
