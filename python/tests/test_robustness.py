@@ -183,6 +183,11 @@ def test_life_returns_only_the_files_it_wrote(tmp_path):
     assert r["files"], r
     assert not {"notes.csv", "config.json", "life-features.csv"} & set(r["files"])
     assert (out / "notes.csv").read_text() == "mine\n"
+    # Stopped after 1 s of the life: not complete (the docs' example returned a deleted
+    # temporary folder and no sign of that); a temporary out's path is not returned.
+    assert r["complete"] is False
+    t = wearsim.life(preset="thesis-61810", dense=True, stop_after=1)
+    assert t["out"] is None and t["complete"] is False
 
 
 def test_config_error_pickles_with_its_message():

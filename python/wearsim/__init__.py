@@ -198,7 +198,8 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) ->
             raise ConfigError(message)
         if code != 0:
             raise RuntimeError(message)
-        result: Dict[str, Any] = {"out": out, "files": {}}
+        # A temporary `out` is gone when this returns: its path is not returned.
+        result: Dict[str, Any] = {"out": None if tmp is not None else out, "files": {}}
         for p in sorted(Path(out).glob("*")):
             if not p.is_file() or before.get(p.name) == _stat_key(p.stat()):
                 continue
@@ -217,8 +218,13 @@ def life(out: Union[str, os.PathLike, None] = None, **kwargs: Any) -> Dict[str, 
     ``preset="cwru-6205-de"``, ``config="life.toml"``, ...). Wraps the command at file
     level: it writes into ``out`` (a temporary directory when ``None``) and returns
     ``{"out": ..., "files": {name: parsed JSON or CSV text}}`` with the JSON and CSV files
-    this run wrote (not older files in ``out``)."""
-    return _run_cli("life", [], kwargs, out)
+    this run wrote (not older files in ``out``), and ``"complete"``: whether the run wrote
+    its completion marker (``life-summary.json``, or ``lives.json`` with ``lives=``). A
+    dense run stopped by ``stop_after`` is not complete; give ``out`` to resume it (a
+    temporary ``out`` is removed on return, and ``"out"`` is then ``None``)."""
+    r = _run_cli("life", [], kwargs, out)
+    r["complete"] = "life-summary.json" in r["files"] or "lives.json" in r["files"]
+    return r
 
 
 def gap(records: Union[str, List[str]], out: Union[str, os.PathLike, None] = None, **kwargs: Any) -> Dict[str, Any]:
