@@ -278,6 +278,15 @@ fn effects() -> String {
     wearsim_host::effects::catalogue_json().to_string()
 }
 
+/// bearings() -> JSON of the catalogue bearings (geometries of public data sets that are no
+/// model preset) with their kinematic orders and sources.
+#[pyfunction]
+fn bearings() -> PyResult<String> {
+    let rows =
+        wearsim_host::cmd::presets::bearings().map_err(|e| PyRuntimeError::new_err(e.message))?;
+    Ok(serde_json::Value::Array(rows).to_string())
+}
+
 /// presets() -> JSON of the presets with derived frequencies.
 #[pyfunction]
 fn presets() -> PyResult<String> {
@@ -491,6 +500,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(bearings, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_function(wrap_pyfunction!(cli, m)?)?;
     m.add_function(wrap_pyfunction!(read_record, m)?)?;

@@ -76,6 +76,19 @@ def test_effects_and_presets_catalogues():
     # SKF 6205 at 1797 rpm: BPFO 107.4 Hz, BPFI 162.2 Hz (CWRU's published figures).
     assert pr["cwru-6205-de"]["hz"]["bpfo"] == pytest.approx(107.4, rel=0.01)
     assert pr["cwru-6205-de"]["hz"]["bpfi"] == pytest.approx(162.2, rel=0.01)
+    # The catalogue bearings were named only in error messages (probe D). XJTU-SY's LDK
+    # UER204, 8 balls of 7.92 mm on 34.55 mm: BPFO = 4 (1 - 7.92/34.55) = 3.083 orders,
+    # BPFI = 4 (1 + 7.92/34.55) = 4.917 (Wang et al. 2020 give 107.9 and 172.1 Hz at 35 Hz).
+    bb = {b["name"]: b for b in wearsim.bearings()}
+    assert set(bb) == {"mfpt-nice", "paderborn-6203", "xjtu-ldk-uer204"}
+    x = bb["xjtu-ldk-uer204"]
+    assert x["orders"]["bpfo"] == pytest.approx(4 * (1 - 7.92 / 34.55), rel=1e-9)
+    assert x["orders"]["bpfi"] == pytest.approx(4 * (1 + 7.92 / 34.55), rel=1e-9)
+    assert 35 * x["orders"]["bpfo"] == pytest.approx(107.9, rel=0.002)
+    assert 35 * x["orders"]["bpfi"] == pytest.approx(172.1, rel=0.002)
+    assert all(b["source"] for b in bb.values())
+    sig, meta = wearsim.simulate("cwru-6205-de", duration=1.0)
+    wearsim.analyze(sig, meta["fs"], bearing="xjtu-ldk-uer204", rpm=2100)
 
 
 def test_analyze_names_the_outer_race_defect():

@@ -28,6 +28,7 @@ __all__ = [
     "gap",
     "effects",
     "presets",
+    "bearings",
     "sweep",
     "load_dataset",
     "read_record",
@@ -64,6 +65,15 @@ def presets() -> List[Dict[str, Any]]:
     return json.loads(_wearsim.presets())
 
 
+def bearings() -> List[Dict[str, Any]]:
+    """The catalogue bearings: geometries of public data sets that are no model preset
+    (``mfpt-nice``, ``paderborn-6203``, ``xjtu-ldk-uer204``), each with its elements, ball
+    and pitch diameter (mm), contact angle (degrees), kinematic orders (FTF, BPFO, BPFI, BSF
+    per shaft revolution) and the source of its numbers. Their names are accepted wherever a
+    bearing is (``analyze(bearing=...)``, ``gap``, ``features``)."""
+    return json.loads(_wearsim.bearings())
+
+
 _GEOMETRY_KEYS = ("elements", "ball", "pitch", "angle")
 
 
@@ -75,7 +85,7 @@ def analyze(
 ) -> Dict[str, Any]:
     """Analyse a signal like ``wearsim analyze --json``: statistics, kurtogram band,
     envelope-spectrum fault family, zones. ``bearing`` is a preset or catalogue name
-    (see ``presets()``) or any bearing's geometry as a dict like ``--bearing-geometry``:
+    (see ``presets()`` and ``bearings()``) or any bearing's geometry as a dict like ``--bearing-geometry``:
     ``{"elements": 9, "ball": 7.94, "pitch": 39.04, "angle": 0}`` (diameters in mm,
     contact angle in degrees; ``angle`` may be left out for 0). ``rpm`` is the shaft
     speed."""

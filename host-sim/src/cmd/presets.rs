@@ -102,5 +102,54 @@ fn print_catalogue(json: bool, rows: Vec<serde_json::Value>) -> Result<(), CliEr
             r["description"].as_str().unwrap_or("")
         );
     }
+    println!(
+        "\ncatalogue bearings (a geometry, no model: `--bearing NAME` in analyze, gap and features; a simulation scales the nearest preset's structure to it)"
+    );
+    println!(
+        "{:<18} {:>3} {:>8} {:>8} {:>6} {:>8} {:>8} {:>8} {:>8}   (orders of the shaft speed)",
+        "bearing", "N", "Bd mm", "P mm", "deg", "FTF", "BPFO", "BPFI", "BSF"
+    );
+    for b in bearings()? {
+        println!(
+            "{:<18} {:>3} {:>8.3} {:>8.2} {:>6.2} {:>8.4} {:>8.4} {:>8.4} {:>8.4}",
+            b["name"].as_str().unwrap_or(""),
+            b["elements"],
+            b["ball_mm"].as_f64().unwrap_or(0.0),
+            b["pitch_mm"].as_f64().unwrap_or(0.0),
+            b["angle_deg"].as_f64().unwrap_or(0.0),
+            b["orders"]["ftf"].as_f64().unwrap_or(0.0),
+            b["orders"]["bpfo"].as_f64().unwrap_or(0.0),
+            b["orders"]["bpfi"].as_f64().unwrap_or(0.0),
+            b["orders"]["bsf"].as_f64().unwrap_or(0.0),
+        );
+        println!("  {}", b["source"].as_str().unwrap_or(""));
+    }
     Ok(())
+}
+
+/// The catalogue bearings ([`crate::geometry::CATALOGUE`]): bearings of public data sets
+/// that are geometries, not model presets, with their kinematic orders (FTF, BPFO, BPFI,
+/// BSF per shaft revolution, eq. 17–20 of the thesis) and the source of their numbers.
+pub fn bearings() -> Result<Vec<serde_json::Value>, CliError> {
+    crate::geometry::CATALOGUE
+        .iter()
+        .map(|e| {
+            let g = e.geometry;
+            let m = g
+                .model()
+                .map_err(|err| CliError::run(format!("catalogue bearing {}: {err}", e.name)))?;
+            let k = crate::kinematics::of_config(&m.model, 60.0)
+                .map_err(|err| CliError::run(format!("catalogue bearing {}: {err}", e.name)))?;
+            Ok(json!({
+                "name": e.name,
+                "description": e.description,
+                "elements": g.elements,
+                "ball_mm": g.ball_mm,
+                "pitch_mm": g.pitch_mm,
+                "angle_deg": g.angle_deg,
+                "orders": {"ftf": k.ftf, "bpfo": k.bpfo, "bpfi": k.bpfi, "bsf": k.bsf},
+                "source": e.source,
+            }))
+        })
+        .collect()
 }

@@ -283,6 +283,15 @@ fn presets_and_bench_json() {
         .find(|p| p["name"] == "cwru-6205-de")
         .unwrap();
     assert!((cwru["orders"]["bpfo"].as_f64().unwrap() - 3.5848).abs() < 1e-3);
+    // The catalogue bearings are listed too (they were named only in error messages): the
+    // MFPT rig's BPFO, 81.125 Hz at 25 Hz in its readme, is 3.2450 orders.
+    let o = wearsim(&["presets"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    let mfpt = text.lines().find(|l| l.starts_with("mfpt-nice")).unwrap();
+    assert!(
+        mfpt.contains(" 3.2450 ") && text.contains("xjtu-ldk-uer204"),
+        "{text}"
+    );
     let o = wearsim(&["bench", "--seconds", "1", "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
