@@ -108,9 +108,14 @@ impl core::fmt::Display for ConfigError {
                         f,
                         "{field}: internal step too large for the races' waviness, which \
                          passes at {w:.0} Hz at this shaft speed and must stay below 0.45 of \
-                         the internal rate (the stiffest mode's omega*h = {omega_h:.3} is \
-                         within its limit {limit}); use an internal rate of at least \
-                         {min_internal_rate_hz:.0} Hz"
+                         the internal rate (the stiffest mode's omega*h = {omega_h:.3} {} \
+                         {limit}); use an internal rate of at least \
+                         {min_internal_rate_hz:.0} Hz",
+                        if omega_h <= limit {
+                            "is within its limit"
+                        } else {
+                            "exceeds its limit too,"
+                        }
                     )?,
                     None => write!(
                         f,
