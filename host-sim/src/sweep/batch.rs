@@ -109,28 +109,15 @@ mod tests {
     use super::*;
 
     fn spec() -> SweepSpec {
-        SweepSpec::parse(
+        crate::sweep::test_spec(
+            "seed = 5\nrecords = 12\nrecords_per_shard = 4\nduration = 0.05",
             r#"
-seed = 5
-records = 12
-records_per_shard = 4
-duration = 0.05
-fs = 12000.0
-
-[grid]
-preset = ["cwru-6205-de"]
-rpm = [1797.0]
-fault = ["inner", "outer"]
-stage = ["large-defect"]
-
 [[effect]]
 name = "sensor"
 probability = 0.5
 params = { noise = { uniform = [0.01, 0.2] }, hum = { uniform = [0.0, 0.05] } }
 "#,
-            "test",
         )
-        .expect("spec")
     }
 
     /// Three shards pooled into one batch (records of one cell spread over the shards

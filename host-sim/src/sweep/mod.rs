@@ -336,6 +336,17 @@ pub fn finalize(spec: &SweepSpec, dir: &Path) -> Result<(bool, u64), SweepError>
     Ok((true, bytes))
 }
 
+/// A sweep spec for the module's tests: `head` (seed, records, records per shard,
+/// duration), 12 kHz, the grid the tests share (the 6205 at 1797 rpm, inner and outer
+/// race, large defects), then `tail` (effects).
+#[cfg(test)]
+pub(crate) fn test_spec(head: &str, tail: &str) -> SweepSpec {
+    let text = format!(
+        "{head}\nfs = 12000.0\n\n[grid]\npreset = [\"cwru-6205-de\"]\nrpm = [1797.0]\nfault = [\"inner\", \"outer\"]\nstage = [\"large-defect\"]\n{tail}"
+    );
+    SweepSpec::parse(&text, "test").expect("test spec")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -345,23 +356,10 @@ mod tests {
     /// complete shards; a flag set before the run writes no shard at all.
     #[test]
     fn a_cancelled_sweep_keeps_finished_shards_and_resumes() {
-        let spec = SweepSpec::parse(
-            r#"
-seed = 5
-records = 40
-records_per_shard = 2
-duration = 0.02
-fs = 12000.0
-
-[grid]
-preset = ["cwru-6205-de"]
-rpm = [1797.0]
-fault = ["inner", "outer"]
-stage = ["large-defect"]
-"#,
-            "test",
-        )
-        .expect("spec");
+        let spec = test_spec(
+            "seed = 5\nrecords = 40\nrecords_per_shard = 2\nduration = 0.02",
+            "",
+        );
         let dir = tempfile::tempdir().expect("tmp");
         let shards = shard_set(&spec, None);
         let done = |d: &Path| (0..spec.shards()).filter(|&s| shard::is_done(d, s)).count();

@@ -227,28 +227,15 @@ mod tests {
     /// per-record sensor effect differ within a group).
     #[test]
     fn laned_records_equal_records_run_alone() {
-        let spec = SweepSpec::parse(
+        let spec = crate::sweep::test_spec(
+            "seed = 11\nrecords = 10\nrecords_per_shard = 10\nduration = 0.05",
             r#"
-seed = 11
-records = 10
-records_per_shard = 10
-duration = 0.05
-fs = 12000.0
-
-[grid]
-preset = ["cwru-6205-de"]
-rpm = [1797.0]
-fault = ["inner", "outer"]
-stage = ["large-defect"]
-
 [[effect]]
 name = "sensor"
 probability = 0.5
 params = { noise = { uniform = [0.01, 0.2] } }
 "#,
-            "test",
-        )
-        .expect("spec");
+        );
         let cells = cells(&spec);
         let a = scenario(&spec, &cells, 0).expect("record 0");
         let b = scenario(&spec, &cells, 2).expect("record 2");
