@@ -52,6 +52,13 @@ cargo test -p wearsim-core --test low_rate --test checkpoint_resume --test lanes
 if [ -f firmware-stub/Cargo.toml ]; then
   step "firmware-stub: fmt and clippy"
   (cd firmware-stub && cargo fmt --all -- --check && cargo clippy --all-targets -- -D warnings)
+
+  # An image whose panic handler calls a symbol defined nowhere links only if no panic is
+  # reachable in the core (both precisions, its whole public API on opaque inputs).
+  step "core: no reachable panic (link-time proof, firmware-stub/nopanic)"
+  for target in thumbv7em-none-eabihf thumbv7m-none-eabi; do
+    (cd firmware-stub && cargo build --release -p wearsim-nopanic --target "$target")
+  done
 fi
 
 step "fuzz every reader and the frame decoder (libFuzzer, ${WEARSIM_FUZZ_SECONDS:-15} s each)"

@@ -34,7 +34,16 @@ impl SensorScale {
     /// Counts for acceleration `accel` (m/s²), saturating; NaN maps to 0.
     pub fn counts(&self, accel: Real) -> i16 {
         let frac = accel / (STANDARD_GRAVITY * self.full_scale_g);
-        let q = I1F15::saturating_from_num(if frac.is_nan() { 0.0 } else { frac });
+        // `checked_from_num` rather than `saturating_from_num`: the latter holds a panic for
+        // NaN that the optimiser cannot see past the guard (`firmware-stub/nopanic`); out of
+        // range saturates by sign, NaN (neither sign) gives 0 — the same values.
+        let q = I1F15::checked_from_num(frac).unwrap_or(if frac > 0.0 {
+            I1F15::MAX
+        } else if frac < 0.0 {
+            I1F15::MIN
+        } else {
+            I1F15::ZERO
+        });
         let shift = 16u32.saturating_sub(self.bits as u32);
         let mask: i16 = !((1i16 << shift) - 1);
         q.to_bits() & mask

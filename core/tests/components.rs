@@ -271,6 +271,19 @@ fn sensor_counts() {
     assert_eq!(s.counts(1e6), i16::MAX);
     assert_eq!(s.counts(-1e6), i16::MIN);
     assert_eq!(s.counts(Real::NAN), 0);
+    assert_eq!(s.counts(Real::INFINITY), i16::MAX);
+    assert_eq!(s.counts(Real::NEG_INFINITY), i16::MIN);
+    // The same counts as `fixed`'s saturating conversion (round to nearest, ties to even)
+    // over the range and its edges, ties included: `counts` avoids that conversion only
+    // because its NaN panic stays reachable to the optimiser (firmware-stub/nopanic).
+    let full = 9.80665 * 2.0;
+    for i in -70_000i32..=70_000 {
+        for frac in [i as Real / 65_536.0, (i as Real + 0.5) / 32_768.0] {
+            let accel = frac * full;
+            let want = fixed::types::I1F15::saturating_from_num(accel / full).to_bits();
+            assert_eq!(s.counts(accel), want, "fraction {frac}");
+        }
+    }
     assert!((s.accel(16384) - 9.80665).abs() < tol(1e-12));
     let s12 = SensorScale {
         full_scale_g: 2.0,
