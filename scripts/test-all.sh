@@ -59,6 +59,7 @@ if [ -f firmware-stub/Cargo.toml ]; then
   for target in thumbv7em-none-eabihf thumbv7m-none-eabi; do
     (cd firmware-stub && cargo build --release -p wearsim-nopanic --target "$target")
   done
+  (cd firmware-stub && cargo clippy --release -p wearsim-nopanic --target thumbv7em-none-eabihf -- -D warnings)
 fi
 
 step "fuzz every reader and the frame decoder (libFuzzer, ${WEARSIM_FUZZ_SECONDS:-15} s each)"

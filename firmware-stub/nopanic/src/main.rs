@@ -125,7 +125,12 @@ mod image {
             }
             let mut block = [Sample::default(); 64];
             let n = black_box(64usize).min(block.len());
-            let filled = model.fill(&mut st, block.get_mut(..n).unwrap_or(&mut []));
+            let mut observed: u32 = 0;
+            let filled =
+                model.fill_observed(&mut st, block.get_mut(..n).unwrap_or(&mut []), |_| {
+                    observed += 1
+                });
+            acc += observed as Real;
             for s in block.iter().take(filled) {
                 acc += s.accel + s.vel + s.disp;
             }
@@ -152,7 +157,14 @@ mod image {
             }
 
             // Four lanes stepped together.
-            let models = [model.clone(), model.clone(), model.clone(), model.clone()];
+            // The last lane at its own speed when the optimiser cannot rule it out (the
+            // per-lane kinematics path).
+            let mut own = base.clone();
+            if black_box(true) {
+                own.speed = SpeedProfile::Constant(black_box(1.01) * base.speed.shaft_hz(0.0));
+            }
+            let last = Model::new_checked(own).unwrap_or_else(|_| model.clone());
+            let models = [model.clone(), model.clone(), model.clone(), last];
             let seeds = [black_box(1), 2, 3, 4];
             if let Ok(mut group) = LaneGroup::<4, $nb>::new_checked(&models, &seeds) {
                 let mut out = [[Sample::default(); 4]; 16];
