@@ -119,15 +119,20 @@ pub const MAX_LANES: usize = 16;
 /// 2 MiB thread default: a 16-record sweep killed its Python process with SIGSEGV.
 pub const WORKER_STACK: usize = 16 << 20;
 
-/// Spawns `f` on a scoped worker thread with a [`WORKER_STACK`] stack: every thread that
-/// runs simulations (sweeps, lives, the gap's fits) starts through here.
+/// Spawns `f` on a scoped worker thread with a [`WORKER_STACK`] stack and the caller's
+/// cancel flag ([`crate::cancel`]): every thread that runs simulations (sweeps, lives, the
+/// gap's fits) starts through here.
 pub fn spawn_worker<'scope, T: Send + 'scope>(
     scope: &'scope std::thread::Scope<'scope, '_>,
     f: impl FnOnce() -> T + Send + 'scope,
 ) -> std::io::Result<std::thread::ScopedJoinHandle<'scope, T>> {
+    let flag = crate::cancel::current();
     std::thread::Builder::new()
         .stack_size(WORKER_STACK)
-        .spawn_scoped(scope, f)
+        .spawn_scoped(scope, move || match flag {
+            Some(flag) => crate::cancel::scope(flag, f),
+            None => f(),
+        })
 }
 
 /// Runs `f` on a scoped worker thread with a [`WORKER_STACK`] stack and returns its

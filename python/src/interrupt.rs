@@ -10,6 +10,7 @@
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Duration;
 
 /// How often the calling thread looks for a pending signal.
@@ -32,8 +33,11 @@ impl Drop for Finished<'_> {
 /// released, and returns its result; a signal handler's exception (KeyboardInterrupt) is
 /// returned instead once `work` has stopped, `cancel` having been set for it to stop
 /// early. A panic in `work` is resumed here (PyO3 turns it into PanicException).
-pub fn run<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> T + Send) -> PyResult<T> {
-    let cancel = AtomicBool::new(false);
+pub fn run<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&Arc<AtomicBool>) -> T + Send,
+) -> PyResult<T> {
+    let cancel = Arc::new(AtomicBool::new(false));
     let done = AtomicBool::new(false);
     let waiter = std::thread::current();
     std::thread::scope(|s| {

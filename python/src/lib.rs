@@ -368,24 +368,32 @@ fn write_npy_f64(path: &std::path::Path, x: &[f64]) -> std::io::Result<()> {
 }
 
 /// cli(argv) -> (exit code, message): runs one `wearsim` subcommand in-process (file
-/// level: `life` and `gap` write into their `--out` directory).
+/// level: `life` and `gap` write into their `--out` directory). Ctrl-C stops it
+/// (`wearsim_host::cancel`: no report is written; a dense life keeps a checkpoint) and
+/// raises KeyboardInterrupt.
 #[pyfunction]
-fn cli(py: Python<'_>, argv: Vec<String>) -> (u8, String) {
-    py.detach(move || {
-        use clap::Parser;
-        let mut full = vec!["wearsim".to_string()];
-        full.extend(argv);
-        match wearsim_host::cmd::Cli::try_parse_from(full) {
-            Err(e) => (2, e.to_string()),
-            Ok(c) => match c.command {
-                None => (2, "no subcommand".into()),
-                Some(cmd) => match wearsim_host::cmd::dispatch(cmd) {
-                    Ok(()) => (0, String::new()),
-                    Err(e) => (e.code, wearsim_host::cmd::exit::compact_numbers(&e.message)),
-                },
-            },
-        }
+fn cli(py: Python<'_>, argv: Vec<String>) -> PyResult<(u8, String)> {
+    interrupt::run(py, move |cancel| {
+        let cancel = cancel.clone();
+        wearsim_host::cancel::scope(cancel, move || cli_run(argv))
     })
+}
+
+/// The work of [`cli`].
+fn cli_run(argv: Vec<String>) -> (u8, String) {
+    use clap::Parser;
+    let mut full = vec!["wearsim".to_string()];
+    full.extend(argv);
+    match wearsim_host::cmd::Cli::try_parse_from(full) {
+        Err(e) => (2, e.to_string()),
+        Ok(c) => match c.command {
+            None => (2, "no subcommand".into()),
+            Some(cmd) => match wearsim_host::cmd::dispatch(cmd) {
+                Ok(()) => (0, String::new()),
+                Err(e) => (e.code, wearsim_host::cmd::exit::compact_numbers(&e.message)),
+            },
+        },
+    }
 }
 
 /// Checks `part = (I, N)`: 0 <= I < N.

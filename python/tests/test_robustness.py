@@ -136,6 +136,32 @@ def test_ctrl_c_stops_a_sweep_at_a_shard_boundary_and_it_resumes(tmp_path):
     assert len(index) == 2000 and signals(999).shape == (2, 2400)
 
 
+def test_ctrl_c_stops_a_life_statistics_run_without_its_report(tmp_path):
+    # Was held until every life had run (minutes), then wrote lives.json and raised.
+    out = tmp_path / "lives"
+    code = _DURING_THE_CALL.format(
+        wait="", call="wearsim.life(out=sys.argv[1], preset='cwru-6205-de', lives=400, threads=1)"
+    )
+    p = _python(code, str(out))
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "KeyboardInterrupt", p.stdout + p.stderr
+    assert not (out / "lives.json").exists() and not (out / "lives.csv").exists()
+
+
+def test_ctrl_c_stops_a_gap_run_without_its_report(tmp_path):
+    # Was held until the whole diagnosis had run, then wrote gap.json and raised.
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_api import _cwru_dir
+
+    rec = _cwru_dir() / "12k_Drive_End_OR007@6_0_130.mat"
+    out = tmp_path / "gap"
+    code = _DURING_THE_CALL.format(wait="", call="wearsim.gap(sys.argv[1], out=sys.argv[2], jobs=2)")
+    p = _python(code, str(rec), str(out))
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "KeyboardInterrupt", p.stdout + p.stderr
+    assert not (out / "gap.json").exists()
+
+
 def test_a_repeated_effect_is_refused_naming_it():
     # The first entry was silently dropped; the command line exits 2 with this message.
     two = [{"name": "sensor", "params": {"noise": 1}}, {"name": "sensor", "params": {"noise": 50}}]

@@ -1,7 +1,7 @@
 //! Exit codes of `wearsim`, decided here and nowhere else: 0 success; 2 bad input (an
 //! argument, a configuration value, an unreadable or invalid input file: the message names
 //! the field and its allowed range); 1 the run failed (I/O while writing, a numerical
-//! failure). Errors are printed once, as `wearsim: error: <message>` on stderr.
+//! failure); 130 stopped by an in-process caller ([`crate::cancel`]). Errors are printed once, as `wearsim: error: <message>` on stderr.
 
 use std::process::ExitCode;
 
@@ -9,6 +9,9 @@ use std::process::ExitCode;
 pub const BAD_INPUT: u8 = 2;
 /// Exit code of a failed run.
 pub const RUN_FAILED: u8 = 1;
+/// Exit code of a run stopped by its caller ([`crate::cancel`]; 128 + SIGINT, as a shell
+/// reports a process ended by Ctrl-C).
+pub const INTERRUPTED: u8 = 130;
 
 /// An error with the process exit code it maps to.
 #[derive(Debug)]
@@ -32,6 +35,13 @@ impl CliError {
         CliError {
             code: RUN_FAILED,
             message: e.to_string(),
+        }
+    }
+    /// Stopped by the caller (exit code [`INTERRUPTED`]; see [`crate::cancel`]).
+    pub fn interrupted() -> Self {
+        CliError {
+            code: INTERRUPTED,
+            message: crate::cancel::MESSAGE.to_string(),
         }
     }
 }

@@ -119,6 +119,7 @@ fn run_stationary(a: &GapArgs) -> Result<(), CliError> {
         seconds: at.seconds,
         files: vec![],
     };
+    crate::cancel::check()?;
     out.files = report::write(&a.out, &out, &parts.valid, &at)?;
     if a.json {
         print_json(&out)?;
@@ -146,6 +147,7 @@ fn run_life(a: &GapArgs) -> Result<(), CliError> {
     let c = lifetime::calibrated(&m, &o).map_err(CliError::input)?;
     let g = lifetime::diagnose_calibrated(&m, &o, &c).map_err(CliError::run)?;
     let mut out = life_report::output(&g);
+    crate::cancel::check()?;
     out.files = life_report::write(&a.out, &out, &g)?;
     if a.json {
         print_json(&out)?;

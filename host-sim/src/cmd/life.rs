@@ -264,6 +264,7 @@ fn life_error(e: crate::life::LifeError) -> CliError {
             "{e}: --snapshot-every is too small for this life (at most {} windows per life); raise it",
             crate::life::MAX_LIFE_WINDOWS
         )),
+        crate::life::LifeError::Interrupted => CliError::interrupted(),
         other => CliError::run(other),
     }
 }
@@ -340,6 +341,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         groups.push(summarise(*scale, iso.0, iso.1, lives));
     }
     bar.finish();
+    crate::cancel::check()?;
     let wall = t0.elapsed().as_secs_f64();
     let exp = exponent(&groups, false);
     let exp_spall = exponent(&groups, true);

@@ -86,6 +86,17 @@ pub enum Command {
 
 /// Runs one subcommand.
 pub fn dispatch(command: Command) -> Result<(), CliError> {
+    let result = run(command);
+    // A run its caller stopped ([`crate::cancel`]) is reported as such, whatever error its
+    // cut-short simulations left.
+    match result {
+        Err(_) if crate::cancel::requested() => Err(CliError::interrupted()),
+        r => r,
+    }
+}
+
+/// Runs one subcommand.
+fn run(command: Command) -> Result<(), CliError> {
     match command {
         Command::Simulate(a) => simulate::run(a),
         Command::Bench(a) => bench::run(a),

@@ -13,9 +13,12 @@ use wearsim_core::{Model, ModelConfig, Sample, State};
 pub const SETTLE_S: f64 = 0.1;
 
 /// `samples` accelerations (m/s²) of `cfg` with generator seed `seed`, after
-/// [`SETTLE_S`]; an error when the model refuses the configuration or a sample is not
-/// finite.
+/// [`SETTLE_S`]; an error when the model refuses the configuration, a sample is not
+/// finite, or the caller has asked the run to stop ([`crate::cancel`]).
 pub fn simulate(cfg: &ModelConfig, seed: u64, samples: usize) -> Result<Vec<f64>, String> {
+    if crate::cancel::requested() {
+        return Err(crate::cancel::MESSAGE.into());
+    }
     let model = Model::new_checked(cfg.clone()).map_err(|e| e.to_string())?;
     let fs = model.config().output_rate;
     let mut st: State<{ crate::simulate::CAPACITY }> =
@@ -72,6 +75,12 @@ pub fn simulate_ahead(
     // The guesses, built once each when a group has a free lane, and taken in order.
     let mut guesses: Vec<Option<Option<Model>>> = vec![None; ahead.len()];
     for (k, now) in plan {
+        if crate::cancel::requested() {
+            for &j in &now {
+                out[models[j].0] = Some(Err(crate::cancel::MESSAGE.into()));
+            }
+            continue;
+        }
         let mut lanes: Vec<&Model> = now.iter().map(|&j| &models[j].1).collect();
         let mut taken: Vec<usize> = vec![];
         if k > 1 {

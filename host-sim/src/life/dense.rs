@@ -384,7 +384,9 @@ impl LifeRun {
                 samples_total += n as u64;
                 generated += n as u64;
                 since_ckpt += n as u64;
-                let stop = budget.is_some_and(|b| generated >= b);
+                // The caller's stop (crate::cancel) ends the run as a budget does: with a
+                // checkpoint to resume from.
+                let stop = budget.is_some_and(|b| generated >= b) || crate::cancel::requested();
                 if since_ckpt >= ckpt_every || stop {
                     since_ckpt = 0;
                     out.flush().map_err(io_err(&data_path))?;

@@ -84,6 +84,9 @@ impl LifeRun {
         let mut scheduled = true;
         let mut ahead = Ahead::default();
         loop {
+            if crate::cancel::requested() {
+                return Err(LifeError::Interrupted);
+            }
             let model = self.model_for(&st)?;
             let (samples, loads) = match ahead.take(model.config()) {
                 Some(w) => w,

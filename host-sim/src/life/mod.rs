@@ -129,6 +129,9 @@ pub enum LifeError {
         /// Where.
         cycles: f64,
     },
+    /// The caller asked the run to stop ([`crate::cancel`]).
+    #[error("{}", crate::cancel::MESSAGE)]
+    Interrupted,
 }
 
 /// Features of one window (acceleration, m/s²).
