@@ -244,10 +244,16 @@ pub fn analyze_signal(
         raw.to_vec()
     };
     let x = normalised.as_slice();
-    let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
     analysis::error::check_signal(x, 128, "kurtogram")?;
     analysis::kurtogram::check_not_constant(x)?;
-    let spec = analysis::fft::rfft(x, analysis::stats::mean(x));
+    let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
+    // The band is chosen on the record with its ends faded (50 ms): how a record's ends
+    // meet is not evidence of a fault. The envelope spectrum needs no fade (its Hann window
+    // already gives the ends no weight) and must not get one: the fade is itself an
+    // envelope modulation.
+    let mut faded = normalised.clone();
+    analysis::window::taper_ends(&mut faded, fs);
+    let spec = analysis::fft::rfft(&faded, analysis::stats::mean(&faded));
     // Candidate bands on a grid fixed in Hz (issue 12: cells in fractions of fs/2 moved with
     // the sample rate and so changed the call of a record resampled with no new content),
     // up to where the record holds content, its Nyquist frequency and `MAX_BAND_HZ`.
@@ -303,11 +309,11 @@ pub fn analyze_signal(
     } else {
         0.0
     };
-    // Cepstral pre-whitening from the same spectrum of the mean-removed record (the
-    // record has been checked: finite, not constant, long enough).
+    // Cepstral pre-whitening of the mean-removed record (checked: finite, not constant,
+    // long enough).
     let white;
     let y: &[f64] = if method.prewhiten {
-        white = prewhiten_spectrum(spec, x.len());
+        white = prewhiten(x);
         &white
     } else {
         x
