@@ -114,7 +114,7 @@ pub struct KurtogramSummary {
     /// Narrowest admissible band width, Hz (see [`Method::min_band_factor`]).
     pub min_band_hz: f64,
     /// Upper limit of the candidate bands, Hz: the lowest of the record's content edge
-    /// (`analysis::kurtogram::content_edge_hz`), its Nyquist frequency and
+    /// (`analysis::kurtogram::content_edge_hz`) plus one 100 Hz chunk, its Nyquist frequency and
     /// `analysis::kurtogram::MAX_BAND_HZ` (20 kHz).
     pub span_hz: f64,
     /// Chosen demodulation band `(lo, hi)`, Hz: the admissible band of largest kurtosis.
@@ -257,7 +257,12 @@ pub fn analyze_signal(
     // Candidate bands on a grid fixed in Hz (issue 12: cells in fractions of fs/2 moved with
     // the sample rate and so changed the call of a record resampled with no new content),
     // up to where the record holds content, its Nyquist frequency and `MAX_BAND_HZ`.
-    let span = analysis::kurtogram::content_edge_hz(&spec, x.len(), fs)
+    // The edge is known to its 100 Hz chunk, so a band may reach one chunk past the last
+    // chunk with content: a 12 kHz CWRU record's anti-alias roll-off leaves 5.9-6 kHz under
+    // the -80 dB floor once the ends are faded, which put the 4.5-6 kHz cell, holding one
+    // record's impacts (kurtosis 32), out of reach (probe G, stop 54).
+    let span = (analysis::kurtogram::content_edge_hz(&spec, x.len(), fs)
+        + analysis::kurtogram::CONTENT_CHUNK_HZ)
         .min(fs / 2.0)
         .min(analysis::kurtogram::MAX_BAND_HZ);
     let min_band_hz = (method.min_band_factor * top).min(span);

@@ -163,7 +163,7 @@ pub(crate) fn band_power(spec: &[Complex<f64>], n: usize, fs: f64, band: (f64, f
 }
 
 /// Width of the chunks in which [`content_edge_hz`] measures the spectrum, Hz.
-const CONTENT_CHUNK_HZ: f64 = 100.0;
+pub const CONTENT_CHUNK_HZ: f64 = 100.0;
 /// A chunk whose mean power is below this fraction of the largest chunk's (-80 dB) holds
 /// no content (e.g. above the original Nyquist frequency of a resampled record).
 const CONTENT_FLOOR: f64 = 1e-8;
