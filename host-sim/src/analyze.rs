@@ -26,12 +26,12 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub channel: Option<String>,
     /// Shaft speed (rpm), 0 < rpm < 1e6; overrides the file / sidecar value.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
     /// Sample rate (Hz), 1..=1e7: for a file that states none; must agree (within 0.1 %)
     /// with a rate the file or its sidecar states (else exit 2); overrides a layout's or a
     /// file name's rate.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub fs: Option<f64>,
     /// Bearing preset giving the geometry (see `wearsim presets`) or a catalogue bearing
     /// (`mfpt-nice`, `paderborn-6203`, `xjtu-ldk-uer204`); overrides the record's.

@@ -340,9 +340,24 @@ impl GeometrySpec {
         let mut model = preset(best.0)?;
         let scale = self.pitch_mm / (model.bearing.pitch_diameter * 1e3);
         let st = model.structure;
+        let mass = st.mass * scale.powi(3);
+        if mass < wearsim_core::model::MASS_RANGE.0 as f64 {
+            // The core would name `structure.mass`, a field the user never gave.
+            return Err(format!(
+                "bearing-geometry: pitch {} mm, ball {} mm is too small for the structure model \
+                 (scaled from {} by similitude its structure would weigh {mass:.2e} kg, below \
+                 {:e} kg; the smallest pitch accepted is about {:.1} mm); diameters are in \
+                 millimetres — if these are inches, multiply by 25.4",
+                self.pitch_mm,
+                self.ball_mm,
+                best.0,
+                wearsim_core::model::MASS_RANGE.0,
+                self.pitch_mm * (wearsim_core::model::MASS_RANGE.0 as f64 / mass).cbrt()
+            ));
+        }
         model.bearing = self.bearing()?;
         model.structure = Structure {
-            mass: st.mass * scale.powi(3),
+            mass,
             stiffness: st.stiffness * scale,
             damping: st.damping * scale * scale,
         };
@@ -455,6 +470,24 @@ pub fn choose(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A 6205 typed in inches (ball 0.3126 in, pitch 1.537 in) is refused naming the
+    /// geometry and the unit, not `structure.mass`, a field the user never gave (probe F).
+    #[test]
+    fn a_bearing_given_in_inches_is_refused_saying_so() {
+        let g = GeometrySpec::parse("elements=9,ball=0.3126,pitch=1.537,angle=0").expect("parses");
+        let e = g.model().expect_err("too small for the structure model");
+        assert!(
+            e.starts_with("bearing-geometry:") && e.contains("inches"),
+            "{e}"
+        );
+        assert!(!e.contains("structure.mass"), "{e}");
+        // The pitch the message gives as the smallest accepted is accepted.
+        let mm = g.pitch_mm * 6.0;
+        let ok = GeometrySpec::parse(&format!("elements=9,ball=0.3126,pitch={mm},angle=0"))
+            .expect("parses");
+        assert!(ok.model().is_ok());
+    }
     use wearsim_core::kinematics::FaultOrders;
 
     #[test]

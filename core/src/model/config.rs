@@ -34,6 +34,9 @@ pub const MAX_OVERSAMPLE: u32 = 16;
 pub const MAX_OVERSAMPLE: u32 = 8;
 /// Output-rate range (Hz).
 pub const OUTPUT_RATE_RANGE: (Real, Real) = (100.0, 1.0e6);
+/// Allowed structure mass (kg): 0.1 g (a miniature bearing's share of a light housing) to
+/// 100 t.
+pub const MASS_RANGE: (Real, Real) = (1e-4, 1e5);
 
 /// Mass, stiffness and damping of the structure (thesis eq. 1: M, K, C).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -217,7 +220,12 @@ fn check_effects(cfg: &mut ModelConfig) -> Result<Effects, ConfigError> {
 
 /// M, K, C, the radial load and the clearance.
 fn check_structure(cfg: &ModelConfig) -> Result<(), ConfigError> {
-    check_range("structure.mass", cfg.structure.mass, 1e-4, 1e5)?;
+    check_range(
+        "structure.mass",
+        cfg.structure.mass,
+        MASS_RANGE.0,
+        MASS_RANGE.1,
+    )?;
     check_range("structure.stiffness", cfg.structure.stiffness, 1.0, 1e12)?;
     check_range("structure.damping", cfg.structure.damping, 0.0, 1e9)?;
     check_range("radial_load", cfg.radial_load, 0.0, 1e7)?;

@@ -23,7 +23,7 @@ mod output;
 pub mod state;
 mod step;
 
-pub use config::{Channels, ModelConfig, Structure, MAX_OVERSAMPLE, OUTPUT_RATE_RANGE};
+pub use config::{Channels, ModelConfig, Structure, MASS_RANGE, MAX_OVERSAMPLE, OUTPUT_RATE_RANGE};
 pub use lanes::{LaneError, LaneGroup, LibmSqrt, SqrtLanes};
 pub use state::State;
 pub(crate) use state::StateParts;

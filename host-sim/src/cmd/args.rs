@@ -27,7 +27,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub duration: Option<f64>,
     /// Output sample rate (Hz), 100..=1e6.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub fs: Option<f64>,
     /// Random seed.
     #[arg(long)]
@@ -37,7 +37,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub topography: Option<String>,
     /// Shaft speed (rpm), overriding the scenario's speed profile with a constant speed.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
     /// Output directory.
     #[arg(long, default_value = "wearsim-out")]

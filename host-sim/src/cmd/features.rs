@@ -26,7 +26,7 @@ pub struct FeaturesArgs {
     #[arg(long)]
     pub channel: Option<String>,
     /// Shaft speed, rpm (IMS: 2000; required for FEMTO and XJTU-SY).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
     /// Radial load, N (IMS: 6000 lbf = 26 689 N; required for FEMTO and XJTU-SY).
     #[arg(long)]

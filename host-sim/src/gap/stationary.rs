@@ -43,7 +43,7 @@ pub struct GapArgs {
     #[arg(long)]
     pub bearing_geometry: Option<String>,
     /// Shaft speed (rpm) of every record (default: from the file, else the spectrum).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
     /// Defect of every record: `LOCATION:SIZE[:DEPTH]` with LOCATION none, inner, outer,
     /// outer@3, outer@6, outer@12, ball and sizes with `in` or `mm` (default: the file's
@@ -80,7 +80,7 @@ pub struct GapArgs {
     pub channel: Option<String>,
     /// Sample rate (Hz): for a file that states none; must agree (within 0.1 %) with a
     /// rate the file or its sidecar states (else exit 2).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub fs: Option<f64>,
     /// Unit of the samples, `g` or `m/s^2`: for a file that states none (NPY, a CSV
     /// without a unit in its header, a MAT file of another lab); must agree with a unit

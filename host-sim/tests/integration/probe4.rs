@@ -358,6 +358,28 @@ fn a_cwru_record_names_its_file_name_and_rpm_variable() -> Result<(), wearsim_ho
     );
     assert_eq!(v["rpm_source"], "file");
     assert_eq!(v["rpm_detail"], "MAT variable `X118RPM`");
+    // `--fs` may override the file name's rate (a renamed or resampled file), but says so
+    // on stderr and in the JSON: it was silent (probe F).
+    let o = wearsim(&["analyze", s(&p), "--fs", "48000", "--json"]);
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(
+        err.contains(
+            "--fs 48000 Hz overrides the CWRU file name `12k_Drive_End_B007_0_118.mat`'s 12000 Hz"
+        ),
+        "{err}"
+    );
+    let v = crate::support::json_ok(&o);
+    assert_eq!(v["fs_source"], "argument");
+    assert!(
+        v["fs_detail"]
+            .as_str()
+            .is_some_and(|d| d.contains("overrides")),
+        "{}",
+        v["fs_detail"]
+    );
+    // The same rate given again is no override.
+    let o = wearsim(&["analyze", s(&p), "--fs", "12000", "--json"]);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("overrides"));
     Ok(())
 }
 

@@ -434,6 +434,10 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         (MatLayout::Cwru, Some(l)) => Some((l.fs_hz, "file name".to_string())),
         _ => None,
     };
+    let implied_only = implied
+        .as_ref()
+        .map(|(s, _)| *s)
+        .filter(|_| stated.is_none());
     let (fs, fs_source) = match (opts.fs, stated, implied) {
         (Some(a), Some((s, src)), _) => (
             check_fs_argument(path, a, s, &format!("the file ({src})"))?,
@@ -455,8 +459,27 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         }
     };
     let fs = check_fs(path, fs)?;
+    // An argument that overrides the rate a layout or a file name implies is allowed (a
+    // renamed or resampled file), but said: a wrong `--fs` moves every fault frequency.
+    let overridden = match (opts.fs, implied_only) {
+        (Some(a), Some(s)) if (a - s).abs() > 1e-3 * s => {
+            let what = match (&layout, &label) {
+                (MatLayout::Paderborn(_), _) => "the Paderborn layout's".to_string(),
+                _ => format!(
+                    "the CWRU file name `{}`'s",
+                    path.file_name().unwrap_or_default().to_string_lossy()
+                ),
+            };
+            eprintln!(
+                "wearsim: warning: {}: --fs {a} Hz overrides {what} {s} Hz",
+                path.display()
+            );
+            Some(format!(" (overrides {what} {s} Hz)"))
+        }
+        _ => None,
+    };
     let fs_detail = match (fs_source.as_str(), &label) {
-        ("argument", _) => ARGUMENT_FS.to_string(),
+        ("argument", _) => format!("{ARGUMENT_FS}{}", overridden.unwrap_or_default()),
         ("file name", Some(l)) => format!(
             "CWRU file name `{}` ({} Hz)",
             path.file_name().unwrap_or_default().to_string_lossy(),
