@@ -8,7 +8,6 @@
 //! from. The `wearsim` program never sets one: Ctrl-C ends its process, and the
 //! files it writes are renamed into place whole.
 
-use crate::cmd::exit::CliError;
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -51,11 +50,20 @@ pub fn requested() -> bool {
     })
 }
 
-/// `Err` (exit code [`crate::cmd::exit::INTERRUPTED`]) once the work has been asked to
-/// stop: called before a command writes its report.
-pub fn check() -> Result<(), CliError> {
+/// A run stopped by its caller (exit code [`crate::cmd::exit::INTERRUPTED`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Interrupted;
+
+impl std::fmt::Display for Interrupted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(MESSAGE)
+    }
+}
+
+/// `Err` once the work has been asked to stop: called before a command writes its report.
+pub fn check() -> Result<(), Interrupted> {
     if requested() {
-        Err(CliError::interrupted())
+        Err(Interrupted)
     } else {
         Ok(())
     }

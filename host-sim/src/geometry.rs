@@ -341,7 +341,7 @@ impl GeometrySpec {
         let scale = self.pitch_mm / (model.bearing.pitch_diameter * 1e3);
         let st = model.structure;
         let mass = st.mass * scale.powi(3);
-        if mass < wearsim_core::model::MASS_RANGE.0 as f64 {
+        if mass < wearsim_core::model::MASS_RANGE.0 {
             // The core would name `structure.mass`, a field the user never gave.
             return Err(format!(
                 "bearing-geometry: pitch {} mm, ball {} mm is too small for the structure model \
@@ -352,7 +352,7 @@ impl GeometrySpec {
                 self.ball_mm,
                 best.0,
                 wearsim_core::model::MASS_RANGE.0,
-                self.pitch_mm * (wearsim_core::model::MASS_RANGE.0 as f64 / mass).cbrt()
+                self.pitch_mm * (wearsim_core::model::MASS_RANGE.0 / mass).cbrt()
             ));
         }
         model.bearing = self.bearing()?;

@@ -9,6 +9,7 @@
 pub mod analysis;
 #[cfg(feature = "app")]
 pub mod analyze;
+#[cfg(feature = "app")]
 pub mod cancel;
 pub mod capture;
 #[cfg(feature = "app")]

@@ -46,6 +46,12 @@ impl CliError {
     }
 }
 
+impl From<crate::cancel::Interrupted> for CliError {
+    fn from(_: crate::cancel::Interrupted) -> Self {
+        CliError::interrupted()
+    }
+}
+
 impl From<crate::plot::PlotError> for CliError {
     fn from(e: crate::plot::PlotError) -> Self {
         match e {
