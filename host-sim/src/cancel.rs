@@ -1,8 +1,10 @@
-//! Cooperative cancellation of a long run started in-process: the Python package's Ctrl-C
-//! (`python/src/interrupt.rs`) on `wearsim.life` and `wearsim.gap`, which run the commands
-//! through [`crate::cmd::dispatch`]. The caller runs the work inside [`scope`] with a flag;
-//! every worker thread the work starts inherits it ([`crate::lanes::spawn_worker`]); the
-//! loops that take long — a life's windows (`life::LifeRun::drive`), the gap's simulations
+//! Cooperative cancellation of a long run started in-process, the one mechanism for every
+//! call of the Python package that Ctrl-C stops (`python/src/interrupt.rs`): `simulate`,
+//! `sweep`, and `life` and `gap`, which run the commands through [`crate::cmd::dispatch`].
+//! The caller runs the work inside [`scope`] with a flag; every worker thread the work
+//! starts inherits it ([`crate::lanes::spawn_worker`]); the loops that take long — a
+//! simulation's chunks of samples (`simulate::run`), a sweep's batches of shards
+//! (`sweep::run`), a life's windows (`life::LifeRun::drive`), the gap's simulations
 //! (`gap::run`) — ask [`requested`] and stop, and the commands write no report once it is
 //! set ([`check`]); a dense life stops as at `--stop-after`, with a checkpoint to resume
 //! from. The `wearsim` program never sets one: Ctrl-C ends its process, and the

@@ -3,7 +3,6 @@
 //! and the tests, so that every figure comes from the same code path.
 
 use crate::config::{ConfigFileError, RunSettings};
-use std::sync::atomic::{AtomicBool, Ordering};
 use wearsim_core::{Channels, Model, ModelConfig, Sample, State};
 
 /// Element capacity of the host state (the core's maximum).
@@ -68,26 +67,18 @@ pub enum RunError {
         /// Time of the sample (s).
         t: f64,
     },
-    /// The caller's cancel flag was set ([`run_cancellable`]): no output.
+    /// The caller's cancel flag was set ([`crate::cancel`]): no output.
     #[error("the run was cancelled; nothing was written")]
     Cancelled,
 }
 
 /// Runs `sc`, discarding the settling time, calling `progress(done, total)` between
-/// chunks of output samples.
-pub fn run(sc: &Scenario, progress: impl FnMut(usize, usize)) -> Result<SimOutput, RunError> {
-    run_cancellable(sc, progress, &AtomicBool::new(false))
-}
-
-/// [`run`], stopping with [`RunError::Cancelled`] once `cancel` is set (checked between
-/// chunks of 8192 samples, settling included): an embedding such as the Python package
-/// sets it from another thread when the user interrupts.
-pub fn run_cancellable(
-    sc: &Scenario,
-    mut progress: impl FnMut(usize, usize),
-    cancel: &AtomicBool,
-) -> Result<SimOutput, RunError> {
-    let cancelled = || cancel.load(Ordering::Relaxed);
+/// chunks of output samples; stops with [`RunError::Cancelled`] once the thread's cancel
+/// flag is set ([`crate::cancel`], checked between chunks of 8192 samples, settling
+/// included): an embedding such as the Python package sets it from another thread when
+/// the user interrupts.
+pub fn run(sc: &Scenario, mut progress: impl FnMut(usize, usize)) -> Result<SimOutput, RunError> {
+    let cancelled = crate::cancel::requested;
     let fs = sc.fs();
     let n = (sc.run.duration * fs).round() as usize;
     let settle = (sc.run.settle * fs).round() as usize;
@@ -164,10 +155,11 @@ mod tests {
         .expect("scenario");
         let (cfg, run_settings) = file.resolve().expect("resolve");
         let sc = Scenario::new(cfg, run_settings).expect("scenario");
-        let r = run_cancellable(&sc, |_, _| {}, &AtomicBool::new(true));
+        let flag = |set| std::sync::Arc::new(std::sync::atomic::AtomicBool::new(set));
+        let r = crate::cancel::scope(flag(true), || run(&sc, |_, _| {}));
         assert!(matches!(r, Err(RunError::Cancelled)), "{r:?}");
         let a = run(&sc, |_, _| {}).expect("run").accel;
-        let b = run_cancellable(&sc, |_, _| {}, &AtomicBool::new(false))
+        let b = crate::cancel::scope(flag(false), || run(&sc, |_, _| {}))
             .expect("run")
             .accel;
         assert_eq!(a.len(), 600);

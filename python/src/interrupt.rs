@@ -29,22 +29,20 @@ impl Drop for Finished<'_> {
     }
 }
 
-/// Runs `work(cancel)` on a worker thread (host-sim's worker stack size) with the GIL
-/// released, and returns its result; a signal handler's exception (KeyboardInterrupt) is
-/// returned instead once `work` has stopped, `cancel` having been set for it to stop
-/// early. A panic in `work` is resumed here (PyO3 turns it into PanicException).
-pub fn run<T: Send>(
-    py: Python<'_>,
-    work: impl FnOnce(&Arc<AtomicBool>) -> T + Send,
-) -> PyResult<T> {
+/// Runs `work` on a worker thread (host-sim's worker stack size) with the GIL released,
+/// inside a cancel scope ([`wearsim_host::cancel`], inherited by the threads it starts),
+/// and returns its result; a signal handler's exception (KeyboardInterrupt) is returned
+/// instead once `work` has stopped, its cancel flag having been set for it to stop early.
+/// A panic in `work` is resumed here (PyO3 turns it into PanicException).
+pub fn run<T: Send>(py: Python<'_>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
     let cancel = Arc::new(AtomicBool::new(false));
     let done = AtomicBool::new(false);
     let waiter = std::thread::current();
     std::thread::scope(|s| {
-        let (cancel, done) = (&cancel, &done);
+        let (flag, done) = (cancel.clone(), &done);
         let handle = wearsim_host::lanes::spawn_worker(s, move || {
             let _finished = Finished { done, waiter };
-            work(cancel)
+            wearsim_host::cancel::scope(flag, work)
         })
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start a worker thread: {e}")))?;
         let mut raised = None;

@@ -252,10 +252,8 @@ fn simulate<'py>(
         ));
     }
     let sc = Scenario::new(cfg, run).map_err(cfg_err)?;
-    let out = interrupt::run(py, |cancel| {
-        wearsim_host::simulate::run_cancellable(&sc, |_, _| {}, cancel)
-    })?
-    .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let out = interrupt::run(py, || wearsim_host::simulate::run(&sc, |_, _| {}))?
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let meta = serde_json::json!({
         "fs": out.fs,
         "duration_s": sc.run.duration,
@@ -373,10 +371,7 @@ fn write_npy_f64(path: &std::path::Path, x: &[f64]) -> std::io::Result<()> {
 /// raises KeyboardInterrupt.
 #[pyfunction]
 fn cli(py: Python<'_>, argv: Vec<String>) -> PyResult<(u8, String)> {
-    interrupt::run(py, move |cancel| {
-        let cancel = cancel.clone();
-        wearsim_host::cancel::scope(cancel, move || cli_run(argv))
-    })
+    interrupt::run(py, move || cli_run(argv))
 }
 
 /// The work of [`cli`].
@@ -460,8 +455,8 @@ fn sweep_run(
     check_part(part)?;
     let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
-    let r = interrupt::run(py, |cancel| {
-        sweep::run_cancellable(&s, &out, &shards, threads.max(1), &|_, _| {}, cancel)
+    let r = interrupt::run(py, || {
+        sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {})
     })?
     .map_err(sweep_err)?;
     serde_json::to_string(&r).map_err(|e| PyRuntimeError::new_err(e.to_string()))

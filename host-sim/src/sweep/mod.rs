@@ -19,7 +19,7 @@ pub use record::record_seed;
 pub use spec::{SpecError, SweepSpec};
 
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 
 /// Why a sweep stopped.
 #[derive(Debug, thiserror::Error)]
@@ -30,7 +30,7 @@ pub enum SweepError {
     /// The run failed (I/O while writing, a numerical failure; exit code 1).
     #[error("{0}")]
     Run(String),
-    /// The caller's cancel flag was set ([`run_cancellable`]): the shards finished before
+    /// The caller's cancel flag was set ([`crate::cancel`]): the shards finished before
     /// are complete on disk, nothing else was presented as written; run again to resume.
     #[error(
         "the sweep was interrupted; the shards finished so far are kept, run it again to resume"
@@ -183,36 +183,18 @@ pub struct SweepReport {
 
 /// Generates `shards` of `spec` into `dir` on `threads` threads (complete shards are
 /// skipped), calling `progress(done, total)` after each shard; then finalises the data
-/// set if every shard is complete.
+/// set if every shard is complete. Once the thread's cancel flag is set
+/// ([`crate::cancel`]) each thread finishes the batch of shards it is on (at most
+/// [`batch::MAX_BATCH_SHARDS`] shards, written complete with their markers), takes no
+/// other, and the run returns [`SweepError::Cancelled`] without writing the index or the
+/// manifest; a later run resumes from the complete shards. An embedding such as the Python
+/// package sets the flag from another thread when the user interrupts.
 pub fn run(
     spec: &SweepSpec,
     dir: &Path,
     shards: &[u64],
     threads: usize,
     progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<SweepReport, SweepError> {
-    run_cancellable(
-        spec,
-        dir,
-        shards,
-        threads,
-        progress,
-        &AtomicBool::new(false),
-    )
-}
-
-/// [`run`], stopping once `cancel` is set: each thread finishes the batch of shards it is
-/// on (at most [`batch::MAX_BATCH_SHARDS`] shards, written complete with their markers),
-/// takes no other, and the run returns [`SweepError::Cancelled`] without writing the index
-/// or the manifest; a later run resumes from the complete shards. An embedding such as the
-/// Python package sets the flag from another thread when the user interrupts.
-pub fn run_cancellable(
-    spec: &SweepSpec,
-    dir: &Path,
-    shards: &[u64],
-    threads: usize,
-    progress: &(dyn Fn(usize, usize) + Sync),
-    cancel: &AtomicBool,
 ) -> Result<SweepReport, SweepError> {
     validate(spec)?;
     prepare_dir(spec, dir)?;
@@ -227,7 +209,7 @@ pub fn run_cancellable(
     std::thread::scope(|sc| {
         for _ in 0..threads {
             let worker = crate::lanes::spawn_worker(sc, || loop {
-                if cancel.load(Ordering::Relaxed)
+                if crate::cancel::requested()
                     || first_err.lock().map(|e| e.is_some()).unwrap_or(true)
                 {
                     return;
@@ -264,7 +246,7 @@ pub fn run_cancellable(
     if let Some(e) = first_err.into_inner().ok().flatten() {
         return Err(e);
     }
-    if cancel.load(Ordering::Relaxed) {
+    if crate::cancel::requested() {
         return Err(SweepError::Cancelled);
     }
     let gen = generated.into_inner();
@@ -350,6 +332,8 @@ pub(crate) fn test_spec(head: &str, tail: &str) -> SweepSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::AtomicBool;
+    use std::sync::Arc;
 
     /// A cancelled run keeps the batch it was on (complete shards with their markers),
     /// takes no other, writes neither index nor manifest, and a later run resumes from the
@@ -363,27 +347,17 @@ mod tests {
         let dir = tempfile::tempdir().expect("tmp");
         let shards = shard_set(&spec, None);
         let done = |d: &Path| (0..spec.shards()).filter(|&s| shard::is_done(d, s)).count();
-        let err = run_cancellable(
-            &spec,
-            dir.path(),
-            &shards,
-            1,
-            &|_, _| {},
-            &AtomicBool::new(true),
-        )
-        .expect_err("cancelled before it starts");
+        let set = Arc::new(AtomicBool::new(true));
+        let err = crate::cancel::scope(set, || run(&spec, dir.path(), &shards, 1, &|_, _| {}))
+            .expect_err("cancelled before it starts");
         assert!(matches!(err, SweepError::Cancelled), "{err}");
         assert_eq!(done(dir.path()), 0);
         // Cancelled after the first shard: the rest of its batch is written, nothing more.
-        let cancel = AtomicBool::new(false);
-        let err = run_cancellable(
-            &spec,
-            dir.path(),
-            &shards,
-            1,
-            &|_, _| cancel.store(true, Ordering::Relaxed),
-            &cancel,
-        )
+        let cancel = Arc::new(AtomicBool::new(false));
+        let err = crate::cancel::scope(cancel.clone(), || {
+            let stop = |_, _| cancel.store(true, Ordering::Relaxed);
+            run(&spec, dir.path(), &shards, 1, &stop)
+        })
         .expect_err("cancelled after the first shard");
         assert!(matches!(err, SweepError::Cancelled), "{err}");
         let per_batch = batch::batch_len(&spec, shards.len(), 1);
