@@ -28,6 +28,12 @@ pub struct AnalyzeArgs {
     /// Shaft speed (rpm), 0 < rpm < 1e6; overrides the file / sidecar value.
     #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
+    /// Use the speed as stated (argument, file, sidecar or configuration) even when the
+    /// record's shaft line is elsewhere, e.g. a tachometer's speed. Default: a stated speed
+    /// 1–5 % from the record's own 1× line, with no line at the stated 1×, is replaced by
+    /// the line's (reported under `speed_refined`; see `analysis::shaft_line::refine`).
+    #[arg(long)]
+    pub trust_rpm: bool,
     /// Sample rate (Hz), 1..=1e7: for a file that states none; must agree (within 0.1 %)
     /// with a rate the file or its sidecar states (else exit 2); overrides a layout's or a
     /// file name's rate.
@@ -79,6 +85,7 @@ impl AnalyzeArgs {
             file,
             channel: None,
             rpm: None,
+            trust_rpm: false,
             fs: None,
             bearing: None,
             bearing_geometry: None,
@@ -91,6 +98,9 @@ impl AnalyzeArgs {
         }
     }
 }
+
+/// `rpm_source` of a speed measured from the record's 1× line ([`Analysis::speed_refined`]).
+pub const SHAFT_LINE_SOURCE: &str = "shaft line";
 
 /// Everything `wearsim analyze` reports (the `--json` object).
 #[derive(Debug, Clone, Serialize)]
@@ -120,11 +130,13 @@ pub struct Analysis {
     pub samples: usize,
     /// Duration, s.
     pub duration_s: f64,
-    /// Shaft speed used, rpm.
+    /// Shaft speed used, rpm: the stated one, or the measured one when `speed_refined` is set.
     pub rpm: f64,
     /// Where the speed came from: `argument`, `file`, `config` (the `--config` scenario's
     /// speed), or `file speed profile` / `config speed profile` when the model's speed
-    /// profile gives it over the record's span (its mean when order-tracked).
+    /// profile gives it over the record's span (its mean when order-tracked), or
+    /// [`SHAFT_LINE_SOURCE`] when the record's own 1× line replaced a stated speed it
+    /// contradicts (`speed_refined`; `rpm_detail` then names the stated speed and its source).
     pub rpm_source: String,
     /// Where exactly the speed was found: `--rpm`, `sidecar `run1.json``, `MAT variable
     /// `X118RPM``, `MAT struct field `bearing.rate` (Hz × 60)`, `Paderborn variable name
@@ -163,6 +175,11 @@ pub struct Analysis {
     /// `--rpm` (the call is not changed). `None`: the record is too short to resolve 2.5 %
     /// of the shaft frequency with seven averaged segments.
     pub speed_check: Option<analysis::shaft_line::ShaftLine>,
+    /// Set when the stated speed was replaced by the record's own 1× line (the stated speed
+    /// is `stated_hz` × 60; `rpm` is the measured one): no line at the stated 1× and a line
+    /// 1–5 % from it ([`analysis::shaft_line::refine`]). `None`: the stated speed is used
+    /// (confirmed, not contradicted, not checkable, order-tracked, or `--trust-rpm`).
+    pub speed_refined: Option<analysis::shaft_line::Refinement>,
 }
 
 /// How a record taken at a varying speed was order-tracked (see [`Analysis::order_tracking`]).
@@ -241,7 +258,10 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
             geometry: args.bearing_geometry.as_deref(),
             scenario: scenario.as_ref().map(|(m, l)| (m, l.as_str())),
         },
-        args.rpm.is_some(),
+        Speed {
+            from_argument: args.rpm.is_some(),
+            refine: !args.trust_rpm,
+        },
         &Method::default(),
     )?;
     if rpm_from_config && a.rpm_source == "file" {
@@ -286,7 +306,21 @@ pub fn analyze_record_with(
         geometry,
         scenario: None,
     };
-    analyze_chosen(rec, choice, rpm_from_argument, method)
+    let speed = Speed {
+        from_argument: rpm_from_argument,
+        refine: true,
+    };
+    analyze_chosen(rec, choice, speed, method)
+}
+
+/// How the stated speed is taken.
+#[derive(Debug, Clone, Copy)]
+struct Speed {
+    /// It came from `--rpm` (labels `rpm_source`; a model's speed profile is then ignored).
+    from_argument: bool,
+    /// Replace it by the record's 1× line when the record contradicts it
+    /// ([`analysis::shaft_line::refine`]); `false` with `--trust-rpm`.
+    refine: bool,
 }
 
 /// Where the user said the bearing is described (each overrides the record's own).
@@ -303,9 +337,10 @@ struct BearingChoice<'a> {
 fn analyze_chosen(
     rec: &Record,
     choice: BearingChoice,
-    rpm_from_argument: bool,
+    speed: Speed,
     method: &Method,
 ) -> Result<(Analysis, Spectra), AnalyzeError> {
+    let rpm_from_argument = speed.from_argument;
     let file = rec.source.display().to_string();
     let bearing = choice.preset;
     let custom = crate::geometry::choose(rec, bearing, choice.geometry)
@@ -364,11 +399,17 @@ fn analyze_chosen(
         None => (rec.rpm, None),
     };
     let samples: &[f64] = tracked.as_ref().map_or(&rec.samples, |t| &t.0);
-    let Some(rpm) = rpm else {
+    let Some(stated_rpm) = rpm else {
         return Err(AnalyzeError::input(format!(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
+    // A constant speed the record contradicts: its own 1× line (an order-tracked record's
+    // speed is the model's, exact).
+    let speed_refined = (speed.refine && tracked.is_none())
+        .then(|| analysis::shaft_line::refine(samples, rec.fs, stated_rpm / 60.0))
+        .flatten();
+    let rpm = speed_refined.map_or(stated_rpm, |r| 60.0 * r.measured_hz);
     if rec.samples.len() > crate::io::record::MAX_RECORD_SAMPLES {
         return Err(AnalyzeError::input(crate::io::IoError::TooLarge {
             path: rec.source.clone(),
@@ -405,16 +446,28 @@ fn analyze_chosen(
     };
     let meta_str = |k: &str| rec.meta.get(k).and_then(|v| v.as_str()).map(str::to_string);
     let fs_source = meta_str("fs_source").unwrap_or_else(|| "file".to_string());
-    let rpm_source = match (rpm_from_argument, from_profile) {
+    let stated_source = match (rpm_from_argument, from_profile) {
         (true, _) => "argument".to_string(),
         (false, true) => format!("{bearing_source} speed profile"),
         (false, false) => "file".to_string(),
     };
-    let rpm_detail = match (rpm_from_argument, from_profile) {
+    let stated_detail = match (rpm_from_argument, from_profile) {
         (true, _) => io::sidecar::ARGUMENT_RPM.to_string(),
         (false, true) if bearing_source == "config" => "speed profile of --config".to_string(),
         (false, true) => "speed profile of the sidecar's model".to_string(),
-        (false, false) => meta_str("rpm_detail").unwrap_or_else(|| rpm_source.clone()),
+        (false, false) => meta_str("rpm_detail").unwrap_or_else(|| stated_source.clone()),
+    };
+    let (rpm_source, rpm_detail) = match &speed_refined {
+        None => (stated_source, stated_detail),
+        Some(r) => (
+            SHAFT_LINE_SOURCE.to_string(),
+            format!(
+                "1x line at {:.3} Hz ({:.1} dB); the stated {stated_rpm:.0} rpm ({stated_source}: {stated_detail}) is {:+.1} % from it",
+                r.measured_hz,
+                r.line_db,
+                -100.0 * r.offset / (1.0 + r.offset)
+            ),
+        ),
     };
     let speed_check = analysis::shaft_line::check(samples, rec.fs, kin.shaft_hz);
     let analysis = Analysis {
@@ -441,6 +494,7 @@ fn analyze_chosen(
         zones,
         zones_note,
         speed_check,
+        speed_refined,
     };
     // The last guard: no NaN/inf (JSON `null`) is ever presented as a result.
     if let Some((path, v)) = analysis::finite::first_non_finite(&analysis) {
@@ -488,6 +542,15 @@ pub fn print_analysis(a: &Analysis) {
         a.bearing,
         a.bearing_source
     );
+    if let Some(r) = &a.speed_refined {
+        println!(
+            "warning: speed refined: no shaft line at the stated {:.0} rpm; the record's 1x line ({:.1} dB) is at {:.0} rpm ({:+.1} %), used below (--trust-rpm keeps the stated speed)",
+            60.0 * r.stated_hz,
+            r.line_db,
+            a.rpm,
+            100.0 * r.offset
+        );
+    }
     if let Some(r) = a.speed_check.as_ref().and_then(|c| c.reason.as_ref()) {
         println!(
             "warning: speed check: {r}; check --fs and --rpm, the diagnosis below assumes them"

@@ -137,6 +137,9 @@ pub struct FileResult {
     pub channel: String,
     /// Speed stored in the file, rpm.
     pub rpm: f64,
+    /// Speed analysed at when the record's 1× line replaced the stored one
+    /// ([`crate::analysis::shaft_line::refine`]), rpm; `None`: the stored speed.
+    pub rpm_refined: Option<f64>,
     /// Diagnosed family (`None` also when the analysis failed, see `error`).
     pub predicted: FaultFamily,
     /// Calibrated confidence of the call, [0, 1].
@@ -371,7 +374,6 @@ fn analyse_file(
     let rpm = rec
         .rpm
         .ok_or_else(|| format!("{name}: no RPM variable in the file"))?;
-    let kin = crate::kinematics::of_preset(bearing, rpm).map_err(|e| format!("{name}: {e}"))?;
     let factor = (rec.fs / ANALYSIS_FS).round() as usize;
     let (x, fs) = if factor > 1 && (rec.fs - factor as f64 * ANALYSIS_FS).abs() < 1e-6 {
         (decimate_fft(&rec.samples, factor), ANALYSIS_FS)
@@ -386,6 +388,11 @@ fn analyse_file(
         Some(rate) => return Err(format!("{name}: resample rate {rate} Hz not in 1000..=1e6")),
         None => (x, fs),
     };
+    // As `analyze` does: a stored speed the record's own 1× line contradicts is replaced.
+    let refined = crate::analysis::shaft_line::refine(&x, fs, rpm / 60.0);
+    let rpm_used = refined.map_or(rpm, |r| 60.0 * r.measured_hz);
+    let kin =
+        crate::kinematics::of_preset(bearing, rpm_used).map_err(|e| format!("{name}: {e}"))?;
     let a = analyze_signal(&x, fs, &kin, method).map_err(|e| format!("{name}: {e}"))?;
     let d = &a.diagnosis;
     let t = truth(label);
@@ -439,6 +446,7 @@ fn analyse_file(
         part,
         channel: channel.into(),
         rpm,
+        rpm_refined: refined.map(|_| rpm_used),
         predicted: d.family,
         confidence: d.confidence,
         candidate: d.candidate,
@@ -522,6 +530,7 @@ pub fn run_benchmark_resampled(
                 part: part_of(label),
                 channel: String::new(),
                 rpm: 0.0,
+                rpm_refined: None,
                 predicted: FaultFamily::None,
                 confidence: 0.0,
                 candidate: FaultFamily::None,
@@ -676,19 +685,24 @@ pub fn to_markdown(r: &BenchmarkReport) -> String {
          pre-whitened: the method). Y = the true family is called (confidence >= 0.5); P = the \
          true family leads the evidence but is not called; N = another family or nothing. \
          `margin`: the leading family's exclusive score minus the best other's, dB per \
-         searched harmonic; `conf`: calibrated confidence of the call.\n\n\
+         searched harmonic; `conf`: calibrated confidence of the call; `rpm`: the stored \
+         speed, `stored->used` where the record's own 1x line replaced it (as `analyze` \
+         does).\n\n\
          | file | part | case | hp | rpm | band Hz | diagnosed | conf | leading | margin | raw | CPW | SK | ok |\n\
          |---|---|---|---:|---:|---|---|---:|---|---:|---|---|---|---|\n",
     );
     for f in &r.files {
         let v = variant_letters(f);
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {:.0} | {:.0}-{:.0} | {} | {:.2} | {} | {:.1} | {} | {} | {} | {} |\n",
+            "| {} | {} | {} | {} | {} | {:.0}-{:.0} | {} | {:.2} | {} | {:.1} | {} | {} | {} | {} |\n",
             f.file,
             part_name(f.part),
             case(f),
             f.load_hp,
-            f.rpm,
+            match f.rpm_refined {
+                Some(u) => format!("{:.0}->{u:.0}", f.rpm),
+                None => format!("{:.0}", f.rpm),
+            },
             f.band_hz.0,
             f.band_hz.1,
             family_name(f.predicted),

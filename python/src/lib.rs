@@ -293,10 +293,11 @@ fn presets() -> PyResult<String> {
     Ok(serde_json::Value::Array(rows).to_string())
 }
 
-/// analyze(signal, fs, bearing, rpm, geometry) -> JSON of `wearsim analyze --json`;
-/// `geometry` is `--bearing-geometry`'s `elements=N,ball=MM,pitch=MM,angle=DEG`.
+/// analyze(signal, fs, bearing, rpm, geometry, trust_rpm) -> JSON of `wearsim analyze
+/// --json`; `geometry` is `--bearing-geometry`'s `elements=N,ball=MM,pitch=MM,angle=DEG`,
+/// `trust_rpm` is `--trust-rpm`.
 #[pyfunction]
-#[pyo3(signature = (signal, fs, bearing=None, rpm=None, geometry=None))]
+#[pyo3(signature = (signal, fs, bearing=None, rpm=None, geometry=None, trust_rpm=false))]
 fn analyze(
     py: Python<'_>,
     signal: PyReadonlyArray1<'_, f64>,
@@ -304,6 +305,7 @@ fn analyze(
     bearing: Option<String>,
     rpm: Option<f64>,
     geometry: Option<String>,
+    trust_rpm: bool,
 ) -> PyResult<String> {
     use wearsim_host::io::record::{MAX_FS, MIN_FS};
     // Named here: the reader's check would name the temporary file, shown as `signal`.
@@ -322,6 +324,7 @@ fn analyze(
         write_npy_f64(&path, &x).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
         let args = wearsim_host::analyze::AnalyzeArgs {
             rpm,
+            trust_rpm,
             fs: Some(fs),
             bearing,
             bearing_geometry: geometry,

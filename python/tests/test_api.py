@@ -111,6 +111,16 @@ def _cwru_dir():
     pytest.skip("CWRU data not found (set WEARSIM_DATA to the folder holding cwru/)")
 
 
+def test_analyze_measures_a_speed_a_few_percent_off_unless_told_to_trust_it():
+    x, meta = wearsim.read_record(str(_cwru_dir() / "12k_Drive_End_IR007_0_105.mat"), "DE")
+    a = wearsim.analyze(x, meta["fs"], bearing="cwru-6205-de", rpm=1851.0)
+    assert a["speed_refined"] is not None and a["rpm_source"] == "shaft line"
+    assert abs(a["rpm"] / 1797.0 - 1.0) < 0.005
+    assert a["diagnosis"]["family"] == "InnerRace"
+    kept = wearsim.analyze(x, meta["fs"], bearing="cwru-6205-de", rpm=1851.0, trust_rpm=True)
+    assert kept["speed_refined"] is None and kept["rpm"] == 1851.0
+
+
 def test_gap_of_a_measured_record(tmp_path):
     # `wearsim.gap(path)` once passed the path where the command wants `--real PATH`, so
     # every call with a real record failed with a usage error.

@@ -100,6 +100,7 @@ def test_analyze_accepts_any_real_one_channel_layout(signal):
         ({"rpm": "fast"}, "rpm"),
         ({"bearing": 5}, "bearing"),
         ({"bearing": {"elements": 9}}, "bearing"),
+        ({"trust_rpm": "yes"}, "trust_rpm"),
         # Was named `signal: absurd sample rate`, the temporary file's error.
         ({"fs": 0.0}, "fs = 0"),
         ({"fs": float("inf")}, "fs = inf"),

@@ -82,13 +82,16 @@ def analyze(
     fs: float,
     bearing: Union[str, Dict[str, float], None] = None,
     rpm: Optional[float] = None,
+    trust_rpm: bool = False,
 ) -> Dict[str, Any]:
     """Analyse a signal like ``wearsim analyze --json``: statistics, kurtogram band,
     envelope-spectrum fault family, zones. ``bearing`` is a preset or catalogue name
     (see ``presets()`` and ``bearings()``) or any bearing's geometry as a dict like ``--bearing-geometry``:
     ``{"elements": 9, "ball": 7.94, "pitch": 39.04, "angle": 0}`` (diameters in mm,
     contact angle in degrees; ``angle`` may be left out for 0). ``rpm`` is the shaft
-    speed."""
+    speed; a speed 1-5 % from the signal's own 1x line, with no line at the stated 1x, is
+    replaced by the line's (reported under ``speed_refined``) unless ``trust_rpm`` is true
+    (``--trust-rpm``: a tachometer's speed)."""
     geometry = None
     if isinstance(bearing, dict):
         geometry = _geometry(bearing)
@@ -100,7 +103,11 @@ def analyze(
         )
     x = _one_channel(signal)
     rpm_v = None if rpm is None else _number("rpm", rpm)
-    return json.loads(_wearsim.analyze(x, _number("fs", fs), bearing, rpm_v, geometry))
+    if not isinstance(trust_rpm, bool):
+        raise ConfigError(f"trust_rpm: expected True or False, got {type(trust_rpm).__name__}")
+    return json.loads(
+        _wearsim.analyze(x, _number("fs", fs), bearing, rpm_v, geometry, trust_rpm)
+    )
 
 
 def _geometry(g: Dict[str, Any]) -> str:

@@ -17,6 +17,7 @@ def analyze(
     fs: float,
     bearing: Union[str, Dict[str, float], None] = ...,
     rpm: Optional[float] = ...,
+    trust_rpm: bool = ...,
 ) -> Dict[str, Any]: ...
 def life(out: Union[str, PathLike, None] = ..., **kwargs: Any) -> Dict[str, Any]: ...
 def gap(

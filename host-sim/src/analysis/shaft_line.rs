@@ -16,6 +16,18 @@
 //! 0–1 hp, at their own rate) the 1× lines stand 14.2–38.8 dB and the ½× at most 3.8 dB;
 //! the figures of the other parts are in `docs/cwru-detector.md`. The check reports; it
 //! does not change the call.
+//!
+//! [`refine`] goes one step further when the record contradicts the speed it was given: a
+//! speed a few percent off (a motor's nameplate or synchronous speed typed for its running
+//! speed — a 4-pole 60 Hz induction motor runs 2–5 % below 1 800 rpm at full load — or a
+//! stored speed that is wrong) moves every fault frequency out of the detector's ±2 % slip
+//! window, and the call goes to whichever family lies there (CWRU `IR007_0` analysed at
+//! 1 851 rpm instead of 1 797 was called ball at 0.98). When no line stands within
+//! ±[`REFINE_MIN`] of the stated 1× and the strongest line within ±[`SEARCH`] does, more
+//! than [`REFINE_MIN`] away, that line is the shaft, and the diagnosis uses it. Set a priori
+//! (not fitted on any record): ±5 % covers the full-load slip of standard induction motors;
+//! 1 % is half the slip window, an error the detector absorbs and the spectrum's resolution
+//! (1 % of the shaft frequency) can just resolve.
 
 use super::peaks::peak_over_floor_db;
 use super::spectrum::{welch_psd, Spectrum, WelchParams};
@@ -36,6 +48,12 @@ const TARGET_RESOLUTION: f64 = 0.01;
 const FLOOR_HALF_WIDTH: f64 = 0.15;
 /// Longest segment: a quarter of the record (seven half-overlapping segments).
 const MIN_SEGMENTS_DIV: usize = 4;
+/// Half-width (fraction of the stated shaft frequency) searched for the true 1× line by
+/// [`refine`]: a stated speed up to 5 % off.
+pub const SEARCH: f64 = 0.05;
+/// Least offset (fraction of the stated shaft frequency) of the measured 1× line at which
+/// [`refine`] replaces the stated speed; below it the slip window absorbs the error.
+pub const REFINE_MIN: f64 = 0.01;
 
 /// What the raw spectrum says about the shaft speed a record was analysed at.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -60,10 +78,44 @@ pub struct ShaftLine {
 /// when the record is too short to resolve [`MAX_RESOLUTION`] of the shaft frequency
 /// (or the spectrum cannot be computed), i.e. when the check would say nothing.
 pub fn check(x: &[f64], fs: f64, shaft_hz: f64) -> Option<ShaftLine> {
+    let (psd, resolution_hz) = shaft_spectrum(x, fs, shaft_hz, TOLERANCE)?;
+    let height = |f: f64| line_height_db(&psd, f);
+    let line_db = height(shaft_hz);
+    let half_line_db = height(0.5 * shaft_hz);
+    let db = |d: Option<f64>| d.map_or("none".to_string(), |d| format!("{d:.1} dB"));
+    let reason = if line_db.is_none_or(|d| d < LINE_DB) {
+        Some(format!(
+            "no shaft line at 1x ({shaft_hz:.2} Hz +-3 %: {}; a line needs {LINE_DB} dB): the sample rate or the speed is wrong, or this machine shows no 1x",
+            db(line_db)
+        ))
+    } else if half_line_db.is_some_and(|d| d >= LINE_DB) {
+        Some(format!(
+            "a line at 1/2x ({:.2} Hz: {}): the sample rate given is half the true one (or the speed twice), or the machine vibrates at half orders (looseness, rub)",
+            0.5 * shaft_hz,
+            db(half_line_db)
+        ))
+    } else {
+        None
+    };
+    Some(ShaftLine {
+        shaft_hz,
+        resolution_hz,
+        line_db,
+        half_line_db,
+        consistent: reason.is_none(),
+        reason,
+    })
+}
+
+/// The Welch power spectrum the checks read (≈ [`TARGET_RESOLUTION`] of `shaft_hz`, at
+/// least seven half-overlapping Hann segments) and its resolution, Hz; `None` when a line
+/// within ±`reach` of `shaft_hz` is above Nyquist or the record is too short to resolve
+/// [`MAX_RESOLUTION`] of the shaft frequency.
+fn shaft_spectrum(x: &[f64], fs: f64, shaft_hz: f64, reach: f64) -> Option<(Spectrum, f64)> {
     if !(fs.is_finite() && fs > 0.0 && shaft_hz.is_finite() && shaft_hz > 0.0) {
         return None;
     }
-    if shaft_hz * (1.0 + TOLERANCE) >= 0.5 * fs {
+    if shaft_hz * (1.0 + reach) >= 0.5 * fs {
         return None;
     }
     let wanted = (fs / (TARGET_RESOLUTION * shaft_hz)).ceil();
@@ -93,32 +145,48 @@ pub fn check(x: &[f64], fs: f64, shaft_hz: f64) -> Option<ShaftLine> {
         },
     )
     .ok()?;
-    let height = |f: f64| line_height_db(&psd, f);
-    let line_db = height(shaft_hz);
-    let half_line_db = height(0.5 * shaft_hz);
-    let db = |d: Option<f64>| d.map_or("none".to_string(), |d| format!("{d:.1} dB"));
-    let reason = if line_db.is_none_or(|d| d < LINE_DB) {
-        Some(format!(
-            "no shaft line at 1x ({shaft_hz:.2} Hz +-3 %: {}; a line needs {LINE_DB} dB): the sample rate or the speed is wrong, or this machine shows no 1x",
-            db(line_db)
-        ))
-    } else if half_line_db.is_some_and(|d| d >= LINE_DB) {
-        Some(format!(
-            "a line at 1/2x ({:.2} Hz: {}): the sample rate given is half the true one (or the speed twice), or the machine vibrates at half orders (looseness, rub)",
-            0.5 * shaft_hz,
-            db(half_line_db)
-        ))
-    } else {
-        None
-    };
-    Some(ShaftLine {
-        shaft_hz,
-        resolution_hz,
-        line_db,
-        half_line_db,
-        consistent: reason.is_none(),
-        reason,
-    })
+    Some((psd, resolution_hz))
+}
+
+/// The shaft speed the record shows when it contradicts the one stated (see the module
+/// documentation and [`refine`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Refinement {
+    /// Shaft frequency stated (argument, file, sidecar or configuration), Hz.
+    pub stated_hz: f64,
+    /// Frequency of the measured 1× line (parabolic interpolation of the power spectrum),
+    /// Hz: the shaft frequency the diagnosis uses.
+    pub measured_hz: f64,
+    /// `measured_hz / stated_hz − 1`.
+    pub offset: f64,
+    /// Height of the measured line over its ±15 % neighbourhood, dB (≥ [`LINE_DB`]).
+    pub line_db: f64,
+    /// Frequency resolution of the spectrum searched, Hz.
+    pub resolution_hz: f64,
+}
+
+/// The measured shaft frequency of `x` (sampled at `fs` Hz) when the stated `shaft_hz` is
+/// off: no line of [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local
+/// maximum within ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away. `None`
+/// when the record confirms the stated speed, shows no line near it, or cannot be checked.
+pub fn refine(x: &[f64], fs: f64, shaft_hz: f64) -> Option<Refinement> {
+    let (psd, resolution_hz) = shaft_spectrum(x, fs, shaft_hz, SEARCH)?;
+    let floor = FLOOR_HALF_WIDTH * shaft_hz;
+    let at_stated = peak_over_floor_db(&psd, shaft_hz, REFINE_MIN * shaft_hz, floor);
+    if at_stated.is_some_and(|(_, db)| db >= LINE_DB) {
+        return None;
+    }
+    let (line, line_db) = peak_over_floor_db(&psd, shaft_hz, SEARCH * shaft_hz, floor)?;
+    let offset = line.freq / shaft_hz - 1.0;
+    (line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH).then_some(
+        Refinement {
+            stated_hz: shaft_hz,
+            measured_hz: line.freq,
+            offset,
+            line_db,
+            resolution_hz,
+        },
+    )
 }
 
 /// Height (dB) of the strongest local maximum within ±[`TOLERANCE`] of `f` over the
@@ -181,5 +249,34 @@ mod tests {
         assert_eq!(check(&[], fs, 29.95), None);
         assert_eq!(check(&x, fs, f64::NAN), None);
         assert_eq!(check(&x, fs, 7000.0), None);
+    }
+
+    /// A stated speed 2–4 % off either way is replaced by the line's, to within a tenth of
+    /// the spectrum's resolution; one the record confirms (exact, or 0.5 % off: within the
+    /// slip window) is kept; one 8 % off is outside the search and kept (the check then
+    /// reports it); noise has no line to refine to.
+    #[test]
+    fn a_contradicted_speed_is_measured_from_the_shaft_line() {
+        let fs = 12_000.0;
+        let x = machine(fs);
+        let truth = 29.95;
+        for k in [0.96, 0.97, 0.98, 1.02, 1.03, 1.04] {
+            let r = refine(&x, fs, truth * k).unwrap_or_else(|| panic!("x{k}: not refined"));
+            assert!(
+                (r.measured_hz - truth).abs() < 0.1 * r.resolution_hz,
+                "x{k}: {r:?}"
+            );
+            assert!((r.offset - (1.0 / k - 1.0)).abs() < 0.003, "x{k}: {r:?}");
+            assert!(r.line_db >= LINE_DB);
+            assert!(check(&x, fs, r.measured_hz).unwrap().consistent);
+        }
+        for k in [1.0, 0.995, 1.005, 0.92, 1.08] {
+            assert_eq!(refine(&x, fs, truth * k), None, "x{k}");
+        }
+        let noise = gaussian_noise(240_000, 1.0, 3);
+        for k in [0.97, 1.0, 1.03] {
+            assert_eq!(refine(&noise, fs, truth * k), None, "noise x{k}");
+        }
+        assert_eq!(refine(&x[..60_000], fs, truth * 1.03), None, "too short");
     }
 }

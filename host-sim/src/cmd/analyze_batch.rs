@@ -48,13 +48,15 @@ pub struct Row {
     pub fs_source: Option<String>,
     /// Where exactly the sample rate was found (`Analysis::fs_detail`).
     pub fs_detail: Option<String>,
-    /// Shaft speed, rpm.
+    /// Shaft speed used, rpm (`Analysis::rpm`).
     pub rpm: Option<f64>,
     /// Bearing used.
     pub bearing: Option<String>,
     /// Whether the shaft line is where `fs` and `rpm` put it (`Analysis::speed_check`;
     /// empty: the record is too short to check).
     pub speed_consistent: Option<bool>,
+    /// Whether the record's 1× line replaced the stated speed (`Analysis::speed_refined`).
+    pub speed_refined: Option<bool>,
     /// The error, for a failed row.
     pub error: Option<String>,
 }
@@ -131,6 +133,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
         rpm: None,
         bearing: None,
         speed_consistent: None,
+        speed_refined: None,
         error: None,
     };
     match analyze(&a) {
@@ -169,6 +172,7 @@ fn row_of(file: &Path, args: &AnalyzeArgs) -> Row {
             row.rpm = Some(an.rpm);
             row.bearing = Some(an.bearing);
             row.speed_consistent = an.speed_check.map(|c| c.consistent);
+            row.speed_refined = Some(an.speed_refined.is_some());
         }
         Err(e) => {
             row.status = "error".into();
@@ -182,7 +186,7 @@ fn opt<T: ToString>(v: &Option<T>) -> String {
     v.as_ref().map_or(String::new(), T::to_string)
 }
 
-const HEADER: [&str; 14] = [
+const HEADER: [&str; 15] = [
     "file",
     "status",
     "family",
@@ -196,10 +200,11 @@ const HEADER: [&str; 14] = [
     "rpm",
     "bearing",
     "speed_consistent",
+    "speed_refined",
     "error",
 ];
 
-fn cells(r: &Row) -> [String; 14] {
+fn cells(r: &Row) -> [String; 15] {
     [
         r.file.display().to_string(),
         r.status.clone(),
@@ -214,6 +219,7 @@ fn cells(r: &Row) -> [String; 14] {
         opt(&r.rpm),
         opt(&r.bearing),
         opt(&r.speed_consistent),
+        opt(&r.speed_refined),
         opt(&r.error),
     ]
 }
