@@ -180,6 +180,11 @@ pub struct Analysis {
     /// 1–5 % from it ([`analysis::shaft_line::refine`]). `None`: the stated speed is used
     /// (confirmed, not contradicted, not checkable, order-tracked, or `--trust-rpm`).
     pub speed_refined: Option<analysis::shaft_line::Refinement>,
+    /// Knocks and bursts cut out before the band was chosen and the record demodulated
+    /// (blocks of one revolution standing 20 dB over the median block, with a block on each
+    /// side; [`analysis::transients`]). `stats`, the spectrum and `zones` are of the record as
+    /// given. `None`: nothing cut.
+    pub transients: Option<analysis::transients::Transients>,
 }
 
 /// How a record taken at a varying speed was order-tracked (see [`Analysis::order_tracking`]).
@@ -404,12 +409,6 @@ fn analyze_chosen(
             "{file}: no shaft speed: the file and its sidecar give none; pass --rpm R (0 < R < 1e6)"
         )));
     };
-    // A constant speed the record contradicts: its own 1× line (an order-tracked record's
-    // speed is the model's, exact).
-    let speed_refined = (speed.refine && tracked.is_none())
-        .then(|| analysis::shaft_line::refine(samples, rec.fs, stated_rpm / 60.0))
-        .flatten();
-    let rpm = speed_refined.map_or(stated_rpm, |r| 60.0 * r.measured_hz);
     if rec.samples.len() > crate::io::record::MAX_RECORD_SAMPLES {
         return Err(AnalyzeError::input(crate::io::IoError::TooLarge {
             path: rec.source.clone(),
@@ -420,6 +419,12 @@ fn analyze_chosen(
             ),
         }));
     }
+    // A constant speed the record contradicts: its own 1× line (an order-tracked record's
+    // speed is the model's, exact).
+    let speed_refined = (speed.refine && tracked.is_none())
+        .then(|| analysis::shaft_line::refine(samples, rec.fs, stated_rpm / 60.0))
+        .flatten();
+    let rpm = speed_refined.map_or(stated_rpm, |r| 60.0 * r.measured_hz);
     let kin = match (&custom, &file_model) {
         (Some(c), None) => {
             c.2.model()
@@ -489,6 +494,7 @@ fn analyze_chosen(
         kinematics: kin,
         method: *method,
         stats: a.stats,
+        transients: a.transients,
         kurtogram: a.kurtogram,
         diagnosis: a.diagnosis,
         zones,
@@ -549,6 +555,19 @@ pub fn print_analysis(a: &Analysis) {
             r.line_db,
             a.rpm,
             100.0 * r.offset
+        );
+    }
+    if let Some(t) = &a.transients {
+        let spans: Vec<String> = t
+            .spans_s
+            .iter()
+            .map(|(a, b)| format!("{a:.3}-{b:.3} s"))
+            .collect();
+        println!(
+            "warning: transients cut out before demodulation: {} ({:.3} s; strongest block {:.1} dB over the median)",
+            spans.join(", "),
+            t.seconds,
+            t.peak_db
         );
     }
     if let Some(r) = a.speed_check.as_ref().and_then(|c| c.reason.as_ref()) {

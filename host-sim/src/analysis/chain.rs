@@ -161,6 +161,10 @@ pub struct Spectra {
 pub struct SignalAnalysis {
     /// Statistics of the raw signal.
     pub stats: Stats,
+    /// Transients cut out before the band was chosen and the record demodulated
+    /// ([`analysis::transients`]); the statistics, the spectrum and the zones are of the
+    /// record as given. `None`: nothing cut.
+    pub transients: Option<analysis::transients::Transients>,
     /// Demodulation band.
     pub kurtogram: KurtogramSummary,
     /// Fault decision.
@@ -243,6 +247,8 @@ pub fn analyze_signal(
     } else {
         raw.to_vec()
     };
+    // A knock or burst is not the bearing: cut out before anything is chosen from the record.
+    let (normalised, transients) = analysis::transients::excise(normalised, fs, kin.shaft_hz);
     let x = normalised.as_slice();
     analysis::error::check_signal(x, 128, "kurtogram")?;
     analysis::kurtogram::check_not_constant(x)?;
@@ -424,6 +430,7 @@ pub fn analyze_signal(
     let zones = zones(raw, fs, kin);
     Ok(SignalAnalysis {
         stats,
+        transients,
         kurtogram: summary,
         diagnosis,
         zones,

@@ -11,7 +11,8 @@
 //! - [`faults`]: fault-family detection from the envelope spectrum.
 //! - [`shaft_comb`]: envelope lines at shaft orders, which explain a family on them.
 //! - [`shaft_line`]: whether the raw spectrum's shaft line is where the rate and speed
-//!   put it (a wrong `--fs` or `--rpm`).
+//!   put it (a wrong `--fs` or `--rpm`), and the speed it shows when it contradicts them.
+//! - [`transients`]: knocks and bursts cut out of a record before it is demodulated.
 //! - [`diagnose`]: calibrated confidence and the call / no-call decision.
 //! - [`order_tracking`]: computed order tracking of records taken at a varying speed.
 //! - [`zones`]: band levels of the four El-Thalji frequency zones.
@@ -40,6 +41,7 @@ pub mod shaft_line;
 pub mod spectrum;
 pub mod stats;
 pub mod synth;
+pub mod transients;
 pub mod window;
 pub mod zones;
 
