@@ -99,9 +99,6 @@ impl AnalyzeArgs {
     }
 }
 
-/// `rpm_source` of a speed measured from the record's 1× line ([`Analysis::speed_refined`]).
-pub const SHAFT_LINE_SOURCE: &str = "shaft line";
-
 /// Everything `wearsim analyze` reports (the `--json` object).
 #[derive(Debug, Clone, Serialize)]
 pub struct Analysis {
@@ -135,7 +132,7 @@ pub struct Analysis {
     /// Where the speed came from: `argument`, `file`, `config` (the `--config` scenario's
     /// speed), or `file speed profile` / `config speed profile` when the model's speed
     /// profile gives it over the record's span (its mean when order-tracked), or
-    /// [`SHAFT_LINE_SOURCE`] when the record's own 1× line replaced a stated speed it
+    /// [`analysis::shaft_line::REFINED_SOURCE`] when the record's own 1× line replaced a stated speed it
     /// contradicts (`speed_refined`; `rpm_detail` then names the stated speed and its source).
     pub rpm_source: String,
     /// Where exactly the speed was found: `--rpm`, `sidecar `run1.json``, `MAT variable
@@ -465,7 +462,7 @@ fn analyze_chosen(
     let (rpm_source, rpm_detail) = match &speed_refined {
         None => (stated_source, stated_detail),
         Some(r) => (
-            SHAFT_LINE_SOURCE.to_string(),
+            analysis::shaft_line::REFINED_SOURCE.to_string(),
             format!(
                 "1x line at {:.3} Hz ({:.1} dB); the stated {stated_rpm:.0} rpm ({stated_source}: {stated_detail}) is {:+.1} % from it",
                 r.measured_hz,

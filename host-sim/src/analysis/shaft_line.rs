@@ -51,6 +51,8 @@ const MIN_SEGMENTS_DIV: usize = 4;
 /// Half-width (fraction of the stated shaft frequency) searched for the true 1× line by
 /// [`refine`]: a stated speed up to 5 % off.
 pub const SEARCH: f64 = 0.05;
+/// Where a refined speed came from, as `analyze` and `gap` report it (`rpm_source`).
+pub const REFINED_SOURCE: &str = "shaft line";
 /// Least offset (fraction of the stated shaft frequency) of the measured 1× line at which
 /// [`refine`] replaces the stated speed; below it the slip window absorbs the error.
 pub const REFINE_MIN: f64 = 0.01;

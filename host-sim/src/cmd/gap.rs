@@ -241,6 +241,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
         ("--bearing", a.bearing.is_some()),
         ("--bearing-geometry", a.bearing_geometry.is_some()),
         ("--rpm", a.rpm.is_some()),
+        ("--trust-rpm", a.trust_rpm),
         ("--defect", a.defect.is_some()),
         ("--channel", a.channel.is_some()),
         ("--fs", a.fs.is_some()),

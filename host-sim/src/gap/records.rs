@@ -139,7 +139,9 @@ pub struct RealRecord {
     pub fs: f64,
     /// Shaft speed (rpm) used.
     pub rpm: f64,
-    /// Where the speed came from: `argument`, `file`, `spectrum`.
+    /// Where the speed came from: `argument`, `file`, `spectrum` (no speed stated: the
+    /// strongest line near the preset's), or `shaft line` (a stated speed the record's 1×
+    /// line contradicts, replaced by it as `analyze` does: [`analysis::shaft_line::refine`]).
     pub rpm_source: String,
     /// Bearing: a model preset's name, a catalogue bearing's, or `custom` (a geometry from
     /// `--bearing-geometry` or the sidecar, or a wearsim sidecar's own model).
@@ -206,6 +208,8 @@ pub struct Overrides {
     pub geometry: Option<String>,
     /// `--rpm`.
     pub rpm: Option<f64>,
+    /// `--trust-rpm`: never replace a stated speed by the record's 1× line.
+    pub trust_rpm: bool,
     /// `--defect` (Some(None) = `none`).
     pub defect: Option<Option<DefectSpec>>,
     /// `--channel`.
@@ -302,14 +306,36 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             }
         },
     };
+    // A stated speed the record contradicts by 1-5 % is replaced by its own 1× line, as
+    // `analyze` replaces it (one definition, [`analysis::shaft_line::refine`]): simulated at
+    // the stated speed, every fault line would sit where the record has none. Not for a
+    // speed read from the spectrum already, nor for a record whose sidecar says the speed
+    // varies (handled below).
+    let varying = speed_range(&rec).is_some_and(|(lo, hi)| hi > lo * (1.0 + MAX_SPEED_SPREAD));
+    let refined = if o.trust_rpm || rpm_source == "spectrum" || varying {
+        None
+    } else {
+        analysis::shaft_line::refine(&accel, fs, rpm / 60.0)
+    };
+    let (rpm, rpm_source) = match refined {
+        Some(r) => {
+            warnings.push(format!(
+                "speed refined: no shaft line at the stated {rpm:.0} rpm ({rpm_source}); the record's 1x line ({:.1} dB) is at {:.0} rpm ({:+.1} %), which the matched simulations use (--trust-rpm keeps the stated speed)",
+                r.line_db,
+                60.0 * r.measured_hz,
+                100.0 * r.offset
+            ));
+            (60.0 * r.measured_hz, analysis::shaft_line::REFINED_SOURCE)
+        }
+        None => (rpm, rpm_source),
+    };
     // The record is simulated at this speed: the simulation's range, in rpm.
     let what = match rpm_source {
         "argument" => "--rpm".to_string(),
         src => format!("{p}: the shaft speed from the {src}"),
     };
     crate::config::check_sim_rpm(&what, rpm)?;
-    if let Some((lo, hi)) = speed_range(&rec).filter(|(lo, hi)| *hi > lo * (1.0 + MAX_SPEED_SPREAD))
-    {
+    if let Some((lo, hi)) = speed_range(&rec).filter(|_| varying) {
         let varies = format!(
             "the shaft speed varies over the record, {lo:.0}-{hi:.0} rpm (its sidecar), and the gap simulates one constant speed"
         );

@@ -45,6 +45,12 @@ pub struct GapArgs {
     /// Shaft speed (rpm) of every record (default: from the file, else the spectrum).
     #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
+    /// Use the stated speed (`--rpm` or the file's) even when the record's shaft line is
+    /// elsewhere (a tachometer's speed). Default: as `analyze`, a stated speed 1–5 % from the
+    /// record's own 1× line, with no line at the stated 1×, is replaced by the line's (a
+    /// finding says so; `analysis::shaft_line::refine`).
+    #[arg(long)]
+    pub trust_rpm: bool,
     /// Defect of every record: `LOCATION:SIZE[:DEPTH]` with LOCATION none, inner, outer,
     /// outer@3, outer@6, outer@12, ball and sizes with `in` or `mm` (default: the file's
     /// label; depth 0.011 in).
@@ -376,6 +382,7 @@ pub fn prepare(a: &GapArgs) -> Result<Parts, GapError> {
         bearing: a.bearing.clone(),
         geometry: a.bearing_geometry.clone(),
         rpm: a.rpm,
+        trust_rpm: a.trust_rpm,
         defect,
         channel: a.channel.clone(),
         fs: a.fs,

@@ -300,7 +300,8 @@ fn the_speed_check_accepts_the_true_rate_and_flags_wrong_ones(
 #[test]
 fn a_speed_a_few_percent_off_is_measured_from_the_shaft_line(
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use wearsim_host::analyze::{analyze, AnalyzeArgs, SHAFT_LINE_SOURCE};
+    use wearsim_host::analysis::shaft_line::REFINED_SOURCE;
+    use wearsim_host::analyze::{analyze, AnalyzeArgs};
     let Some(cwru) = cwru_dir()? else {
         return Ok(());
     };
@@ -328,7 +329,7 @@ fn a_speed_a_few_percent_off_is_measured_from_the_shaft_line(
             let a = run(name, Some(k * stored), false)?;
             let r = a.speed_refined.ok_or(format!("{name} x{k}: not refined"))?;
             assert!((a.rpm / stored - 1.0).abs() < 0.005, "{name} x{k}: {r:?}");
-            assert_eq!(a.rpm_source, SHAFT_LINE_SOURCE);
+            assert_eq!(a.rpm_source, REFINED_SOURCE);
             assert!(a.rpm_detail.contains("argument"), "{}", a.rpm_detail);
             assert_eq!(a.diagnosis.family, family, "{name} x{k}: {:?}", a.diagnosis);
             let kept = run(name, Some(k * stored), true)?;

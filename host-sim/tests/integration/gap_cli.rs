@@ -515,6 +515,44 @@ fn gap_matches_the_faulty_bearing_whatever_the_channel() {
     }
 }
 
+/// The gap simulates a record at the speed `analyze` reads it at: record 279 stores the
+/// 3 hp speed (1 732 rpm) for a 1 hp run whose 1× line stands at 1 774 rpm (data README),
+/// and is matched at its line's speed with a finding; `--trust-rpm` keeps the stored one. A
+/// record whose stored speed its line confirms is not touched. Data-backed.
+#[test]
+fn gap_simulates_a_record_at_the_speed_its_shaft_line_shows() {
+    use wearsim_host::gap::records::{load, Overrides};
+    let Some(data) = wearsim_host::io::data_dir().expect("data folder required when CI=true")
+    else {
+        return;
+    };
+    let fe = data.join("cwru/12k_Fan_End_IR007_1_279.mat");
+    let channel = |c: &str| Overrides {
+        channel: Some(c.into()),
+        ..Default::default()
+    };
+    let r = load(&fe, &channel("FE")).expect("record");
+    assert_eq!(r.rpm_source, "shaft line");
+    assert!((r.rpm / 1774.0 - 1.0).abs() < 0.005, "{}", r.rpm);
+    assert!(
+        r.warnings.iter().any(|w| w.contains("speed refined")),
+        "{:?}",
+        r.warnings
+    );
+    let trusted = Overrides {
+        trust_rpm: true,
+        ..channel("FE")
+    };
+    let kept = load(&fe, &trusted).expect("record");
+    assert_eq!((kept.rpm, kept.rpm_source.as_str()), (1732.0, "file"));
+    let de = load(
+        &data.join("cwru/12k_Drive_End_IR007_1_106.mat"),
+        &channel("DE"),
+    )
+    .expect("record");
+    assert_eq!((de.rpm, de.rpm_source.as_str()), (1772.0, "file"));
+}
+
 /// `gap --fs` against a record whose sidecar states another rate is refused like
 /// `analyze`'s (it was once used silently, matching the record at the wrong rate).
 #[test]

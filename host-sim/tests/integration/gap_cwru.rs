@@ -39,6 +39,7 @@ fn args(dir: &Path, family: &str) -> GapArgs {
         bearing: None,
         bearing_geometry: None,
         rpm: None,
+        trust_rpm: false,
         defect: None,
         train: Some("_0_".into()),
         validation: Some("_1_".into()),
