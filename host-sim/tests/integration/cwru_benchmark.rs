@@ -365,13 +365,7 @@ fn a_burst_before_or_after_a_record_is_cut_out_and_the_call_kept(
         ("12k_Drive_End_IR007_0_105.mat", FaultFamily::InnerRace),
         ("12k_Drive_End_OR007@6_1_131.mat", FaultFamily::OuterRace),
     ] {
-        let rec = wearsim_host::io::read_any(
-            cwru.join(name),
-            &wearsim_host::io::ReadOptions {
-                channel: Some("DE".into()),
-                ..Default::default()
-            },
-        )?;
+        let rec = wearsim_host::io::read_cwru(cwru.join(name), "DE", None)?;
         let kin = wearsim_host::kinematics::of_preset("cwru-6205-de", rec.rpm.ok_or("no rpm")?)?;
         let peak = rec.samples.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let n = (0.2 * rec.fs) as usize;
