@@ -34,6 +34,12 @@ cargo "${TOOLCHAIN[@]}" fuzz build "${SAN[@]}" -O --debug-assertions
 if [ "$BUILD_ONLY" = 1 ]; then
     exit 0
 fi
+# The file-reader targets write each input to a scratch directory under the temporary
+# directory, and libFuzzer exits without running destructors: give them one of their own,
+# removed when this script ends (each run left a `wearsim-fuzz-PID` per target in /tmp).
+SCRATCH="$(mktemp -d)"
+trap 'rm -rf "$SCRATCH"' EXIT
+export TMPDIR="$SCRATCH"
 status=0
 for t in "${TARGETS[@]}"; do
     mkdir -p "corpus/$t"

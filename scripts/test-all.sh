@@ -74,7 +74,9 @@ bash scripts/fuzz.sh "${WEARSIM_FUZZ_SECONDS:-15}"
 
 step "Python package: pytest (Dask 2-worker sweep, SIGKILL resume) and the worked example's tiny version"
 python3 -m pytest -q python/tests
-python3 python/examples/cwru_transfer.py --tiny --out "$(mktemp -d)/set"
+example_out="$(mktemp -d)"
+python3 python/examples/cwru_transfer.py --tiny --out "$example_out/set"
+rm -rf "$example_out"
 
 step "all tests"
 cargo test --workspace
