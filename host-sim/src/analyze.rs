@@ -250,8 +250,16 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
     };
     // The speed: `--rpm`, else the file's, else the scenario's.
     let rpm_from_config = scenario.is_some() && rec.rpm.is_none();
-    if let (true, Some((m, _))) = (rpm_from_config, &scenario) {
+    let config_detail = args
+        .config
+        .as_ref()
+        .map(|c| format!("--config `{}`", c.display()));
+    if let (true, Some((m, _)), Some(d)) = (rpm_from_config, &scenario, &config_detail) {
         rec.rpm = Some(60.0 * m.speed.shaft_hz(0.0));
+        // Named as the stated speed's source should the record's 1× line replace it.
+        if let Some(meta) = rec.meta.as_object_mut() {
+            meta.insert("rpm_detail".into(), d.clone().into());
+        }
     }
     let (mut a, spectra) = analyze_chosen(
         &rec,
@@ -268,8 +276,8 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
     )?;
     if rpm_from_config && a.rpm_source == "file" {
         a.rpm_source = "config".into();
-        if let Some(c) = &args.config {
-            a.rpm_detail = format!("--config `{}`", c.display());
+        if let Some(d) = config_detail {
+            a.rpm_detail = d;
         }
     }
     Ok((a, spectra))
@@ -421,7 +429,7 @@ fn analyze_chosen(
     let speed_refined = (speed.refine && tracked.is_none())
         .then(|| analysis::shaft_line::refine(samples, rec.fs, stated_rpm / 60.0))
         .flatten();
-    let rpm = speed_refined.map_or(stated_rpm, |r| 60.0 * r.measured_hz);
+    let rpm = speed_refined.map_or(stated_rpm, |r| r.rpm());
     let kin = match (&custom, &file_model) {
         (Some(c), None) => {
             c.2.model()

@@ -390,7 +390,7 @@ fn analyse_file(
     };
     // As `analyze` does: a stored speed the record's own 1× line contradicts is replaced.
     let refined = crate::analysis::shaft_line::refine(&x, fs, rpm / 60.0);
-    let rpm_used = refined.map_or(rpm, |r| 60.0 * r.measured_hz);
+    let rpm_used = refined.map_or(rpm, |r| r.rpm());
     let kin =
         crate::kinematics::of_preset(bearing, rpm_used).map_err(|e| format!("{name}: {e}"))?;
     let a = analyze_signal(&x, fs, &kin, method).map_err(|e| format!("{name}: {e}"))?;

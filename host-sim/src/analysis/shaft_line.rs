@@ -167,6 +167,13 @@ pub struct Refinement {
     pub resolution_hz: f64,
 }
 
+impl Refinement {
+    /// The measured shaft speed, rpm.
+    pub fn rpm(&self) -> f64 {
+        60.0 * self.measured_hz
+    }
+}
+
 /// The measured shaft frequency of `x` (sampled at `fs` Hz) when the stated `shaft_hz` is
 /// off: no line of [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local
 /// maximum within ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away. `None`

@@ -322,10 +322,10 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
             warnings.push(format!(
                 "speed refined: no shaft line at the stated {rpm:.0} rpm ({rpm_source}); the record's 1x line ({:.1} dB) is at {:.0} rpm ({:+.1} %), which the matched simulations use (--trust-rpm keeps the stated speed)",
                 r.line_db,
-                60.0 * r.measured_hz,
+                r.rpm(),
                 100.0 * r.offset
             ));
-            (60.0 * r.measured_hz, analysis::shaft_line::REFINED_SOURCE)
+            (r.rpm(), analysis::shaft_line::REFINED_SOURCE)
         }
         None => (rpm, rpm_source),
     };
