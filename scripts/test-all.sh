@@ -60,6 +60,20 @@ if [ -f firmware-stub/Cargo.toml ]; then
     (cd firmware-stub && cargo build --release -p wearsim-nopanic --target "$target")
   done
   (cd firmware-stub && cargo clippy --release -p wearsim-nopanic --target thumbv7em-none-eabihf -- -D warnings)
+
+  # The firmware's own code as well (its defmt logger, its interrupt queues, the frame
+  # encoder, the virtual sensor): feature `panic-proof` gives the whole image the same
+  # undefined-symbol panic handler; built with no feature and with every one, so both sides
+  # of each `cfg` are linked.
+  step "firmware: no reachable panic in the whole image (wearsim-fw, feature panic-proof)"
+  for target in thumbv7em-none-eabihf thumbv7m-none-eabi; do
+    for features in "panic-proof" "panic-proof life i16-stream fast-math"; do
+      (cd firmware-stub && cargo build --release -p wearsim-fw --target "$target" --features "$features")
+    done
+  done
+  # The host clippy above sees only the stub of the firmware binary; lint the image itself.
+  (cd firmware-stub && cargo clippy --release -p wearsim-fw --target thumbv7em-none-eabihf \
+    --features "panic-proof life i16-stream fast-math" -- -D warnings)
 fi
 
 step "fuzz every reader and the frame decoder (libFuzzer, ${WEARSIM_FUZZ_SECONDS:-15} s each)"

@@ -6,7 +6,7 @@
 //!   sample per tick to the transmit queue. A tick that finds the ring empty is a missed
 //!   deadline: counted, flagged in the frame header, logged, never silent.
 //! * Frames (`wearsim-frame`) go out on UART0: a start frame, data frames, an end frame.
-//! * defmt logs go out through semihosting (`defmt-semihosting`).
+//! * defmt logs go out through semihosting (`log.rs`: a logger without a panic path).
 //! * Scenario at build time: `WEARSIM_PRESET` (default `thesis-61810`), `WEARSIM_SEED`
 //!   (default 1), `WEARSIM_SAMPLES` (default 4000); feature `life` for the accelerated-life
 //!   scenario, feature `i16-stream` for 16-bit counts instead of f32.
@@ -15,6 +15,8 @@
 
 #[path = "hw.rs"]
 mod hw;
+#[path = "log.rs"]
+mod log;
 #[path = "sensor_demo.rs"]
 mod sensor_demo;
 
@@ -24,7 +26,6 @@ use core::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use cortex_m::peripheral::NVIC;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use critical_section::Mutex;
-use defmt_semihosting as _;
 use heapless::spsc::{Consumer, Queue};
 use wearsim_core::sensor::SensorScale;
 use wearsim_core::{presets, Model, Real, State};
@@ -329,10 +330,24 @@ fn main() -> ! {
     // is enabled.
     let (mut ring_tx, ring_rx) = unsafe { (*core::ptr::addr_of_mut!(RING)).split() };
     let (txq_tx, mut txq_rx) = unsafe { (*core::ptr::addr_of_mut!(TXQ)).split() };
-    critical_section::with(|cs| {
-        *RING_RX.borrow_ref_mut(cs) = Some(ring_rx);
-        *TXQ_TX.borrow_ref_mut(cs) = Some(txq_tx);
+    // `try_borrow_mut`, not `borrow_ref_mut`: no panic path (`docs/firmware.md`); nothing else
+    // borrows the cells inside a critical section, so a refusal cannot happen.
+    let handed = critical_section::with(|cs| {
+        match (
+            RING_RX.borrow(cs).try_borrow_mut(),
+            TXQ_TX.borrow(cs).try_borrow_mut(),
+        ) {
+            (Ok(mut rx), Ok(mut tx)) => {
+                *rx = Some(ring_rx);
+                *tx = Some(txq_tx);
+                true
+            }
+            _ => false,
+        }
     });
+    if !handed {
+        fatal("queues already borrowed");
+    }
     LIMIT.store(total, Ordering::Relaxed);
 
     let period = (hw::PCLK_HZ as Real / rate + 0.5) as u32;
@@ -420,12 +435,13 @@ fn main() -> ! {
     };
     send_control(framer, frame::Kind::End, overruns, &end.to_bytes());
     defmt::info!(
-        "scenario end: samples={=u32} frames={=u32} overruns={=u32} tx_drops={=u32} stream_busy_ticks={=u64}",
+        "scenario end: samples={=u32} frames={=u32} overruns={=u32} tx_drops={=u32} stream_busy_ticks={=u64} log_frames_dropped={=u32}",
         framer.sent,
         framer.data_frames,
         overruns,
         drops,
-        busy
+        busy,
+        log::dropped_frames()
     );
     exit(drops == 0)
 }
@@ -459,8 +475,12 @@ fn on_tick() {
         if limit != 0 && released >= limit {
             return;
         }
-        let mut rx = RING_RX.borrow_ref_mut(cs);
-        let mut tx = TXQ_TX.borrow_ref_mut(cs);
+        let (Ok(mut rx), Ok(mut tx)) = (
+            RING_RX.borrow(cs).try_borrow_mut(),
+            TXQ_TX.borrow(cs).try_borrow_mut(),
+        ) else {
+            return;
+        };
         let (Some(rx), Some(tx)) = (rx.as_mut(), tx.as_mut()) else {
             return;
         };
@@ -495,6 +515,16 @@ unsafe fn HardFault(ef: &ExceptionFrame) -> ! {
     exit(false)
 }
 
+#[cfg(feature = "panic-proof")]
+#[panic_handler]
+fn panic(_info: &core::panic::PanicInfo) -> ! {
+    extern "Rust" {
+        fn __wearsim_fw_reachable_panic() -> !;
+    }
+    unsafe { __wearsim_fw_reachable_panic() }
+}
+
+#[cfg(not(feature = "panic-proof"))]
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
     match info.location() {
