@@ -275,3 +275,29 @@ def test_numpy_values_in_a_configuration_are_their_numbers():
     assert np.array_equal(x, y)
     z, _ = wearsim.simulate("cwru-6205-de", duration=np.float64(0.05), seed=np.int64(3))
     assert z.shape == x.shape
+
+
+@pytest.mark.parametrize(
+    "call, expected",
+    [
+        # clap's words for the command line become the call's: keyword arguments, no usage
+        # line, no `--help` hint.
+        (lambda: wearsim.life(seeds=0), ["unexpected keyword argument 'seeds'", "'seed'"]),
+        (lambda: wearsim.life(lives=5, load=-1), ["unexpected keyword argument 'load'", "'loads'"]),
+        (lambda: wearsim.life(stop_after=0), ["stop_after applies to dense runs only"]),
+        (lambda: wearsim.life(lives=1), ["lives: 1 is out of range"]),
+        (lambda: wearsim.gap("missing.mat", jobs="abc"), ["invalid value 'abc' for 'jobs'"]),
+        (lambda: wearsim.analyze(np.random.default_rng(1).normal(size=24000), 12000.0,
+                                 bearing="cwru-6205-de", rpm=-5), ["rpm=-5 is out of range"]),
+        (lambda: wearsim.analyze(np.random.default_rng(1).normal(size=24000), 12000.0,
+                                 bearing="nope", rpm=1797),
+         ["unknown bearing `nope`", "bearing=NAME", 'bearing={"elements": N']),
+    ],
+)
+def test_messages_name_the_keyword_arguments_not_command_line_options(call, expected):
+    with pytest.raises(wearsim.ConfigError) as e:
+        call()
+    msg = str(e.value)
+    for part in expected:
+        assert part in msg, msg
+    assert "--" not in msg and "Usage" not in msg and "\n" not in msg, msg

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import numbers
 import os
+import re
 import tempfile
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple, Union
@@ -105,9 +106,12 @@ def analyze(
     rpm_v = None if rpm is None else _number("rpm", rpm)
     if not isinstance(trust_rpm, bool):
         raise ConfigError(f"trust_rpm: expected True or False, got {type(trust_rpm).__name__}")
-    return json.loads(
-        _wearsim.analyze(x, _number("fs", fs), bearing, rpm_v, geometry, trust_rpm)
-    )
+    fs_v = _number("fs", fs)
+    try:
+        out = _wearsim.analyze(x, fs_v, bearing, rpm_v, geometry, trust_rpm)
+    except ConfigError as e:
+        raise ConfigError(_pythonic(str(e), _ANALYZE_NAMES)) from None
+    return json.loads(out)
 
 
 def _geometry(g: Dict[str, Any]) -> str:
@@ -152,8 +156,60 @@ def read_record(path: Union[str, os.PathLike], channel: Optional[str] = None) ->
         raise ConfigError(f"path: expected a str or os.PathLike path, got {type(path).__name__}")
     if channel is not None and not isinstance(channel, str):
         raise ConfigError(f"channel: expected a channel name (str) such as \"DE\", got {type(channel).__name__}")
-    x, meta = _wearsim.read_record(os.fsdecode(os.fspath(path)), channel)
+    try:
+        x, meta = _wearsim.read_record(os.fsdecode(os.fspath(path)), channel)
+    except ConfigError as e:
+        raise ConfigError(_pythonic(str(e))) from None
     return x, json.loads(meta)
+
+
+_FLAG = re.compile(r"(?<![\w/.-])--([a-z][a-z0-9-]*)")
+_FLAG_VALUE = re.compile(r"(?<![\w/.-])--([a-z][a-z0-9-]*) (-?[0-9.][^\s:,;]*)")
+_QUOTED_FLAG = re.compile(r"'--([a-z][a-z0-9-]*)(?: <[^>]*>)?'")
+
+
+def _keyword(flag: str) -> str:
+    """A command-line option's name (``stop-after``) as its keyword argument (``stop_after``)."""
+    return flag.replace("-", "_")
+
+
+def _pythonic(message: str, names: Optional[Dict[str, str]] = None) -> str:
+    """A native message in the Python API's words: options named as the keyword arguments
+    that set them (``--stop-after 0`` → ``stop_after=0``, ``names`` first, e.g. ``--real``
+    → ``records``), ``wearsim effects`` as ``wearsim.effects()``, and the argument parser's
+    usage lines and ``--help`` hint left out, as the call has neither."""
+    lines = [
+        ln.strip()
+        for ln in message.splitlines()
+        if ln.strip() and not ln.startswith(("Usage:", "For more information"))
+    ]
+    text = "; ".join(lines)
+    text = re.sub(r"^error: ", "", text)
+    text = re.sub(r"unexpected argument '--([a-z0-9-]+)' found",
+                  lambda m: f"unexpected keyword argument '{_keyword(m.group(1))}'", text)
+    text = text.replace("tip: a similar argument exists:", "a similar keyword argument exists:")
+    for old, new in (names or {}).items():
+        text = text.replace(old, new)
+    text = re.sub(r"`wearsim (effects|presets|bearings)`", r"`wearsim.\1()`", text)
+    text = _QUOTED_FLAG.sub(lambda m: f"'{_keyword(m.group(1))}'", text)
+    text = _FLAG_VALUE.sub(lambda m: f"{_keyword(m.group(1))}={m.group(2)}", text)
+    return _FLAG.sub(lambda m: _keyword(m.group(1)), text)
+
+
+# How `analyze`'s native messages name its arguments (`geometry` is the `bearing` dict).
+_ANALYZE_NAMES = {
+    "--bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG":
+        'bearing={"elements": N, "ball": MM, "pitch": MM, "angle": DEG}',
+    "--bearing-geometry": "bearing (a geometry dict)",
+    "--bearing NAME": "bearing=NAME",
+}
+# How the commands behind `life` and `gap` name their options (`--real` is `records`).
+_CLI_NAMES = {
+    "--real": "records",
+    "--bearing-geometry elements=N,ball=MM,pitch=MM,angle=DEG":
+        'bearing_geometry="elements=N,ball=MM,pitch=MM,angle=DEG"',
+    "--bearing NAME": "bearing=NAME",
+}
 
 
 def _argv(command: str, kwargs: Dict[str, Any]) -> List[str]:
@@ -212,9 +268,9 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) ->
     code, message = _wearsim.cli(argv)
     try:
         if code == 2:
-            raise ConfigError(message)
+            raise ConfigError(_pythonic(message, _CLI_NAMES))
         if code != 0:
-            raise RuntimeError(message)
+            raise RuntimeError(_pythonic(message, _CLI_NAMES))
         # A temporary `out` is gone when this returns: its path is not returned.
         result: Dict[str, Any] = {"out": None if tmp is not None else out, "files": {}}
         for p in sorted(Path(out).glob("*")):
