@@ -426,8 +426,10 @@ fn analyze_chosen(
     }
     // A constant speed the record contradicts: its own 1× line (an order-tracked record's
     // speed is the model's, exact).
+    let stated_spectrum =
+        analysis::shaft_line::ShaftSpectrum::new(samples, rec.fs, stated_rpm / 60.0);
     let speed_refined = (speed.refine && tracked.is_none())
-        .then(|| analysis::shaft_line::refine(samples, rec.fs, stated_rpm / 60.0))
+        .then(|| stated_spectrum.as_ref().and_then(|s| s.refine()))
         .flatten();
     let rpm = speed_refined.map_or(stated_rpm, |r| r.rpm());
     let kin = match (&custom, &file_model) {
@@ -479,7 +481,11 @@ fn analyze_chosen(
             ),
         ),
     };
-    let speed_check = analysis::shaft_line::check(samples, rec.fs, kin.shaft_hz);
+    // At the stated speed the refinement's spectrum is the check's (one Welch, not two).
+    let speed_check = match &stated_spectrum {
+        Some(s) if s.shaft_hz() == kin.shaft_hz => Some(s.check()),
+        _ => analysis::shaft_line::check(samples, rec.fs, kin.shaft_hz),
+    };
     let analysis = Analysis {
         file: rec.source.clone(),
         channel: rec.channel.clone(),

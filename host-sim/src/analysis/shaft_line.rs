@@ -80,44 +80,116 @@ pub struct ShaftLine {
 /// when the record is too short to resolve [`MAX_RESOLUTION`] of the shaft frequency
 /// (or the spectrum cannot be computed), i.e. when the check would say nothing.
 pub fn check(x: &[f64], fs: f64, shaft_hz: f64) -> Option<ShaftLine> {
-    let (psd, resolution_hz) = shaft_spectrum(x, fs, shaft_hz, TOLERANCE)?;
-    let height = |f: f64| line_height_db(&psd, f);
-    let line_db = height(shaft_hz);
-    let half_line_db = height(0.5 * shaft_hz);
-    let db = |d: Option<f64>| d.map_or("none".to_string(), |d| format!("{d:.1} dB"));
-    let reason = if line_db.is_none_or(|d| d < LINE_DB) {
-        Some(format!(
+    ShaftSpectrum::new(x, fs, shaft_hz).map(|s| s.check())
+}
+
+/// The measured shaft frequency of `x` (sampled at `fs` Hz) when the stated `shaft_hz` is
+/// off ([`ShaftSpectrum::refine`]); `None` when the record confirms the stated speed, shows
+/// no line near it, or cannot be checked.
+pub fn refine(x: &[f64], fs: f64, shaft_hz: f64) -> Option<Refinement> {
+    ShaftSpectrum::new(x, fs, shaft_hz)?.refine()
+}
+
+/// The Welch power spectrum [`check`] and [`refine`] read around one shaft frequency
+/// (≈ 1 % of it per bin, at least seven half-overlapping Hann segments), computed once
+/// when a record is both refined and checked at its stated speed.
+#[derive(Debug, Clone)]
+pub struct ShaftSpectrum {
+    psd: Spectrum,
+    /// Frequency resolution, Hz.
+    resolution_hz: f64,
+    /// Shaft frequency the spectrum was laid out for, Hz.
+    shaft_hz: f64,
+    /// Sample rate, Hz.
+    fs: f64,
+}
+
+impl ShaftSpectrum {
+    /// The spectrum of `x` (sampled at `fs` Hz) for a shaft at `shaft_hz` (≈
+    /// [`TARGET_RESOLUTION`] of it per bin); `None` when a line within ±[`TOLERANCE`] of it
+    /// is above Nyquist, the record is too short to resolve
+    /// [`MAX_RESOLUTION`] of the shaft frequency, or the spectrum cannot be computed.
+    pub fn new(x: &[f64], fs: f64, shaft_hz: f64) -> Option<Self> {
+        let (psd, resolution_hz) = shaft_spectrum(x, fs, shaft_hz)?;
+        Some(Self {
+            psd,
+            resolution_hz,
+            shaft_hz,
+            fs,
+        })
+    }
+
+    /// Shaft frequency the spectrum was laid out for, Hz.
+    pub fn shaft_hz(&self) -> f64 {
+        self.shaft_hz
+    }
+
+    /// The shaft-line check at [`Self::shaft_hz`] (see [`check`]).
+    pub fn check(&self) -> ShaftLine {
+        let (psd, shaft_hz, resolution_hz) = (&self.psd, self.shaft_hz, self.resolution_hz);
+        let height = |f: f64| line_height_db(psd, f);
+        let line_db = height(shaft_hz);
+        let half_line_db = height(0.5 * shaft_hz);
+        let db = |d: Option<f64>| d.map_or("none".to_string(), |d| format!("{d:.1} dB"));
+        let reason = if line_db.is_none_or(|d| d < LINE_DB) {
+            Some(format!(
             "no shaft line at 1x ({shaft_hz:.2} Hz +-3 %: {}; a line needs {LINE_DB} dB): the sample rate or the speed is wrong, or this machine shows no 1x",
             db(line_db)
         ))
-    } else if half_line_db.is_some_and(|d| d >= LINE_DB) {
-        Some(format!(
+        } else if half_line_db.is_some_and(|d| d >= LINE_DB) {
+            Some(format!(
             "a line at 1/2x ({:.2} Hz: {}): the sample rate given is half the true one (or the speed twice), or the machine vibrates at half orders (looseness, rub)",
             0.5 * shaft_hz,
             db(half_line_db)
         ))
-    } else {
-        None
-    };
-    Some(ShaftLine {
-        shaft_hz,
-        resolution_hz,
-        line_db,
-        half_line_db,
-        consistent: reason.is_none(),
-        reason,
-    })
+        } else {
+            None
+        };
+        ShaftLine {
+            shaft_hz,
+            resolution_hz,
+            line_db,
+            half_line_db,
+            consistent: reason.is_none(),
+            reason,
+        }
+    }
+
+    /// The measured shaft frequency when the stated [`Self::shaft_hz`] is off: no line of
+    /// [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local maximum within
+    /// ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away. `None` when the
+    /// record confirms the stated speed, shows no line near it, or a line ±[`SEARCH`] away
+    /// would be above Nyquist.
+    pub fn refine(&self) -> Option<Refinement> {
+        let (psd, shaft_hz) = (&self.psd, self.shaft_hz);
+        if shaft_hz * (1.0 + SEARCH) >= 0.5 * self.fs {
+            return None;
+        }
+        let floor = FLOOR_HALF_WIDTH * shaft_hz;
+        let at_stated = peak_over_floor_db(psd, shaft_hz, REFINE_MIN * shaft_hz, floor);
+        if at_stated.is_some_and(|(_, db)| db >= LINE_DB) {
+            return None;
+        }
+        let (line, line_db) = peak_over_floor_db(psd, shaft_hz, SEARCH * shaft_hz, floor)?;
+        let offset = line.freq / shaft_hz - 1.0;
+        (line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH).then_some(
+            Refinement {
+                stated_hz: shaft_hz,
+                measured_hz: line.freq,
+                offset,
+                line_db,
+                resolution_hz: self.resolution_hz,
+            },
+        )
+    }
 }
 
-/// The Welch power spectrum the checks read (≈ [`TARGET_RESOLUTION`] of `shaft_hz`, at
-/// least seven half-overlapping Hann segments) and its resolution, Hz; `None` when a line
-/// within ±`reach` of `shaft_hz` is above Nyquist or the record is too short to resolve
-/// [`MAX_RESOLUTION`] of the shaft frequency.
-fn shaft_spectrum(x: &[f64], fs: f64, shaft_hz: f64, reach: f64) -> Option<(Spectrum, f64)> {
+/// The Welch power spectrum of [`ShaftSpectrum::new`] and its resolution, Hz.
+fn shaft_spectrum(x: &[f64], fs: f64, shaft_hz: f64) -> Option<(Spectrum, f64)> {
     if !(fs.is_finite() && fs > 0.0 && shaft_hz.is_finite() && shaft_hz > 0.0) {
         return None;
     }
-    if shaft_hz * (1.0 + reach) >= 0.5 * fs {
+    if shaft_hz * (1.0 + TOLERANCE) >= 0.5 * fs {
         return None;
     }
     let wanted = (fs / (TARGET_RESOLUTION * shaft_hz)).ceil();
@@ -172,30 +244,6 @@ impl Refinement {
     pub fn rpm(&self) -> f64 {
         60.0 * self.measured_hz
     }
-}
-
-/// The measured shaft frequency of `x` (sampled at `fs` Hz) when the stated `shaft_hz` is
-/// off: no line of [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local
-/// maximum within ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away. `None`
-/// when the record confirms the stated speed, shows no line near it, or cannot be checked.
-pub fn refine(x: &[f64], fs: f64, shaft_hz: f64) -> Option<Refinement> {
-    let (psd, resolution_hz) = shaft_spectrum(x, fs, shaft_hz, SEARCH)?;
-    let floor = FLOOR_HALF_WIDTH * shaft_hz;
-    let at_stated = peak_over_floor_db(&psd, shaft_hz, REFINE_MIN * shaft_hz, floor);
-    if at_stated.is_some_and(|(_, db)| db >= LINE_DB) {
-        return None;
-    }
-    let (line, line_db) = peak_over_floor_db(&psd, shaft_hz, SEARCH * shaft_hz, floor)?;
-    let offset = line.freq / shaft_hz - 1.0;
-    (line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH).then_some(
-        Refinement {
-            stated_hz: shaft_hz,
-            measured_hz: line.freq,
-            offset,
-            line_db,
-            resolution_hz,
-        },
-    )
 }
 
 /// Height (dB) of the strongest local maximum within ±[`TOLERANCE`] of `f` over the
