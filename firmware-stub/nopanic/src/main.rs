@@ -13,7 +13,7 @@
 //! (`llvm-objdump -d` of the normal build shows its callers of `core::panicking`).
 //!
 //! Build (inside `firmware-stub/`): `cargo build --release -p wearsim-nopanic --target
-//! thumbv7em-none-eabihf` (and `thumbv7m-none-eabi`); `scripts/test-all.sh` does both.
+//! thumbv7em-none-eabihf` (and `thumbv6m-none-eabi`, the M0); `scripts/test-all.sh` does both.
 #![cfg_attr(target_os = "none", no_std)]
 #![cfg_attr(target_os = "none", no_main)]
 
