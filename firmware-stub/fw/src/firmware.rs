@@ -475,6 +475,8 @@ fn on_tick() {
         if limit != 0 && released >= limit {
             return;
         }
+        // Only this handler borrows the cells after start-up, inside its critical section:
+        // a refusal cannot happen (and `borrow_ref_mut` would be a panic path).
         let (Ok(mut rx), Ok(mut tx)) = (
             RING_RX.borrow(cs).try_borrow_mut(),
             TXQ_TX.borrow(cs).try_borrow_mut(),
@@ -515,12 +517,15 @@ unsafe fn HardFault(ef: &ExceptionFrame) -> ! {
     exit(false)
 }
 
+/// The proof's panic handler (feature `panic-proof`): a call to a symbol defined nowhere, so
+/// the image links only if no panic is reachable.
 #[cfg(feature = "panic-proof")]
 #[panic_handler]
 fn panic(_info: &core::panic::PanicInfo) -> ! {
     extern "Rust" {
         fn __wearsim_fw_reachable_panic() -> !;
     }
+    // SAFETY: never called in an image that links; see the feature's documentation.
     unsafe { __wearsim_fw_reachable_panic() }
 }
 
