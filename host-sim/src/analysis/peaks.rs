@@ -108,6 +108,26 @@ pub fn peak_near(s: &Spectrum, f: f64, tol_hz: f64) -> Option<Peak> {
         .max_by(|a, b| a.value.total_cmp(&b.value))
 }
 
+/// The largest local maximum whose interpolated frequency lies within `f ± tol_hz`, or
+/// `None`. [`peak_near`]'s window is rounded outward to whole bins (up to half a bin past
+/// `tol_hz`) and always holds the bin nearest `f`; here the tolerance is exact, for a
+/// tolerance of the order of a bin, where half a bin more is another rule (a ±1 % window at
+/// 0.39 Hz bins on a 29 Hz shaft reached 1.67 %).
+pub fn peak_within(s: &Spectrum, f: f64, tol_hz: f64) -> Option<Peak> {
+    if s.len() < 3 || !usable(s) || !f.is_finite() {
+        return None;
+    }
+    let tol = tol_hz.abs();
+    // An interpolated peak lies within half a bin of its bin.
+    let lo = s.bin_of(f - tol - s.df).max(1);
+    let hi = s.bin_of(f + tol + s.df).min(s.len() - 2);
+    (lo..=hi)
+        .filter(|&k| is_local_max(&s.values, k))
+        .map(|k| interpolate(s, k))
+        .filter(|p| (p.freq - f).abs() <= tol)
+        .max_by(|a, b| a.value.total_cmp(&b.value))
+}
+
 /// Noise floor around `f` Hz: the median of the values within
 /// `f ± half_width_hz`, excluding the ±2 bins around the bin nearest `f`
 /// (a Hann main lobe). Returns 0 if that neighbourhood is empty.
@@ -171,6 +191,21 @@ mod tests {
             .map(|(((a, b), c), d)| a + b + c + d)
             .collect();
         amplitude_spectrum(&x, fs, Window::Hann).unwrap()
+    }
+
+    #[test]
+    fn peak_within_keeps_its_tolerance_exactly_where_peak_near_rounds_it_out() {
+        // 0.25 Hz bins; a line at 100.1 Hz. Around 99.8 Hz with ±0.2 Hz: the window of
+        // `peak_near` rounds out to bins 399..=400 (99.75..100.0 Hz) and 400 is the line's
+        // own bin, a local maximum interpolated at 100.1 Hz, 0.3 Hz away.
+        let s = tones();
+        let near = peak_near(&s, 99.8, 0.2).expect("the line's bin is in the rounded window");
+        assert!((near.freq - 100.1).abs() < 0.05, "{near:?}");
+        assert_eq!(peak_within(&s, 99.8, 0.2), None);
+        // Within 0.35 Hz it is found, at its interpolated frequency.
+        let p = peak_within(&s, 99.8, 0.35).expect("in tolerance");
+        assert!((p.freq - 100.1).abs() < 0.05, "{p:?}");
+        assert_eq!(peak_within(&s, f64::NAN, 1.0), None);
     }
 
     #[test]

@@ -322,10 +322,18 @@ fn a_speed_a_few_percent_off_is_measured_from_the_shaft_line(
             1771.0,
             FaultFamily::OuterRace,
         ),
+        // At 0.98 × its stored speed the true 1× is 1.6–2 % away, inside the ±1 % window
+        // once rounded to whole 0.39 Hz bins: it "confirmed" the wrong speed and the call
+        // was ball 0.92 (stop 55); the window is exact since stop 56.
+        (
+            "12k_Drive_End_OR021@6_0_234.mat",
+            1796.0,
+            FaultFamily::OuterRace,
+        ),
     ] {
         let own = run(name, None, false)?;
         assert_eq!((own.speed_refined, own.rpm), (None, stored), "{name}");
-        for k in [0.97, 1.03] {
+        for k in [0.97, 0.98, 1.03] {
             let a = run(name, Some(k * stored), false)?;
             let r = a.speed_refined.ok_or(format!("{name} x{k}: not refined"))?;
             assert!((a.rpm / stored - 1.0).abs() < 0.005, "{name} x{k}: {r:?}");
