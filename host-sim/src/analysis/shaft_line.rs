@@ -24,10 +24,15 @@
 //! window, and the call goes to whichever family lies there (CWRU `IR007_0` analysed at
 //! 1 851 rpm instead of 1 797 was called ball at 0.98). When no line stands within
 //! ±[`REFINE_MIN`] of the stated 1× and the strongest line within ±[`SEARCH`] does, more
-//! than [`REFINE_MIN`] away, that line is the shaft, and the diagnosis uses it. Set a priori
-//! (not fitted on any record): ±5 % covers the full-load slip of standard induction motors;
-//! 1 % is half the slip window, an error the detector absorbs and the spectrum's resolution
-//! (1 % of the shaft frequency) can just resolve.
+//! than [`REFINE_MIN`] away, with a line at its own 2× or 3×, that line is the shaft, and the
+//! diagnosis uses it. Set a priori (not fitted on any record): ±5 % covers the full-load slip
+//! of standard induction motors; 1 % is half the slip window, an error the detector absorbs
+//! and the spectrum's resolution (1 % of the shaft frequency) can just resolve. Windows are
+//! exact in the lines' interpolated frequencies (since stop 56; rounded out to whole bins,
+//! ±1 % reached ±1.67 %). The harmonic (stop 56): a wrong sample rate moves the true 1× 10–25 %
+//! away, and some other lone line 1–5 % from the stated speed was taken for the shaft,
+//! silencing [`check`]'s warning; a shaft shows harmonics (2× or 3×: a 4-pole 60 Hz motor's
+//! 2× lies a few percent from the 60 Hz line, which can mask it).
 
 use super::peaks::{noise_floor, peak_over_floor_db, peak_within, ratio_db};
 use super::spectrum::{welch_psd, Spectrum, WelchParams};
@@ -106,7 +111,7 @@ pub struct ShaftSpectrum {
 
 impl ShaftSpectrum {
     /// The spectrum of `x` (sampled at `fs` Hz) for a shaft at `shaft_hz` (≈
-    /// [`TARGET_RESOLUTION`] of it per bin); `None` when a line within ±[`TOLERANCE`] of it
+    /// 1 % of it per bin); `None` when a line within ±[`TOLERANCE`] of it
     /// is above Nyquist, the record is too short to resolve
     /// [`MAX_RESOLUTION`] of the shaft frequency, or the spectrum cannot be computed.
     pub fn new(x: &[f64], fs: f64, shaft_hz: f64) -> Option<Self> {
@@ -169,22 +174,28 @@ impl ShaftSpectrum {
         // Exactly ±REFINE_MIN: at 1 % of the shaft per bin, a window rounded to whole bins
         // reached 1.67 % and took the true 1× line of a speed stated 1.6 % off for a line
         // at the stated speed (stop 56).
-        let at_stated = peak_within(psd, shaft_hz, REFINE_MIN * shaft_hz)
-            .map(|p| ratio_db(psd.kind, p.value, noise_floor(psd, p.freq, floor)));
-        if at_stated.is_some_and(|db| db >= LINE_DB) {
+        if line_within_db(psd, shaft_hz, REFINE_MIN * shaft_hz).is_some_and(|db| db >= LINE_DB) {
             return None;
         }
         let (line, line_db) = peak_over_floor_db(psd, shaft_hz, SEARCH * shaft_hz, floor)?;
         let offset = line.freq / shaft_hz - 1.0;
-        (line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH).then_some(
-            Refinement {
+        // A shaft has harmonics: its 2× or 3× must stand too (within ±REFINE_MIN of that
+        // multiple of the line). A wrong sample rate moves the true 1× 10–25 % away and can
+        // leave some other lone line 1–5 % from the stated speed. Either of two, as a
+        // 4-pole 60 Hz motor's 2× lies within a few percent of the 60 Hz line, which can
+        // mask it.
+        let harmonic = [2.0, 3.0].iter().any(|&k| {
+            line_within_db(psd, k * line.freq, k * REFINE_MIN * line.freq)
+                .is_some_and(|db| db >= LINE_DB)
+        });
+        (harmonic && line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH)
+            .then_some(Refinement {
                 stated_hz: shaft_hz,
                 measured_hz: line.freq,
                 offset,
                 line_db,
                 resolution_hz: self.resolution_hz,
-            },
-        )
+            })
     }
 }
 
@@ -253,7 +264,16 @@ impl Refinement {
 /// Height (dB) of the strongest local maximum within ±[`TOLERANCE`] of `f` over the
 /// median of its ±15 % neighbourhood.
 fn line_height_db(psd: &Spectrum, f: f64) -> Option<f64> {
-    peak_over_floor_db(psd, f, TOLERANCE * f, FLOOR_HALF_WIDTH * f).map(|(_, db)| db)
+    line_within_db(psd, f, TOLERANCE * f)
+}
+
+/// Height (dB) of the strongest local maximum whose interpolated frequency lies within
+/// exactly `f ± tol_hz` ([`peak_within`]: a window rounded out to whole bins of 1 % of the
+/// shaft would stretch ±1 % to ±1.67 %) over the median of its ±15 % neighbourhood.
+fn line_within_db(psd: &Spectrum, f: f64, tol_hz: f64) -> Option<f64> {
+    let p = peak_within(psd, f, tol_hz)?;
+    let floor = noise_floor(psd, p.freq, FLOOR_HALF_WIDTH * f);
+    Some(ratio_db(psd.kind, p.value, floor))
 }
 
 #[cfg(test)]
@@ -341,5 +361,44 @@ mod tests {
             assert_eq!(refine(&noise, fs, truth * k), None, "noise x{k}");
         }
         assert_eq!(refine(&x[..60_000], fs, truth * 1.03), None, "too short");
+    }
+
+    /// A lone line 1–5 % from the stated speed, without a 2× or 3× of its own, is not taken
+    /// for the shaft (what a wrong sample rate leaves near the expected 1×); with either
+    /// harmonic it is, and the 60 Hz line that can mask a 4-pole motor's 2× does not matter
+    /// when the 3× stands.
+    #[test]
+    fn a_line_without_harmonics_is_not_a_shaft() {
+        let fs = 12_000.0;
+        let n = (20.0 * fs) as usize;
+        let f = 29.95;
+        let noise = || gaussian_noise(n, 1.0, 11);
+        let with = |parts: &[(f64, f64)]| -> Vec<f64> {
+            let mut x = noise();
+            for &(freq, amp) in parts {
+                for (v, s) in x.iter_mut().zip(sine(n, fs, freq, amp, 0.3)) {
+                    *v += s;
+                }
+            }
+            x
+        };
+        let stated = f * 0.97;
+        assert_eq!(refine(&with(&[(f, 0.3)]), fs, stated), None, "lone line");
+        for (k, name) in [(2.0, "2x"), (3.0, "3x")] {
+            let r = refine(&with(&[(f, 0.3), (k * f, 0.2)]), fs, stated)
+                .unwrap_or_else(|| panic!("with its {name}: not refined"));
+            assert!(
+                (r.measured_hz - f).abs() < 0.1 * r.resolution_hz,
+                "{name}: {r:?}"
+            );
+        }
+        // A 2× masked by a stronger line 1.5 % above it (a 60 Hz line), the 3× standing.
+        let masked = with(&[
+            (f, 0.3),
+            (2.0 * f, 0.05),
+            (2.0 * f * 1.015, 0.4),
+            (3.0 * f, 0.2),
+        ]);
+        assert!(refine(&masked, fs, stated).is_some());
     }
 }
