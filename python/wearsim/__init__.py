@@ -90,8 +90,8 @@ def analyze(
     (see ``presets()`` and ``bearings()``) or any bearing's geometry as a dict like ``--bearing-geometry``:
     ``{"elements": 9, "ball": 7.94, "pitch": 39.04, "angle": 0}`` (diameters in mm,
     contact angle in degrees; ``angle`` may be left out for 0). ``rpm`` is the shaft
-    speed; a speed 1-5 % from the signal's own 1x line, with no line at the stated 1x, is
-    replaced by the line's (reported under ``speed_refined``) unless ``trust_rpm`` is true
+    speed; a speed 1-5 % from the signal's own 1x line (with its own 2x or 3x), with no
+    line at the stated 1x, is replaced by the line's (reported under ``speed_refined``) unless ``trust_rpm`` is true
     (``--trust-rpm``: a tachometer's speed)."""
     geometry = None
     if isinstance(bearing, dict):

@@ -162,7 +162,8 @@ impl ShaftSpectrum {
 
     /// The measured shaft frequency when the stated [`Self::shaft_hz`] is off: no line of
     /// [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local maximum within
-    /// ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away. `None` when the
+    /// ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away, with a line of
+    /// [`LINE_DB`] within ±[`REFINE_MIN`] of its own 2× or 3×. `None` when the
     /// record confirms the stated speed, shows no line near it, or a line ±[`SEARCH`] away
     /// would be above Nyquist.
     pub fn refine(&self) -> Option<Refinement> {
