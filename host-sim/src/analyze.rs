@@ -31,7 +31,8 @@ pub struct AnalyzeArgs {
     /// Use the speed as stated (argument, file, sidecar or configuration) even when the
     /// record's shaft line is elsewhere, e.g. a tachometer's speed. Default: a stated speed
     /// 1–5 % from the record's own 1× line (a line with its own 2× or 3×), with no line at
-    /// the stated 1×, is replaced by the line's (reported under `speed_refined`; see `analysis::shaft_line::refine`).
+    /// the stated 1×, is replaced by the speed of the line's 1×–5× series (reported under
+    /// `speed_refined`; see `analysis::shaft_line::refine`).
     #[arg(long)]
     pub trust_rpm: bool,
     /// Sample rate (Hz), 1..=1e7: for a file that states none; must agree (within 0.1 %)

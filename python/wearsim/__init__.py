@@ -91,7 +91,8 @@ def analyze(
     ``{"elements": 9, "ball": 7.94, "pitch": 39.04, "angle": 0}`` (diameters in mm,
     contact angle in degrees; ``angle`` may be left out for 0). ``rpm`` is the shaft
     speed; a speed 1-5 % from the signal's own 1x line (with its own 2x or 3x), with no
-    line at the stated 1x, is replaced by the line's (reported under ``speed_refined``) unless ``trust_rpm`` is true
+    line at the stated 1x, is replaced by the speed of the line's 1x-5x series (reported
+    under ``speed_refined``) unless ``trust_rpm`` is true
     (``--trust-rpm``: a tachometer's speed)."""
     geometry = None
     if isinstance(bearing, dict):

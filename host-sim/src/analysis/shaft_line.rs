@@ -34,7 +34,7 @@
 //! silencing [`check`]'s warning; a shaft shows harmonics (2× or 3×: a 4-pole 60 Hz motor's
 //! 2× lies a few percent from the 60 Hz line, which can mask it).
 
-use super::peaks::{noise_floor, peak_over_floor_db, peak_within, ratio_db};
+use super::peaks::{noise_floor, peak_over_floor_db, peak_within, ratio_db, Peak};
 use super::spectrum::{welch_psd, Spectrum, WelchParams};
 use super::window::Window;
 use serde::Serialize;
@@ -56,6 +56,10 @@ const MIN_SEGMENTS_DIV: usize = 4;
 /// Half-width (fraction of the stated shaft frequency) searched for the true 1× line by
 /// [`refine`]: a stated speed up to 5 % off.
 pub const SEARCH: f64 = 0.05;
+/// Highest shaft harmonic [`ShaftSpectrum::refine`] reads the measured speed from (the
+/// 1×–5× of unbalance, misalignment and looseness; above them lines of other origin crowd
+/// in).
+pub const SERIES_HARMONICS: usize = 5;
 /// Where a refined speed came from, as `analyze` and `gap` report it (`rpm_source`).
 pub const REFINED_SOURCE: &str = "shaft line";
 /// Least offset (fraction of the stated shaft frequency) of the measured 1× line at which
@@ -163,7 +167,9 @@ impl ShaftSpectrum {
     /// The measured shaft frequency when the stated [`Self::shaft_hz`] is off: no line of
     /// [`LINE_DB`] within ±[`REFINE_MIN`] of it, and the strongest local maximum within
     /// ±[`SEARCH`] a line of [`LINE_DB`] more than [`REFINE_MIN`] away, with a line of
-    /// [`LINE_DB`] within ±[`REFINE_MIN`] of its own 2× or 3×. `None` when the
+    /// [`LINE_DB`] within ±[`REFINE_MIN`] of its own 2× or 3×; the measured speed is then
+    /// fitted to that line's series ([`SERIES_HARMONICS`]), and must itself lie more than
+    /// [`REFINE_MIN`] (and at most [`SEARCH`]) from the stated one. `None` when the
     /// record confirms the stated speed, shows no line near it, or a line ±[`SEARCH`] away
     /// would be above Nyquist.
     pub fn refine(&self) -> Option<Refinement> {
@@ -179,7 +185,6 @@ impl ShaftSpectrum {
             return None;
         }
         let (line, line_db) = peak_over_floor_db(psd, shaft_hz, SEARCH * shaft_hz, floor)?;
-        let offset = line.freq / shaft_hz - 1.0;
         // A shaft has harmonics: its 2× or 3× must stand too (within ±REFINE_MIN of that
         // multiple of the line). A wrong sample rate moves the true 1× 10–25 % away and can
         // leave some other lone line 1–5 % from the stated speed. Either of two, as a
@@ -189,14 +194,49 @@ impl ShaftSpectrum {
             line_within_db(psd, k * line.freq, k * REFINE_MIN * line.freq)
                 .is_some_and(|db| db >= LINE_DB)
         });
-        (harmonic && line_db >= LINE_DB && offset.abs() > REFINE_MIN && offset.abs() <= SEARCH)
-            .then_some(Refinement {
-                stated_hz: shaft_hz,
-                measured_hz: line.freq,
-                offset,
-                line_db,
-                resolution_hz: self.resolution_hz,
-            })
+        if !(harmonic && line_db >= LINE_DB) {
+            return None;
+        }
+        // The speed from the whole series, not the 1× alone (stop 57): the k-th harmonic
+        // resolves the shaft k times finer, and a non-shaft line beside the 1× weighs
+        // 1/Σk² of the fit (CWRU `OR007@12_1`: 1× read at 30.16 Hz, series at 29.94 Hz).
+        let (measured_hz, harmonics) = self.series_hz(line.freq);
+        let offset = measured_hz / shaft_hz - 1.0;
+        (offset.abs() > REFINE_MIN && offset.abs() <= SEARCH).then_some(Refinement {
+            stated_hz: shaft_hz,
+            measured_hz,
+            offset,
+            line_db,
+            harmonics,
+            resolution_hz: self.resolution_hz,
+        })
+    }
+
+    /// The shaft frequency (Hz) of the harmonic series whose 1× is near `f1`, and how many
+    /// of its first [`SERIES_HARMONICS`] lines it rests on: every harmonic `k` (below
+    /// Nyquist) with a line of [`LINE_DB`] within ±[`REFINE_MIN`] of `k·f1` gives a
+    /// frequency `f_k`, and the estimate is their least-squares fit `Σ k f_k / Σ k²` to
+    /// `f_k = k f` (equal errors in Hz: the k-th harmonic weighs k² times the 1×). Without
+    /// such a line, `f1` itself.
+    fn series_hz(&self, f1: f64) -> (f64, usize) {
+        let (mut num, mut den, mut n) = (0.0, 0.0, 0);
+        for k in 1..=SERIES_HARMONICS {
+            let fk = k as f64 * f1;
+            if fk * (1.0 + REFINE_MIN) >= 0.5 * self.fs {
+                break;
+            }
+            let line = line_within(&self.psd, fk, REFINE_MIN * fk, FLOOR_HALF_WIDTH * f1);
+            if let Some((p, _)) = line.filter(|&(_, db)| db >= LINE_DB) {
+                num += k as f64 * p.freq;
+                den += (k * k) as f64;
+                n += 1;
+            }
+        }
+        if n == 0 || den <= 0.0 {
+            (f1, 0)
+        } else {
+            (num / den, n)
+        }
     }
 }
 
@@ -244,13 +284,16 @@ fn shaft_spectrum(x: &[f64], fs: f64, shaft_hz: f64) -> Option<(Spectrum, f64)> 
 pub struct Refinement {
     /// Shaft frequency stated (argument, file, sidecar or configuration), Hz.
     pub stated_hz: f64,
-    /// Frequency of the measured 1× line (parabolic interpolation of the power spectrum),
-    /// Hz: the shaft frequency the diagnosis uses.
+    /// Measured shaft frequency, Hz: the least-squares fit to the lines of its series
+    /// (`harmonics` of them, each by parabolic interpolation of the power spectrum; see
+    /// [`ShaftSpectrum::refine`]), the shaft frequency the diagnosis uses.
     pub measured_hz: f64,
     /// `measured_hz / stated_hz − 1`.
     pub offset: f64,
     /// Height of the measured line over its ±15 % neighbourhood, dB (≥ [`LINE_DB`]).
     pub line_db: f64,
+    /// Lines of the shaft's series (1×–[`SERIES_HARMONICS`]×) `measured_hz` was fitted to.
+    pub harmonics: usize,
     /// Frequency resolution of the spectrum searched, Hz.
     pub resolution_hz: f64,
 }
@@ -272,9 +315,20 @@ fn line_height_db(psd: &Spectrum, f: f64) -> Option<f64> {
 /// exactly `f ± tol_hz` ([`peak_within`]: a window rounded out to whole bins of 1 % of the
 /// shaft would stretch ±1 % to ±1.67 %) over the median of its ±15 % neighbourhood.
 fn line_within_db(psd: &Spectrum, f: f64, tol_hz: f64) -> Option<f64> {
+    line_within(psd, f, tol_hz, FLOOR_HALF_WIDTH * f).map(|(_, db)| db)
+}
+
+/// The strongest local maximum within exactly `f ± tol_hz` and its height (dB) over the
+/// median of its `± floor_half_width_hz` neighbourhood.
+fn line_within(
+    psd: &Spectrum,
+    f: f64,
+    tol_hz: f64,
+    floor_half_width_hz: f64,
+) -> Option<(Peak, f64)> {
     let p = peak_within(psd, f, tol_hz)?;
-    let floor = noise_floor(psd, p.freq, FLOOR_HALF_WIDTH * f);
-    Some(ratio_db(psd.kind, p.value, floor))
+    let floor = noise_floor(psd, p.freq, floor_half_width_hz);
+    Some((p, ratio_db(psd.kind, p.value, floor)))
 }
 
 #[cfg(test)]
@@ -401,5 +455,26 @@ mod tests {
             (3.0 * f, 0.2),
         ]);
         assert!(refine(&masked, fs, stated).is_some());
+    }
+
+    /// The speed is the series', not the 1× line's: a machine whose shaft turns at
+    /// 29.94 Hz (1×–5× standing) beside a stronger non-shaft line at 30.2 Hz, stated at
+    /// 29.55 Hz (CWRU `OR007@12_1`'s case), is measured at the series to within 0.1 %,
+    /// where the 1× alone read the other line (0.9 % off); all five lines are used.
+    #[test]
+    fn the_speed_is_fitted_to_the_shaft_series() {
+        let fs = 12_000.0;
+        let n = (20.0 * fs) as usize;
+        let f = 29.94;
+        let mut x = gaussian_noise(n, 1.0, 5);
+        let parts = [(f, 0.15), (2.0 * f, 0.2), (3.0 * f, 0.2), (4.0 * f, 0.15)];
+        for (freq, amp) in parts.into_iter().chain([(5.0 * f, 0.15), (30.2, 0.3)]) {
+            for (v, s) in x.iter_mut().zip(sine(n, fs, freq, amp, 0.7)) {
+                *v += s;
+            }
+        }
+        let r = refine(&x, fs, 29.55).expect("refined");
+        assert!((r.measured_hz / f - 1.0).abs() < 0.001, "{r:?}");
+        assert_eq!(r.harmonics, SERIES_HARMONICS, "{r:?}");
     }
 }

@@ -48,8 +48,8 @@ pub struct GapArgs {
     /// Use the stated speed (`--rpm` or the file's) even when the record's shaft line is
     /// elsewhere (a tachometer's speed). Default: as `analyze`, a stated speed 1–5 % from the
     /// record's own 1× line (with its own 2× or 3×), with no line at the stated 1×, is
-    /// replaced by the line's (a
-    /// finding says so; `analysis::shaft_line::refine`).
+    /// replaced by the speed of the line's 1×–5× series (a finding says so;
+    /// `analysis::shaft_line::refine`).
     #[arg(long)]
     pub trust_rpm: bool,
     /// Defect of every record: `LOCATION:SIZE[:DEPTH]` with LOCATION none, inner, outer,

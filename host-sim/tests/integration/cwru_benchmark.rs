@@ -296,7 +296,8 @@ fn the_speed_check_accepts_the_true_rate_and_flags_wrong_ones(
 /// the stored speed) and keep their family — at the stated speed they were called ball or
 /// nothing (probe F). `--trust-rpm` keeps the stated speed. Record 279 stores the 3 hp
 /// speed, 1 732 rpm, for a 1 hp run; the data README measures its 1× line at 1 774 rpm, and
-/// so does `analyze`. Stored speeds the record confirms are kept.
+/// so does `analyze` (within 0.1 %: the speed is fitted to the shaft's series). Stored
+/// speeds the record confirms are kept.
 #[test]
 fn a_speed_a_few_percent_off_is_measured_from_the_shaft_line(
 ) -> Result<(), Box<dyn std::error::Error>> {
@@ -351,8 +352,16 @@ fn a_speed_a_few_percent_off_is_measured_from_the_shaft_line(
     let a = run("12k_Fan_End_IR007_1_279.mat", None, false)?;
     let r = a.speed_refined.ok_or("279: not refined")?;
     assert!((60.0 * r.stated_hz - 1732.0).abs() < 1e-9, "{r:?}");
-    assert!((a.rpm / 1774.0 - 1.0).abs() < 0.005, "{r:?}");
+    assert!((a.rpm / 1774.0 - 1.0).abs() < 0.001, "{r:?}");
     assert_eq!(a.diagnosis.family, FaultFamily::InnerRace);
+    // Record 158 stores 1 773 rpm; its full spectrum's shaft series says 1 796 and its BPFO
+    // line 1 803 (`docs/cwru-detector.md`). The 1× line alone read a stronger line beside it
+    // (1 810, 0.8 % over); the series' fit lands within 0.3 % (stop 57).
+    let a = run("12k_Drive_End_OR007@12_1_158.mat", None, false)?;
+    let r = a.speed_refined.ok_or("158: not refined")?;
+    assert!((a.rpm / 1796.0 - 1.0).abs() < 0.003, "{r:?}");
+    assert!(r.harmonics >= 3, "{r:?}");
+    assert_eq!(a.diagnosis.family, FaultFamily::OuterRace);
     assert_eq!(run("normal_0_97.mat", None, false)?.speed_refined, None);
     Ok(())
 }
