@@ -475,8 +475,10 @@ fn analyze_chosen(
         Some(r) => (
             analysis::shaft_line::REFINED_SOURCE.to_string(),
             format!(
-                "1x line at {:.3} Hz ({:.1} dB); the stated {stated_rpm:.0} rpm ({stated_source}: {stated_detail}) is {:+.1} % from it",
+                "shaft at {:.3} Hz (fitted to {} of its 1x-{}x lines; the 1x line {:.1} dB); the stated {stated_rpm:.0} rpm ({stated_source}: {stated_detail}) is {:+.1} % from it",
                 r.measured_hz,
+                r.harmonics,
+                analysis::shaft_line::SERIES_HARMONICS,
                 r.line_db,
                 -100.0 * r.offset / (1.0 + r.offset)
             ),

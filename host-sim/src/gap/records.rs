@@ -320,8 +320,10 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let (rpm, rpm_source) = match refined {
         Some(r) => {
             warnings.push(format!(
-                "speed refined: no shaft line at the stated {rpm:.0} rpm ({rpm_source}); the record's 1x line ({:.1} dB) is at {:.0} rpm ({:+.1} %), which the matched simulations use (--trust-rpm keeps the stated speed)",
+                "speed refined: no shaft line at the stated {rpm:.0} rpm ({rpm_source}); the record's shaft (its 1x line {:.1} dB, the speed fitted to {} of its 1x-{}x lines) turns at {:.0} rpm ({:+.1} %), which the matched simulations use (--trust-rpm keeps the stated speed)",
                 r.line_db,
+                r.harmonics,
+                analysis::shaft_line::SERIES_HARMONICS,
                 r.rpm(),
                 100.0 * r.offset
             ));
