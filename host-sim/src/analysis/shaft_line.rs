@@ -25,8 +25,9 @@
 //! 1 851 rpm instead of 1 797 was called ball at 0.98). When no line stands within
 //! ±[`REFINE_MIN`] of the stated 1× and the strongest line within ±[`SEARCH`] does, more
 //! than [`REFINE_MIN`] away, with a line at its own 2× or 3×, that line is the shaft, and the
-//! diagnosis uses it. Set a priori (not fitted on any record): ±5 % covers the full-load slip
-//! of standard induction motors; 1 % is half the slip window, an error the detector absorbs
+//! diagnosis uses the speed fitted to its 1×–5× series (stop 57). Set a priori (not fitted
+//! on any record): ±5 % covers the full-load slip of standard induction motors; 1 % is half
+//! the slip window, an error the detector absorbs
 //! and the spectrum's resolution (1 % of the shaft frequency) can just resolve. Windows are
 //! exact in the lines' interpolated frequencies (since stop 56; rounded out to whole bins,
 //! ±1 % reached ±1.67 %). The harmonic (stop 56): a wrong sample rate moves the true 1× 10–25 %
