@@ -167,9 +167,18 @@ pub fn peak_over_floor_db(
     tol_hz: f64,
     floor_half_width_hz: f64,
 ) -> Option<(Peak, f64)> {
-    let p = peak_near(s, f, tol_hz)?;
+    Some(over_floor_db(
+        s,
+        peak_near(s, f, tol_hz)?,
+        floor_half_width_hz,
+    ))
+}
+
+/// Peak `p` and its height in dB over the [`noise_floor`] (half-width
+/// `floor_half_width_hz`) around its own frequency.
+pub fn over_floor_db(s: &Spectrum, p: Peak, floor_half_width_hz: f64) -> (Peak, f64) {
     let floor = noise_floor(s, p.freq, floor_half_width_hz);
-    Some((p, ratio_db(s.kind, p.value, floor)))
+    (p, ratio_db(s.kind, p.value, floor))
 }
 
 #[cfg(test)]

@@ -35,7 +35,7 @@
 //! silencing [`check`]'s warning; a shaft shows harmonics (2× or 3×: a 4-pole 60 Hz motor's
 //! 2× lies a few percent from the 60 Hz line, which can mask it).
 
-use super::peaks::{noise_floor, peak_over_floor_db, peak_within, ratio_db, Peak};
+use super::peaks::{over_floor_db, peak_over_floor_db, peak_within};
 use super::spectrum::{welch_psd, Spectrum, WelchParams};
 use super::window::Window;
 use serde::Serialize;
@@ -226,7 +226,8 @@ impl ShaftSpectrum {
             if fk * (1.0 + REFINE_MIN) >= 0.5 * self.fs {
                 break;
             }
-            let line = line_within(&self.psd, fk, REFINE_MIN * fk, FLOOR_HALF_WIDTH * f1);
+            let line = peak_within(&self.psd, fk, REFINE_MIN * fk)
+                .map(|p| over_floor_db(&self.psd, p, FLOOR_HALF_WIDTH * f1));
             if let Some((p, _)) = line.filter(|&(_, db)| db >= LINE_DB) {
                 num += k as f64 * p.freq;
                 den += (k * k) as f64;
@@ -313,23 +314,11 @@ fn line_height_db(psd: &Spectrum, f: f64) -> Option<f64> {
 }
 
 /// Height (dB) of the strongest local maximum whose interpolated frequency lies within
-/// exactly `f ± tol_hz` ([`peak_within`]: a window rounded out to whole bins of 1 % of the
-/// shaft would stretch ±1 % to ±1.67 %) over the median of its ±15 % neighbourhood.
+/// exactly `f ± tol_hz` ([`peak_within`]: a window rounded out to whole bins
+/// of 1 % of the shaft would stretch ±1 % to ±1.67 %) over the median of its ±15 %
+/// neighbourhood.
 fn line_within_db(psd: &Spectrum, f: f64, tol_hz: f64) -> Option<f64> {
-    line_within(psd, f, tol_hz, FLOOR_HALF_WIDTH * f).map(|(_, db)| db)
-}
-
-/// The strongest local maximum within exactly `f ± tol_hz` and its height (dB) over the
-/// median of its `± floor_half_width_hz` neighbourhood.
-fn line_within(
-    psd: &Spectrum,
-    f: f64,
-    tol_hz: f64,
-    floor_half_width_hz: f64,
-) -> Option<(Peak, f64)> {
-    let p = peak_within(psd, f, tol_hz)?;
-    let floor = noise_floor(psd, p.freq, floor_half_width_hz);
-    Some((p, ratio_db(psd.kind, p.value, floor)))
+    peak_within(psd, f, tol_hz).map(|p| over_floor_db(psd, p, FLOOR_HALF_WIDTH * f).1)
 }
 
 #[cfg(test)]
