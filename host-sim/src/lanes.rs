@@ -116,7 +116,8 @@ pub const MAX_LANES: usize = 16;
 /// Stack size of a worker thread that may run lane groups (16 MiB). A
 /// `LaneGroup<16, _>` is built on the stack before it is boxed, and in a less optimised
 /// build (the Python extension's CI build is `opt-level = 1`) that needs more than std's
-/// 2 MiB thread default: a 16-record sweep killed its Python process with SIGSEGV.
+/// 2 MiB thread default: a 16-record sweep killed its Python process with SIGSEGV. A
+/// worker builds its groups on its own stack ([`on_worker_stack`]), one after another.
 pub const WORKER_STACK: usize = 16 << 20;
 
 /// Spawns `f` on a scoped worker thread with a [`WORKER_STACK`] stack and the caller's
@@ -129,20 +130,34 @@ pub fn spawn_worker<'scope, T: Send + 'scope>(
     let flag = crate::cancel::current();
     std::thread::Builder::new()
         .stack_size(WORKER_STACK)
-        .spawn_scoped(scope, move || match flag {
-            Some(flag) => crate::cancel::scope(flag, f),
-            None => f(),
+        .spawn_scoped(scope, move || {
+            ON_WORKER.set(true);
+            match flag {
+                Some(flag) => crate::cancel::scope(flag, f),
+                None => f(),
+            }
         })
 }
 
-/// Runs `f` on a scoped worker thread with a [`WORKER_STACK`] stack and returns its
-/// result (`None` when the thread cannot be started or panics). A lane group of 16 lanes
-/// is about 800 KB (every lane's state holds three anti-alias histories of
-/// `2·MAX_TAPS` reals since oversampling ratios up to 16), built on the stack before it is
-/// boxed: on a caller's thread of std's 2 MiB default (a test, a library user's thread) it
-/// overflowed. A thread start costs tens of microseconds against a group's milliseconds
-/// or more of stepping.
+thread_local! {
+    /// Whether this thread was started by [`spawn_worker`] (a [`WORKER_STACK`] stack).
+    static ON_WORKER: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with a [`WORKER_STACK`] stack and returns its result: on this thread when
+/// [`spawn_worker`] started it, else on a scoped worker thread (`None` when that thread
+/// cannot be started or panics). A lane group of 16 lanes is about 800 KB (every lane's
+/// state holds three anti-alias histories of `2·MAX_TAPS` reals since oversampling ratios
+/// up to 16), built on the stack before it is boxed: on a caller's thread of std's 2 MiB
+/// default (a test, a library user's thread) it overflowed. A thread per group cost little
+/// time to start but a fresh stack whose pages the kernel maps and zeroes on first touch,
+/// about 3 MB per group: a laned sweep took 247 000 minor page faults in 281 groups and
+/// 0.5–0.7 s of system time against 1.9 s of user time (stop 58); a worker's own stack is
+/// touched once.
 fn on_worker_stack<T: Send>(f: impl FnOnce() -> Option<T> + Send) -> Option<T> {
+    if ON_WORKER.get() {
+        return f();
+    }
     std::thread::scope(|s| spawn_worker(s, f).ok()?.join().ok()?)
 }
 
@@ -475,5 +490,19 @@ mod tests {
                 assert!(!own || *k >= 8, "a small group at own speeds: {g:?}");
             }
         }
+    }
+
+    /// A thread [`spawn_worker`] started runs its groups on its own stack (touched once,
+    /// not a fresh thread's per group); any other thread hands them to a worker.
+    #[test]
+    fn a_worker_runs_its_groups_on_its_own_stack() {
+        let here = std::thread::current().id();
+        let id = || Some(std::thread::current().id());
+        assert_ne!(on_worker_stack(id), Some(here));
+        std::thread::scope(|s| {
+            let worker = spawn_worker(s, || (std::thread::current().id(), on_worker_stack(id)));
+            let (me, ran_on) = worker.unwrap().join().unwrap();
+            assert_eq!(ran_on, Some(me));
+        });
     }
 }
