@@ -117,7 +117,7 @@ pub const MAX_LANES: usize = 16;
 /// `LaneGroup<16, _>` is built on the stack before it is boxed, and in a less optimised
 /// build (the Python extension's CI build is `opt-level = 1`) that needs more than std's
 /// 2 MiB thread default: a 16-record sweep killed its Python process with SIGSEGV. A
-/// worker builds its groups on its own stack ([`on_worker_stack`]), one after another.
+/// worker builds its groups on its own stack (`on_worker_stack`), one after another.
 pub const WORKER_STACK: usize = 16 << 20;
 
 /// Spawns `f` on a scoped worker thread with a [`WORKER_STACK`] stack and the caller's

@@ -26,7 +26,7 @@
 //! ±[`REFINE_MIN`] of the stated 1× and the strongest line within ±[`SEARCH`] does, more
 //! than [`REFINE_MIN`] away, with a line at its own 2× or 3×, that line is the shaft, and the
 //! diagnosis uses the speed fitted to its 1×–5× series (stop 57), a line more than a bin
-//! from the series dropped (stop 58, [`series_fit`]). Set a priori (not fitted
+//! from the series dropped (stop 58, `series_fit`). Set a priori (not fitted
 //! on any record): ±5 % covers the full-load slip of standard induction motors; 1 % is half
 //! the slip window, an error the detector absorbs
 //! and the spectrum's resolution (1 % of the shaft frequency) can just resolve. Windows are
