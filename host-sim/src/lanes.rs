@@ -152,7 +152,7 @@ thread_local! {
 /// default (a test, a library user's thread) it overflowed. A thread per group cost little
 /// time to start but a fresh stack whose pages the kernel maps and zeroes on first touch,
 /// about 3 MB per group: a laned sweep took 247 000 minor page faults in 281 groups and
-/// 0.5–0.7 s of system time against 1.9 s of user time (stop 58); a worker's own stack is
+/// 0.4–0.6 s of system time against 1.9 s of user time (stop 58); a worker's own stack is
 /// touched once.
 fn on_worker_stack<T: Send>(f: impl FnOnce() -> Option<T> + Send) -> Option<T> {
     if ON_WORKER.get() {

@@ -242,7 +242,7 @@ impl ShaftSpectrum {
 /// where harmonic `k` shows no line), `Σ k f_k / Σ k²`, and how many lines it rests on.
 /// A line farther than `bin_hz` (the spectrum's resolution) from `k` times the fit is not
 /// of the series — a line of other origin stronger than the harmonic in its ±1 % window
-/// (CWRU fan-end `IR021_3`: a line at 114.11 Hz where the 4× lies at 115.17 Hz, 3.7 bins
+/// (CWRU drive-end `IR021_3`: a line at 114.11 Hz where the 4× lies at 115.17 Hz, 3.7 bins
 /// away, read the speed 0.25 % low, stop 57) — while the interpolated frequency of a
 /// harmonic errs by a fraction of a bin (0.09 bin measured for Hann on a CWRU 1×, stop 57).
 /// So the farthest such line is dropped (set to `None`) and the rest refitted, as long as
@@ -504,7 +504,7 @@ mod tests {
 
     #[test]
     fn a_stray_line_in_a_harmonic_window_is_dropped_from_the_fit() {
-        // CWRU fan-end IR021_3's case: a line of other origin, stronger than the 4×, 2.5
+        // CWRU drive-end IR021_3's case: a line of other origin, stronger than the 4×, 2.5
         // bins below it inside the 4×'s ±1 % window.
         let fs = 12_000.0;
         let n = (20.0 * fs) as usize;
