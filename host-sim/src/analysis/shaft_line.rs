@@ -485,18 +485,28 @@ mod tests {
     /// 29.94 Hz (1×–5× standing) beside a stronger non-shaft line at 30.2 Hz, stated at
     /// 29.55 Hz (CWRU `OR007@12_1`'s case), is measured at the series to within 0.1 %,
     /// where the 1× alone read the other line (0.9 % off); all five lines are used.
-    #[test]
-    fn the_speed_is_fitted_to_the_shaft_series() {
-        let fs = 12_000.0;
+    /// Unit white noise (seed `seed`) with sines `(Hz, amplitude)`, 20 s at `fs`.
+    fn lines_in_noise(fs: f64, seed: u64, lines: &[(f64, f64)]) -> Vec<f64> {
         let n = (20.0 * fs) as usize;
-        let f = 29.94;
-        let mut x = gaussian_noise(n, 1.0, 5);
-        let parts = [(f, 0.15), (2.0 * f, 0.2), (3.0 * f, 0.2), (4.0 * f, 0.15)];
-        for (freq, amp) in parts.into_iter().chain([(5.0 * f, 0.15), (30.2, 0.3)]) {
+        let mut x = gaussian_noise(n, 1.0, seed);
+        for &(freq, amp) in lines {
             for (v, s) in x.iter_mut().zip(sine(n, fs, freq, amp, 0.7)) {
                 *v += s;
             }
         }
+        x
+    }
+
+    #[test]
+    fn the_speed_is_fitted_to_the_shaft_series() {
+        let fs = 12_000.0;
+        let f = 29.94;
+        let parts = [(f, 0.15), (2.0 * f, 0.2), (3.0 * f, 0.2), (4.0 * f, 0.15)];
+        let x = lines_in_noise(
+            fs,
+            5,
+            &[parts.as_slice(), &[(5.0 * f, 0.15), (30.2, 0.3)]].concat(),
+        );
         let r = refine(&x, fs, 29.55).expect("refined");
         assert!((r.measured_hz / f - 1.0).abs() < 0.001, "{r:?}");
         assert_eq!(r.harmonics, SERIES_HARMONICS, "{r:?}");
@@ -507,19 +517,11 @@ mod tests {
         // CWRU drive-end IR021_3's case: a line of other origin, stronger than the 4×, 2.5
         // bins below it inside the 4×'s ±1 % window.
         let fs = 12_000.0;
-        let n = (20.0 * fs) as usize;
         let f = 28.79;
-        let mut x = gaussian_noise(n, 1.0, 9);
         let bin = 0.01 * f;
         let parts = [(f, 0.3), (2.0 * f, 0.2), (3.0 * f, 0.2), (4.0 * f, 0.08)];
-        for (freq, amp) in parts
-            .into_iter()
-            .chain([(5.0 * f, 0.15), (4.0 * f - 2.5 * bin, 0.3)])
-        {
-            for (v, s) in x.iter_mut().zip(sine(n, fs, freq, amp, 0.7)) {
-                *v += s;
-            }
-        }
+        let stray = [(5.0 * f, 0.15), (4.0 * f - 2.5 * bin, 0.3)];
+        let x = lines_in_noise(fs, 9, &[parts.as_slice(), &stray].concat());
         let r = refine(&x, fs, 28.0).expect("refined");
         assert_eq!(r.harmonics, SERIES_HARMONICS - 1, "{r:?}");
         assert!((r.measured_hz / f - 1.0).abs() < 0.0005, "{r:?}");
