@@ -7,8 +7,7 @@ use super::matched::{Matched, MEMO};
 use super::memo::Memo;
 use super::validate::spec_of;
 use super::{CellSpec, Reference};
-use crate::analysis::stats::upper_median;
-use crate::analysis::{self, WelchParams};
+use crate::analysis;
 use crate::io::{self, mat::CwruFault, ReadOptions, Record};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -171,34 +170,6 @@ pub struct RealRecord {
     pub warnings: Vec<String>,
 }
 
-/// Shaft frequency (Hz) read from the spectrum: the strongest line within ±25 % of
-/// `nominal_hz` that stands at least 10 dB above the median of its neighbourhood; None
-/// when there is no such line (speed not estimable).
-pub fn estimate_shaft_hz(x: &[f64], fs: f64, nominal_hz: f64) -> Option<f64> {
-    let nperseg = (x.len() / 2).next_power_of_two().clamp(1024, 1 << 16);
-    let psd = analysis::welch_psd(
-        x,
-        fs,
-        &WelchParams {
-            nperseg,
-            ..WelchParams::default()
-        },
-    )
-    .ok()?;
-    let k0 = psd.bin_of(0.75 * nominal_hz).max(1);
-    let k1 = psd.bin_of(1.25 * nominal_hz);
-    let (k, v) = (k0..=k1)
-        .filter_map(|k| psd.values.get(k).map(|v| (k, *v)))
-        .max_by(|a, b| a.1.total_cmp(&b.1))?;
-    let w = ((5.0 / psd.df) as usize).max(3);
-    let nb: Vec<f64> = (k.saturating_sub(w)..=k + w)
-        .filter(|j| j.abs_diff(k) > 1)
-        .filter_map(|j| psd.values.get(j).copied())
-        .collect();
-    let med = upper_median(nb)?;
-    (v > 10.0 * med && med > 0.0).then(|| psd.freq(k))
-}
-
 /// What the command line says about every record.
 #[derive(Debug, Clone, Default)]
 pub struct Overrides {
@@ -296,7 +267,7 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
     let (rpm, rpm_source) = match (o.rpm, rec.rpm) {
         (Some(r), _) => (r, "argument"),
         (None, Some(r)) => (r, "file"),
-        (None, None) => match estimate_shaft_hz(&accel, fs, nominal) {
+        (None, None) => match analysis::shaft_line::find(&accel, fs, nominal) {
             Some(f) => (60.0 * f, "spectrum"),
             None => {
                 return Err(format!(
