@@ -119,7 +119,7 @@ fn run(command: Command) -> Result<(), CliError> {
 /// is given), prints any error and returns the exit code ([`exit`]). The subcommand runs
 /// on a worker thread ([`crate::lanes::spawn_worker`]), so that its lane groups are built
 /// on one stack touched once instead of a fresh thread's each (`gap --jobs 1`: 111 400
-/// minor page faults before, 20 900 after); here when no thread can be started.
+/// minor page faults before, 20 900 after), as the Python package's calls run.
 pub fn main() -> ExitCode {
     let args = match Cli::try_parse() {
         Ok(a) => a,
@@ -128,13 +128,12 @@ pub fn main() -> ExitCode {
     let command = args
         .command
         .unwrap_or(Command::Simulate(crate::cmd::args::SimulateArgs::default()));
-    let slot = std::sync::Mutex::new(Some(command));
-    let take = || slot.lock().ok().and_then(|mut c| c.take());
-    let ran = std::thread::scope(|s| {
-        let h = crate::lanes::spawn_worker(s, || take().map(dispatch)).ok()?;
-        Some(h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+    let result = std::thread::scope(|s| {
+        let worker = crate::lanes::spawn_worker(s, || dispatch(command));
+        match worker {
+            Ok(h) => h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)),
+            Err(e) => Err(CliError::run(format!("cannot start a worker thread: {e}"))),
+        }
     });
-    // No thread could start: here (the worker took nothing then).
-    let result = ran.flatten().or_else(|| take().map(dispatch));
-    exit::finish(result.unwrap_or_else(|| Err(CliError::run("the command was lost before it ran"))))
+    exit::finish(result)
 }
