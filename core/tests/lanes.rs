@@ -196,7 +196,15 @@ fn inner_race_lanes_with_effects_equal_the_scalar_step() {
                 _ => DefectModel::FiveStep,
             };
         }
-        effect(&mut c, "load-zone", f);
+        // One lane without the load zone, the others each with its own depth and
+        // zone width: the gains are taken for all lanes at once.
+        if i != 6 {
+            effect(&mut c, "load-zone", f);
+            if let Some(p) = c.effects.load_zone.as_mut() {
+                p.depth = 0.3 + 0.1 * i as Real;
+                p.epsilon = 0.25 + 0.1 * i as Real;
+            }
+        }
         effect(&mut c, "edge-shape", f);
         effect(&mut c, "sensor", f);
         if i % 2 == 0 {
@@ -291,6 +299,10 @@ fn ball_defect_lanes_equal_the_scalar_step() {
         c.radial_load *= f;
         if let Some(d) = c.defect.as_mut() {
             d.topography.length *= f;
+        }
+        // The load zone's gain follows the defective ball (at FTF) in lanes 1 and 2.
+        if i == 1 || i == 2 {
+            effect(&mut c, "load-zone", f);
         }
         c
     });
@@ -398,7 +410,9 @@ fn lanes_with_their_own_speed_fluctuation_equal_the_scalar_step() {
         if i != 5 {
             effect(&mut c, "speed-fluctuation", 0.5 + 0.3 * i as Real);
         }
-        effect(&mut c, "load-zone", f);
+        if i != 2 {
+            effect(&mut c, "load-zone", f);
+        }
         effect(&mut c, "sensor", f);
         if i % 2 == 0 {
             effect(&mut c, "transfer-path", f);

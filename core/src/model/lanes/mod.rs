@@ -137,6 +137,19 @@ struct LaneConsts<const K: usize> {
     g01: [Real; K],
     g10: [Real; K],
     g11: [Real; K],
+    /// The load-zone effect's gain per lane (`effects::load_zone::Params::gain`, Harris &
+    /// Kotzalas 2006 eq. 7.26): whether the lane has the effect, `1 − depth`, `depth` and
+    /// `2ε` (1 without the effect); and whether any lane has it.
+    zone_on: [bool; K],
+    zone_keep: [Real; K],
+    zone_depth: [Real; K],
+    zone_eps2: [Real; K],
+    zone_any: bool,
+}
+
+/// The load-zone effect of model `m`, if on.
+fn zone(m: &Model) -> Option<&crate::effects::load_zone::Params> {
+    m.cfg.effects.load_zone.as_ref()
 }
 
 /// K models stepped together (see the module documentation). `NB` is the element
@@ -207,6 +220,15 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
             g01: models.each_ref().map(|m| m.disc.gamma0[1]),
             g10: models.each_ref().map(|m| m.disc.gamma1[0]),
             g11: models.each_ref().map(|m| m.disc.gamma1[1]),
+            zone_on: models.each_ref().map(|m| m.cfg.effects.load_zone.is_some()),
+            zone_keep: models
+                .each_ref()
+                .map(|m| zone(m).map_or(1.0, |p| 1.0 - p.depth)),
+            zone_depth: models.each_ref().map(|m| zone(m).map_or(0.0, |p| p.depth)),
+            zone_eps2: models
+                .each_ref()
+                .map(|m| zone(m).map_or(1.0, |p| 2.0 * p.epsilon)),
+            zone_any: models.iter().any(|m| zone(m).is_some()),
         };
         let y = states.each_ref().map(|s| s.y);
         let words = states.each_ref().map(|s| s.rng.state_words());

@@ -8,7 +8,7 @@
 //! kinematics take the cheaper path of `super::step`, which computes them once.
 
 use super::super::{rotate, StepStats, ROUGH_DRAW_MARGIN};
-use super::step::{defect_terms, pow_3_2_lanes, settle_load, SqrtLanes};
+use super::step::{add_inside, defect_terms, pow_3_2_lanes, settle_load, SqrtLanes};
 use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
 use crate::forces::Kinematics;
@@ -155,28 +155,37 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                     let cos_rel = cos_t * dc + s * ds;
                     *w = *on & (cos_rel > *wc);
                 }
-                let any_inside = inside.iter().any(|w| *w);
-                for l in (0..K).take(if any_inside { K } else { 0 }) {
-                    let (Some(m), Some(st), Some((k, _)), Some(true), Some(s)) = (
-                        models.get(l),
-                        self.states.get(l),
-                        own.get(l),
-                        inside.get(l).copied(),
-                        sin_t.get(l).copied(),
-                    ) else {
-                        continue;
-                    };
-                    let bt = ball.get(l).copied().unwrap_or_default();
-                    if let (Some((u, dd, a)), Some(dl), Some(ul), Some(al)) = (
-                        defect_terms(m, st, k, e, *elem_angle, s, is_ball, bt),
-                        delta.get_mut(l),
-                        unload.get_mut(l),
-                        add.get_mut(l),
-                    ) {
-                        *dl += dd;
-                        *ul = u;
-                        *al = a;
+                if inside.iter().any(|w| *w) {
+                    let mut dd = [0.0; K];
+                    for l in 0..K {
+                        let (Some(m), Some(st), Some((k, _)), Some(w)) = (
+                            models.get(l),
+                            self.states.get(l),
+                            own.get(l),
+                            inside.get_mut(l),
+                        ) else {
+                            continue;
+                        };
+                        if !*w {
+                            continue;
+                        }
+                        let bt = ball.get(l).copied().unwrap_or_default();
+                        match (
+                            defect_terms(m, st, k, e, *elem_angle, is_ball, bt),
+                            unload.get_mut(l),
+                            dd.get_mut(l),
+                            add.get_mut(l),
+                        ) {
+                            (Some((u, d, a)), Some(ul), Some(dl), Some(al)) => {
+                                (*ul, *dl, *al) = (u, d, a);
+                            }
+                            _ => *w = false,
+                        }
                     }
+                    if c.zone_any {
+                        c.zone_scale(&sin_t, &inside, [&mut unload, &mut dd, &mut add], sqrt);
+                    }
+                    add_inside(&mut delta, &dd, &inside);
                 }
             }
             let mut q = [0.0; K];

@@ -54,10 +54,10 @@ impl<const K: usize> SqrtLanes<K> for LibmSqrt {
 }
 
 /// The defect's terms `(unload, extra deflection (m), additive force (N))` on element `e`
-/// (at `elem_angle`, `sin θ = sin_t`) of a lane running `m` with state `st` and kinematics
-/// `k`, scaled by the load-zone effect: the scalar step's defect block (`ball`: the ball
-/// defect's terms when `is_ball`). `None` without a defect.
-#[allow(clippy::too_many_arguments)]
+/// (at `elem_angle`) of a lane running `m` with state `st` and kinematics `k`: the scalar
+/// step's defect block (`ball`: the ball defect's terms when `is_ball`) before the
+/// load-zone gain, which `LaneConsts::zone_scale` applies to all lanes at once. `None`
+/// without a defect.
 #[inline(always)]
 pub(super) fn defect_terms<const NB: usize>(
     m: &Model,
@@ -65,25 +65,17 @@ pub(super) fn defect_terms<const NB: usize>(
     k: &Kinematics,
     e: usize,
     elem_angle: Real,
-    sin_t: Real,
     is_ball: bool,
     ball: (Real, Real, Real),
 ) -> Option<(Real, Real, Real)> {
     let d = m.cfg.defect?;
     let slip = st.slip.get(e).copied().unwrap_or(0.0);
     let theta = k.cage_angle + elem_angle + slip;
-    let (mut u, mut dd, mut a) = if is_ball {
+    Some(if is_ball {
         ball
     } else {
         race_terms(d, &st.shape, st.tail, k, theta)
-    };
-    if let Some(p) = &m.cfg.effects.load_zone {
-        let gz = p.gain(sin_t);
-        u *= gz;
-        a *= gz;
-        dd *= gz;
-    }
-    Some((u, dd, a))
+    })
 }
 
 /// An element's Hertz load `q` (N) after the defect's unloading `unload` and additive force
@@ -111,6 +103,63 @@ pub(super) fn settle_load(
         *defect_load
     };
     qa
+}
+
+/// `delta += dd` in the lanes that are `inside` the defect's window (the others keep their
+/// bits, a `−0` included).
+#[inline(always)]
+pub(super) fn add_inside<const K: usize>(
+    delta: &mut [Real; K],
+    dd: &[Real; K],
+    inside: &[bool; K],
+) {
+    for ((d, x), w) in delta.iter_mut().zip(dd).zip(inside) {
+        if *w {
+            *d += *x;
+        }
+    }
+}
+
+impl<const K: usize> super::LaneConsts<K> {
+    /// Scales the defect `terms` (unload, extra deflection, additive force) of the lanes
+    /// `inside` the defect's window that have the load-zone effect by its gain at `cos ψ =
+    /// sin θ` of each lane (`sin_t`): `g = (1 − m) + m·max(0, 1 − (1 − cos ψ)/(2ε))^{3/2}`,
+    /// [`crate::effects::load_zone::Params::gain`]'s operations in its order, the square
+    /// roots of all lanes at once by `sqrt`, as the scalar step scales each term.
+    #[inline(always)]
+    pub(super) fn zone_scale<S: SqrtLanes<K>>(
+        &self,
+        sin_t: &[Real; K],
+        inside: &[bool; K],
+        terms: [&mut [Real; K]; 3],
+        sqrt: &S,
+    ) {
+        let mut x = [0.0; K];
+        for ((xi, s), e2) in x.iter_mut().zip(sin_t).zip(&self.zone_eps2) {
+            *xi = 1.0 - (1.0 - *s) / *e2;
+        }
+        let p = pow_3_2_lanes(&x, sqrt);
+        let mut g = [1.0; K];
+        for (((((gi, keep), m), pl), on), w) in g
+            .iter_mut()
+            .zip(&self.zone_keep)
+            .zip(&self.zone_depth)
+            .zip(&p)
+            .zip(&self.zone_on)
+            .zip(inside)
+        {
+            if *on & *w {
+                *gi = *keep + *m * *pl;
+            }
+        }
+        for t in terms {
+            for ((v, gi), (on, w)) in t.iter_mut().zip(&g).zip(self.zone_on.iter().zip(inside)) {
+                if *on & *w {
+                    *v *= *gi;
+                }
+            }
+        }
+    }
 }
 
 impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
@@ -623,28 +672,39 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                 let cos_t = cc * ce - sc * se;
                 let cos_rel = cos_t * dc + sin_t * ds;
                 if cos_rel > window_min {
+                    let mut dd = [0.0; K];
+                    let mut inside = [false; K];
                     for l in 0..K {
-                        let (Some(m), Some(st), Some(dl), Some(ul), Some(al), Some(bt)) = (
-                            models.get(l),
-                            self.states.get(l),
-                            delta.get_mut(l),
-                            unload.get_mut(l),
-                            add.get_mut(l),
-                            ball.get(l),
-                        ) else {
+                        let (Some(m), Some(st), Some(bt)) =
+                            (models.get(l), self.states.get(l), ball.get(l))
+                        else {
                             continue;
                         };
                         if cos_rel <= st.window_cos {
                             continue;
                         }
-                        let Some((u, dd, a)) =
-                            defect_terms(m, st, k, e, *elem_angle, sin_t, is_ball, *bt)
-                        else {
+                        let (Some((u, d, a)), Some(ul), Some(dl), Some(al), Some(w), Some(x)) = (
+                            defect_terms(m, st, k, e, *elem_angle, is_ball, *bt),
+                            unload.get_mut(l),
+                            dd.get_mut(l),
+                            add.get_mut(l),
+                            inside.get_mut(l),
+                            delta.get_mut(l),
+                        ) else {
                             continue;
                         };
-                        *dl += dd;
-                        *ul = u;
-                        *al = a;
+                        (*ul, *al, *w) = (u, a, true);
+                        // Without a load zone in the group the extra deflection goes in
+                        // at once (the gains would all be 1).
+                        if c.zone_any {
+                            *dl = d;
+                        } else {
+                            *x += d;
+                        }
+                    }
+                    if c.zone_any {
+                        c.zone_scale(&[sin_t; K], &inside, [&mut unload, &mut dd, &mut add], sqrt);
+                        add_inside(&mut delta, &dd, &inside);
                     }
                 }
             }
