@@ -34,7 +34,8 @@ pub(super) fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt
 /// Square roots of K lanes at once. Every implementation must return IEEE-754's
 /// correctly rounded `√x` of each lane (as libm's does), so that the lanes keep the
 /// scalar step's bits: a host may supply one that uses packed SIMD instructions
-/// (`sqrtpd`), which the core, free of `unsafe`, cannot call.
+/// (`sqrtpd`), which the core, whose only `unsafe` is its scalar x86-64 square root, does
+/// not call.
 pub trait SqrtLanes<const K: usize> {
     /// Replaces every element of `x` (≥ 0) by its square root.
     fn sqrt_lanes(&self, x: &mut [Real; K]);
