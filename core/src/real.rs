@@ -6,7 +6,8 @@
 //! `wearsim_core_f32::Model`), so every feature stays additive and both can be linked into one
 //! program and tested on the host. All
 //! transcendental functions go through `libm` (pure Rust, identical results on every
-//! target for the same type). With the `fast-math` feature, sine and cosine come from
+//! target for the same type; square roots, correctly rounded everywhere, on x86-64 by the SSE2
+//! intrinsic, see `sqrt_f64`). With the `fast-math` feature, sine and cosine come from
 //! `micromath` (single precision only; max abs error 1.1·10⁻³, measured by `tests/fast_math.rs`); its square root
 //! is not used: its 6 % relative error would become a 9 % error of every Hertz force.
 
@@ -162,16 +163,29 @@ pub fn sin_cos(x: Real) -> (Real, Real) {
 }
 
 /// `x^{3/2}` for `x ≥ 0` as `x·√x` (Hertz point contact), 0 for `x ≤ 0`. A branch, not a
-/// select: an element out of contact skips the square root (with `sqrt` visible to the
-/// compiler as an intrinsic it would otherwise take the root of every element and select,
-/// 9 % slower on the scalar ball-defect scenario; the hint keeps the branch).
+/// select: an element out of contact skips the square root. The root is libm's (opaque to
+/// the optimiser on x86-64, where [`sqrt`] is an intrinsic that LLVM would take for every
+/// element and select: 9 % slower on the scalar ball-defect scenario). The lanes' Hertz
+/// loads take their roots packed (`pow_3_2_lanes`), so this one stays out of AVX code.
 #[inline(always)]
 pub fn pow_3_2(x: Real) -> Real {
     if x > 0.0 {
-        x * sqrt(x)
+        x * sqrt_libm(x)
     } else {
-        core::hint::cold_path();
         0.0
+    }
+}
+
+/// libm's square root of [`Real`] (the same value as [`sqrt`]).
+#[inline(always)]
+fn sqrt_libm(x: Real) -> Real {
+    #[cfg(not(wearsim_f32))]
+    {
+        libm::sqrt(x)
+    }
+    #[cfg(wearsim_f32)]
+    {
+        libm::sqrtf(x)
     }
 }
 

@@ -220,7 +220,7 @@ impl<'a, const K: usize, const NB: usize> LaneGroup<'a, K, NB> {
             g01: models.each_ref().map(|m| m.disc.gamma0[1]),
             g10: models.each_ref().map(|m| m.disc.gamma1[0]),
             g11: models.each_ref().map(|m| m.disc.gamma1[1]),
-            zone_on: models.each_ref().map(|m| m.cfg.effects.load_zone.is_some()),
+            zone_on: models.each_ref().map(|m| zone(m).is_some()),
             zone_keep: models
                 .each_ref()
                 .map(|m| zone(m).map_or(1.0, |p| 1.0 - p.depth)),
