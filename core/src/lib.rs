@@ -17,7 +17,7 @@
 //! allowed range; after validation nothing in the step can panic (proved at link time by
 //! `firmware-stub/nopanic`: an image that links only if no panic is reachable).
 #![no_std]
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 #![deny(missing_docs)]
 // `Real` is f64 or f32 by package (`wearsim-core-f32`): casts that are no-ops in one build are needed in the other.
 #![allow(clippy::unnecessary_cast)]

@@ -6,8 +6,7 @@
 //! `wearsim_core_f32::Model`), so every feature stays additive and both can be linked into one
 //! program and tested on the host. All
 //! transcendental functions go through `libm` (pure Rust, identical results on every
-//! target for the same type; square roots, correctly rounded everywhere, on x86-64 by the SSE2
-//! intrinsic, see `sqrt_f64`). With the `fast-math` feature, sine and cosine come from
+//! target for the same type). With the `fast-math` feature, sine and cosine come from
 //! `micromath` (single precision only; max abs error 1.1·10⁻³, measured by `tests/fast_math.rs`); its square root
 //! is not used: its 6 % relative error would become a 9 % error of every Hertz force.
 
@@ -32,67 +31,6 @@ pub const SQRT_3: Real = 1.732_050_807_568_877_3_f64 as Real;
 pub const HALF_SQRT_3: Real = 0.866_025_403_784_438_6_f64 as Real;
 /// Standard gravity g₀ (m/s²), CGPM 1901, used to express acceleration in g.
 pub const STANDARD_GRAVITY: Real = 9.806_65;
-
-/// √x of `f64`, correctly rounded (IEEE 754). On x86-64 by the SSE2 intrinsic, so that the
-/// compiler chooses the instruction's encoding: libm's x86-64 `sqrt` is inline assembly, a
-/// legacy-SSE `sqrtsd`, and inlined into code built for AVX (the host's lane stepper) it
-/// mixes legacy SSE with 256-bit AVX state, which Intel cores penalise on every such
-/// instruction — 16 lanes at a varying speed (a square root per lane and step for the
-/// roughness amplitude) ran at 0.64× of one scenario at a time on an Intel Xeon, 3.7×
-/// with the intrinsic (`wearsim bench --lanes 16`, docs/python.md). LLVM emits `vsqrtsd`
-/// there and `sqrtsd` elsewhere: the same result, bit for bit.
-#[cfg(not(wearsim_f32))]
-#[inline(always)]
-fn sqrt_f64(x: f64) -> f64 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        sse2::sqrt_sd(x)
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-    {
-        libm::sqrt(x)
-    }
-}
-
-/// √x of `f32`, correctly rounded; on x86-64 by the SSE intrinsic (see `sqrt_f64`).
-#[cfg(wearsim_f32)]
-#[inline(always)]
-fn sqrt_f32(x: f32) -> f32 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-    {
-        sse2::sqrt_ss(x)
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-    {
-        libm::sqrtf(x)
-    }
-}
-
-/// The core's only `unsafe`: the x86-64 square-root intrinsics, which `core::arch` marks
-/// unsafe because they need a target feature. Compiled only where the build enables SSE2
-/// (every x86-64 target that has floating-point registers), so the instructions exist; they
-/// take and return values, touch no memory and cannot fault.
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-#[allow(unsafe_code, dead_code)]
-mod sse2 {
-    use core::arch::x86_64::{
-        _mm_cvtsd_f64, _mm_cvtss_f32, _mm_set_sd, _mm_set_ss, _mm_sqrt_pd, _mm_sqrt_ps,
-    };
-
-    /// √x (f64) by `sqrtsd`/`vsqrtsd`.
-    #[inline(always)]
-    pub fn sqrt_sd(x: f64) -> f64 {
-        // SAFETY: SSE2 is enabled for this build (the module's cfg); value operands only.
-        unsafe { _mm_cvtsd_f64(_mm_sqrt_pd(_mm_set_sd(x))) }
-    }
-
-    /// √x (f32) by `sqrtss`/`vsqrtss`.
-    #[inline(always)]
-    pub fn sqrt_ss(x: f32) -> f32 {
-        // SAFETY: SSE (part of SSE2) is enabled for this build; value operands only.
-        unsafe { _mm_cvtss_f32(_mm_sqrt_ps(_mm_set_ss(x))) }
-    }
-}
 
 macro_rules! math_fns {
     ($($(#[$doc:meta])* $name:ident($($arg:ident),+) => $f64:path, $f32:path, $fast:path;)*) => {
@@ -125,7 +63,7 @@ mod fast {
 
 math_fns! {
     /// Square root.
-    sqrt(x) => sqrt_f64, sqrt_f32, sqrt_f32;
+    sqrt(x) => libm::sqrt, libm::sqrtf, libm::sqrtf;
     /// Sine (argument in rad).
     sin(x) => libm::sin, libm::sinf, fast::sin;
     /// Cosine (argument in rad).
@@ -162,30 +100,13 @@ pub fn sin_cos(x: Real) -> (Real, Real) {
     }
 }
 
-/// `x^{3/2}` for `x ≥ 0` as `x·√x` (Hertz point contact), 0 for `x ≤ 0`. A branch, not a
-/// select: an element out of contact skips the square root. The root is libm's (opaque to
-/// the optimiser on x86-64, where [`sqrt`] is an intrinsic that LLVM would take for every
-/// element and select: 9 % slower on the scalar ball-defect scenario). The lanes' Hertz
-/// loads take their roots packed (`pow_3_2_lanes`), so this one stays out of AVX code.
+/// `x^{3/2}` for `x ≥ 0` as `x·√x` (Hertz point contact), 0 for `x ≤ 0`.
 #[inline(always)]
 pub fn pow_3_2(x: Real) -> Real {
     if x > 0.0 {
-        x * sqrt_libm(x)
+        x * sqrt(x)
     } else {
         0.0
-    }
-}
-
-/// libm's square root of [`Real`] (the same value as [`sqrt`]).
-#[inline(always)]
-fn sqrt_libm(x: Real) -> Real {
-    #[cfg(not(wearsim_f32))]
-    {
-        libm::sqrt(x)
-    }
-    #[cfg(wearsim_f32)]
-    {
-        libm::sqrtf(x)
     }
 }
 

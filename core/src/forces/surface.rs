@@ -71,8 +71,22 @@ impl Roughness {
     /// Per-step standard deviation of the roughness height (m) at internal step `h` (s),
     /// rolling speed `v` (m/s) and debris level `debris`.
     pub fn step_sigma(&self, h: Real, v: Real, debris: Real) -> Real {
+        self.sigma_from_root(debris, crate::real::sqrt(self.step_ratio(h, v)))
+    }
+
+    /// The correlation ratio under [`Roughness::step_sigma`]'s square root: `τ/h` with
+    /// `τ = λ/v` the time to roll one wavelength, at most 1.
+    pub fn step_ratio(&self, h: Real, v: Real) -> Real {
         let tau = if v > 0.0 { self.wavelength / v } else { h };
-        let ratio = if tau >= h { 1.0 } else { tau / h };
-        self.rms * (1.0 + self.debris_gain * debris) * crate::real::sqrt(ratio)
+        if tau >= h {
+            1.0
+        } else {
+            tau / h
+        }
+    }
+
+    /// [`Roughness::step_sigma`] from the square root `root` of its [`Roughness::step_ratio`].
+    pub fn sigma_from_root(&self, debris: Real, root: Real) -> Real {
+        self.rms * (1.0 + self.debris_gain * debris) * root
     }
 }

@@ -512,12 +512,26 @@ impl Model {
     /// debris of `topography` (see [`Roughness::step_sigma`]); constant-speed models cache it
     /// in the state, because its square root costs more than the draw on an M4F.
     pub(super) fn rough_sigma(&self, shaft_hz: Real, topography: Option<Topography>) -> Real {
+        self.rough_sigma_from_root(topography, crate::real::sqrt(self.rough_ratio(shaft_hz)))
+    }
+
+    /// The ratio whose square root [`Model::rough_sigma`] takes ([`Roughness::step_ratio`]
+    /// at the rolling speed of `shaft_hz`); 1 without roughness.
+    pub(super) fn rough_ratio(&self, shaft_hz: Real) -> Real {
+        let Some(r) = self.cfg.roughness else {
+            return 1.0;
+        };
+        r.step_ratio(self.h, TAU * shaft_hz * self.orders.ftf * self.outer_radius)
+    }
+
+    /// [`Model::rough_sigma`] from the square root `root` of its [`Model::rough_ratio`] (the
+    /// lanes take the roots of all lanes at once).
+    pub(super) fn rough_sigma_from_root(&self, topography: Option<Topography>, root: Real) -> Real {
         let Some(r) = self.cfg.roughness else {
             return 0.0;
         };
-        let v = TAU * shaft_hz * self.orders.ftf * self.outer_radius;
         let debris = topography.map(|t| t.debris).unwrap_or(0.0);
-        r.step_sigma(self.h, v, debris) * crate::real::SQRT_3 * self.rough_scale
+        r.sigma_from_root(debris, root) * crate::real::SQRT_3 * self.rough_scale
     }
 
     /// Shaft frequency (Hz) at time `t` (s): the speed profile, modulated by the

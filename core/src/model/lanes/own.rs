@@ -83,7 +83,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         });
         let rough_on = m0.cfg.roughness.is_some();
         let sigma = if rough_on {
-            self.rough_sigmas()
+            self.rough_sigmas(sqrt)
         } else {
             [0.0; K]
         };

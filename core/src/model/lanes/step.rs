@@ -34,8 +34,7 @@ pub(super) fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt
 /// Square roots of K lanes at once. Every implementation must return IEEE-754's
 /// correctly rounded `√x` of each lane (as libm's does), so that the lanes keep the
 /// scalar step's bits: a host may supply one that uses packed SIMD instructions
-/// (`sqrtpd`), which the core, whose only `unsafe` is its scalar x86-64 square root, does
-/// not call.
+/// (`sqrtpd`), which the core, free of `unsafe`, cannot call.
 pub trait SqrtLanes<const K: usize> {
     /// Replaces every element of `x` (≥ 0) by its square root.
     fn sqrt_lanes(&self, x: &mut [Real; K]);
@@ -490,13 +489,28 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
 
     /// Every lane's roughness amplitude of this step (m): the state's at a constant speed,
     /// else from the lane's shaft rate and topography, scaled by running-in.
-    pub(super) fn rough_sigmas(&self) -> [Real; K] {
+    pub(super) fn rough_sigmas<S: SqrtLanes<K>>(&self, sqrt: &S) -> [Real; K] {
+        // At a varying speed the amplitude's square root is taken for all lanes at once
+        // (one per lane and step, lane by lane, was most of a varying-speed group's time on
+        // an Intel Xeon: libm's legacy-SSE `sqrtsd` inside AVX code, docs/python.md).
+        let mut root = [1.0; K];
+        for ((r, m), st) in root.iter_mut().zip(self.models).zip(&self.states) {
+            if m.rot.is_none() {
+                *r = m.rough_ratio(st.shaft_hz);
+            }
+        }
+        sqrt.sqrt_lanes(&mut root);
         let mut sigma = [0.0; K];
-        for ((s, m), st) in sigma.iter_mut().zip(self.models).zip(&self.states) {
+        for (((s, m), st), r) in sigma
+            .iter_mut()
+            .zip(self.models)
+            .zip(&self.states)
+            .zip(&root)
+        {
             *s = if m.rot.is_some() {
                 st.rough_sigma
             } else {
-                m.rough_sigma(st.shaft_hz, st.topography) * st.run_in
+                m.rough_sigma_from_root(st.topography, *r) * st.run_in
             };
         }
         sigma
@@ -616,7 +630,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         }
         let is_ball = location.is_some_and(|l| l.is_ball());
         let sigma = if rough_on {
-            self.rough_sigmas()
+            self.rough_sigmas(sqrt)
         } else {
             [0.0; K]
         };
