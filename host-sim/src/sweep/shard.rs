@@ -244,10 +244,16 @@ params = { noise = { uniform = [0.01, 0.2] } }
             "records 0 and 2 should share lanes: {:?}",
             wearsim_core::model::lanes::shareable(&a.model, &b.model, 1)
         );
-        let laned = simulate_records(&spec, &cells, 0, 10).expect("laned");
-        assert_eq!(laned.len(), 10);
+        assert_laned_equal_alone(&spec, 10);
+    }
+
+    /// Simulates records `0..n` of `spec` together and one by one; asserts the bits agree.
+    fn assert_laned_equal_alone(spec: &SweepSpec, n: u64) {
+        let cells = cells(spec);
+        let laned = simulate_records(spec, &cells, 0, n).expect("laned");
+        assert_eq!(laned.len() as u64, n);
         for (i, x) in laned.iter().enumerate() {
-            let alone = simulate_record(&spec, &cells, i as u64).expect("alone");
+            let alone = simulate_record(spec, &cells, i as u64).expect("alone");
             assert_eq!(x.len(), 600);
             assert!(
                 x.iter()
@@ -256,5 +262,34 @@ params = { noise = { uniform = [0.01, 0.2] } }
                 "record {i} differs between lanes and alone"
             );
         }
+    }
+
+    /// Records that each carry their own speed fluctuation (every record at its own varying
+    /// speed) pool in a lane group at their own speeds and give the bytes of records run one
+    /// by one (twenty records, two faults alternating: per fault one group of 8 and two
+    /// records alone).
+    #[test]
+    fn records_at_their_own_varying_speed_pool_and_equal_records_run_alone() {
+        let spec = crate::sweep::test_spec(
+            "seed = 13\nrecords = 20\nrecords_per_shard = 20\nduration = 0.05",
+            r#"
+[[effect]]
+name = "speed-fluctuation"
+probability = 1.0
+params = { amplitude = { uniform = [0.001, 0.01] }, jitter = { uniform = [0.0, 0.01] } }
+"#,
+        );
+        let cells = cells(&spec);
+        let scs: Vec<_> = (0..20)
+            .map(|i| scenario(&spec, &cells, i).expect("record"))
+            .collect();
+        let share = |a: usize, b: usize| crate::lanes::can_share(&scs[a], &scs[b]);
+        assert_eq!(share(0, 2), crate::lanes::Sharing::OwnSpeed);
+        let plan = crate::lanes::plan(scs.len(), share);
+        assert!(
+            plan.iter().any(|(k, g)| *k == 8 && g.len() == 8),
+            "no group of 8 at their own speeds: {plan:?}"
+        );
+        assert_laned_equal_alone(&spec, 20);
     }
 }
