@@ -13,13 +13,15 @@
 //!
 //! The model is split after what each part holds: [`config`] (what a run is, and its
 //! validation into a [`Model`]), [`state`] (what evolves, with the one field list the
-//! checkpoint reuses), `step` (the equation of motion advanced by one internal step) and
-//! `defect_term` (the defect formulations, one term shared by race and ball defects).
+//! checkpoint reuses), `step` (the equation of motion advanced by one internal step),
+//! `slip_redraw` (the elements' slip offsets, redrawn once per pass) and `defect_term` (the
+//! defect formulations, one term shared by race and ball defects).
 
 pub mod config;
 mod defect_term;
 pub mod lanes;
 mod output;
+mod slip_redraw;
 pub mod state;
 mod step;
 

@@ -20,6 +20,7 @@
 //! caller falls back to the scalar step.
 
 mod check;
+mod hertz;
 mod own;
 mod step;
 

@@ -8,7 +8,8 @@
 //! kinematics take the cheaper path of `super::step`, which computes them once.
 
 use super::super::{rotate, StepStats, ROUGH_DRAW_MARGIN};
-use super::step::{add_inside, defect_terms, pow_3_2_lanes, settle_load, SqrtLanes};
+use super::hertz::{packed_hertz, set_loads, settle_load};
+use super::step::{add_inside, defect_terms, element_tables, SqrtLanes};
 use super::LaneGroup;
 use crate::forces::defect::DefectLocation;
 use crate::forces::Kinematics;
@@ -88,15 +89,12 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             [0.0; K]
         };
         let window_cos = self.states.each_ref().map(|s| s.window_cos);
-        let fast_hertz =
-            !crate::real::SINGLE_PRECISION && m0.contact.kind == crate::bearing::ContactKind::Point;
+        let fast_hertz = packed_hertz(m0);
         let y = self.y;
         let c = &self.c;
         let mut max_load = [0.0; K];
         let mut defect_load = [0.0; K];
-        let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
-        let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
-        let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
+        let (ecs_all, wcs_all, ang_all) = element_tables(m0, n);
         // The generators in a local for the loop: drawn in place in the group, each lane's
         // words went through memory between two elements with stores and loads of unequal
         // widths (a store-forwarding stall per draw, the sweep's hottest instruction).
@@ -188,27 +186,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                     add_inside(&mut delta, &dd, &inside);
                 }
             }
-            let mut q = [0.0; K];
-            if fast_hertz {
-                let p = pow_3_2_lanes(&delta, sqrt);
-                for ((qi, s), pi) in q.iter_mut().zip(&c.stiffness).zip(&p) {
-                    *qi = *s * *pi;
-                }
-            } else {
-                // The cached inverse square root of `f32` builds moves only where the
-                // scalar step evaluates the load.
-                for ((((qi, dl), m), st), on) in q
-                    .iter_mut()
-                    .zip(&delta)
-                    .zip(models)
-                    .zip(&self.states)
-                    .zip(&active)
-                {
-                    if let (true, Some(cell)) = (*on, st.rsqrt.get(e)) {
-                        *qi = m.hertz(*dl, cell);
-                    }
-                }
-            }
+            let mut q = self.hertz_loads(&delta, e, &active, fast_hertz, sqrt);
             // A lane out of contact adds a zero load (its unload and add are zero): the
             // largest loads keep their values and `fy − 0·sin θ` is `fy` (never −0 here), so
             // the sums equal skipping the element in that lane, without a branch per lane.
@@ -228,10 +206,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             }
         }
         self.rng = rng;
-        for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
-            s.max_load = m;
-            s.defect_load = d;
-        }
+        set_loads(stats, max_load, defect_load);
         fy
     }
 }

@@ -3,33 +3,15 @@
 //! computed once.
 
 use super::super::defect_term::race_terms;
-use super::super::step::redraw_slips;
+use super::super::slip_redraw::{redraw_slips, SLIP_CHECK_EVERY};
 use super::super::{rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
+use super::hertz::{packed_hertz, pow_3_2_lanes, set_loads, settle_load};
 use super::LaneGroup;
 use crate::forces::defect::{DefectConfig, DefectLocation};
 use crate::forces::{ForceDiagram, Kinematics};
 use crate::integrate::IntegratorKind;
 use crate::real::{angle_diff, Real, PI};
 use crate::rng::{uniform_pm1_lanes, Xoshiro128pp};
-
-/// Steps between two checks of the slip bookkeeping (as the scalar step).
-const SLIP_CHECK_EVERY: u64 = 8;
-
-/// `x^{3/2}` per lane (`x·√x` for `x > 0`, else 0), as [`crate::real::pow_3_2`], with
-/// the square roots taken by `sqrt`.
-#[inline(always)]
-pub(super) fn pow_3_2_lanes<const K: usize, S: SqrtLanes<K>>(x: &[Real; K], sqrt: &S) -> [Real; K] {
-    let mut s = [0.0; K];
-    for (si, xi) in s.iter_mut().zip(x) {
-        *si = if *xi > 0.0 { *xi } else { 0.0 };
-    }
-    sqrt.sqrt_lanes(&mut s);
-    let mut out = [0.0; K];
-    for ((o, xi), si) in out.iter_mut().zip(x).zip(&s) {
-        *o = if *xi > 0.0 { *xi * *si } else { 0.0 };
-    }
-    out
-}
 
 /// Square roots of K lanes at once. Every implementation must return IEEE-754's
 /// correctly rounded `√x` of each lane (as libm's does), so that the lanes keep the
@@ -78,33 +60,6 @@ pub(super) fn defect_terms<const NB: usize>(
     })
 }
 
-/// An element's Hertz load `q` (N) after the defect's unloading `unload` and additive force
-/// `add`, with the step's largest load `max_load` and defect load `defect_load` updated:
-/// the scalar step's conditionals in branch-free form (same values). Returns the load that
-/// pushes the shaft (`q·(1 − unload) + add`).
-#[inline(always)]
-pub(super) fn settle_load(
-    q: Real,
-    unload: Real,
-    add: Real,
-    max_load: &mut Real,
-    defect_load: &mut Real,
-) -> Real {
-    let keep = if unload < 1.0 { 1.0 - unload } else { 0.0 };
-    let qv = if unload > 0.0 { q * keep } else { q };
-    *max_load = if qv > *max_load { qv } else { *max_load };
-    let qa = qv + add;
-    // `&`/`|` on the conditions (no short circuit): the scalar step's decision without
-    // branches.
-    let on = (unload > 0.0) | (add != 0.0);
-    *defect_load = if on & (qa > *defect_load) {
-        qa
-    } else {
-        *defect_load
-    };
-    qa
-}
-
 /// `delta += dd` in the lanes that are `inside` the defect's window (the others keep their
 /// bits, a `−0` included).
 #[inline(always)]
@@ -118,6 +73,20 @@ pub(super) fn add_inside<const K: usize>(
             *d += *x;
         }
     }
+}
+
+/// Each element's `(cos, sin)` of its angle in the cage, its waviness phasor and its angle
+/// (rad).
+type ElementTables<'a> = (&'a [(Real, Real)], &'a [(Real, Real)], &'a [Real]);
+
+/// The first `n` rows of the element tables of `m`, shared by every lane.
+#[inline(always)]
+pub(super) fn element_tables(m: &Model, n: usize) -> ElementTables<'_> {
+    (
+        m.elem_cs.get(..n).unwrap_or(&[]),
+        m.wave_elem_cs.get(..n).unwrap_or(&[]),
+        m.elem_angle.get(..n).unwrap_or(&[]),
+    )
 }
 
 impl<const K: usize> super::LaneConsts<K> {
@@ -639,15 +608,12 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             .iter()
             .map(|s| s.window_cos)
             .fold(Real::INFINITY, |a, b| if b < a { b } else { a });
-        let fast_hertz =
-            !crate::real::SINGLE_PRECISION && m0.contact.kind == crate::bearing::ContactKind::Point;
+        let fast_hertz = packed_hertz(m0);
         let y = self.y;
         let c = &self.c;
         let mut max_load = [0.0; K];
         let mut defect_load = [0.0; K];
-        let ecs_all = m0.elem_cs.get(..n).unwrap_or(&[]);
-        let wcs_all = m0.wave_elem_cs.get(..n).unwrap_or(&[]);
-        let ang_all = m0.elem_angle.get(..n).unwrap_or(&[]);
+        let (ecs_all, wcs_all, ang_all) = element_tables(m0, n);
         // The generators in a local for the loop: drawn in place in the group, each lane's
         // words went through memory between two elements with stores and loads of unequal
         // widths (a store-forwarding stall per draw, the sweep's hottest instruction).
@@ -723,19 +689,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
                     }
                 }
             }
-            let mut q = [0.0; K];
-            if fast_hertz {
-                let p = pow_3_2_lanes(&delta, sqrt);
-                for ((qi, s), pi) in q.iter_mut().zip(&c.stiffness).zip(&p) {
-                    *qi = *s * *pi;
-                }
-            } else {
-                for (((qi, dl), m), st) in q.iter_mut().zip(&delta).zip(models).zip(&self.states) {
-                    if let Some(cell) = st.rsqrt.get(e) {
-                        *qi = m.hertz(*dl, cell);
-                    }
-                }
-            }
+            let mut q = self.hertz_loads(&delta, e, &[true; K], fast_hertz, sqrt);
             for (((((ql, ul), al), ml), dl), fl) in q
                 .iter_mut()
                 .zip(&unload)
@@ -748,10 +702,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
             }
         }
         self.rng = rng;
-        for ((s, m), d) in stats.iter_mut().zip(max_load).zip(defect_load) {
-            s.max_load = m;
-            s.defect_load = d;
-        }
+        set_loads(stats, max_load, defect_load);
         fy
     }
 }
