@@ -14,6 +14,18 @@ use crate::rng::Xoshiro128pp;
 use crate::topography::Topography;
 
 impl Model {
+    /// The defect's phasor `(cos, sin)` at kinematics `k`: defect 0's position, turning
+    /// with the shaft for an inner-race defect and with the cage for a ball defect (the
+    /// defective element's), fixed for an outer-race defect and without one.
+    #[inline(always)]
+    pub(super) fn defect_phasor(&self, k: &Kinematics) -> (Real, Real) {
+        match self.cfg.defect.map(|d| d.location) {
+            Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, self.defect_offset_cs),
+            Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, self.defect_offset_cs),
+            _ => self.defect_offset_cs,
+        }
+    }
+
     /// Kinematics at the state's current time, advanced by `frac·h` (0, ½ or 1).
     #[inline(always)]
     pub(super) fn kinematics<const NB: usize>(&self, st: &State<NB>, frac: u8) -> Kinematics {
@@ -131,11 +143,7 @@ impl Model {
         let shape = &st.shape;
         // Defect phasor (position of defect 0; of the defective element for a ball
         // defect) and the candidate window.
-        let (dc, ds) = match defect.map(|d| d.location) {
-            Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, self.defect_offset_cs),
-            Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, self.defect_offset_cs),
-            _ => self.defect_offset_cs,
-        };
+        let (dc, ds) = self.defect_phasor(k);
         // A ball defect's terms are computed out of line before the loop (a call inside it
         // would cost the race defects' path registers), and only on steps where the loop
         // will use them.

@@ -7,11 +7,10 @@
 //! every lane keeps [`super::super::Model::step`]'s bits. Groups whose lanes share the
 //! kinematics take the cheaper path of `super::step`, which computes them once.
 
-use super::super::{rotate, StepStats, ROUGH_DRAW_MARGIN};
+use super::super::{StepStats, ROUGH_DRAW_MARGIN};
 use super::hertz::{packed_hertz, set_loads, settle_load};
 use super::step::{add_inside, defect_terms, element_tables, SqrtLanes};
 use super::LaneGroup;
-use crate::forces::defect::DefectLocation;
 use crate::forces::Kinematics;
 use crate::real::Real;
 use crate::rng::uniform_pm1_where;
@@ -61,15 +60,9 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         // Per lane: cage and waviness phasors, and the defect phasor.
         let cage = own.each_ref().map(|(k, _)| k.cage_cs);
         let wave = own.each_ref().map(|(k, _)| k.wave_cs);
-        let dcs: [(Real, Real); K] = core::array::from_fn(|l| {
-            let (Some((k, _)), Some(m)) = (own.get(l), models.get(l)) else {
-                return (0.0, 0.0);
-            };
-            match location {
-                Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, m.defect_offset_cs),
-                Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, m.defect_offset_cs),
-                _ => m.defect_offset_cs,
-            }
+        let dcs: [(Real, Real); K] = core::array::from_fn(|l| match (own.get(l), models.get(l)) {
+            (Some((k, _)), Some(m)) => m.defect_phasor(k),
+            _ => (0.0, 0.0),
         });
         let ball: [(Real, Real, Real); K] = core::array::from_fn(|l| {
             match (models.get(l), self.states.get(l), own.get(l), dcs.get(l)) {

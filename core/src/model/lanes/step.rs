@@ -4,7 +4,7 @@
 
 use super::super::defect_term::race_terms;
 use super::super::slip_redraw::{redraw_slips, SLIP_CHECK_EVERY};
-use super::super::{rotate, Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
+use super::super::{Channels, Model, Sample, State, StepStats, ROUGH_DRAW_MARGIN};
 use super::hertz::{packed_hertz, pow_3_2_lanes, set_loads, settle_load};
 use super::LaneGroup;
 use crate::forces::defect::{DefectConfig, DefectLocation};
@@ -585,11 +585,7 @@ impl<const K: usize, const NB: usize> LaneGroup<'_, K, NB> {
         let (cc, sc) = k.cage_cs;
         let (cw, sw) = k.wave_cs;
         let location = m0.cfg.defect.map(|d| d.location);
-        let (dc, ds) = match location {
-            Some(DefectLocation::InnerRace { .. }) => rotate(k.shaft_cs, m0.defect_offset_cs),
-            Some(DefectLocation::Ball { .. }) => rotate(k.cage_cs, m0.defect_offset_cs),
-            _ => m0.defect_offset_cs,
-        };
+        let (dc, ds) = m0.defect_phasor(k);
         let ball = self
             .ball_terms(k, (dc, ds), sin_skip)
             .unwrap_or([(0.0, 0.0, 0.0); K]);
