@@ -38,7 +38,7 @@ use serde_json::json;
 use super::csv_shape::{one_column_commas, OneColumn};
 use super::error::IoError;
 use super::record::{check_finite, Record};
-use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::sidecar::{check_n_samples, resolve_fs, sidecar_for, sidecar_record};
 use super::space_runs::{LineCap, MAX_LINE_BYTES};
 use super::time_column::{
     decimals, fs_from_time, ramp_role, time_column, time_unit, RampRole, RampScan, TimeUnit,
@@ -303,42 +303,34 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "unit_assumed": time_found.is_some_and(|(_, a)| a),
         })
     });
-    let (fs, fs_source, fs_detail) = resolve_fs(
+    let fs = resolve_fs(
         path,
         opts.fs,
         sidecar.as_ref(),
         from_time.as_ref().map(|(f, what)| (*f, what.as_str())),
         &|a, b| ((a - b) / a).abs() <= 1e-6,
     )?;
-    let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
-    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
-    let rpm = rpm.map(|r| r.0);
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
         .unwrap_or_else(|| unit_from_column_name(&channel))
         .to_string();
-    Ok(Record {
+    sidecar_record(
+        path,
         samples,
+        (channel, unit),
         fs,
-        rpm,
-        channel,
-        unit,
-        source: path.to_path_buf(),
-        bearing: sidecar.as_ref().and_then(|s| s.bearing.clone()),
-        meta: json!({
+        opts.rpm,
+        sidecar.as_ref(),
+        json!({
             "format": "csv",
             "columns": names,
             "column_index": col,
             "n_columns": ncols,
             "time_column": time_meta,
             "ramp_columns_not_analysed": ramps_skipped,
-            "fs_source": fs_source.name(),
-            "fs_detail": fs_detail,
-            "rpm_detail": rpm_detail,
-            "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
-    })
+    )
 }
 
 /// Per column, whether its values form a ramp ([`RampScan`]): one pass over the data rows

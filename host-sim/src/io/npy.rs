@@ -29,7 +29,7 @@ use serde_json::json;
 use super::error::IoError;
 use super::record::{check_finite, Record};
 use super::selector;
-use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::sidecar::{check_n_samples, resolve_fs, sidecar_for, sidecar_record};
 use super::ReadOptions;
 
 /// Parsed `.npy` header.
@@ -351,25 +351,20 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     let channel = names[col].clone();
     check_finite(path, &channel, &samples)?;
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
-    let (fs, fs_source, fs_detail) =
-        resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
-    let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
-    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
-    let rpm = rpm.map(|r| r.0);
+    let fs = resolve_fs(path, opts.fs, sidecar.as_ref(), None, &|_, _| true)?;
     let unit = sidecar
         .as_ref()
         .and_then(|s| s.unit_of(&channel))
         .unwrap_or("unknown")
         .to_string();
-    Ok(Record {
+    sidecar_record(
+        path,
         samples,
+        (channel, unit),
         fs,
-        rpm,
-        channel,
-        unit,
-        source: path.to_path_buf(),
-        bearing: sidecar.as_ref().and_then(|s| s.bearing.clone()),
-        meta: json!({
+        opts.rpm,
+        sidecar.as_ref(),
+        json!({
             "format": "npy",
             "descr": h.descr,
             "shape": h.shape,
@@ -377,12 +372,8 @@ pub fn read_npy(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "column_index": col,
             "sample_axis": usize::from(channels_first),
             "selector": line.map(selector::Line::suffix),
-            "fs_source": fs_source.name(),
-            "fs_detail": fs_detail,
-            "rpm_detail": rpm_detail,
-            "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
-    })
+    )
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@ use wearsim_core::bearing::BearingGeometry;
 use wearsim_core::ModelConfig;
 
 use super::error::IoError;
-use super::record::{check_fs, check_fs_argument, check_rpm};
+use super::record::{check_fs, check_fs_argument, check_rpm, Record};
 
 /// Largest sidecar accepted, bytes (a sidecar is metadata, not data).
 pub const MAX_SIDECAR_BYTES: u64 = 16 << 20;
@@ -561,6 +561,39 @@ pub(crate) fn resolve_rpm(
         Some(r) => Ok(Some((check_rpm(data, r)?, ARGUMENT_RPM.to_string()))),
         None => Ok(sidecar.and_then(|s| s.rpm.map(|r| (r, s.detail())))),
     }
+}
+
+/// The [`Record`] of `samples` (channel and unit) read from `path` beside an optional
+/// `sidecar`: its rate as [`resolve_fs`] resolved it, its speed from the argument `rpm` or the
+/// sidecar ([`resolve_rpm`]), its bearing from the sidecar, and `meta` (the format's own
+/// fields, a JSON object) with the rate's and speed's sources and the sidecar's contents
+/// added. One place for what the CSV, NPY and WAV readers return.
+pub(crate) fn sidecar_record(
+    path: &Path,
+    samples: Vec<f64>,
+    (channel, unit): (String, String),
+    (fs, fs_source, fs_detail): (f64, FsSource, String),
+    rpm: Option<f64>,
+    sidecar: Option<&Sidecar>,
+    mut meta: Value,
+) -> Result<Record, IoError> {
+    let rpm = resolve_rpm(path, rpm, sidecar)?;
+    if let Value::Object(m) = &mut meta {
+        m.insert("fs_source".into(), json!(fs_source.name()));
+        m.insert("fs_detail".into(), json!(fs_detail));
+        m.insert("rpm_detail".into(), json!(rpm.as_ref().map(|r| &r.1)));
+        m.insert("sidecar".into(), json!(sidecar.map(|s| &s.raw)));
+    }
+    Ok(Record {
+        samples,
+        fs,
+        rpm: rpm.map(|r| r.0),
+        channel,
+        unit,
+        source: path.to_path_buf(),
+        bearing: sidecar.and_then(|s| s.bearing.clone()),
+        meta,
+    })
 }
 
 #[cfg(test)]

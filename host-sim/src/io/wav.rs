@@ -28,7 +28,7 @@ use serde_json::json;
 
 use super::error::IoError;
 use super::record::{check_finite, Record};
-use super::sidecar::{check_n_samples, resolve_fs, resolve_rpm, sidecar_for};
+use super::sidecar::{check_n_samples, resolve_fs, sidecar_for, sidecar_record};
 use super::wav_decode::{decode, Decoded};
 use super::ReadOptions;
 
@@ -101,16 +101,13 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
     check_n_samples(sidecar.as_ref(), path, samples.len())?;
 
     let header_fs = f64::from(format.sample_rate);
-    let (fs, fs_source, fs_detail) = resolve_fs(
+    let fs = resolve_fs(
         path,
         opts.fs,
         sidecar.as_ref(),
         Some((header_fs, "WAV header")),
         &|side, head| side.round() == head,
     )?;
-    let rpm = resolve_rpm(path, opts.rpm, sidecar.as_ref())?;
-    let rpm_detail = rpm.as_ref().map(|r| r.1.clone());
-    let rpm = rpm.map(|r| r.0);
     let full_scale_units = int && scale == 1.0;
     let unit = sidecar
         .as_ref()
@@ -133,15 +130,14 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
                 })
         })
         .unwrap_or_else(|| if full_scale_units { "FS" } else { "unknown" }.to_string());
-    Ok(Record {
+    sidecar_record(
+        path,
         samples,
+        (channel, unit),
         fs,
-        rpm,
-        channel,
-        unit,
-        source: path.to_path_buf(),
-        bearing: sidecar.as_ref().and_then(|s| s.bearing.clone()),
-        meta: json!({
+        opts.rpm,
+        sidecar.as_ref(),
+        json!({
             "format": "wav",
             "channels": nch,
             "channel_index": index,
@@ -149,13 +145,9 @@ pub fn read_wav(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
             "valid_bits_per_sample": format.valid_bits,
             "sample_format": if int { "int" } else { "float" },
             "header_sample_rate_hz": format.sample_rate,
-            "fs_source": fs_source.name(),
-            "fs_detail": fs_detail,
-            "rpm_detail": rpm_detail,
             "scale": scale,
-            "sidecar": sidecar.as_ref().map(|s| s.raw.clone()),
         }),
-    })
+    )
 }
 
 #[cfg(test)]
