@@ -65,20 +65,11 @@ impl Matched {
         })
     }
 
-    /// [`Matched::sim_cells`] for several effect sets: those the memo lacks are simulated
-    /// together ([`super::run::simulate_many`]: lanes where the models allow it), each
-    /// distinct configuration once, and counted in `sims`.
-    pub fn sim_cells_many(
-        &self,
-        fxs: &[Effects],
-        sims: &AtomicUsize,
-    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
-        self.sim_cells_many_ahead(fxs, &[], sims)
-    }
-
-    /// [`Matched::sim_cells_many`], also simulating the guesses `ahead` (effect sets
-    /// likely asked for next, best first) in lanes that would otherwise be padding
-    /// ([`Matched::sim_cells_ahead`]).
+    /// [`Matched::sim_cells`] for several effect sets `fxs`, through
+    /// [`Matched::sim_cells_ahead`]: those the memo lacks are simulated together (lanes
+    /// where the models allow it), each distinct configuration once, and counted in `sims`;
+    /// also the guesses `ahead` (effect sets likely asked for next, best first) in lanes
+    /// that would otherwise be padding.
     pub fn sim_cells_many_ahead(
         &self,
         fxs: &[Effects],
@@ -91,17 +82,10 @@ impl Matched {
     }
 
     /// Mean simulated cell values of this record's stretch for whole configurations
-    /// `cfgs` (another baseline, as the rig's calibration tries: `gap::nuisance`), through
-    /// the same memo and lanes as [`Matched::sim_cells_many`].
-    pub fn sim_cells_configs(
-        &self,
-        cfgs: &[ModelConfig],
-        sims: &AtomicUsize,
-    ) -> Vec<Result<Arc<Vec<f64>>, String>> {
-        self.sim_cells_ahead(cfgs, &[], sims)
-    }
-
-    /// [`Matched::sim_cells_configs`] that also simulates those of the configurations
+    /// `cfgs` (effect sets made whole, or another baseline, as the rig's calibration tries:
+    /// `gap::nuisance`), through the memo; those it lacks are simulated together, in lanes
+    /// where the models allow it, each distinct configuration once, and counted in `sims`.
+    /// Also simulates those of the configurations
     /// `ahead` (guesses, best first) that fit into lanes the groups would otherwise pad
     /// ([`super::run::simulate_ahead`]): their samples are kept in the memo, uncounted,
     /// and a later call that asks for one takes them instead of simulating it, and counts
