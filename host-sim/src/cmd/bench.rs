@@ -9,10 +9,7 @@ pub fn run(a: BenchArgs) -> Result<(), CliError> {
     }
     let report = crate::cmd::args::bench(&a)?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).unwrap_or_default()
-        );
+        crate::cmd::report::print_json(&report)?;
     } else {
         println!(
             "{}: {:.1} s simulated at fs = {} Hz (oversample {}, {} integrator) in {:.3} s wall",

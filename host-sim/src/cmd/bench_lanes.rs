@@ -192,7 +192,7 @@ pub fn run(a: &BenchArgs, k: usize) -> Result<(), CliError> {
         ));
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&r).unwrap_or_default());
+        crate::cmd::report::print_json(&r)?;
     } else {
         println!(
             "{}: scalar step {:.1} simulated s per core-second; {k} lanes (structure of arrays, one thread) {:.1} per core-second: {:.2}x per core (samples bit-identical)",

@@ -35,17 +35,23 @@ pub struct CaptureArgs {
     pub tolerance: f64,
 }
 
-fn print_report(r: &CaptureReport, files: Option<&crate::io::write::OutputSet>, json: bool) {
+fn print_report(
+    r: &CaptureReport,
+    files: Option<&crate::io::write::OutputSet>,
+    json: bool,
+) -> Result<(), CaptureError> {
+    let failed = |e: String| CaptureError::Write(format!("printing the report: {e}"));
     if json {
-        let mut v = serde_json::to_value(r).unwrap_or_default();
+        let mut v = serde_json::to_value(r).map_err(|e| failed(e.to_string()))?;
         if let (Some(f), Some(o)) = (files, v.as_object_mut()) {
             o.insert(
                 "files".into(),
                 json!({"csv": f.csv, "wav": f.wav, "json": f.json}),
             );
         }
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
-        return;
+        let text = serde_json::to_string_pretty(&v).map_err(|e| failed(e.to_string()))?;
+        println!("{text}");
+        return Ok(());
     }
     println!(
         "capture {}: {} bytes, {} valid frames ({} data), {} samples at {} Hz, preset {} seed {}, {}",
@@ -96,6 +102,7 @@ fn print_report(r: &CaptureReport, files: Option<&crate::io::write::OutputSet>, 
             f.json.display()
         );
     }
+    Ok(())
 }
 
 /// Runs `wearsim capture`.
@@ -134,7 +141,7 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
         }
     }
     if !report.complete {
-        print_report(&report, None, a.json);
+        print_report(&report, None, a.json)?;
         let first = report.problems.first().cloned().unwrap_or_default();
         let message = format!(
             "{}: stream not complete, nothing written ({} problem(s); first: {first})",
@@ -168,6 +175,6 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
     });
     let files = crate::io::write::write_outputs(&a.out, "capture", &columns, fs, &meta)
         .map_err(|e| CaptureError::Write(e.to_string()))?;
-    print_report(&report, Some(&files), a.json);
+    print_report(&report, Some(&files), a.json)?;
     Ok(())
 }

@@ -77,7 +77,7 @@ Simulated stage onsets (fraction of life): {stages}\n",
     crate::life::output::write_atomic(&mdp, md.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
     let jp = a.out.join("ims-comparison.json");
-    crate::life::output::write_atomic(&jp, &serde_json::to_vec_pretty(&c).unwrap_or_default())
+    crate::life::output::write_atomic(&jp, &serde_json::to_vec_pretty(&c).map_err(CliError::run)?)
         .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
     files.push(mdp);
     files.push(jp);
@@ -86,7 +86,7 @@ Simulated stage onsets (fraction of life): {stages}\n",
             "distance_db_rms": c.distance_db_rms, "distance_db_mean_abs": c.distance_db_mean_abs, "end_ratio": c.end_ratio,
             "life_factor": c.life_factor, "measured_life_revs": c.measured_life_revs, "simulated_life_revs": c.simulated_life_revs,
             "uncalibrated_life_revs": c.uncalibrated_life_revs, "stages": c.stages, "files": files });
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        crate::cmd::report::print_json(&v)?;
     } else {
         print!("{md}");
         for f in files {

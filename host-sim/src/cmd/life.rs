@@ -161,7 +161,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
                 "wall_s": r.wall_s, "samples_per_s": r.generated as f64 / r.wall_s.max(1e-9),
                 "note": "stopped with a checkpoint; rerun the same command to continue" });
             if a.json {
-                println!("{}", serde_json::to_string_pretty(&msg).unwrap_or_default());
+                crate::cmd::report::print_json(&msg)?;
             } else {
                 println!("dense run stopped at {} samples ({:.0} revolutions); rerun the same command to continue", r.samples, r.state.cycles);
             }
@@ -224,7 +224,7 @@ pub fn life_cmd(a: &LifeArgs) -> Result<(), CliError> {
             "files": files,
             "units": crate::life::output::units(),
         });
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        crate::cmd::report::print_json(&v)?;
     } else {
         println!(
             "life to failure: {:.0} revolutions ({:.2} h at {:.2} Hz); {} snapshots in {:.2} s",
@@ -406,14 +406,11 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     let jp = a.out.join("lives.json");
     crate::life::output::write_atomic(
         &jp,
-        &serde_json::to_vec_pretty(&summary).unwrap_or_default(),
+        &serde_json::to_vec_pretty(&summary).map_err(CliError::run)?,
     )
     .map_err(|e| CliError::run(format!("{}: {e}", jp.display())))?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&summary).unwrap_or_default()
-        );
+        crate::cmd::report::print_json(&summary)?;
         return Ok(());
     }
     let est = |e: &Estimate| format!("{:.4} [{:.4}, {:.4}]", e.value, e.lo, e.hi);

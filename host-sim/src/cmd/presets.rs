@@ -7,10 +7,7 @@ use serde_json::json;
 /// `wearsim effects`.
 pub fn effects(json: bool) -> Result<(), CliError> {
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&crate::effects::catalogue_json()).unwrap_or_default()
-        );
+        crate::cmd::report::print_json(&crate::effects::catalogue_json())?;
     } else {
         print!("{}", crate::effects::catalogue_text());
     }
@@ -57,10 +54,7 @@ pub fn catalogue() -> Result<Vec<serde_json::Value>, CliError> {
 
 fn print_catalogue(json: bool, rows: Vec<serde_json::Value>) -> Result<(), CliError> {
     if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&rows).unwrap_or_default()
-        );
+        crate::cmd::report::print_json(&rows)?;
         return Ok(());
     }
     println!(

@@ -43,7 +43,7 @@ pub fn run(a: SimulateArgs) -> Result<(), CliError> {
             "summary": summary,
             "rtf": rtf,
         });
-        println!("{}", serde_json::to_string_pretty(&v).unwrap_or_default());
+        crate::cmd::report::print_json(&v)?;
     } else {
         crate::cmd::args::print_summary(&scenario, &summary, rtf, &files);
     }

@@ -74,10 +74,7 @@ pub fn run(a: &SweepArgs) -> Result<(), CliError> {
     let report = sweep::run(&spec, &a.out, &shards, threads, &|d, t| bar.update(d, t))?;
     bar.finish();
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).unwrap_or_default()
-        );
+        crate::cmd::report::print_json(&report)?;
     } else {
         println!(
             "{}: {} records in {} shards generated, {} shards already complete; {:.1} s of signal in {:.2} s wall on {} threads ({:.1} simulated s per core-second)",
