@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 use serde_json::json;
 
-use super::v5::{read_mat, MatVariable};
+use super::variables::{read_mat, MatVariable};
 use crate::io::error::IoError;
 use crate::io::record::{check_finite, check_fs, check_rpm, Record};
 

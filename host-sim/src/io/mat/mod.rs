@@ -20,7 +20,8 @@
 //! `MI`), `miMATRIX` elements of the numeric classes (double, single, int8..uint64; real part
 //! only; complex arrays are reported as unsupported), small-data-element tags, `miCOMPRESSED`
 //! (zlib, via `flate2`, inflated size capped at 1032 x the compressed size, the deflate maximum),
-//! and skips char/cell/struct/sparse/object arrays while still listing them. Every read is
+//! char, struct and cell arrays (read into a tree), and lists sparse and object arrays without
+//! reading them. Every read is
 //! bounds-checked against the buffer, sizes are checked against the file size before anything is
 //! allocated, and no code path panics on any input (property-tested in `tests/integration/io_fuzz.rs`).
 //!
@@ -36,8 +37,9 @@
 //!
 //! # Layout and bounds
 //!
-//! [`v5`] parses the format (with the per-file bounds of [`Budget`]), [`tree`] reads files as
-//! MATLAB writes them (structs, cells, chars, every numeric class) as a tree of named values,
+//! [`v5`] parses the format's elements (with the per-file bounds of [`Budget`]), [`tree`]
+//! reads files as MATLAB writes them (structs, cells, chars, every numeric class) as a tree of
+//! named values, [`variables`] lists its top level flat (the one parse, seen as variables),
 //! [`resolve`] recognises the layout (CWRU, MFPT, Paderborn, generic) and turns one channel into
 //! a record with the file's metadata, [`cwru`] loads CWRU records by the original rules, and
 //! [`fixture`] writes the small MAT files the tests use.
@@ -47,15 +49,14 @@ pub mod fixture;
 pub mod resolve;
 pub mod tree;
 pub mod v5;
+pub mod variables;
 
 pub use cwru::*;
 pub use fixture::{mat5_bytes, mat5_compress, mat5_tree_bytes, FixtureValue};
 pub use resolve::{read_mat_record, recognise, MatLayout};
 pub use tree::{numeric_arrays, parse_mat_tree, read_mat_tree, ArrayInfo, MatNode, MatValue};
-pub use v5::{
-    list_mat_variables, parse_mat, read_mat, Budget, MatClass, MatVariable,
-    MAX_DECOMPRESSED_PER_FILE, MAX_SAMPLES_PER_FILE,
-};
+pub use v5::{Budget, MatClass, MAX_DECOMPRESSED_PER_FILE, MAX_SAMPLES_PER_FILE};
+pub use variables::{list_mat_variables, parse_mat, read_mat, MatVariable};
 
 #[cfg(test)]
 mod tests;

@@ -78,31 +78,6 @@ impl MatClass {
     }
 }
 
-/// One top-level variable of a MAT v5 file.
-#[derive(Debug, Clone)]
-pub struct MatVariable {
-    /// Variable name as stored.
-    pub name: String,
-    /// MATLAB class.
-    pub class: MatClass,
-    /// Dimensions (rows, columns, ...).
-    pub dims: Vec<usize>,
-    /// Real part converted to `f64`, column-major, `dims.iter().product()` long; empty for
-    /// non-numeric classes, complex arrays and variables that were not requested.
-    pub data: Vec<f64>,
-    /// True if the array has an imaginary part (not read).
-    pub complex: bool,
-}
-
-impl MatVariable {
-    /// Number of elements (product of `dims`, saturating).
-    pub fn numel(&self) -> usize {
-        self.dims
-            .iter()
-            .fold(1usize, |acc, &d| acc.saturating_mul(d))
-    }
-}
-
 // MAT v5 data types (miXXX codes).
 pub(crate) const MI_INT8: u32 = 1;
 pub(crate) const MI_UINT8: u32 = 2;
@@ -148,8 +123,6 @@ impl Default for Budget {
         }
     }
 }
-/// Nesting limit for compressed-in-compressed elements.
-const MAX_DEPTH: u32 = 4;
 
 /// One element of a MAT stream: its offset in the stream, data type and data.
 pub(crate) type Element<'a> = (usize, u32, &'a [u8]);
@@ -377,67 +350,6 @@ pub(crate) fn parse_header(bytes: &[u8], path: &Path) -> Result<bool, IoError> {
     Ok(big)
 }
 
-/// Parse a MAT v5 file from `bytes`. `want(name)` selects the variables whose data are
-/// converted; the others are listed with empty `data`.
-pub fn parse_mat(
-    bytes: &[u8],
-    path: &Path,
-    want: &dyn Fn(&str) -> bool,
-) -> Result<Vec<MatVariable>, IoError> {
-    let big = parse_header(bytes, path)?;
-    let mut out = Vec::new();
-    let mut cur = Cursor {
-        buf: bytes,
-        pos: 128,
-        big,
-        path,
-        ctx: "file",
-    };
-    parse_elements(&mut cur, want, 0, &mut out, &mut Budget::default())?;
-    Ok(out)
-}
-
-pub(crate) fn parse_elements(
-    cur: &mut Cursor<'_>,
-    want: &dyn Fn(&str) -> bool,
-    depth: u32,
-    out: &mut Vec<MatVariable>,
-    budget: &mut Budget,
-) -> Result<(), IoError> {
-    while let Some((at, ty, data)) = cur.next_element()? {
-        match ty {
-            MI_MATRIX => {
-                cur.skip_padding(data.len());
-                if let Some(v) = parse_matrix(data, cur, at, want, budget)? {
-                    out.push(v);
-                }
-            }
-            MI_COMPRESSED => {
-                if depth >= MAX_DEPTH {
-                    return Err(IoError::malformed(
-                        cur.path,
-                        format!(
-                            "compressed elements nested deeper than {MAX_DEPTH} at offset {at}"
-                        ),
-                    ));
-                }
-                let inflated = inflate(data, cur.path, at, budget)?;
-                let ctx = format!("compressed element at offset {at}");
-                parse_elements(
-                    &mut cur.inner(&inflated, &ctx),
-                    want,
-                    depth + 1,
-                    out,
-                    budget,
-                )?;
-            }
-            // Unknown top-level element: skipped with its padding.
-            _ => cur.skip_padding(data.len()),
-        }
-    }
-    Ok(())
-}
-
 pub(crate) fn inflate(
     data: &[u8],
     path: &Path,
@@ -480,82 +392,11 @@ pub(crate) fn inflate(
     Ok(out)
 }
 
-/// Parse the body of a miMATRIX element. Returns `None` for an empty (0-byte) matrix element.
-pub(crate) fn parse_matrix(
-    body: &[u8],
-    outer: &Cursor<'_>,
-    at: usize,
-    want: &dyn Fn(&str) -> bool,
-    budget: &mut Budget,
-) -> Result<Option<MatVariable>, IoError> {
-    if body.is_empty() {
-        return Ok(None);
-    }
-    let ctx = format!("matrix element at offset {at} of {}", outer.ctx);
-    let mut c = Cursor {
-        buf: body,
-        pos: 0,
-        big: outer.big,
-        path: outer.path,
-        ctx: &ctx,
-    };
-    let path = outer.path;
-    let f0 = c.array_flags()?;
-    let class = MatClass::from_code((f0 & 0xFF) as u8);
-    let complex = f0 & 0x0800 != 0;
-
-    let (ty, dims_raw) = c.sub_element("dimensions")?;
-    if ty != MI_INT32 || dims_raw.len() % 4 != 0 || dims_raw.len() < 8 {
-        return Err(IoError::malformed(
-            path,
-            format!("{ctx}: dimensions sub-element has type {ty} and {} bytes (expected miINT32, >= 8, multiple of 4)", dims_raw.len()),
-        ));
-    }
-    let mut dims = Vec::with_capacity(dims_raw.len() / 4);
-    for ch in dims_raw.chunks_exact(4) {
-        let a = [ch[0], ch[1], ch[2], ch[3]];
-        let d = if c.big {
-            i32::from_be_bytes(a)
-        } else {
-            i32::from_le_bytes(a)
-        };
-        if d < 0 {
-            return Err(IoError::malformed(
-                path,
-                format!("{ctx}: negative dimension {d}"),
-            ));
-        }
-        dims.push(d as usize);
-    }
-
-    let name = c.array_name()?;
-    let mut var = MatVariable {
-        name,
-        class,
-        dims,
-        data: Vec::new(),
-        complex,
-    };
-    if !class.is_numeric() || complex || !want(&var.name) {
-        return Ok(Some(var));
-    }
-    let numel = var
-        .dims
-        .iter()
-        .try_fold(1usize, |acc, &d| acc.checked_mul(d))
-        .ok_or_else(|| {
-            IoError::contradiction(path, format!("{ctx}: dimensions {:?} overflow", var.dims))
-        })?;
-    let what = format!("{ctx}: variable {:?}", var.name);
-    var.data = read_real_part(&mut c, path, &what, &var.dims, numel, budget)?;
-    Ok(Some(var))
-}
-
 /// The real part of a numeric array of `numel` elements (dimensions `dims`), decoded to
 /// `f64`: the next sub-element of `c`, checked to be an integer or float MAT type whose byte
 /// count holds exactly `numel` elements, and charged to the per-file conversion `budget`
-/// ([`MAX_SAMPLES_PER_FILE`]). `what` names the array in the messages. Shared by the flat
-/// reader and the struct/cell tree (`super::tree`).
+/// ([`MAX_SAMPLES_PER_FILE`]). `what` names the array in the messages (the tree's numeric
+/// arrays, `super::tree`).
 pub(crate) fn read_real_part(
     c: &mut Cursor<'_>,
     path: &Path,
@@ -696,23 +537,4 @@ pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, IoError> {
         "file",
         &format!("{MAX_FILE_BYTES} bytes (512 MiB) per MAT file"),
     )
-}
-
-/// Read every variable of a MAT v5 file, converting the numeric ones selected by `want`.
-pub fn read_mat(path: &Path, want: &dyn Fn(&str) -> bool) -> Result<Vec<MatVariable>, IoError> {
-    let bytes = read_file(path)?;
-    parse_mat(&bytes, path, want)
-}
-
-/// List the top-level variables of a MAT v5 file as `(name, number of elements)`, in file order.
-/// Non-numeric variables are listed too (their element count is that of their dimensions).
-pub fn list_mat_variables(path: impl AsRef<Path>) -> Result<Vec<(String, usize)>, IoError> {
-    let path = path.as_ref();
-    Ok(read_mat(path, &|_| false)?
-        .into_iter()
-        .map(|v| {
-            let n = v.numel();
-            (v.name, n)
-        })
-        .collect())
 }
