@@ -644,7 +644,7 @@ pub fn print_analysis(a: &Analysis) {
                 "{}x {:.1}Hz:{}{:.1}dB",
                 h.order,
                 h.peak.map_or(h.expected_hz, |p| p.freq),
-                match (h.found, h.shared, h.shaft) {
+                match (h.found, h.shared, h.explained()) {
                     (true, _, true) => "~",
                     (true, true, false) => "=",
                     (true, false, false) => "+",

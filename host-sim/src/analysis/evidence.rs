@@ -96,6 +96,11 @@ pub struct HarmonicEvidence {
     /// ([`super::shaft_comb::ShaftComb::explains`]; then it does not count in
     /// [`FamilyEvidence::exclusive_score`] nor in [`FamilyEvidence::bearing_lines`]).
     pub shaft: bool,
+    /// Whether the mains explain this peak: every found line of the family lies on one
+    /// comb of a supply harmonic and the family lacks its modulation sidebands
+    /// ([`super::mains::mark_mains_lines`]; then, as a line the shaft explains, it does not
+    /// count in [`FamilyEvidence::exclusive_score`] nor in [`FamilyEvidence::bearing_lines`]).
+    pub mains: bool,
     /// Heights above floor (dB) of the lower and upper sidebands around the
     /// harmonic, for the families that have them (0 where none is found).
     pub sidebands_db: Option<[f64; 2]>,
@@ -127,12 +132,24 @@ pub struct FamilyEvidence {
 }
 
 impl FamilyEvidence {
-    /// Found harmonics the shaft does not explain ([`HarmonicEvidence::shaft`]): the lines
-    /// that are evidence of a bearing fault at all. A family needs `min_harmonics` of them to
-    /// lead.
+    /// Found harmonics neither the shaft nor the mains explain
+    /// ([`HarmonicEvidence::explained`]): the lines that are evidence of a bearing fault at
+    /// all. A family needs `min_harmonics` of them to lead.
     pub fn bearing_lines(&self) -> usize {
-        let shaft = self.harmonics.iter().filter(|h| h.found && h.shaft).count();
-        self.found.saturating_sub(shaft)
+        let other = self
+            .harmonics
+            .iter()
+            .filter(|h| h.found && h.explained())
+            .count();
+        self.found.saturating_sub(other)
+    }
+}
+
+impl HarmonicEvidence {
+    /// Whether a source other than a bearing explains this peak: the shaft
+    /// ([`HarmonicEvidence::shaft`]) or the mains ([`HarmonicEvidence::mains`]).
+    pub fn explained(&self) -> bool {
+        self.shaft || self.mains
     }
 }
 
@@ -219,6 +236,7 @@ fn evidence_at(
                 found: is_found,
                 shared: false,
                 shaft: false,
+                mains: false,
                 sidebands_db,
             }
         })

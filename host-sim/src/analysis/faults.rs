@@ -6,6 +6,7 @@ use super::evidence::family_evidence;
 pub use super::evidence::{
     false_alarm_db, DetectParams, FamilyEvidence, FaultFamily, HarmonicEvidence,
 };
+use super::mains::mark_mains_lines;
 use super::shaft_comb::{mark_shaft_lines, ShaftComb};
 use super::spectrum::Spectrum;
 use serde::Serialize;
@@ -25,7 +26,8 @@ pub struct FaultDiagnosis {
     /// data, [`super::diagnose::CALIBRATION`]); for `None`, one minus that probability.
     pub confidence: f64,
     /// Leading family before the confidence gate: the family of highest `exclusive_score`
-    /// among those with at least `min_harmonics` harmonics found that the shaft does not explain, or `None`.
+    /// among those with at least `min_harmonics` harmonics found that neither the shaft nor the
+    /// mains explain, or `None`.
     pub candidate: FaultFamily,
     /// Evidence margin of `margin_family`: its exclusive score minus the best other family's,
     /// dB per searched harmonic (see `leading`). The confidence is computed from it.
@@ -41,6 +43,18 @@ pub struct FaultDiagnosis {
     /// The envelope's comb of shaft orders, which explains the lines of a family whose
     /// fundamental lies on a shaft order ([`super::shaft_comb`]).
     pub shaft_comb: ShaftComb,
+    /// Families whose lines all stand on a comb of a mains harmonic (and lack their
+    /// modulation sidebands): counted for no family ([`super::mains`]).
+    pub mains: Vec<MainsComb>,
+}
+
+/// A family whose lines the mains explain ([`super::mains::mark_mains_lines`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MainsComb {
+    /// The family.
+    pub family: FaultFamily,
+    /// The supply harmonic whose multiples hold its lines, Hz (e.g. 120: twice a 60 Hz grid).
+    pub base_hz: f64,
 }
 
 /// Diagnose the fault family from an envelope spectrum `env` (e.g. from
@@ -52,7 +66,7 @@ pub struct FaultDiagnosis {
 /// `harmonic_tol`; each peak is rated in dB above the median noise floor
 /// around it. A line found by two families (e.g. 2×BPFI and 3×BPFO, 0.7 %
 /// apart on a 6205) counts for neither, and the family with the highest
-/// exclusive score among those with at least `min_harmonics` harmonics found (not counting lines the shaft explains, [`super::shaft_comb`])
+/// exclusive score among those with at least `min_harmonics` harmonics found (not counting lines the shaft or the mains explain, [`super::shaft_comb`], [`super::mains`])
 /// is the candidate (Randall & Antoni 2011); it is called when its calibrated confidence
 /// ([`super::diagnose`]) is at least one half, otherwise the call is `None`.
 /// Non-positive or non-finite characteristic frequencies yield no evidence.
@@ -63,6 +77,10 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         family_evidence(env, FaultFamily::Ball, 2.0 * ff.bsf, Some(ff.ftf), p),
     ];
     let shaft_comb = mark_shaft_lines(env, ff.shaft_hz, &mut evidence, p);
+    let mains = mark_mains_lines(env, &mut evidence, p.min_harmonics)
+        .into_iter()
+        .map(|(family, base_hz)| MainsComb { family, base_hz })
+        .collect();
     mark_shared(&mut evidence, env.df, p);
     let (candidate, margin_family, margin_db) = leading(&evidence, p.min_harmonics);
     let lead = (candidate != FaultFamily::None).then_some(candidate);
@@ -82,6 +100,7 @@ pub fn detect_fault(env: &Spectrum, ff: &FaultFrequencies, p: &DetectParams) -> 
         score,
         evidence,
         shaft_comb,
+        mains,
     }
 }
 
@@ -158,7 +177,7 @@ fn mark_shared(evidence: &mut [FamilyEvidence], df: f64, p: &DetectParams) {
         for h in e.harmonics.iter_mut().filter(|h| h.found) {
             let f = h.peak.map_or(h.expected_hz, |q| q.freq);
             h.shared = near_other(i, f);
-            if !h.shared && !h.shaft {
+            if !h.shared && !h.explained() {
                 score += h.over_floor_db;
             }
             if let Some(sb) = h.sidebands_db {
@@ -311,10 +330,11 @@ mod tests {
 
     #[test]
     fn evidence_reports_harmonic_levels() {
-        // Hand-made spectrum: lines of 1.0 at k*100 Hz over a floor of 0.01.
+        // Hand-made spectrum: lines of 1.0 at k*103 Hz over a floor of 0.01 (not k*100 Hz:
+        // a comb on twice a 50 Hz grid is the mains', `super::super::mains`).
         let mut values = vec![0.01; 1001];
         for k in 1..=5 {
-            values[k * 100] = 1.0;
+            values[k * 103] = 1.0;
         }
         let env = Spectrum {
             df: 1.0,
@@ -324,7 +344,7 @@ mod tests {
         let ff = FaultFrequencies {
             shaft_hz: 30.0,
             ftf: 12.0,
-            bpfo: 101.0, // 1 % slip
+            bpfo: 104.0, // 1 % slip
             bpfi: 163.0,
             bsf: 71.0,
             natural_hz: 3000.0,
@@ -335,9 +355,9 @@ mod tests {
         assert_eq!(outer.found, 5);
         for h in &outer.harmonics {
             assert!((h.over_floor_db - 40.0).abs() < 1e-9);
-            assert_eq!(h.peak.unwrap().bin, 100 * h.order);
+            assert_eq!(h.peak.unwrap().bin, 103 * h.order);
         }
-        assert!((d.score - 40.0).abs() < 1e-9);
+        assert!((d.score - 40.0).abs() < 1e-9, "{d:#?}");
     }
 
     #[test]

@@ -10,6 +10,7 @@
 //! - [`evidence`]: a harmonic family's evidence in an envelope spectrum; fault families.
 //! - [`faults`]: fault-family detection from the envelope spectrum.
 //! - [`shaft_comb`]: envelope lines at shaft orders, which explain a family on them.
+//! - [`mains`]: envelope lines locked to a harmonic of the supply frequency.
 //! - [`shaft_line`]: whether the raw spectrum's shaft line is where the rate and speed
 //!   put it (a wrong `--fs` or `--rpm`), and the speed it shows when it contradicts them.
 //! - [`transients`]: knocks and bursts cut out of a record before it is demodulated.
@@ -33,6 +34,7 @@ pub mod faults;
 pub(crate) mod fft;
 pub mod finite;
 pub mod kurtogram;
+pub mod mains;
 pub mod octave_bands;
 pub mod order_tracking;
 pub mod peaks;
