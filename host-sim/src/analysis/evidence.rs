@@ -145,6 +145,22 @@ impl FamilyEvidence {
     }
 }
 
+impl FamilyEvidence {
+    /// Whether the harmonics `lines` (indices into [`FamilyEvidence::harmonics`]) carry
+    /// the family's modulation: at least half of them with a sideband found on either side
+    /// (the shaft's around inner-race lines, the cage's around a ball's). The one part of a
+    /// family's signature that a comb of another source (shaft orders, the mains) does not
+    /// supply: `super::shaft_comb` and `super::mains` test it.
+    pub fn sidebands_on(&self, lines: &[usize]) -> bool {
+        let with = lines
+            .iter()
+            .filter_map(|&i| self.harmonics.get(i))
+            .filter(|h| h.sidebands_db.is_some_and(|s| s.iter().any(|db| *db > 0.0)))
+            .count();
+        2 * with >= lines.len()
+    }
+}
+
 impl HarmonicEvidence {
     /// Whether a source other than a bearing explains this peak: the shaft
     /// ([`HarmonicEvidence::shaft`]) or the mains ([`HarmonicEvidence::mains`]).

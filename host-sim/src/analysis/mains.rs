@@ -65,12 +65,10 @@ pub fn locked_base(e: &FamilyEvidence, df: f64, min_lines: usize) -> Option<f64>
 /// Whether `e` carries its modulation sidebands: at least half of its found lines with one
 /// found on either side (inner race: the shaft; ball: the cage). Outer-race lines have none.
 fn modulated(e: &FamilyEvidence) -> bool {
-    let found: Vec<_> = e.harmonics.iter().filter(|h| h.found).collect();
-    let with = found
-        .iter()
-        .filter(|h| h.sidebands_db.is_some_and(|s| s.iter().any(|db| *db > 0.0)))
-        .count();
-    e.family != FaultFamily::OuterRace && !found.is_empty() && 2 * with >= found.len()
+    let found: Vec<usize> = (0..e.harmonics.len())
+        .filter(|&i| e.harmonics[i].found)
+        .collect();
+    e.family != FaultFamily::OuterRace && !found.is_empty() && e.sidebands_on(&found)
 }
 
 /// Marks the found lines of `evidence` that the mains explain

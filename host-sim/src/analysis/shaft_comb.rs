@@ -150,12 +150,7 @@ pub fn mark_shaft_lines(
 /// CWRU fan-end B014 record at 1 hp has one on four found lines), so the test decides only
 /// where the comb already has lines of its own ([`ShaftComb::explains`]).
 fn cage_modulated(e: &FamilyEvidence, on_comb: &[usize]) -> bool {
-    let with_sidebands = on_comb
-        .iter()
-        .filter_map(|&i| e.harmonics.get(i))
-        .filter(|h| h.sidebands_db.is_some_and(|s| s.iter().any(|db| *db > 0.0)))
-        .count();
-    2 * with_sidebands >= on_comb.len()
+    e.sidebands_on(on_comb)
 }
 
 #[cfg(test)]
