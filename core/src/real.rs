@@ -114,8 +114,8 @@ pub fn pow_3_2(x: Real) -> Real {
 mod ninth_root;
 
 /// `x^{10/9}` for `x ≥ 0` (Lundberg/Palmgren line contact), 0 for `x ≤ 0`: `x·x^{1/9}`, the
-/// root by [`ninth_root`](self::ninth_root) in `f64` (within 2 ulp, a third of the cost of
-/// two cube roots) and as `∛(∛x)` in `f32`.
+/// root in `f64` by one range-reduced ninth root (`real/ninth_root.rs`: within 2 ulp, a
+/// third of the cost of two cube roots) and as `∛(∛x)` in `f32`.
 #[inline(always)]
 pub fn pow_10_9(x: Real) -> Real {
     if x > 0.0 {
