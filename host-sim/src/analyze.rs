@@ -65,7 +65,7 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// More files or directories: with several inputs, a directory, `--format` or `--out`,
-    /// every readable record is analysed and one table is written (see `crate::cmd::analyze_batch`).
+    /// every readable record is analysed and one table is written.
     #[arg(value_name = "MORE")]
     pub more: Vec<PathBuf>,
     /// Table format of a batch run: `csv`, `json` or `md` (default: from `--out`'s

@@ -5,7 +5,7 @@
 //! or analysed is a row with its error, not an abort; the exit code is 2 if any row failed
 //! (the table is still complete), else 0.
 
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
@@ -306,19 +306,17 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
     }
     let mut rows = Vec::with_capacity(files.len());
     let n = files.len();
+    // The shared bar: only on a terminal (a log or a pipe gets the summary line alone).
+    let bar = crate::cmd::args::Progress::new(std::io::stderr().is_terminal(), "analyze");
     for (i, f) in files.iter().enumerate() {
-        let name = f
-            .file_name()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        eprint!("\ranalyze [{}/{}] {name:<40.40}", i + 1, n);
+        bar.update(i, n);
         rows.push(row_of(f, args));
     }
+    bar.finish();
     let failed = rows.iter().filter(|r| r.status != "ok").count();
     eprintln!(
-        "\ranalyze: {n} files, {} analysed, {failed} failed{:30}",
-        n - failed,
-        ""
+        "analyze: {n} files, {} analysed, {failed} failed",
+        n - failed
     );
     let text = render(&rows, &format).map_err(CliError::run)?;
     match &args.out {
