@@ -44,21 +44,20 @@ pub struct CwruBenchmarkArgs {
     /// times faster).
     #[arg(long)]
     pub no_variants: bool,
-    /// Experiment: run the method with the squared envelope ([`Method::squared_envelope`])
-    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    /// Experiment: run the method with the squared envelope instead of the default; the
+    /// figures are then not those of `wearsim analyze`.
     #[arg(long)]
     pub squared_envelope: bool,
-    /// Experiment: choose the band by the evidence margin ([`crate::analysis::chain::BandRule::Evidence`])
-    /// instead of the default; the figures are then not those of `wearsim analyze`.
+    /// Experiment: choose the band by the evidence margin instead of the default; the
+    /// figures are then not those of `wearsim analyze`.
     #[arg(long)]
     pub evidence_band: bool,
-    /// Experiment: choose the band by the protrugram
-    /// ([`crate::analysis::chain::BandRule::Protrugram`]) instead of the default.
+    /// Experiment: choose the band by the protrugram instead of the default.
     #[arg(long, conflicts_with = "evidence_band")]
     pub protrugram_band: bool,
     /// Experiment (issue 12, sample-rate invariance): resample every record, after its
-    /// decimation to 12 kHz, band-limited to this rate (Hz, 1000..=1e6; [`resample_fft`]:
-    /// nothing is added above 6 kHz) before the analysis; the call of each record should not
+    /// decimation to 12 kHz, band-limited to this rate (Hz, 1000..=1e6; by FFT: nothing
+    /// is added above 6 kHz) before the analysis; the call of each record should not
     /// change.
     #[arg(long, value_name = "HZ")]
     pub resample: Option<f64>,

@@ -313,11 +313,11 @@ pub fn validate(data: &Path, seed: u64, all: bool, p: Protocol) -> Result<Valida
 #[serde(rename_all = "kebab-case")]
 pub enum Calibration {
     /// `material.life_factor` alone, on the running revolutions (secant steps with the
-    /// crack-to-failure part held fixed, [`calibrate`]).
+    /// crack-to-failure part held fixed).
     Length,
     /// The life factor and the propagation limit `material.propagation_passes` together, on
-    /// the running revolutions and the measured onset of instability ([`calibrate_shape`]:
-    /// the part before the onset and the running hours after it). The propagation limit
+    /// the running revolutions and the measured onset of instability (the
+    /// part before the onset and the running hours after it). The propagation limit
     /// is the wear model's one constant with neither a literature value nor a confirmed
     /// stress dependence (`shared/docs/life-physics-sources.md` §1); a measured life says
     /// how long its spall grows. A calibration life without an onset falls back to
@@ -337,7 +337,7 @@ pub enum Frame {
     /// new bearing (IMS test 2 ran 1.96·10⁷ revolutions against the readme's "more than
     /// 100 million"). The simulated window `h` running hours before its failure sits at
     /// `1 − h / record hours`; a simulated life shorter than the record is read at its own
-    /// steady level before its start ([`on_record`]), a longer one is cut at the record's
+    /// steady level before its start, a longer one is cut at the record's
     /// start. Only the failure is a shared reference point, so the onset, the hours after
     /// it and the climb are compared where the record can support them.
     Record,
