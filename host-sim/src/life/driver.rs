@@ -78,65 +78,17 @@ impl LifeRun {
         at_cap: AtCap,
         mut observe: impl FnMut(DriverWindow<'_>) -> Result<(), LifeError>,
     ) -> Result<Driven, LifeError> {
-        let mut st = self.life.initial_state(self.spec.seed);
-        let mut k = 0u64;
-        let mut entered: Option<Stage> = Some(Stage::RunningIn);
-        let mut scheduled = true;
-        let mut ahead = Ahead::default();
+        let mut d = Drive::new(self);
         loop {
             if crate::cancel::requested() {
                 return Err(LifeError::Interrupted);
             }
-            let model = self.model_for(&st)?;
-            let (samples, loads) = match ahead.take(model.config()) {
-                Some(w) => w,
-                None => match self.render_ahead(&model, k, ahead.depth()) {
-                    Some(ws) => ahead.fill(model.config(), ws),
-                    None => None,
-                }
-                .map_or_else(|| self.window_of(&model, &st, k), Ok)?,
-            };
-            observe(DriverWindow {
-                state: &st,
-                index: k,
-                samples,
-                loads: &loads,
-                entered: entered.take(),
-                scheduled,
-            })?;
-            k += 1;
-            if st.stage == Stage::Failure {
-                break;
-            }
-            let scheduled_revs = block(&st);
-            let revs = self.block_revs(&st, scheduled_revs);
-            let b = match self.advance_checked(&mut st, &loads, revs) {
-                Err(LifeError::CapReached { .. }) if at_cap == AtCap::Suspend => {
-                    return Ok(Driven {
-                        state: st,
-                        windows: k,
-                        suspended: true,
-                    })
-                }
-                b => b?,
-            };
-            entered = b.entered;
-            // A block ended early for a fresh edge is followed by a simulation-only
-            // window, like one at a transition.
-            scheduled = !b.cut && revs >= scheduled_revs;
-            if k > max_windows {
-                return Err(LifeError::WindowCap {
-                    windows: max_windows,
-                    cycles: st.cycles,
-                    stage: st.stage.name(),
-                });
+            let model = self.model_for(&d.st)?;
+            let w = d.window(&model)?;
+            if let Some(done) = d.after(w, &mut block, max_windows, at_cap, &mut observe)? {
+                return Ok(done);
             }
         }
-        Ok(Driven {
-            state: st,
-            windows: k,
-            suspended: false,
-        })
     }
 
     /// Windows `k ..` for `model`, `depth` of them as the lanes of one group (the
@@ -217,6 +169,228 @@ impl LifeRun {
     }
 }
 
+/// A rendered window: its acceleration samples (m/s²) and the pass loads measured in it.
+type Rendered = (Vec<f64>, PassLoads);
+
+/// One life on its way through the driver: the wear state and the window count, the
+/// stage to report with the next window, and the speculation. [`LifeRun::drive`] runs one
+/// to its end; [`drive_together`] runs several side by side.
+struct Drive<'r> {
+    run: &'r LifeRun,
+    st: LifeState,
+    k: u64,
+    entered: Option<Stage>,
+    scheduled: bool,
+    ahead: Ahead,
+}
+
+impl<'r> Drive<'r> {
+    fn new(run: &'r LifeRun) -> Self {
+        Drive {
+            run,
+            st: run.life.initial_state(run.spec.seed),
+            k: 0,
+            entered: Some(Stage::RunningIn),
+            scheduled: true,
+            ahead: Ahead::default(),
+        }
+    }
+
+    /// The window rendered ahead for `model` (the state's), if one is held; counts the
+    /// run of unchanged models either way ([`Ahead::take`]).
+    fn held(&mut self, model: &wearsim_core::Model) -> Option<Rendered> {
+        self.ahead.take(model.config())
+    }
+
+    /// The next window when none was held: with the speculation's depth as lanes of its
+    /// own, else alone.
+    fn render(&mut self, model: &wearsim_core::Model) -> Result<Rendered, LifeError> {
+        match self.run.render_ahead(model, self.k, self.ahead.depth()) {
+            Some(ws) => self.ahead.fill(model.config(), ws),
+            None => None,
+        }
+        .map_or_else(|| self.run.window_of(model, &self.st, self.k), Ok)
+    }
+
+    /// The next window for `model` (the state's): held, or rendered.
+    fn window(&mut self, model: &wearsim_core::Model) -> Result<Rendered, LifeError> {
+        match self.held(model) {
+            Some(w) => Ok(w),
+            None => self.render(model),
+        }
+    }
+
+    /// Hands the window `w` of the current state to `observe`, then advances the wear by
+    /// the next block; `Some` when the life has ended (failed, or suspended at the cap).
+    fn after(
+        &mut self,
+        (samples, loads): Rendered,
+        block: &mut impl FnMut(&LifeState) -> f64,
+        max_windows: u64,
+        at_cap: AtCap,
+        observe: &mut impl FnMut(DriverWindow<'_>) -> Result<(), LifeError>,
+    ) -> Result<Option<Driven>, LifeError> {
+        observe(DriverWindow {
+            state: &self.st,
+            index: self.k,
+            samples,
+            loads: &loads,
+            entered: self.entered.take(),
+            scheduled: self.scheduled,
+        })?;
+        self.k += 1;
+        if self.st.stage == Stage::Failure {
+            return Ok(Some(Driven {
+                state: self.st.clone(),
+                windows: self.k,
+                suspended: false,
+            }));
+        }
+        let scheduled_revs = block(&self.st);
+        let revs = self.run.block_revs(&self.st, scheduled_revs);
+        let b = match self.run.advance_checked(&mut self.st, &loads, revs) {
+            Err(LifeError::CapReached { .. }) if at_cap == AtCap::Suspend => {
+                return Ok(Some(Driven {
+                    state: self.st.clone(),
+                    windows: self.k,
+                    suspended: true,
+                }))
+            }
+            b => b?,
+        };
+        self.entered = b.entered;
+        // A block ended early for a fresh edge is followed by a simulation-only window,
+        // like one at a transition.
+        self.scheduled = !b.cut && revs >= scheduled_revs;
+        if self.k > max_windows {
+            return Err(LifeError::WindowCap {
+                windows: max_windows,
+                cycles: self.st.cycles,
+                stage: self.st.stage.name(),
+            });
+        }
+        Ok(None)
+    }
+}
+
+/// One life for [`drive_together`]: its run, its block schedule and its observer, as
+/// [`LifeRun::drive`] takes them.
+pub struct Together<'r, B, O> {
+    /// The life.
+    pub run: &'r LifeRun,
+    /// Revolutions of the next block for a state.
+    pub block: B,
+    /// Sees every window.
+    pub observe: O,
+}
+
+/// [`LifeRun::drive`] for several lives side by side, with the same results: each life's
+/// windows, wear and errors are exactly those it has alone. In every round each life that
+/// has not ended takes its next window; the windows of lives whose model keeps changing
+/// from window to window (the wear after the first dent: asperities, growth steps,
+/// roughness) — which the speculation of one life cannot batch — are rendered together as
+/// the lanes of one group (the lanes give the scalar step's bits), the rest as they would
+/// be alone. Lives of one bearing at one speed (the lifetime gap's candidate effect sets)
+/// share a group; where the lanes cannot run a round's windows together, each is rendered
+/// alone.
+pub fn drive_together<B, O>(
+    lives: &mut [Together<'_, B, O>],
+    max_windows: u64,
+    at_cap: AtCap,
+) -> Vec<Result<Driven, LifeError>>
+where
+    B: FnMut(&LifeState) -> f64,
+    O: FnMut(DriverWindow<'_>) -> Result<(), LifeError>,
+{
+    let mut drives: Vec<Drive<'_>> = lives.iter().map(|l| Drive::new(l.run)).collect();
+    let mut out: Vec<Option<Result<Driven, LifeError>>> = lives.iter().map(|_| None).collect();
+    while out.iter().any(Option::is_none) {
+        if crate::cancel::requested() {
+            for o in out.iter_mut().filter(|o| o.is_none()) {
+                *o = Some(Err(LifeError::Interrupted));
+            }
+            break;
+        }
+        // This round's window of every life still running: held, or to be rendered.
+        let mut round: Vec<(usize, wearsim_core::Model, Option<Rendered>)> = vec![];
+        for (i, (d, o)) in drives.iter_mut().zip(&mut out).enumerate() {
+            if o.is_some() {
+                continue;
+            }
+            match d.run.model_for(&d.st) {
+                Ok(model) => {
+                    let held = d.held(&model);
+                    round.push((i, model, held));
+                }
+                Err(e) => *o = Some(Err(e)),
+            }
+        }
+        // Lives whose model changed since their last window go together.
+        let changing: Vec<usize> = round
+            .iter()
+            .enumerate()
+            .filter(|(_, (i, _, held))| {
+                held.is_none() && drives.get(*i).is_some_and(|d| d.ahead.depth() == 1)
+            })
+            .map(|(r, _)| r)
+            .collect();
+        // Grouped as the sweeps group records (`lanes::plan`): lives whose models can share
+        // a lane group and whose windows have one length.
+        let window = |c: usize| {
+            let (i, m, _) = changing.get(c).and_then(|r| round.get(*r))?;
+            drives.get(*i).map(|d| (d.run, m, d.k))
+        };
+        let share = |a: usize, b: usize| match (window(a), window(b)) {
+            (Some((ra, ma, _)), Some((rb, mb, _)))
+                if ra.window_samples(ma) == rb.window_samples(mb) =>
+            {
+                crate::lanes::sharing(ma, mb)
+            }
+            _ => crate::lanes::Sharing::No,
+        };
+        let mut rendered: Vec<(usize, Rendered)> = vec![];
+        for (k, part) in crate::lanes::plan(changing.len(), share) {
+            if k < 2 {
+                continue;
+            }
+            let group: Vec<(&LifeRun, &wearsim_core::Model, u64)> =
+                part.iter().filter_map(|&c| window(c)).collect();
+            if let Some(ws) = LifeRun::windows_of_lives(&group) {
+                rendered.extend(
+                    part.iter()
+                        .filter_map(|&c| changing.get(c).copied())
+                        .zip(ws),
+                );
+            }
+        }
+        for (r, w) in rendered {
+            if let Some(slot) = round.get_mut(r) {
+                slot.2 = Some(w);
+            }
+        }
+        for (i, model, held) in round {
+            let (Some(d), Some(o), Some(l)) = (drives.get_mut(i), out.get_mut(i), lives.get_mut(i))
+            else {
+                continue;
+            };
+            let w = match held {
+                Some(w) => Ok(w),
+                None => d.render(&model),
+            };
+            let step =
+                w.and_then(|w| d.after(w, &mut l.block, max_windows, at_cap, &mut l.observe));
+            match step {
+                Ok(None) => {}
+                Ok(Some(done)) => *o = Some(Ok(done)),
+                Err(e) => *o = Some(Err(e)),
+            }
+        }
+    }
+    out.into_iter()
+        .map(|o| o.unwrap_or(Err(LifeError::Interrupted)))
+        .collect()
+}
+
 /// The driver's speculation. A window depends on the wear state only through the dynamic
 /// model built for it (`LifeRun::model_for`), and through most of a life (the fatigue
 /// accumulation before the first dent, with roughness at its floor, no defect and a
@@ -241,7 +415,7 @@ struct Ahead {
 impl Ahead {
     /// The next window rendered ahead when it was rendered for `model`; otherwise drops
     /// what is held. Counts the run of unchanged models either way.
-    fn take(&mut self, model: &wearsim_core::ModelConfig) -> Option<(Vec<f64>, PassLoads)> {
+    fn take(&mut self, model: &wearsim_core::ModelConfig) -> Option<Rendered> {
         self.streak = if self.last.as_ref() == Some(model) {
             self.streak + 1
         } else {
@@ -273,7 +447,7 @@ impl Ahead {
         &mut self,
         model: &wearsim_core::ModelConfig,
         windows: Vec<(Vec<f64>, PassLoads)>,
-    ) -> Option<(Vec<f64>, PassLoads)> {
+    ) -> Option<Rendered> {
         self.windows = windows.into();
         self.model = Some(model.clone());
         self.windows.pop_front()

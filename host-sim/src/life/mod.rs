@@ -364,12 +364,53 @@ impl LifeRun {
         model: &Model,
         k: u64,
     ) -> Option<Vec<(Vec<f64>, PassLoads)>> {
-        let models: [Model; K] = std::array::from_fn(|_| model.clone());
-        let seeds: [u64; K] = std::array::from_fn(|l| self.window_seed(k + l as u64));
-        let (settle, n) = self.window_samples(model);
-        let bearing = &model.config().bearing;
+        let windows: Vec<(&LifeRun, &Model, u64)> =
+            (0..K as u64).map(|l| (self, model, k + l)).collect();
+        Self::windows_in_lanes::<K>(&windows)
+    }
+
+    /// One window each of several lives, `(run, model, k)`: the life, the model of its
+    /// state and the window's index, rendered as the lanes of one group of the fewest
+    /// lanes (2, 4, 8 or 16) that holds them, the last padding the rest: what
+    /// [`LifeRun::window`] gives each, bit for bit (the driver's lives side by side,
+    /// [`driver::drive_together`]). `None` for fewer than 2 or more than 16 windows, with
+    /// the lanes off (`WEARSIM_LANES_OFF`) or when the lanes cannot run them together
+    /// (windows of other lengths, other speeds): the caller renders each alone.
+    pub fn windows_of_lives(
+        windows: &[(&LifeRun, &Model, u64)],
+    ) -> Option<Vec<(Vec<f64>, PassLoads)>> {
+        if !crate::lanes::lanes_on() {
+            return None;
+        }
+        match windows.len() {
+            2 => Self::windows_in_lanes::<2>(windows),
+            3..=4 => Self::windows_in_lanes::<4>(windows),
+            5..=8 => Self::windows_in_lanes::<8>(windows),
+            9..=16 => Self::windows_in_lanes::<16>(windows),
+            _ => None,
+        }
+    }
+
+    /// The windows `(run, model, k)` as the lanes of one `K`-lane group, the last window
+    /// repeated as padding; each lane with its own seed and pass meter.
+    fn windows_in_lanes<const K: usize>(
+        windows: &[(&LifeRun, &Model, u64)],
+    ) -> Option<Vec<(Vec<f64>, PassLoads)>> {
+        let &(run, model, _) = windows.first()?;
+        let (settle, n) = run.window_samples(model);
+        if windows.len() > K
+            || windows
+                .iter()
+                .any(|(r, m, _)| r.window_samples(m) != (settle, n))
+        {
+            return None;
+        }
+        let pad = windows.last()?;
+        let lane = |l: usize| windows.get(l).unwrap_or(pad);
+        let models: [Model; K] = std::array::from_fn(|l| lane(l).1.clone());
+        let seeds: [u64; K] = std::array::from_fn(|l| lane(l).0.window_seed(lane(l).2));
         let mut meters: Vec<PassMeter> = (0..K)
-            .map(|_| PassMeter::new(self.life.site(), bearing))
+            .map(|l| PassMeter::new(lane(l).0.life.site(), &lane(l).1.config().bearing))
             .collect();
         let accel = crate::lanes::lane_accel_observed(&models, &seeds, settle, n, |g| {
             let stats = g.stats();
@@ -383,6 +424,7 @@ impl LifeRun {
             accel
                 .into_iter()
                 .zip(meters)
+                .take(windows.len())
                 .map(|(a, m)| (a, m.loads()))
                 .collect(),
         )

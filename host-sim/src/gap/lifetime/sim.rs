@@ -10,9 +10,10 @@ use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
 pub use crate::life::calibrate::Scales;
 use crate::life::calibrate::{calibrate as calibrate_life, calibrate_shape, Secant, Shape};
+use crate::life::driver::{drive_together, DriverWindow, Together};
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
 use std::cell::RefCell;
-use std::sync::atomic::AtomicUsize;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use wearsim_core::effects::Effects;
 use wearsim_core::forces::defect::{DefectConfig, DefectLocation};
@@ -118,10 +119,56 @@ impl LifeSim {
     /// [`LifeSim::run`] with the revolutions at which the life's wear entered each of
     /// [`ONSET_STAGES`].
     pub fn run_life(&self, fx: &Effects) -> Result<SimulatedLife, String> {
+        let run = self.life_run(fx)?;
+        let mut rec = Recorder::default();
+        let d = run
+            .drive(
+                |st| self.block(st.cycles),
+                MAX_WINDOWS,
+                AtCap::Refuse,
+                |w| rec.observe(w),
+            )
+            .map_err(|e| e.to_string())?;
+        Ok(rec.life(&d.state))
+    }
+
+    /// [`LifeSim::run_life`] for several effect sets, the lives side by side
+    /// ([`drive_together`]: their windows after the first dent as the lanes of one group),
+    /// each with the result it has alone.
+    pub fn run_lives(&self, fxs: &[Effects]) -> Vec<Result<SimulatedLife, String>> {
+        let runs: Vec<Result<LifeRun, String>> = fxs.iter().map(|fx| self.life_run(fx)).collect();
+        let mut recs: Vec<Recorder> = runs.iter().map(|_| Recorder::default()).collect();
+        let mut lives: Vec<Together<'_, _, _>> = runs
+            .iter()
+            .filter_map(|r| r.as_ref().ok())
+            .zip(recs.iter_mut())
+            .map(|(run, rec)| Together {
+                run,
+                block: |st: &wearsim_core::wear::LifeState| self.block(st.cycles),
+                observe: move |w: DriverWindow<'_>| rec.observe(w),
+            })
+            .collect();
+        let mut driven = drive_together(&mut lives, MAX_WINDOWS, AtCap::Refuse).into_iter();
+        drop(lives);
+        let mut recs = recs.into_iter();
+        runs.iter()
+            .map(|r| {
+                r.as_ref().map_err(Clone::clone)?;
+                let (Some(d), Some(rec)) = (driven.next(), recs.next()) else {
+                    return Err(LifeError::Interrupted.to_string());
+                };
+                let d = d.map_err(|e| e.to_string())?;
+                Ok(rec.life(&d.state))
+            })
+            .collect()
+    }
+
+    /// The life run of effects `fx` added to the model.
+    fn life_run(&self, fx: &Effects) -> Result<LifeRun, String> {
         let mut model = self.model.clone();
         merge(&mut model.effects, fx);
         let fs = model.output_rate;
-        let run = LifeRun::new(LifeSpec {
+        LifeRun::new(LifeSpec {
             model,
             life: self.life,
             seed: self.seed,
@@ -130,52 +177,39 @@ impl LifeSim {
             settle: 0.05,
             calibration_load: None,
         })
-        .map_err(|e| e.to_string())?;
-        let mut raw: Vec<(f64, analysis::Stats)> = vec![];
-        let mut stage_starts = [None; ONSET_STAGES.len()];
-        let d = run
-            .drive(
-                |st| self.block(st.cycles),
-                MAX_WINDOWS,
-                AtCap::Refuse,
-                |w| {
-                    // A transition ends its block, so the first window in a stage is
-                    // rendered at the revolution the stage began.
-                    for (start, st) in stage_starts.iter_mut().zip(ONSET_STAGES) {
-                        if start.is_none() && w.state.stage >= st {
-                            *start = Some(w.state.cycles);
-                        }
-                    }
-                    // Stage means of a periodic measurement: windows at transitions feed the
-                    // wear only (see `DriverWindow::scheduled`).
-                    if !w.scheduled {
-                        return Ok(());
-                    }
-                    let cycles = w.state.cycles;
-                    let s = analysis::stats(&w.samples)
-                        .map_err(|source| LifeError::Analysis { cycles, source })?;
-                    raw.push((cycles, s));
-                    Ok(())
-                },
-            )
-            .map_err(|e| e.to_string())?;
-        let st = d.state;
-        let end = st.cycles.max(1.0);
-        let pts = raw
-            .into_iter()
-            .map(|(c, s)| LifePoint {
-                t: c / end,
-                rms: s.rms,
-                kurtosis: s.kurtosis,
-                crest: s.crest_factor,
-                skewness: s.skewness,
+        .map_err(|e| e.to_string())
+    }
+
+    /// The lives of effects `fxs`, each from the cache when it was run before; the others
+    /// run side by side ([`LifeSim::run_lives`]) and are counted in `sims`, once per
+    /// distinct effect set.
+    pub fn points_many(
+        &self,
+        fxs: &[Effects],
+        sims: &AtomicUsize,
+    ) -> Vec<Result<Arc<Vec<LifePoint>>, String>> {
+        let mut missing: Vec<Effects> = vec![];
+        for fx in fxs {
+            if self.memo.get(fx).is_none() && !missing.contains(fx) {
+                missing.push(*fx);
+            }
+        }
+        let mut errors: Vec<(Effects, String)> = vec![];
+        if missing.len() >= 2 {
+            for (fx, life) in missing.iter().zip(self.run_lives(&missing)) {
+                sims.fetch_add(1, Ordering::Relaxed);
+                match life {
+                    Ok(l) => self.memo.insert(*fx, Arc::new(l.points)),
+                    Err(e) => errors.push((*fx, e)),
+                }
+            }
+        }
+        fxs.iter()
+            .map(|fx| match errors.iter().find(|(f, _)| f == fx) {
+                Some((_, e)) => Err(e.clone()),
+                None => self.points(fx, sims),
             })
-            .collect();
-        Ok(SimulatedLife {
-            points: pts,
-            revs: end,
-            stage_starts,
-        })
+            .collect()
     }
 
     /// The life with effects `fx`, from the cache when it was run before; `sims` counts
@@ -193,6 +227,58 @@ impl LifeSim {
 /// the late schedule) in every life of its calibration. The propagation limit scales the life from the completed
 /// spall on, the life factor the part before the first spall.
 pub const ONSET_STAGES: [Stage; 2] = [Stage::DefectCompletion, Stage::DamageGrowth];
+
+/// What a simulated life keeps of its windows: the statistics of the scheduled ones and
+/// the revolutions at which the wear entered each of [`ONSET_STAGES`].
+#[derive(Debug, Default)]
+struct Recorder {
+    raw: Vec<(f64, analysis::Stats)>,
+    stage_starts: [Option<f64>; ONSET_STAGES.len()],
+}
+
+impl Recorder {
+    /// The driver's observer.
+    fn observe(&mut self, w: DriverWindow<'_>) -> Result<(), LifeError> {
+        // A transition ends its block, so the first window in a stage is rendered at the
+        // revolution the stage began.
+        for (start, st) in self.stage_starts.iter_mut().zip(ONSET_STAGES) {
+            if start.is_none() && w.state.stage >= st {
+                *start = Some(w.state.cycles);
+            }
+        }
+        // Stage means of a periodic measurement: windows at transitions feed the wear only
+        // (see `DriverWindow::scheduled`).
+        if !w.scheduled {
+            return Ok(());
+        }
+        let cycles = w.state.cycles;
+        let s =
+            analysis::stats(&w.samples).map_err(|source| LifeError::Analysis { cycles, source })?;
+        self.raw.push((cycles, s));
+        Ok(())
+    }
+
+    /// The life that ended in `end` (its final wear state).
+    fn life(self, end: &wearsim_core::wear::LifeState) -> SimulatedLife {
+        let end = end.cycles.max(1.0);
+        let points = self
+            .raw
+            .into_iter()
+            .map(|(c, s)| LifePoint {
+                t: c / end,
+                rms: s.rms,
+                kurtosis: s.kurtosis,
+                crest: s.crest_factor,
+                skewness: s.skewness,
+            })
+            .collect();
+        SimulatedLife {
+            points,
+            revs: end,
+            stage_starts: self.stage_starts,
+        }
+    }
+}
 
 /// A simulated life ([`LifeSim::run_life`]).
 #[derive(Debug, Clone)]

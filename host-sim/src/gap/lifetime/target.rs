@@ -4,7 +4,7 @@
 
 use super::sim::LifeSim;
 use super::{LifePoint, LifeReference, STAGES, STEADY};
-use crate::gap::matched::Target;
+use crate::gap::matched::{GapsResult, Target};
 use crate::gap::space::{FitParam, FitSpace};
 use std::sync::atomic::AtomicUsize;
 use std::sync::Arc;
@@ -85,10 +85,10 @@ pub(super) fn noise_only(targets: &[LifeTarget], sim: &[LifePoint]) -> f64 {
 /// before that, at about the 4× the old 1.5 was, and is not re-chosen).
 pub const SIGNIFICANCE: f64 = 3.0;
 
-impl Target for LifeTarget {
-    fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
-        let p = self.sim.points(fx, sims)?;
-        let v = self.reference.values(&p)?;
+impl LifeTarget {
+    /// The cell gaps of the life `p` and their weights.
+    fn gaps_of(&self, p: &[LifePoint]) -> Result<(Vec<f64>, Vec<f64>), String> {
+        let v = self.reference.values(p)?;
         let r = self.reference.residuals(&v);
         let Some(idx) = &self.only else {
             return Ok((r, self.reference.weight.clone()));
@@ -99,6 +99,21 @@ impl Target for LifeTarget {
             .collect();
         let g = idx.iter().filter_map(|i| r.get(*i).copied()).collect();
         Ok((g, crate::gap::group_weights(&names)))
+    }
+}
+
+impl Target for LifeTarget {
+    fn gaps(&self, fx: &Effects, sims: &AtomicUsize) -> Result<(Vec<f64>, Vec<f64>), String> {
+        self.gaps_of(&self.sim.points(fx, sims)?)
+    }
+
+    /// The lives not in the cache run side by side ([`LifeSim::points_many`]).
+    fn gaps_many(&self, fxs: &[Effects], sims: &AtomicUsize) -> Vec<GapsResult> {
+        self.sim
+            .points_many(fxs, sims)
+            .into_iter()
+            .map(|p| self.gaps_of(&p?))
+            .collect()
     }
 }
 
