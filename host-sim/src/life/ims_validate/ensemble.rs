@@ -237,29 +237,33 @@ pub struct EnsembleValidation {
 }
 
 /// `N` lives on `site` at `scales`, seeds `first ..`, windows every `expected /`
-/// [`SIM_SNAPSHOTS`] revolutions, on all cores.
+/// [`SIM_SNAPSHOTS`] revolutions: the seeds in one contiguous part per core, each part's
+/// lives side by side ([`simulate_seeds`]).
 fn population(
     site: Site,
     scales: Scales,
     seeds: &[u64],
     expected: f64,
 ) -> Result<Vec<SimLife>, String> {
+    let parts = default_threads().clamp(1, seeds.len().max(1));
+    let chunks: Vec<&[u64]> = seeds.chunks(seeds.len().div_ceil(parts).max(1)).collect();
     map_indexed(
-        seeds.len(),
-        default_threads(),
+        chunks.len(),
+        parts,
         |i| {
-            simulate(
+            simulate_seeds(
                 site,
                 scales,
-                seeds.get(i).copied().unwrap_or(0),
+                chunks.get(i).copied().unwrap_or(&[]),
                 expected,
                 0.0,
             )
         },
         &|_| {},
-        || Err("a simulation thread panicked".to_string()),
+        || vec![Err("a simulation thread panicked".to_string())],
     )
     .into_iter()
+    .flatten()
     .collect()
 }
 

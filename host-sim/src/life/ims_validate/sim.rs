@@ -3,6 +3,7 @@
 //! opens.
 
 use super::*;
+use crate::life::driver::{drive_together, DriverWindow, Together};
 
 /// Simulated snapshots per life: windows on a clock of `expected / SIM_SNAPSHOTS`
 /// revolutions, as a periodic measurement takes them (windows at transitions are left out
@@ -54,10 +55,11 @@ pub fn model_on(site: Site) -> Result<wearsim_core::ModelConfig, String> {
     Ok(m)
 }
 
-/// Runs a life on `site` at `scales` (life factor and propagation limit), a window every `expected / SIM_SNAPSHOTS`
-/// revolutions, with a measurement floor of white noise of RMS `floor` (m/s², the
-/// `sensor` effect's `noise`; 0 = the bearing's own vibration only). The floor is
-/// independent of the model's random stream, so it leaves the wear history unchanged.
+/// Runs a life on `site` at `scales` (life factor and propagation limit), a window every
+/// `expected /` [`SIM_SNAPSHOTS`] revolutions, with a measurement floor of white noise of
+/// RMS `floor` (m/s², the `sensor` effect's `noise`; 0 = the bearing's own vibration
+/// only). The floor is independent of the model's random stream, so it leaves the wear
+/// history unchanged.
 pub fn simulate(
     site: Site,
     scales: Scales,
@@ -65,6 +67,76 @@ pub fn simulate(
     expected: f64,
     floor: f64,
 ) -> Result<SimLife, String> {
+    let run = life_run(site, scales, seed, expected, floor)?;
+    let every = run.spec.snapshot_every;
+    let mut curve = Snapshots::default();
+    let d = run
+        .drive(
+            |st| next_on_grid(st.cycles, every) - st.cycles,
+            MAX_WINDOWS,
+            AtCap::Refuse,
+            |w| curve.observe(w),
+        )
+        .map_err(|e| e.to_string())?;
+    Ok(curve.life(&d.state))
+}
+
+/// [`simulate`] for each of `seeds`, the lives side by side ([`drive_together`]: their
+/// windows whose model changed, after the first dent, as the lanes of one group), each
+/// with the result it has alone.
+pub fn simulate_seeds(
+    site: Site,
+    scales: Scales,
+    seeds: &[u64],
+    expected: f64,
+    floor: f64,
+) -> Vec<Result<SimLife, String>> {
+    let runs: Vec<Result<LifeRun, String>> = seeds
+        .iter()
+        .map(|&seed| life_run(site, scales, seed, expected, floor))
+        .collect();
+    let mut curves: Vec<Snapshots> = runs.iter().map(|_| Snapshots::default()).collect();
+    let mut lives: Vec<Together<'_, _, _>> = runs
+        .iter()
+        .filter_map(|r| r.as_ref().ok())
+        .zip(curves.iter_mut())
+        .map(|(run, curve)| {
+            let every = run.spec.snapshot_every;
+            Together {
+                run,
+                block: move |st: &LifeState| next_on_grid(st.cycles, every) - st.cycles,
+                observe: move |w: DriverWindow<'_>| curve.observe(w),
+            }
+        })
+        .collect();
+    let mut driven = drive_together(&mut lives, MAX_WINDOWS, AtCap::Refuse).into_iter();
+    drop(lives);
+    let mut curves = curves.into_iter();
+    runs.iter()
+        .map(|r| {
+            r.as_ref().map_err(Clone::clone)?;
+            let (Some(d), Some(curve)) = (driven.next(), curves.next()) else {
+                return Err(LifeError::Interrupted.to_string());
+            };
+            let d = d.map_err(|e| e.to_string())?;
+            Ok(curve.life(&d.state))
+        })
+        .collect()
+}
+
+/// Most windows of one simulated life (the clock asks for about [`SIM_SNAPSHOTS`] per
+/// expected life; an uncalibrated life can run far longer).
+const MAX_WINDOWS: u64 = 100_000;
+
+/// The life run of [`simulate`]: the model on `site` with the floor as its sensor noise,
+/// the wear at `scales`, the window clock of `expected`.
+fn life_run(
+    site: Site,
+    scales: Scales,
+    seed: u64,
+    expected: f64,
+    floor: f64,
+) -> Result<LifeRun, String> {
     let mut model = model_on(site)?;
     if floor > 0.0 {
         model.effects.sensor = Some(wearsim_core::effects::sensor::Params {
@@ -84,43 +156,52 @@ pub fn simulate(
         settle: 0.05,
         calibration_load: None,
     };
-    let run = LifeRun::new(spec).map_err(|e| e.to_string())?;
-    let every = run.spec.snapshot_every;
-    let (mut revs, mut rms, mut mean_abs) = (vec![], vec![], vec![]);
-    // The measurement's clock: a window every `every` revolutions from the start, whatever
-    // the wear does between them. Windows the driver renders at a transition (a breakout,
-    // a spawned defect, the failure) are simulation-only instants that a periodic
-    // measurement does not see, so they feed the wear (their pass loads) but not the curve.
-    let d = run
-        .drive(
-            |st| next_on_grid(st.cycles, every) - st.cycles,
-            100_000,
-            AtCap::Refuse,
-            |w| {
-                if !w.scheduled {
-                    return Ok(());
-                }
-                let n = w.samples.len().max(1) as f64;
-                revs.push(w.state.cycles);
-                rms.push((w.samples.iter().map(|x| x * x).sum::<f64>() / n).sqrt());
-                mean_abs.push(w.samples.iter().map(|x| x.abs()).sum::<f64>() / n);
-                Ok::<(), LifeError>(())
-            },
-        )
-        .map_err(|e| e.to_string())?;
-    let st = &d.state;
-    Ok(SimLife {
-        revs,
-        rms,
-        mean_abs,
-        life: st.cycles,
-        stages: st
-            .events
-            .iter()
-            .map(|e| (e.stage.name().to_string(), e.cycles / st.cycles))
-            .collect(),
-        fixed: fixed_part(st),
-    })
+    LifeRun::new(spec).map_err(|e| e.to_string())
+}
+
+/// What a simulated life keeps of its windows: the features of those on the
+/// measurement's clock.
+#[derive(Debug, Default)]
+struct Snapshots {
+    revs: Vec<f64>,
+    rms: Vec<f64>,
+    mean_abs: Vec<f64>,
+}
+
+impl Snapshots {
+    /// The driver's observer. The measurement's clock is a window every `every`
+    /// revolutions from the start, whatever the wear does between them. Windows the driver
+    /// renders at a transition (a breakout, a spawned defect, the failure) are
+    /// simulation-only instants that a periodic measurement does not see, so they feed the
+    /// wear (their pass loads) but not the curve.
+    fn observe(&mut self, w: DriverWindow<'_>) -> Result<(), LifeError> {
+        if !w.scheduled {
+            return Ok(());
+        }
+        let n = w.samples.len().max(1) as f64;
+        self.revs.push(w.state.cycles);
+        self.rms
+            .push((w.samples.iter().map(|x| x * x).sum::<f64>() / n).sqrt());
+        self.mean_abs
+            .push(w.samples.iter().map(|x| x.abs()).sum::<f64>() / n);
+        Ok(())
+    }
+
+    /// The simulated life that ended in `st`.
+    fn life(self, st: &LifeState) -> SimLife {
+        SimLife {
+            revs: self.revs,
+            rms: self.rms,
+            mean_abs: self.mean_abs,
+            life: st.cycles,
+            stages: st
+                .events
+                .iter()
+                .map(|e| (e.stage.name().to_string(), e.cycles / st.cycles))
+                .collect(),
+            fixed: fixed_part(st),
+        }
+    }
 }
 
 /// The first point of the grid `k · every` (k = 1, 2, …) after `cycles`.
@@ -149,4 +230,45 @@ fn fixed_part(st: &LifeState) -> f64 {
 /// Revolutions per running hour at the IMS speed.
 pub fn revs_per_hour() -> f64 {
     IMS_RPM * 60.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Everything a simulated life reports, to the bit (JSON writes the shortest decimal
+    /// that reads back as the same double).
+    fn bits(l: &SimLife) -> String {
+        serde_json::to_string(l).unwrap()
+    }
+
+    /// A population's lives side by side are, seed by seed and in order, the lives run
+    /// alone: short inner-race lives (life factor and propagation limit a hundredth of
+    /// steel's) of three seeds, whose windows after the first dent go to one lane group.
+    #[test]
+    fn seeds_side_by_side_are_the_seeds_alone() {
+        let steel = Scales::steel();
+        let scales = Scales {
+            life_factor: steel.life_factor / 100.0,
+            propagation_passes: steel.propagation_passes / 100.0,
+        };
+        let seeds = [3, 1, 2];
+        let expected = 3e7;
+        let together = simulate_seeds(Site::InnerRace, scales, &seeds, expected, 0.0);
+        assert_eq!(together.len(), seeds.len());
+        let mut lives = vec![];
+        for (&seed, t) in seeds.iter().zip(together) {
+            let alone = simulate(Site::InnerRace, scales, seed, expected, 0.0).unwrap();
+            let t = t.unwrap();
+            assert!(
+                alone.rms.len() >= 5,
+                "seed {seed}: {} windows",
+                alone.rms.len()
+            );
+            assert_eq!(bits(&t), bits(&alone), "seed {seed}");
+            lives.push(alone.life);
+        }
+        // The seeds draw different lives, so a life handed to the wrong seed shows.
+        assert!(lives.windows(2).all(|w| w[0] != w[1]), "lives {lives:?}");
+    }
 }
