@@ -391,6 +391,46 @@ where
         .collect()
 }
 
+/// [`drive_together`] for runs that may have failed to be built, each life's windows seen
+/// by a recorder of its own (`R::default()`) through `observe`, each life's blocks from
+/// `block(run)`: per run, in order, its recorder and its end, or its error (the build's, or
+/// the drive's as text).
+pub fn drive_recorded<R: Default, B>(
+    runs: &[Result<LifeRun, String>],
+    block: impl Fn(&LifeRun) -> B,
+    observe: impl Fn(&mut R, DriverWindow<'_>) -> Result<(), LifeError>,
+    max_windows: u64,
+    at_cap: AtCap,
+) -> Vec<Result<(R, Driven), String>>
+where
+    B: FnMut(&LifeState) -> f64,
+{
+    let built: Vec<&LifeRun> = runs.iter().filter_map(|r| r.as_ref().ok()).collect();
+    let mut recs: Vec<R> = built.iter().map(|_| R::default()).collect();
+    let observe = &observe;
+    let mut lives: Vec<Together<'_, B, _>> = built
+        .iter()
+        .zip(recs.iter_mut())
+        .map(|(&run, rec)| Together {
+            run,
+            block: block(run),
+            observe: move |w: DriverWindow<'_>| observe(rec, w),
+        })
+        .collect();
+    let mut driven = drive_together(&mut lives, max_windows, at_cap).into_iter();
+    drop(lives);
+    let mut recs = recs.into_iter();
+    runs.iter()
+        .map(|r| {
+            r.as_ref().map_err(Clone::clone)?;
+            let (Some(d), Some(rec)) = (driven.next(), recs.next()) else {
+                return Err(LifeError::Interrupted.to_string());
+            };
+            Ok((rec, d.map_err(|e| e.to_string())?))
+        })
+        .collect()
+}
+
 /// The driver's speculation. A window depends on the wear state only through the dynamic
 /// model built for it (`LifeRun::model_for`), and through most of a life (the fatigue
 /// accumulation before the first dent, with roughness at its floor, no defect and a

@@ -10,7 +10,7 @@ use crate::gap::matched::merge;
 use crate::gap::memo::Memo;
 pub use crate::life::calibrate::Scales;
 use crate::life::calibrate::{calibrate as calibrate_life, calibrate_shape, Secant, Shape};
-use crate::life::driver::{drive_together, DriverWindow, Together};
+use crate::life::driver::{drive_recorded, DriverWindow};
 use crate::life::{AtCap, LifeError, LifeRun, LifeSpec};
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -133,34 +133,20 @@ impl LifeSim {
     }
 
     /// [`LifeSim::run_life`] for several effect sets, the lives side by side
-    /// ([`drive_together`]: their windows after the first dent as the lanes of one group),
-    /// each with the result it has alone.
+    /// ([`drive_together`](crate::life::driver::drive_together): their windows after the
+    /// first dent as the lanes of one group), each with the result it has alone.
     pub fn run_lives(&self, fxs: &[Effects]) -> Vec<Result<SimulatedLife, String>> {
         let runs: Vec<Result<LifeRun, String>> = fxs.iter().map(|fx| self.life_run(fx)).collect();
-        let mut recs: Vec<Recorder> = runs.iter().map(|_| Recorder::default()).collect();
-        let mut lives: Vec<Together<'_, _, _>> = runs
-            .iter()
-            .filter_map(|r| r.as_ref().ok())
-            .zip(recs.iter_mut())
-            .map(|(run, rec)| Together {
-                run,
-                block: |st: &wearsim_core::wear::LifeState| self.block(st.cycles),
-                observe: move |w: DriverWindow<'_>| rec.observe(w),
-            })
-            .collect();
-        let mut driven = drive_together(&mut lives, MAX_WINDOWS, AtCap::Refuse).into_iter();
-        drop(lives);
-        let mut recs = recs.into_iter();
-        runs.iter()
-            .map(|r| {
-                r.as_ref().map_err(Clone::clone)?;
-                let (Some(d), Some(rec)) = (driven.next(), recs.next()) else {
-                    return Err(LifeError::Interrupted.to_string());
-                };
-                let d = d.map_err(|e| e.to_string())?;
-                Ok(rec.life(&d.state))
-            })
-            .collect()
+        drive_recorded(
+            &runs,
+            |_| |st: &wearsim_core::wear::LifeState| self.block(st.cycles),
+            Recorder::observe,
+            MAX_WINDOWS,
+            AtCap::Refuse,
+        )
+        .into_iter()
+        .map(|r| r.map(|(rec, d)| rec.life(&d.state)))
+        .collect()
     }
 
     /// The life run of effects `fx` added to the model.

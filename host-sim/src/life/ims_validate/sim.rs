@@ -3,7 +3,7 @@
 //! opens.
 
 use super::*;
-use crate::life::driver::{drive_together, DriverWindow, Together};
+use crate::life::driver::{drive_recorded, DriverWindow};
 
 /// Simulated snapshots per life: windows on a clock of `expected / SIM_SNAPSHOTS`
 /// revolutions, as a periodic measurement takes them (windows at transitions are left out
@@ -81,9 +81,10 @@ pub fn simulate(
     Ok(curve.life(&d.state))
 }
 
-/// [`simulate`] for each of `seeds`, the lives side by side ([`drive_together`]: their
-/// windows whose model changed, after the first dent, as the lanes of one group), each
-/// with the result it has alone.
+/// [`simulate`] for each of `seeds`, the lives side by side
+/// ([`drive_together`](crate::life::driver::drive_together): their windows whose model
+/// changed, after the first dent, as the lanes of one group), each with the result it has
+/// alone.
 pub fn simulate_seeds(
     site: Site,
     scales: Scales,
@@ -95,33 +96,19 @@ pub fn simulate_seeds(
         .iter()
         .map(|&seed| life_run(site, scales, seed, expected, floor))
         .collect();
-    let mut curves: Vec<Snapshots> = runs.iter().map(|_| Snapshots::default()).collect();
-    let mut lives: Vec<Together<'_, _, _>> = runs
-        .iter()
-        .filter_map(|r| r.as_ref().ok())
-        .zip(curves.iter_mut())
-        .map(|(run, curve)| {
+    drive_recorded(
+        &runs,
+        |run| {
             let every = run.spec.snapshot_every;
-            Together {
-                run,
-                block: move |st: &LifeState| next_on_grid(st.cycles, every) - st.cycles,
-                observe: move |w: DriverWindow<'_>| curve.observe(w),
-            }
-        })
-        .collect();
-    let mut driven = drive_together(&mut lives, MAX_WINDOWS, AtCap::Refuse).into_iter();
-    drop(lives);
-    let mut curves = curves.into_iter();
-    runs.iter()
-        .map(|r| {
-            r.as_ref().map_err(Clone::clone)?;
-            let (Some(d), Some(curve)) = (driven.next(), curves.next()) else {
-                return Err(LifeError::Interrupted.to_string());
-            };
-            let d = d.map_err(|e| e.to_string())?;
-            Ok(curve.life(&d.state))
-        })
-        .collect()
+            move |st: &LifeState| next_on_grid(st.cycles, every) - st.cycles
+        },
+        Snapshots::observe,
+        MAX_WINDOWS,
+        AtCap::Refuse,
+    )
+    .into_iter()
+    .map(|r| r.map(|(curve, d)| curve.life(&d.state)))
+    .collect()
 }
 
 /// Most windows of one simulated life (the clock asks for about [`SIM_SNAPSHOTS`] per
