@@ -34,6 +34,7 @@ mod life;
 mod life_ball;
 mod life_cap;
 mod life_interval;
+mod life_lanes;
 mod life_sites;
 mod out_dirs;
 mod probe2;
