@@ -119,17 +119,9 @@ impl LifeSim {
     /// [`LifeSim::run`] with the revolutions at which the life's wear entered each of
     /// [`ONSET_STAGES`].
     pub fn run_life(&self, fx: &Effects) -> Result<SimulatedLife, String> {
-        let run = self.life_run(fx)?;
-        let mut rec = Recorder::default();
-        let d = run
-            .drive(
-                |st| self.block(st.cycles),
-                MAX_WINDOWS,
-                AtCap::Refuse,
-                |w| rec.observe(w),
-            )
-            .map_err(|e| e.to_string())?;
-        Ok(rec.life(&d.state))
+        self.run_lives(&[*fx])
+            .pop()
+            .unwrap_or_else(|| Err(LifeError::Interrupted.to_string()))
     }
 
     /// [`LifeSim::run_life`] for several effect sets, the lives side by side

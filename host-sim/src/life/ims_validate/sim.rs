@@ -67,18 +67,9 @@ pub fn simulate(
     expected: f64,
     floor: f64,
 ) -> Result<SimLife, String> {
-    let run = life_run(site, scales, seed, expected, floor)?;
-    let every = run.spec.snapshot_every;
-    let mut curve = Snapshots::default();
-    let d = run
-        .drive(
-            |st| next_on_grid(st.cycles, every) - st.cycles,
-            MAX_WINDOWS,
-            AtCap::Refuse,
-            |w| curve.observe(w),
-        )
-        .map_err(|e| e.to_string())?;
-    Ok(curve.life(&d.state))
+    simulate_seeds(site, scales, &[seed], expected, floor)
+        .pop()
+        .unwrap_or_else(|| Err(LifeError::Interrupted.to_string()))
 }
 
 /// [`simulate`] for each of `seeds`, the lives side by side
