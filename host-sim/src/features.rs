@@ -30,7 +30,9 @@ use crate::io::ims::{read_ims_snapshot, IMS_FS, IMS_RPM};
 use crate::io::layout::{read_femto, read_layout, sniff_text, TextLayout, FEMTO_FS, XJTU_FS};
 use crate::io::{IoError, ReadOptions};
 
+mod conditions;
 mod files;
+pub use conditions::{from_folder_names, NamedCondition};
 pub use files::FEMTO_MAX_WRAP_STEP_S;
 
 /// Interval between XJTU-SY snapshots, s (one 1.28-s record a minute; Wang et al. 2020).
@@ -61,7 +63,8 @@ pub enum RawLayout {
 pub struct FeatureOptions {
     /// Channel (layout-specific: IMS `1`..`8`, FEMTO `horiz`/`vert`, XJTU header).
     pub channel: Option<String>,
-    /// Shaft speed, rpm (IMS: 2000 by default; FEMTO/XJTU: required).
+    /// Shaft speed, rpm (IMS: 2000 by default; FEMTO/XJTU: the folder names' condition
+    /// ([`from_folder_names`]), else required).
     pub rpm: Option<f64>,
     /// Radial load, N (IMS: 6000 lbf by default; else required).
     pub load_n: Option<f64>,
@@ -116,6 +119,11 @@ pub struct FeaturesSummary {
     pub hours: f64,
     /// RMS of the first and the last snapshot (record unit).
     pub rms_first_last: (f64, f64),
+    /// Where the table's speed came from: `--rpm`, the IMS readme, or a folder name
+    /// ([`from_folder_names`]).
+    pub rpm_source: String,
+    /// Where the table's radial load came from (as `rpm_source`).
+    pub load_source: String,
     /// The sidecar written.
     pub meta: FeatureSidecar,
 }
@@ -180,6 +188,30 @@ fn notes(
         ));
     }
     n
+}
+
+/// Notes on a folder-name operating point ([`from_folder_names`]): used (for speed, load or
+/// both), or contradicted by the flag that replaced it.
+fn named_notes(named: Option<&NamedCondition>, rpm: f64, load_n: f64) -> Vec<String> {
+    let Some(n) = named else {
+        return vec![];
+    };
+    let same = |a: f64, b: f64| (a - b).abs() <= RPM_TOL * b;
+    let mut out = vec![];
+    for (what, used, stated, flag) in [
+        ("rpm", rpm, n.rpm, "--rpm"),
+        ("radial_load_n", load_n, n.load_n, "--load-n"),
+    ] {
+        out.push(if same(used, stated) {
+            format!("{what} {stated} from the {}; {flag} overrides", n.source)
+        } else {
+            format!(
+                "{what} {used} from {flag}; the {} states {stated}",
+                n.source
+            )
+        });
+    }
+    out
 }
 
 /// A note for a table that the format holds but a simulated life cannot take (`gap
@@ -252,19 +284,35 @@ pub fn convert(
         )));
     }
     let ims = layout == RawLayout::Ims;
-    let rpm = o.rpm.or(ims.then_some(IMS_RPM)).ok_or_else(|| {
-        FeaturesError::Input(
-            "--rpm: the FEMTO and XJTU-SY files do not hold the shaft speed; give it (rpm)".into(),
-        )
-    })?;
+    // Speed and load: the flags, else the IMS readme's, else what the data set's folder
+    // names state (FEMTO, XJTU-SY), reported with their source.
+    let named = from_folder_names(
+        &std::fs::canonicalize(dir).unwrap_or(dir.to_path_buf()),
+        layout,
+    );
+    let (rpm, rpm_source) = match (o.rpm, ims, &named) {
+        (Some(r), _, _) => (r, "--rpm".to_string()),
+        (None, true, _) => (IMS_RPM, "IMS readme (2000 rpm)".to_string()),
+        (None, false, Some(n)) => (n.rpm, n.source.clone()),
+        (None, false, None) => {
+            return Err(FeaturesError::Input(
+                "--rpm: the FEMTO and XJTU-SY files do not hold the shaft speed, and no folder name states it (XJTU-SY `35Hz12kN`, `Bearing1_1`; PRONOSTIA `Bearing1_1`); give it (rpm)".into(),
+            ))
+        }
+    };
     if o.rpm.is_some() {
         crate::io::record::check_rpm_argument(rpm).map_err(FeaturesError::Input)?;
     }
-    let load_n = o.load_n.or(ims.then_some(IMS_LOAD_N)).ok_or_else(|| {
-        FeaturesError::Input(
-            "--load-n: the FEMTO and XJTU-SY files do not hold the radial load; give it (N)".into(),
-        )
-    })?;
+    let (load_n, load_source) = match (o.load_n, ims, &named) {
+        (Some(l), _, _) => (l, "--load-n".to_string()),
+        (None, true, _) => (IMS_LOAD_N, "IMS readme (6000 lbf)".to_string()),
+        (None, false, Some(n)) => (n.load_n, n.source.clone()),
+        (None, false, None) => {
+            return Err(FeaturesError::Input(
+                "--load-n: the FEMTO and XJTU-SY files do not hold the radial load, and no folder name states it (XJTU-SY `35Hz12kN`, `Bearing1_1`; PRONOSTIA `Bearing1_1`); give it (N)".into(),
+            ))
+        }
+    };
     // Explicit flags override the layout's defaults. The IMS layout's preset stands for
     // its bearing at its speed and load: a geometry, speed or load of the user's drops it
     // (the table then names the bearing by its geometry). An explicit --preset replaces
@@ -442,6 +490,7 @@ pub fn convert(
         n_snapshots: Some(rows.len() as u64),
         notes: notes(layout, &skipped, &listing.missing, &listing.others)
             .into_iter()
+            .chain(named_notes(named.as_ref(), rpm, load_n))
             .chain(simulation_limits(rpm, load_n))
             .collect(),
     };
@@ -502,6 +551,8 @@ pub fn convert(
             .map_or(0.0, |(a, b)| b.time_s - a.time_s)
             / 3600.0,
         rms_first_last: (first, last),
+        rpm_source,
+        load_source,
         meta: sidecar,
     })
 }

@@ -25,10 +25,10 @@ pub struct FeaturesArgs {
     /// Channel: IMS 1..8 (default 1), FEMTO horiz|vert (default horiz), XJTU-SY header (default horizontal).
     #[arg(long)]
     pub channel: Option<String>,
-    /// Shaft speed, rpm (IMS: 2000; required for FEMTO and XJTU-SY).
+    /// Shaft speed, rpm (IMS: 2000; FEMTO and XJTU-SY: what the data set's folder names state, `Bearing1_1`, `35Hz12kN`, else required).
     #[arg(long, allow_negative_numbers = true)]
     pub rpm: Option<f64>,
-    /// Radial load, N (IMS: 6000 lbf = 26 689 N; required for FEMTO and XJTU-SY).
+    /// Radial load, N (IMS: 6000 lbf = 26 689 N; FEMTO and XJTU-SY: as `--rpm`).
     #[arg(long)]
     pub load_n: Option<f64>,
     /// wearsim preset of the bearing, or a catalogue bearing that stands for its geometry (`mfpt-nice`, `paderborn-6203`, `xjtu-ldk-uer204`) (IMS: ims-za2115, dropped by another --bearing-geometry, --rpm or --load-n); refused when it contradicts the geometry or operating point.
@@ -99,6 +99,14 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
                 format!("; missing from the numbering: {}", s.missing.join(", "))
             }
         );
+        for (what, v, src, flag) in [
+            ("speed", s.meta.rpm, &s.rpm_source, "--rpm"),
+            ("load", s.meta.radial_load_n, &s.load_source, "--load-n"),
+        ] {
+            if src.starts_with("folder name") {
+                println!("{what} {v} from the {src}; {flag} overrides");
+            }
+        }
         println!("wrote {} and {}", s.csv.display(), s.sidecar.display());
     }
     Ok(())

@@ -156,22 +156,54 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
     let raw = tmp.path().join("Bearing1_1");
     femto_folder(&raw, 12, None);
     let out = tmp.path().join("femto.csv");
-    // No speed in the files: refused, nothing written.
-    let o = wearsim(&["features", s(&raw), "--layout", "femto", "--out", s(&out)]);
-    refused(&o, &["--rpm"]);
+    // No speed in the files, and a folder name that states none: refused, nothing written.
+    let plain = tmp.path().join("run7");
+    femto_folder(&plain, 12, None);
+    let o = wearsim(&["features", s(&plain), "--layout", "femto", "--out", s(&out)]);
+    refused(&o, &["--rpm", "no folder name states it"]);
     assert!(!out.exists());
-    // No geometry either (not documented by PRONOSTIA).
-    let o = wearsim(&[
-        "features",
-        s(&raw),
-        "--out",
-        s(&out),
-        "--rpm",
-        "1800",
-        "--load-n",
-        "4000",
-    ]);
+    // PRONOSTIA's `Bearing1_1` states condition 1 (1800 rpm, 4000 N); no geometry either
+    // (not documented by PRONOSTIA).
+    let o = wearsim(&["features", s(&raw), "--out", s(&out)]);
     refused(&o, &["--bearing-geometry"]);
+    let geometry = &FEMTO_FLAGS[4..];
+    assert_eq!(geometry[0], "--bearing-geometry");
+    let mut args = vec!["features", s(&raw), "--out", s(&out), "--json"];
+    args.extend(geometry);
+    let o = wearsim(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (1800.0, 4000.0));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(summary["rpm_source"]
+        .as_str()
+        .unwrap()
+        .contains("`Bearing1_1`"));
+    assert!(t
+        .sidecar
+        .notes
+        .iter()
+        .any(|n| n.starts_with("rpm 1800 from the folder name `Bearing1_1`")));
+    // Condition 2's folder, and a flag that replaces what the name states (said so).
+    let two = tmp.path().join("Learning_set/Bearing2_1");
+    femto_folder(&two, 12, None);
+    let out2 = tmp.path().join("femto2.csv");
+    let mut args = vec!["features", s(&two), "--out", s(&out2), "--load-n", "4100"];
+    args.extend(geometry);
+    assert!(wearsim(&args).status.success());
+    let t = read_feature_table(&out2).unwrap();
+    assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (1650.0, 4100.0));
+    assert!(
+        t.sidecar
+            .notes
+            .iter()
+            .any(|n| n.starts_with("radial_load_n 4100 from --load-n;")
+                && n.ends_with("states 4200")),
+        "{:?}",
+        t.sidecar.notes
+    );
+    std::fs::remove_file(&out).unwrap();
+    std::fs::remove_file(sidecar_path(&out)).unwrap();
     let mut args = vec!["features", s(&raw), "--out", s(&out)];
     args.extend(FEMTO_FLAGS);
     args.extend(["--failure-mode", "outer-race"]);
@@ -244,6 +276,31 @@ fn xjtu_folder_is_a_minute_per_file_with_the_catalogue_bearing() {
         assert_eq!(r.time_s, 60.0 * i as f64);
         assert!((r.rms - amp(i + 1) / 2f64.sqrt()).abs() < 1e-12);
     }
+    // Without --rpm and --load-n: the bearing's number names XJTU-SY's condition 1
+    // (35 Hz, 12 kN), and a condition folder `40Hz10kN` above it wins over the number.
+    let o = wearsim(&["features", s(&raw), "--out", s(&out), "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out).unwrap();
+    assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (2100.0, 12000.0));
+    let named = tmp.path().join("40Hz10kN");
+    std::fs::create_dir_all(&named).unwrap();
+    std::fs::rename(&raw, named.join("Bearing1_1")).unwrap();
+    let out2 = tmp.path().join("x2.csv");
+    let o = wearsim(&[
+        "features",
+        s(&named.join("Bearing1_1")),
+        "--out",
+        s(&out2),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = read_feature_table(&out2).unwrap();
+    assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (2400.0, 10000.0));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(summary["load_source"]
+        .as_str()
+        .unwrap()
+        .contains("`40Hz10kN`"));
     // An empty folder is no layout.
     let empty = tmp.path().join("empty");
     std::fs::create_dir_all(&empty).unwrap();
