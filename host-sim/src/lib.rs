@@ -6,6 +6,11 @@
 //! ([`geometry`]) are built, without the plotting, Parquet and command-line dependencies:
 //! the fuzz targets (`host-sim/fuzz`) need only those, and building the rest with their
 //! instrumentation took 5 of the fuzz step's 13 minutes in CI.
+/// The version of the wearsim library (the workspace's), as stamped in sweep indexes
+/// (`wearsim_version`) and reported by `wearsim --version` and Python's
+/// `wearsim.__version__`.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 pub mod analysis;
 #[cfg(feature = "app")]
 pub mod analyze;

@@ -503,6 +503,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
         drop(probe.readonly());
     }
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;
+    m.add("__version__", wearsim_host::VERSION)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;

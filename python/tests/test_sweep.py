@@ -1,7 +1,9 @@
 """Sweeps from Python: the Parquet index, byte-identical shards on a 2-worker Dask cluster,
 and a sweep killed with SIGKILL and resumed with nothing lost or doubled."""
 
+import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -47,6 +49,10 @@ def test_index_has_every_label_and_parameter(reference):
     assert np.array_equal(sig[t["row"][i]], x.astype(np.float32))
     index, signals = wearsim.load_dataset(reference)
     assert len(index) == 24 and signals(3).shape == (6, 1200)
+    # The data set names the library that made it, as the package reports it.
+    manifest = json.loads((reference / "manifest.json").read_text())
+    assert re.fullmatch(r"\d+\.\d+\.\d+.*", wearsim.__version__)
+    assert manifest["wearsim_version"] == wearsim.__version__
 
 
 def test_dask_two_workers_byte_identical(reference, tmp_path):

@@ -21,7 +21,12 @@ import numpy as np
 from . import _wearsim
 from ._wearsim import ConfigError
 
+#: Version of the wearsim library inside this package (the one a sweep's index stamps as
+#: ``wearsim_version``).
+__version__: str = _wearsim.__version__
+
 __all__ = [
+    "__version__",
     "ConfigError",
     "simulate",
     "life",

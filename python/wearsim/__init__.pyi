@@ -3,6 +3,9 @@ from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
+__version__: str
+"""Version of the wearsim library inside this package (a sweep's ``wearsim_version``)."""
+
 class ConfigError(ValueError):
     """Bad input: the message names the field and its allowed range."""
 

@@ -286,7 +286,7 @@ pub fn run_metadata(sc: &Scenario, a: &SimulateArgs, summary: &Summary) -> Value
     let speed = sc.record_speed();
     let mut v = json!({
         "generator": "wearsim simulate",
-        "version": env!("CARGO_PKG_VERSION"),
+        "version": crate::VERSION,
         "preset": sc.run.preset,
         "config_file": a.config,
         "seed": sc.run.seed,

@@ -162,7 +162,7 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
     let columns: Vec<(&str, &[f64])> = vec![("accel_m_s2", &accel), ("accel_g", &g)];
     let meta = json!({
         "generator": "wearsim capture",
-        "version": env!("CARGO_PKG_VERSION"),
+        "version": crate::VERSION,
         "source": a.input.display().to_string(),
         "preset": report.preset,
         "seed": report.seed,

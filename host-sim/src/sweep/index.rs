@@ -170,7 +170,7 @@ fn write_grouped<W: std::io::Write + Send>(
 ) -> Result<(), SweepError> {
     let props = Arc::new(
         WriterProperties::builder()
-            .set_created_by(format!("wearsim {}", env!("CARGO_PKG_VERSION")))
+            .set_created_by(format!("wearsim {}", crate::VERSION))
             .build(),
     );
     let mut w: Option<SerializedFileWriter<W>> = None;

@@ -307,7 +307,7 @@ pub fn finalize(spec: &SweepSpec, dir: &Path) -> Result<(bool, u64), SweepError>
         "index": INDEX,
         "bytes": bytes,
         "bytes_per_record": bytes as f64 / spec.records as f64,
-        "wearsim_version": env!("CARGO_PKG_VERSION"),
+        "wearsim_version": crate::VERSION,
     });
     shard::write_atomic(
         &dir.join(MANIFEST),
