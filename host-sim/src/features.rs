@@ -20,6 +20,7 @@ use crate::analysis::octave_bands::{band_levels, band_name, octave_edges};
 use crate::analysis::stats::stats;
 use crate::gap::lifetime::rig::{RigDescription, RPM_TOL};
 use crate::geometry::{catalogue, named_geometry, GeometrySpec};
+use crate::io::conditions::{from_folder_names, ConditionSet, NamedCondition};
 use crate::io::feature_table::{
     check_against_table, check_rows, check_sidecar, median_step, sidecar_path, BearingInfo,
     FeatureRow, FeatureSidecar, FeatureTableError, Geometry, FAILURE_MODES, FORMAT, FORMAT_VERSION,
@@ -30,9 +31,7 @@ use crate::io::ims::{read_ims_snapshot, IMS_FS, IMS_RPM};
 use crate::io::layout::{read_femto, read_layout, sniff_text, TextLayout, FEMTO_FS, XJTU_FS};
 use crate::io::{IoError, ReadOptions};
 
-mod conditions;
 mod files;
-pub use conditions::{from_folder_names, NamedCondition};
 pub use files::FEMTO_MAX_WRAP_STEP_S;
 
 /// Interval between XJTU-SY snapshots, s (one 1.28-s record a minute; Wang et al. 2020).
@@ -64,7 +63,7 @@ pub struct FeatureOptions {
     /// Channel (layout-specific: IMS `1`..`8`, FEMTO `horiz`/`vert`, XJTU header).
     pub channel: Option<String>,
     /// Shaft speed, rpm (IMS: 2000 by default; FEMTO/XJTU: the folder names' condition
-    /// ([`from_folder_names`]), else required).
+    /// ([`crate::io::conditions`]), else required).
     pub rpm: Option<f64>,
     /// Radial load, N (IMS: 6000 lbf by default; else required).
     pub load_n: Option<f64>,
@@ -120,7 +119,7 @@ pub struct FeaturesSummary {
     /// RMS of the first and the last snapshot (record unit).
     pub rms_first_last: (f64, f64),
     /// Where the table's speed came from: `--rpm`, the IMS readme, or a folder name
-    /// ([`from_folder_names`]).
+    /// ([`crate::io::conditions`]).
     pub rpm_source: String,
     /// Where the table's radial load came from (as `rpm_source`).
     pub load_source: String,
@@ -190,7 +189,7 @@ fn notes(
     n
 }
 
-/// Notes on a folder-name operating point ([`from_folder_names`]): used (for speed, load or
+/// Notes on a folder-name operating point ([`crate::io::conditions`]): used (for speed, load or
 /// both), or contradicted by the flag that replaced it.
 fn named_notes(named: Option<&NamedCondition>, rpm: f64, load_n: f64) -> Vec<String> {
     let Some(n) = named else {
@@ -286,10 +285,17 @@ pub fn convert(
     let ims = layout == RawLayout::Ims;
     // Speed and load: the flags, else the IMS readme's, else what the data set's folder
     // names state (FEMTO, XJTU-SY), reported with their source.
-    let named = from_folder_names(
-        &std::fs::canonicalize(dir).unwrap_or(dir.to_path_buf()),
-        layout,
-    );
+    let set = match layout {
+        RawLayout::Xjtu => Some(ConditionSet::Xjtu),
+        RawLayout::Femto => Some(ConditionSet::Femto),
+        RawLayout::Ims | RawLayout::Auto => None,
+    };
+    let named = set.and_then(|set| {
+        from_folder_names(
+            &std::fs::canonicalize(dir).unwrap_or(dir.to_path_buf()),
+            set,
+        )
+    });
     let (rpm, rpm_source) = match (o.rpm, ims, &named) {
         (Some(r), _, _) => (r, "--rpm".to_string()),
         (None, true, _) => (IMS_RPM, "IMS readme (2000 rpm)".to_string()),

@@ -176,17 +176,40 @@ pub fn read_layout(path: &Path, layout: TextLayout, opts: &ReadOptions) -> Resul
         }
         None => format!("layout:{}", layout.name()),
     };
-    let rpm_source = match opts.rpm {
-        Some(r) => {
+    // FEMTO and XJTU-SY files hold no speed or load; the sets' folder names state them
+    // (`io::conditions`), used when neither an argument nor a sidecar gave a speed.
+    let set = match layout {
+        TextLayout::XjtuSy => Some(super::conditions::ConditionSet::Xjtu),
+        TextLayout::Femto(_) => Some(super::conditions::ConditionSet::Femto),
+        TextLayout::Ims(_) => None,
+    };
+    let named = match (set, opts.rpm, rec.rpm, path.parent()) {
+        (Some(set), None, None, Some(dir)) => super::conditions::from_folder_names(
+            &std::fs::canonicalize(dir).unwrap_or(dir.to_path_buf()),
+            set,
+        ),
+        _ => None,
+    };
+    let rpm_source = match (opts.rpm, &named) {
+        (Some(r), _) => {
             rec.rpm = Some(check_rpm(path, r)?);
             Some("argument".to_string())
         }
-        None => rec.rpm.map(|_| format!("layout:{}", layout.name())),
+        (None, Some(n)) => {
+            rec.rpm = Some(n.rpm);
+            Some(format!("layout:{}(folder name)", layout.name()))
+        }
+        (None, None) => rec.rpm.map(|_| format!("layout:{}", layout.name())),
     };
     if let Some(m) = rec.meta.as_object_mut() {
         m.insert("layout".into(), json!(layout.name()));
         m.insert("fs_source".into(), json!(fs_source));
         m.insert("rpm_source".into(), json!(rpm_source));
+        if let Some(n) = &named {
+            m.insert("rpm_detail".into(), json!(n.source));
+            m.insert("load".into(), json!(n.load_n));
+            m.insert("load_source".into(), json!(n.source));
+        }
     }
     set_details(&mut rec, layout.name(), opts);
     Ok(rec)
@@ -437,6 +460,52 @@ mod tests {
         let short: String = ims.lines().skip(1).map(|l| format!("{l}\n")).collect();
         std::fs::write(&p, &short).unwrap();
         assert!(sniff_text(&p).unwrap().is_none());
+    }
+
+    /// The sets' folder names give the speed and load their files lack (`io::conditions`);
+    /// an argument wins, and a file elsewhere has none.
+    #[test]
+    fn xjtu_and_femto_files_take_speed_and_load_from_their_folder_names() {
+        let dir = tempfile::tempdir().unwrap();
+        let x = dir.path().join("37.5Hz11kN/Bearing2_1");
+        std::fs::create_dir_all(&x).unwrap();
+        let mut text = String::from("Horizontal_vibration_signals,Vertical_vibration_signals\n");
+        for i in 0..1000 {
+            text.push_str(&format!("{},0.5\n", (i as f64 * 0.1).sin()));
+        }
+        std::fs::write(x.join("7.csv"), &text).unwrap();
+        let r = read_any(&x.join("7.csv"), &opts(None)).unwrap();
+        assert_eq!(r.rpm, Some(2250.0));
+        assert_eq!(r.meta["load"], 11000.0);
+        assert_eq!(r.meta["rpm_source"], "layout:xjtu-sy(folder name)");
+        assert!(r.meta["rpm_detail"]
+            .as_str()
+            .unwrap()
+            .contains("`37.5Hz11kN`"));
+        let given = ReadOptions {
+            rpm: Some(2000.0),
+            ..ReadOptions::default()
+        };
+        let r = read_any(&x.join("7.csv"), &given).unwrap();
+        assert_eq!((r.rpm, r.meta.get("load")), (Some(2000.0), None));
+        std::fs::write(dir.path().join("7.csv"), &text).unwrap();
+        assert_eq!(
+            read_any(&dir.path().join("7.csv"), &opts(None))
+                .unwrap()
+                .rpm,
+            None
+        );
+        let f = dir.path().join("Learning_set/Bearing3_1");
+        std::fs::create_dir_all(&f).unwrap();
+        let femto: String = (0..2560)
+            .map(|i| format!("9,39,39,{},{:.3},-0.5\n", 65664 + i * 39, (i as f64).sin()))
+            .collect();
+        std::fs::write(f.join("acc_00001.csv"), femto).unwrap();
+        let r = read_any(&f.join("acc_00001.csv"), &opts(None)).unwrap();
+        assert_eq!(
+            (r.rpm, r.meta["load"].as_f64()),
+            (Some(1500.0), Some(5000.0))
+        );
     }
 
     #[test]

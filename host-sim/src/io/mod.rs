@@ -11,6 +11,7 @@
 //! * [`ims::read_ims_features`]: the IMS per-snapshot feature tables.
 //! * [`feature_table`]: the documented per-snapshot feature table of any run-to-failure test.
 
+pub mod conditions;
 pub mod csv;
 pub mod csv_shape;
 pub mod error;

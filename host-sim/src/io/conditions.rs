@@ -11,12 +11,20 @@
 //! | XJTU-SY | `Bearing1_k` … `Bearing3_k` (no such parent) | 35 Hz / 12 kN, 37.5 Hz / 11 kN, 40 Hz / 10 kN | Wang, Lei, Li, Li 2020, IEEE T-Rel 69(1):401–412 |
 //! | FEMTO | `Bearing1_k` … `Bearing3_k` | 1800 rpm / 4000 N, 1650 rpm / 4200 N, 1500 rpm / 5000 N | Nectoux et al. 2012, IEEE PHM (`shared/docs/life-physics-sources.md` §5) |
 //!
-//! Only the folder and its two nearest parents are read. Explicit `--rpm` / `--load-n`
-//! win; the source of what was used is reported (sidecar notes, summary).
+//! Only the folder and its two nearest parents are read. An explicit speed or load wins
+//! (`--rpm`, `--load-n`, a sidecar); the source of what was used is reported (`features`:
+//! summary and sidecar notes; `analyze`: `input.rpm_source`, `rpm_detail`, `input.load`).
 
 use std::path::Path;
 
-use super::RawLayout;
+/// The data sets whose folder names state an operating condition.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConditionSet {
+    /// XJTU-SY (`35Hz12kN/Bearing1_1`).
+    Xjtu,
+    /// FEMTO/PRONOSTIA (`Bearing1_1`).
+    Femto,
+}
 
 /// Speed and load read from a folder name, with where they came from.
 #[derive(Debug, Clone, PartialEq)]
@@ -61,16 +69,15 @@ fn bearing_condition(name: &str) -> Option<usize> {
 }
 
 /// The operating point the folder `dir` (or one of its two nearest parents) states by the
-/// naming of `layout`'s data set; `None` for IMS (its readme states one point for every
-/// test) or when no name follows the convention.
-pub fn from_folder_names(dir: &Path, layout: RawLayout) -> Option<NamedCondition> {
+/// naming of data set `set`; `None` when no name follows the convention.
+pub fn from_folder_names(dir: &Path, set: ConditionSet) -> Option<NamedCondition> {
     let names: Vec<String> = dir
         .ancestors()
         .take(3)
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
-    match layout {
-        RawLayout::Xjtu => {
+    match set {
+        ConditionSet::Xjtu => {
             if let Some((name, (f, l))) = names.iter().find_map(|n| hz_kn(n).map(|v| (n, v))) {
                 return Some(NamedCondition {
                     rpm: f * 60.0,
@@ -92,7 +99,7 @@ pub fn from_folder_names(dir: &Path, layout: RawLayout) -> Option<NamedCondition
                 ),
             })
         }
-        RawLayout::Femto => {
+        ConditionSet::Femto => {
             let (name, c) = names
                 .iter()
                 .find_map(|n| bearing_condition(n).map(|c| (n, c)))?;
@@ -105,7 +112,6 @@ pub fn from_folder_names(dir: &Path, layout: RawLayout) -> Option<NamedCondition
                 ),
             })
         }
-        RawLayout::Ims | RawLayout::Auto => None,
     }
 }
 
@@ -117,44 +123,45 @@ mod tests {
     fn xjtu_folder_names_state_their_condition() {
         let c = from_folder_names(
             Path::new("/data/XJTU-SY_Bearing_Datasets/37.5Hz11kN/Bearing2_3"),
-            RawLayout::Xjtu,
+            ConditionSet::Xjtu,
         )
         .unwrap();
         assert_eq!((c.rpm, c.load_n), (2250.0, 11000.0));
         assert!(c.source.contains("37.5Hz11kN"), "{}", c.source);
         // Without the condition folder, the bearing's number names the condition.
-        let c = from_folder_names(Path::new("x/Bearing3_1"), RawLayout::Xjtu).unwrap();
+        let c = from_folder_names(Path::new("x/Bearing3_1"), ConditionSet::Xjtu).unwrap();
         assert_eq!((c.rpm, c.load_n), (2400.0, 10000.0));
         // The explicit name wins over the bearing number (a renamed copy).
-        let c = from_folder_names(Path::new("40Hz10kN/Bearing1_1"), RawLayout::Xjtu).unwrap();
+        let c = from_folder_names(Path::new("40Hz10kN/Bearing1_1"), ConditionSet::Xjtu).unwrap();
         assert_eq!((c.rpm, c.load_n), (2400.0, 10000.0));
     }
 
     #[test]
     fn femto_bearing_folders_state_their_condition() {
-        let c = from_folder_names(Path::new("Learning_set/Bearing2_1"), RawLayout::Femto).unwrap();
+        let c =
+            from_folder_names(Path::new("Learning_set/Bearing2_1"), ConditionSet::Femto).unwrap();
         assert_eq!((c.rpm, c.load_n), (1650.0, 4200.0));
-        let c = from_folder_names(Path::new("Full_Test_Set/Bearing3_3"), RawLayout::Femto).unwrap();
+        let c =
+            from_folder_names(Path::new("Full_Test_Set/Bearing3_3"), ConditionSet::Femto).unwrap();
         assert_eq!((c.rpm, c.load_n), (1500.0, 5000.0));
     }
 
     #[test]
     fn other_names_state_nothing() {
         for (dir, layout) in [
-            ("runs/Bearing4_1", RawLayout::Femto),
-            ("runs/Bearing1_", RawLayout::Femto),
-            ("runs/bearing1_1", RawLayout::Femto),
-            ("runs/35Hz", RawLayout::Xjtu),
-            ("runs/Hz12kN", RawLayout::Xjtu),
-            ("runs/-35Hz12kN", RawLayout::Xjtu),
-            ("runs/0Hz12kN", RawLayout::Xjtu),
-            ("1st_test/Bearing1_1", RawLayout::Ims),
+            ("runs/Bearing4_1", ConditionSet::Femto),
+            ("runs/Bearing1_", ConditionSet::Femto),
+            ("runs/bearing1_1", ConditionSet::Femto),
+            ("runs/35Hz", ConditionSet::Xjtu),
+            ("runs/Hz12kN", ConditionSet::Xjtu),
+            ("runs/-35Hz12kN", ConditionSet::Xjtu),
+            ("runs/0Hz12kN", ConditionSet::Xjtu),
         ] {
             assert_eq!(from_folder_names(Path::new(dir), layout), None, "{dir}");
         }
         // A condition three levels up is not read.
         assert_eq!(
-            from_folder_names(Path::new("35Hz12kN/a/b/c"), RawLayout::Xjtu),
+            from_folder_names(Path::new("35Hz12kN/a/b/c"), ConditionSet::Xjtu),
             None
         );
     }
