@@ -474,7 +474,7 @@ mod tests {
             text.push_str(&format!("{},0.5\n", (i as f64 * 0.1).sin()));
         }
         std::fs::write(x.join("7.csv"), &text).unwrap();
-        let r = read_any(&x.join("7.csv"), &opts(None)).unwrap();
+        let r = read_any(x.join("7.csv"), &opts(None)).unwrap();
         assert_eq!(r.rpm, Some(2250.0));
         assert_eq!(r.meta["load"], 11000.0);
         assert_eq!(r.meta["rpm_source"], "layout:xjtu-sy(folder name)");
@@ -486,13 +486,11 @@ mod tests {
             rpm: Some(2000.0),
             ..ReadOptions::default()
         };
-        let r = read_any(&x.join("7.csv"), &given).unwrap();
+        let r = read_any(x.join("7.csv"), &given).unwrap();
         assert_eq!((r.rpm, r.meta.get("load")), (Some(2000.0), None));
         std::fs::write(dir.path().join("7.csv"), &text).unwrap();
         assert_eq!(
-            read_any(&dir.path().join("7.csv"), &opts(None))
-                .unwrap()
-                .rpm,
+            read_any(dir.path().join("7.csv"), &opts(None)).unwrap().rpm,
             None
         );
         let f = dir.path().join("Learning_set/Bearing3_1");
@@ -501,7 +499,7 @@ mod tests {
             .map(|i| format!("9,39,39,{},{:.3},-0.5\n", 65664 + i * 39, (i as f64).sin()))
             .collect();
         std::fs::write(f.join("acc_00001.csv"), femto).unwrap();
-        let r = read_any(&f.join("acc_00001.csv"), &opts(None)).unwrap();
+        let r = read_any(f.join("acc_00001.csv"), &opts(None)).unwrap();
         assert_eq!(
             (r.rpm, r.meta["load"].as_f64()),
             (Some(1500.0), Some(5000.0))
