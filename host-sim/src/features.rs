@@ -189,6 +189,25 @@ fn notes(
     n
 }
 
+/// One quantity of the operating point (speed or load) and where it came from: the flag's
+/// value, else the IMS readme's, else what a folder name states ([`crate::io::conditions`]);
+/// with none of them, an error naming the flag.
+fn operating_value(
+    flag: &str,
+    what: &str,
+    given: Option<f64>,
+    ims: Option<(f64, &str)>,
+    named: Option<(f64, &str)>,
+) -> Result<(f64, String), FeaturesError> {
+    match (given, ims.or(named)) {
+        (Some(v), _) => Ok((v, flag.to_string())),
+        (None, Some((v, source))) => Ok((v, source.to_string())),
+        (None, None) => Err(FeaturesError::Input(format!(
+            "{flag}: the FEMTO and XJTU-SY files do not hold the {what}, and no folder name states it (XJTU-SY `35Hz12kN`, `Bearing1_1`; PRONOSTIA `Bearing1_1`); give it"
+        ))),
+    }
+}
+
 /// Notes on a folder-name operating point ([`crate::io::conditions`]): used (for speed, load or
 /// both), or contradicted by the flag that replaced it.
 fn named_notes(named: Option<&NamedCondition>, rpm: f64, load_n: f64) -> Vec<String> {
@@ -296,29 +315,23 @@ pub fn convert(
             set,
         )
     });
-    let (rpm, rpm_source) = match (o.rpm, ims, &named) {
-        (Some(r), _, _) => (r, "--rpm".to_string()),
-        (None, true, _) => (IMS_RPM, "IMS readme (2000 rpm)".to_string()),
-        (None, false, Some(n)) => (n.rpm, n.source.clone()),
-        (None, false, None) => {
-            return Err(FeaturesError::Input(
-                "--rpm: the FEMTO and XJTU-SY files do not hold the shaft speed, and no folder name states it (XJTU-SY `35Hz12kN`, `Bearing1_1`; PRONOSTIA `Bearing1_1`); give it (rpm)".into(),
-            ))
-        }
-    };
+    let (rpm, rpm_source) = operating_value(
+        "--rpm",
+        "shaft speed (rpm)",
+        o.rpm,
+        ims.then_some((IMS_RPM, "IMS readme (2000 rpm)")),
+        named.as_ref().map(|n| (n.rpm, n.source.as_str())),
+    )?;
     if o.rpm.is_some() {
         crate::io::record::check_rpm_argument(rpm).map_err(FeaturesError::Input)?;
     }
-    let (load_n, load_source) = match (o.load_n, ims, &named) {
-        (Some(l), _, _) => (l, "--load-n".to_string()),
-        (None, true, _) => (IMS_LOAD_N, "IMS readme (6000 lbf)".to_string()),
-        (None, false, Some(n)) => (n.load_n, n.source.clone()),
-        (None, false, None) => {
-            return Err(FeaturesError::Input(
-                "--load-n: the FEMTO and XJTU-SY files do not hold the radial load, and no folder name states it (XJTU-SY `35Hz12kN`, `Bearing1_1`; PRONOSTIA `Bearing1_1`); give it (N)".into(),
-            ))
-        }
-    };
+    let (load_n, load_source) = operating_value(
+        "--load-n",
+        "radial load (N)",
+        o.load_n,
+        ims.then_some((IMS_LOAD_N, "IMS readme (6000 lbf)")),
+        named.as_ref().map(|n| (n.load_n, n.source.as_str())),
+    )?;
     // Explicit flags override the layout's defaults. The IMS layout's preset stands for
     // its bearing at its speed and load: a geometry, speed or load of the user's drops it
     // (the table then names the bearing by its geometry). An explicit --preset replaces

@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 use support::{refused, s, wearsim, FEMTO_FLAGS};
 
 use wearsim_host::gap::lifetime::{measured, measured_tables, LifeOptions};
-use wearsim_host::io::feature_table::{read_feature_table, sidecar_path, FeatureTableError};
+use wearsim_host::io::feature_table::{
+    read_feature_table, sidecar_path, FeatureTable, FeatureTableError,
+};
 use wearsim_host::io::feature_table_write::{from_ims_features, write_feature_table};
 
 /// Amplitude of snapshot `k`: grows over the life (a degradation in closed form).
@@ -150,6 +152,17 @@ fn femto_folder(dir: &Path, n: usize, bad: Option<usize>) {
     std::fs::write(dir.join("temp_00001.csv"), "not a snapshot\n").unwrap();
 }
 
+/// `wearsim ARGS --json` (a `features` run that must succeed): the table it wrote to `out`
+/// and its printed summary.
+fn converted(args: &[&str], out: &Path) -> (FeatureTable, serde_json::Value) {
+    let mut args = args.to_vec();
+    args.push("--json");
+    let o = wearsim(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = serde_json::from_slice(&o.stdout).unwrap();
+    (read_feature_table(out).unwrap(), summary)
+}
+
 #[test]
 fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
     let tmp = tempfile::tempdir().unwrap();
@@ -168,13 +181,10 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
     refused(&o, &["--bearing-geometry"]);
     let geometry = &FEMTO_FLAGS[4..];
     assert_eq!(geometry[0], "--bearing-geometry");
-    let mut args = vec!["features", s(&raw), "--out", s(&out), "--json"];
+    let mut args = vec!["features", s(&raw), "--out", s(&out)];
     args.extend(geometry);
-    let o = wearsim(&args);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let t = read_feature_table(&out).unwrap();
+    let (t, summary) = converted(&args, &out);
     assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (1800.0, 4000.0));
-    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(summary["rpm_source"]
         .as_str()
         .unwrap()
@@ -190,8 +200,7 @@ fn femto_folder_keeps_time_across_midnight_and_needs_its_operating_point() {
     let out2 = tmp.path().join("femto2.csv");
     let mut args = vec!["features", s(&two), "--out", s(&out2), "--load-n", "4100"];
     args.extend(geometry);
-    assert!(wearsim(&args).status.success());
-    let t = read_feature_table(&out2).unwrap();
+    let (t, _) = converted(&args, &out2);
     assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (1650.0, 4100.0));
     assert!(
         t.sidecar
@@ -278,25 +287,15 @@ fn xjtu_folder_is_a_minute_per_file_with_the_catalogue_bearing() {
     }
     // Without --rpm and --load-n: the bearing's number names XJTU-SY's condition 1
     // (35 Hz, 12 kN), and a condition folder `40Hz10kN` above it wins over the number.
-    let o = wearsim(&["features", s(&raw), "--out", s(&out), "--json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let t = read_feature_table(&out).unwrap();
+    let (t, _) = converted(&["features", s(&raw), "--out", s(&out)], &out);
     assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (2100.0, 12000.0));
     let named = tmp.path().join("40Hz10kN");
     std::fs::create_dir_all(&named).unwrap();
     std::fs::rename(&raw, named.join("Bearing1_1")).unwrap();
     let out2 = tmp.path().join("x2.csv");
-    let o = wearsim(&[
-        "features",
-        s(&named.join("Bearing1_1")),
-        "--out",
-        s(&out2),
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let t = read_feature_table(&out2).unwrap();
+    let moved = named.join("Bearing1_1");
+    let (t, summary) = converted(&["features", s(&moved), "--out", s(&out2)], &out2);
     assert_eq!((t.sidecar.rpm, t.sidecar.radial_load_n), (2400.0, 10000.0));
-    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(summary["load_source"]
         .as_str()
         .unwrap()
