@@ -42,7 +42,14 @@ const XJTU_CONDITIONS: [(f64, f64); 3] = [(35.0, 12.0), (37.5, 11.0), (40.0, 10.
 /// FEMTO/PRONOSTIA operating conditions 1–3 (Nectoux et al. 2012): speed (rpm), load (N).
 const FEMTO_CONDITIONS: [(f64, f64); 3] = [(1800.0, 4000.0), (1650.0, 4200.0), (1500.0, 5000.0)];
 
-/// `<f>Hz<l>kN` (case-insensitive, decimal numbers): shaft rate `f` Hz and load `l` kN.
+/// Largest shaft rate a folder name is read as, Hz (60 000 rpm: above it a name like
+/// `5000Hz1kN` is more likely a sample rate than a test condition).
+const MAX_NAMED_HZ: f64 = 1000.0;
+/// Largest load a folder name is read as, kN.
+const MAX_NAMED_KN: f64 = 10_000.0;
+
+/// `<f>Hz<l>kN` (case-insensitive, decimal numbers): shaft rate `f` Hz and load `l` kN, each
+/// positive and at most [`MAX_NAMED_HZ`] / [`MAX_NAMED_KN`].
 fn hz_kn(name: &str) -> Option<(f64, f64)> {
     let lower = name.to_ascii_lowercase();
     let (f, rest) = lower.split_once("hz")?;
@@ -53,7 +60,8 @@ fn hz_kn(name: &str) -> Option<(f64, f64)> {
             .flatten()
             .filter(|v| v.is_finite() && *v > 0.0)
     };
-    Some((num(f)?, num(l)?))
+    let (f, l) = (num(f)?, num(l)?);
+    (f <= MAX_NAMED_HZ && l <= MAX_NAMED_KN).then_some((f, l))
 }
 
 /// `Bearing<c>_<k>` with condition `c` in 1..=3: `c`.
@@ -156,6 +164,9 @@ mod tests {
             ("runs/Hz12kN", ConditionSet::Xjtu),
             ("runs/-35Hz12kN", ConditionSet::Xjtu),
             ("runs/0Hz12kN", ConditionSet::Xjtu),
+            ("runs/1001Hz12kN", ConditionSet::Xjtu),
+            ("runs/35Hz10001kN", ConditionSet::Xjtu),
+            ("runs/3.5.1Hz12kN", ConditionSet::Xjtu),
         ] {
             assert_eq!(from_folder_names(Path::new(dir), layout), None, "{dir}");
         }
