@@ -550,15 +550,23 @@ pub fn family_name(f: FaultFamily) -> &'static str {
 /// Print the analysis for a person.
 pub fn print_analysis(a: &Analysis) {
     let k = &a.kinematics;
+    // Where the speed was found, when that says more than its category (a MAT variable, a
+    // folder name's condition): a folder name is not the file's own statement. A refined
+    // speed's detail is the warning line below.
+    let rpm_from =
+        if a.speed_refined.is_some() || a.rpm_detail.is_empty() || a.rpm_detail == a.rpm_source {
+            a.rpm_source.clone()
+        } else {
+            format!("{}: {}", a.rpm_source, a.rpm_detail)
+        };
     println!(
-        "{} [{}] | fs {} Hz | {} samples ({:.2} s) | {:.0} rpm ({}) | bearing {} ({})",
+        "{} [{}] | fs {} Hz | {} samples ({:.2} s) | {:.0} rpm ({rpm_from}) | bearing {} ({})",
         a.file.display(),
         a.channel,
         a.fs,
         a.samples,
         a.duration_s,
         a.rpm,
-        a.rpm_source,
         a.bearing,
         a.bearing_source
     );

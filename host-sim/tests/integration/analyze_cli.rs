@@ -150,6 +150,30 @@ fn outer_race_csv_is_diagnosed_outer_race() {
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("diagnosis: outer race"), "{text}");
     assert!(text.contains("demodulation band"), "{text}");
+    assert!(text.contains("| 1797 rpm (argument: --rpm) |"), "{text}");
+}
+
+/// The header says where a speed was found when the category "file" would mislead: an
+/// XJTU-SY snapshot states none, its folder name does (`35Hz12kN`: 2100 rpm).
+#[test]
+fn the_header_names_a_folder_names_speed() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path().join("35Hz12kN/Bearing1_1");
+    std::fs::create_dir_all(&d).expect("mkdir");
+    let (x, _) = outer_race_signal();
+    let mut s = String::from("Horizontal_vibration_signals,Vertical_vibration_signals\n");
+    for v in &x {
+        s.push_str(&format!("{v},{}\n", 0.5 * v));
+    }
+    let f = d.join("1.csv");
+    std::fs::write(&f, s).expect("write");
+    let o = wearsim(&["analyze", &f.to_string_lossy()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("| 2100 rpm (file: folder name `35Hz12kN`"),
+        "{text}"
+    );
 }
 
 #[test]
