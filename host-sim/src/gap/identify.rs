@@ -6,8 +6,15 @@
 //! signature `d` — the change of the training cell gaps from the baseline to the fitted
 //! effect. Both are weighted as the total gap weights the cells (every group counts
 //! equally). Effect `b` can *reproduce* effect `a` when `a`'s signature lies close to
-//! `b`'s signature subspace `span(J_b, d_b)`: the angle between `d_a` and its projection
-//! on that subspace is below [`CONFOUND_DEG`]. Effect `a`'s ranking is evidence for `a`
+//! `b`'s signature subspace `span(J_b, d_b)` at this record's noise: the angle between
+//! `d_a` and its projection on that subspace is below [`CONFOUND_DEG`], **and** the part
+//! of `d_a` the subspace leaves (`|d_a| sin angle`, total-gap units) is below the
+//! diagnosis's significance level (`significant_gap`, the level below which a gap is
+//! within the measurement's own variability) — the gap that would be left if `b` stood
+//! in for `a` is one the record could not show. An effect whose fitted change is large
+//! is told apart from another at a smaller angle than a weak one (stop 67: on twins the
+//! angle alone put strong transfer-path and sensor fits in sets of two whose difference
+//! was several times the noise). Effect `a`'s ranking is evidence for `a`
 //! only if no other effect that also shrinks the gap by at least the minimum shrink can
 //! reproduce what `a` did; those that can are `a`'s **confounded set**: the report names
 //! it and does not rank inside it.
@@ -25,7 +32,7 @@
 //! squares (the same Jacobian as the parameters' uncertainty).
 
 use super::attribute::Attribution;
-use super::signature::Signature;
+use super::signature::{Reach, Signature};
 use std::collections::BTreeMap;
 
 /// Angle (degrees) between one effect's signature and another's signature subspace
@@ -38,20 +45,21 @@ use std::collections::BTreeMap;
 pub const CONFOUND_DEG: f64 = 25.0;
 
 /// Fills `confounded_with` of every ranked effect `a`: the other effects, both shrinking
-/// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature. Adds a
-/// finding naming the confounded set of the first-ranked effect, and returns the angles
-/// (degrees, `a → b`: `a`'s signature to `b`'s subspace) for the report.
-pub fn confounded(at: &mut Attribution, min_shrink: f64) -> BTreeMap<String, f64> {
-    let mut angles = BTreeMap::new();
+/// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature at the
+/// significance level `level` (total gap). Adds a finding naming the confounded set of the
+/// first-ranked effect, and returns the reach of every pair (`a → b`: `a`'s signature
+/// against `b`'s subspace) for the report.
+pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap<String, Reach> {
+    let mut reach = BTreeMap::new();
     for a in &at.ranking {
         for b in at.ranking.iter().filter(|b| b.effect != a.effect) {
-            let t = a.signature.angle_to(&b.signature);
-            angles.insert(format!("{} -> {}", a.effect, b.effect), t);
+            let r = a.signature.against(&b.signature);
+            reach.insert(format!("{} -> {}", a.effect, b.effect), r);
         }
     }
     let sigs: Vec<&Signature> = at.ranking.iter().map(|r| &r.signature).collect();
     let shrink: Vec<f64> = at.ranking.iter().map(|r| r.shrink).collect();
-    let sets = reproducers(&sigs, &shrink, min_shrink);
+    let sets = reproducers(&sigs, &shrink, min_shrink, level);
     let names: Vec<String> = at.ranking.iter().map(|r| r.effect.clone()).collect();
     for (r, set) in at.ranking.iter_mut().zip(sets) {
         r.confounded_with = set
@@ -64,12 +72,13 @@ pub fn confounded(at: &mut Attribution, min_shrink: f64) -> BTreeMap<String, f64
             let mut set = vec![first.effect.clone()];
             set.extend(first.confounded_with.iter().cloned());
             at.findings.push(format!(
-                "confounded set {{{}}}: at the fitted point the others can each reproduce the first's cell signature (angle below {CONFOUND_DEG}°); the ranking inside the set is not evidence for either",
-                set.iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", ")
+                "confounded set {{{}}}: at the fitted point the others can each reproduce the first's cell signature (angle below {CONFOUND_DEG}°, leaving less of it than the significance level {}); the ranking inside the set is not evidence for either",
+                set.iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", "),
+                super::significance::level(level)
             ));
         }
     }
-    angles
+    reach
 }
 
 /// Shrink of the validation gap of every ranked effect per cell group: `1 − rms(gaps with
@@ -105,17 +114,29 @@ pub fn group_shrink(at: &mut Attribution, group: &[String]) {
     }
 }
 
+/// Whether an effect whose signature has `reach` to another's subspace can be reproduced
+/// by it at the significance level `level`: within [`CONFOUND_DEG`], leaving less than
+/// `level` of the signature.
+pub fn reproduces(reach: Reach, level: f64) -> bool {
+    reach.angle_deg < CONFOUND_DEG && reach.residual < level
+}
+
 /// For each effect `i`, the effects `j ≠ i` that can reproduce it: both shrink the
 /// validation gap by at least `min_shrink` (`shrink[i]`, `shrink[j]`) and `sig[i]`'s
-/// signature lies within [`CONFOUND_DEG`] of `sig[j]`'s subspace.
-pub fn reproducers(sig: &[&Signature], shrink: &[f64], min_shrink: f64) -> Vec<Vec<usize>> {
+/// signature [`reproduces`] by `sig[j]`'s subspace at `level`.
+pub fn reproducers(
+    sig: &[&Signature],
+    shrink: &[f64],
+    min_shrink: f64,
+    level: f64,
+) -> Vec<Vec<usize>> {
     let strong = |i: usize| shrink.get(i).is_some_and(|s| *s >= min_shrink);
     (0..sig.len())
         .map(|i| {
             (0..sig.len())
                 .filter(|&j| j != i && strong(i) && strong(j))
                 .filter(|&j| match (sig.get(i), sig.get(j)) {
-                    (Some(a), Some(b)) => a.angle_to(b) < CONFOUND_DEG,
+                    (Some(a), Some(b)) => reproduces(a.against(b), level),
                     _ => false,
                 })
                 .collect()
@@ -136,20 +157,61 @@ mod tests {
         let sensor = Signature {
             d: vec![1.0, 0.05, 0.0],
             cols: vec![vec![1.0, 0.0, 0.0], vec![0.0, 1.0, 0.0]],
+            records: 1,
         };
         let harmonics = Signature {
             d: vec![0.0, 1.0, 0.1],
             cols: vec![vec![0.0, 1.0, 0.0]],
+            records: 1,
         };
         let weak = Signature {
             d: vec![1.0, 0.0, 0.0],
             cols: vec![vec![1.0, 0.0, 0.0]],
+            records: 1,
         };
-        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.05);
+        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.05, 1.5);
         assert_eq!(sets, vec![Vec::<usize>::new(), vec![0], vec![]]);
         // The weak effect reproduces the sensor exactly but shrinks too little to count;
         // with a lower minimum it joins the sensor's set (and the sensor its).
-        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.0);
+        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.0, 1.5);
         assert_eq!(sets, vec![vec![2], vec![0], vec![0]]);
+    }
+
+    /// An effect 20° from another's subspace is reproduced by it while what the subspace
+    /// leaves (|d| sin 20° = 0.34 |d|) is under the significance level, and told apart once
+    /// its fitted change is large enough for the record to show that part: |d| = 2 leaves
+    /// 0.68 (confounded at 1.5), |d| = 10 leaves 3.42 (not). The part is in total-gap units:
+    /// over four training records it counts half (÷ √4).
+    #[test]
+    fn a_strong_signature_is_told_apart_at_an_angle_a_weak_one_is_not() {
+        let (c, s) = (20f64.to_radians().cos(), 20f64.to_radians().sin());
+        let at = |norm: f64, records: usize| Signature {
+            d: vec![norm * c, norm * s, 0.0],
+            cols: vec![vec![1.0, 0.0, 0.0]],
+            records,
+        };
+        let other = Signature {
+            d: vec![1.0, 0.0, 0.0],
+            cols: vec![vec![1.0, 0.0, 0.0]],
+            records: 1,
+        };
+        let r = at(10.0, 1).against(&other);
+        assert!((r.angle_deg - 20.0).abs() < 1e-9, "{r:?}");
+        assert!((r.residual - 10.0 * s).abs() < 1e-9, "{r:?}");
+        let shrink = [0.3, 0.3];
+        let pair = |a: &Signature| reproducers(&[a, &other], &shrink, 0.05, 1.5)[0].clone();
+        assert_eq!(pair(&at(2.0, 1)), vec![1]);
+        assert_eq!(pair(&at(10.0, 1)), Vec::<usize>::new());
+        assert!((at(10.0, 4).against(&other).residual - 5.0 * s).abs() < 1e-9);
+        // At 30° no strength makes it reproducible.
+        let wide = Signature {
+            d: vec![30f64.to_radians().cos(), 30f64.to_radians().sin(), 0.0],
+            cols: vec![],
+            records: 1,
+        };
+        assert_eq!(
+            reproducers(&[&wide, &other], &shrink, 0.05, 1.5)[0],
+            Vec::<usize>::new()
+        );
     }
 }

@@ -11,9 +11,15 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// Angle (degrees) between `d` and the span of `cols` (90 when `d` or the span is empty).
 pub fn angle_to_span(d: &[f64], cols: &[Vec<f64>]) -> f64 {
+    project(d, cols).0
+}
+
+/// `d` against the span of `cols`: the angle (degrees) between them, and the norm of the
+/// part of `d` the span leaves (`|d| · sin angle`; `|d|` when `d` or the span is empty).
+fn project(d: &[f64], cols: &[Vec<f64>]) -> (f64, f64) {
     let nd = dot(d, d).sqrt();
     if !(nd.is_finite() && nd > 0.0) {
-        return 90.0;
+        return (90.0, 0.0);
     }
     // Modified Gram–Schmidt; columns that add nothing new are skipped.
     let mut basis: Vec<Vec<f64>> = vec![];
@@ -41,7 +47,8 @@ pub fn angle_to_span(d: &[f64], cols: &[Vec<f64>]) -> f64 {
         rest.iter_mut().zip(q).for_each(|(x, y)| *x -= k * y);
     }
     let proj2: f64 = basis.iter().map(|q| dot(d, q).powi(2)).sum();
-    dot(&rest, &rest).sqrt().atan2(proj2.sqrt()).to_degrees()
+    let left = dot(&rest, &rest).sqrt();
+    (left.atan2(proj2.sqrt()).to_degrees(), left)
 }
 
 /// The weighted signature and subspace of one ranked effect.
@@ -51,6 +58,9 @@ pub struct Signature {
     pub d: Vec<f64>,
     /// Weighted Jacobian columns.
     pub cols: Vec<Vec<f64>>,
+    /// Training records `d` spans (its norm over √records is in total-gap units,
+    /// [`Gaps::total`]).
+    pub records: usize,
 }
 
 impl Signature {
@@ -72,16 +82,36 @@ impl Signature {
             .filter(|c| c.len() == w.len())
             .map(|c| c.iter().zip(w).map(|(x, w)| w * x).collect())
             .collect();
-        Signature { d, cols }
+        Signature {
+            d,
+            cols,
+            records: fitted.records,
+        }
     }
 
-    /// Angle (degrees) between this signature and `other`'s subspace (its Jacobian
-    /// columns and its own signature).
-    pub fn angle_to(&self, other: &Signature) -> f64 {
+    /// This signature against `other`'s subspace (its Jacobian columns and its own
+    /// signature): the angle between them (degrees), and what of this signature that
+    /// subspace leaves, in total-gap units (the norm over √records, as [`Gaps::total`]):
+    /// the gap that would remain on the training records if `other` stood in for this
+    /// effect, to the first order.
+    pub fn against(&self, other: &Signature) -> Reach {
         let mut cols = other.cols.clone();
         cols.push(other.d.clone());
-        angle_to_span(&self.d, &cols)
+        let (angle_deg, left) = project(&self.d, &cols);
+        Reach {
+            angle_deg,
+            residual: left / (self.records.max(1) as f64).sqrt(),
+        }
     }
+}
+
+/// How far one effect's signature is from another's subspace ([`Signature::against`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reach {
+    /// Angle (degrees) between the signature and the subspace.
+    pub angle_deg: f64,
+    /// Norm of the part of the signature the subspace leaves (total-gap units).
+    pub residual: f64,
 }
 
 #[cfg(test)]

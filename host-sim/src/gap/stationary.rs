@@ -596,7 +596,7 @@ pub fn diagnose(
         }));
     }
     at.uninformed = uninformed;
-    identify::confounded(&mut at, opt.min_shrink);
+    identify::confounded(&mut at, opt.min_shrink, opt.significant_gap);
     if let Some(v) = p.valid.first() {
         let groups: Vec<String> = v
             .reference

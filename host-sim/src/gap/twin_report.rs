@@ -75,6 +75,10 @@ pub struct Reproducer {
     pub angle_deg: f64,
     /// This effect's validation shrink, alone on the baseline.
     pub shrink: f64,
+    /// Norm of the part of the first-ranked effect's signature that this effect's
+    /// subspace leaves (total-gap units, `|d| · sin angle`): this effect reproduces the
+    /// first only when it is under the significance level (`identify::reproduces`).
+    pub residual: f64,
 }
 
 /// A withheld effect counts as detectable when its strength ([`Trial::strength`]) is at
@@ -119,9 +123,10 @@ pub struct AngleRow {
 pub const SET_ANGLES: [f64; 9] = [5.0, 10.0, 12.5, 15.0, 17.5, 20.0, 25.0, 35.0, 45.0];
 
 /// The set a trial would report with the angle `deg`: the first-ranked effect and every
-/// other effect within `deg` of reproducing it that shrinks the validation gap by at least
-/// `min_shrink` (the first one's shrink is at least that whenever it is named).
-fn set_at(t: &Trial, deg: f64, min_shrink: f64) -> Vec<&str> {
+/// other effect within `deg` of reproducing it, leaving less of its signature than the
+/// significance level `level`, that shrinks the validation gap by at least `min_shrink`
+/// (the first one's shrink is at least that whenever it is named).
+fn set_at(t: &Trial, deg: f64, min_shrink: f64, level: f64) -> Vec<&str> {
     let Some(first) = t.ranked_first.as_deref() else {
         return vec![];
     };
@@ -129,7 +134,7 @@ fn set_at(t: &Trial, deg: f64, min_shrink: f64) -> Vec<&str> {
     v.extend(
         t.first_angles
             .iter()
-            .filter(|r| r.angle_deg < deg && r.shrink >= min_shrink)
+            .filter(|r| r.angle_deg < deg && r.residual < level && r.shrink >= min_shrink)
             .map(|r| r.effect.as_str()),
     );
     v
@@ -153,7 +158,12 @@ pub(super) fn detectable<'a>(ts: &[&'a Trial]) -> Vec<&'a Trial> {
 
 /// [`AngleRow`] for every angle of [`SET_ANGLES`] over the detectable single-effect trials
 /// of `labels`.
-pub(super) fn angle_curve(trials: &[Trial], labels: &[String], min_shrink: f64) -> Vec<AngleRow> {
+pub(super) fn angle_curve(
+    trials: &[Trial],
+    labels: &[String],
+    min_shrink: f64,
+    level: f64,
+) -> Vec<AngleRow> {
     SET_ANGLES
         .iter()
         .map(|&deg| {
@@ -164,8 +174,10 @@ pub(super) fn angle_curve(trials: &[Trial], labels: &[String], min_shrink: f64) 
                 if seen.is_empty() {
                     continue;
                 }
-                let sets: Vec<Vec<&str>> =
-                    seen.iter().map(|t| set_at(t, deg, min_shrink)).collect();
+                let sets: Vec<Vec<&str>> = seen
+                    .iter()
+                    .map(|t| set_at(t, deg, min_shrink, level))
+                    .collect();
                 let held = sets.iter().filter(|s| s.contains(&l.as_str())).count();
                 in_set += held;
                 counted += seen.len();

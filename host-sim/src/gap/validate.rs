@@ -416,7 +416,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             },
             recal_on.then_some(&recal as Recalibrate<Matched>),
         )?;
-        let angles = super::identify::confounded(&mut a, aopt.min_shrink);
+        let reach = super::identify::confounded(&mut a, aopt.min_shrink, aopt.significant_gap);
         let first = a
             .identified
             .as_ref()
@@ -449,11 +449,12 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                         .iter()
                         .filter(|b| b.effect != f.effect)
                         .filter_map(|b| {
-                            let t = angles.get(&format!("{} -> {}", f.effect, b.effect))?;
+                            let r = reach.get(&format!("{} -> {}", f.effect, b.effect))?;
                             Some(Reproducer {
                                 effect: b.effect.clone(),
-                                angle_deg: *t,
+                                angle_deg: r.angle_deg,
                                 shrink: b.shrink,
+                                residual: r.residual,
                             })
                         })
                         .collect()
@@ -616,7 +617,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             }
         })
         .collect();
-    let set_angles = angle_curve(&trials, &labels, aopt.min_shrink);
+    let set_angles = angle_curve(&trials, &labels, aopt.min_shrink, aopt.significant_gap);
     let mut columns = cols;
     columns.push("none".into());
     Ok(TwinReport {

@@ -585,7 +585,7 @@ pub fn diagnose_calibrated(
     // Identifiability as for records of seconds (`gap::identify`): effects whose cell
     // signatures along the training life another effect can reproduce form a confounded
     // set, and each effect's held-out shrink is reported per stage (where it acts).
-    identify::confounded(&mut at, opt.min_shrink);
+    identify::confounded(&mut at, opt.min_shrink, opt.significant_gap);
     identify::group_shrink(&mut at, &stage_of_cells(&hold));
     if !test.is_empty() {
         let noise_test = noise_only(&test, &base);
@@ -628,7 +628,11 @@ pub fn diagnose_calibrated(
     // The same identifiability and test part as the whole life: the confounded sets on
     // the early stages' signatures, and the early-life shrink measured on the test lives'
     // early stages, which chose nothing.
-    identify::confounded(&mut early_at, early_opt.min_shrink);
+    identify::confounded(
+        &mut early_at,
+        early_opt.min_shrink,
+        early_opt.significant_gap,
+    );
     let test_e: Vec<LifeTarget> = test.iter().filter_map(|t| t.early(EARLY_T_MAX)).collect();
     let early_test = if test_e.is_empty() {
         None
