@@ -9,9 +9,11 @@
 //! `b`'s signature subspace `span(J_b, d_b)` at this record's noise: the angle between
 //! `d_a` and its projection on that subspace is below [`CONFOUND_DEG`], **and** the part
 //! of `d_a` the subspace leaves (`|d_a| sin angle`, total-gap units) is below the
-//! diagnosis's significance level (`significant_gap`, the level below which a gap is
-//! within the measurement's own variability) — the gap that would be left if `b` stood
-//! in for `a` is one the record could not show. An effect whose fitted change is large
+//! finest difference the validation part resolves for `a` ([`resolution`]: the
+//! diagnosis's significance level `significant_gap`, the level below which a gap is within
+//! the measurement's own variability, or the validation gap `a` itself leaves when that is
+//! larger) — the gap that would be left if `b` stood in for `a` is one the record could not
+//! show. An effect whose fitted change is large
 //! is told apart from another at a smaller angle than a weak one (stop 67: on twins the
 //! angle alone put strong transfer-path and sensor fits in sets of two whose difference
 //! was several times the noise). Effect `a`'s ranking is evidence for `a`
@@ -45,8 +47,8 @@ use std::collections::BTreeMap;
 pub const CONFOUND_DEG: f64 = 25.0;
 
 /// Fills `confounded_with` of every ranked effect `a`: the other effects, both shrinking
-/// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature at the
-/// significance level `level` (total gap). Adds a finding naming the confounded set of the
+/// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature at its
+/// [`resolution`] from the significance level `level` (total gap). Adds a finding naming the confounded set of the
 /// first-ranked effect, and returns the reach of every pair (`a → b`: `a`'s signature
 /// against `b`'s subspace) for the report.
 pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap<String, Reach> {
@@ -59,7 +61,12 @@ pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap
     }
     let sigs: Vec<&Signature> = at.ranking.iter().map(|r| &r.signature).collect();
     let shrink: Vec<f64> = at.ranking.iter().map(|r| r.shrink).collect();
-    let sets = reproducers(&sigs, &shrink, min_shrink, level);
+    let levels: Vec<f64> = at
+        .ranking
+        .iter()
+        .map(|r| resolution(level, r.holdout_gap))
+        .collect();
+    let sets = reproducers(&sigs, &shrink, min_shrink, &levels);
     let names: Vec<String> = at.ranking.iter().map(|r| r.effect.clone()).collect();
     for (r, set) in at.ranking.iter_mut().zip(sets) {
         r.confounded_with = set
@@ -72,9 +79,9 @@ pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap
             let mut set = vec![first.effect.clone()];
             set.extend(first.confounded_with.iter().cloned());
             at.findings.push(format!(
-                "confounded set {{{}}}: at the fitted point the others can each reproduce the first's cell signature (angle below {CONFOUND_DEG}°, leaving less of it than the significance level {}); the ranking inside the set is not evidence for either",
+                "confounded set {{{}}}: at the fitted point the others can each reproduce the first's cell signature (angle below {CONFOUND_DEG}°, leaving less of it than {}, the larger of the significance level and the gap the first leaves itself); the ranking inside the set is not evidence for either",
                 set.iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", "),
-                super::significance::level(level)
+                super::significance::level(resolution(level, first.holdout_gap))
             ));
         }
     }
@@ -114,25 +121,40 @@ pub fn group_shrink(at: &mut Attribution, group: &[String]) {
     }
 }
 
+/// The finest difference (total gap) the validation part can resolve for an effect that
+/// leaves a validation gap `gap` with its fit: the significance level `level` (the
+/// measurement's own variability), or the effect's own misfit when that is larger — an
+/// alternative that differs from the fitted effect by less than what the fitted effect
+/// itself leaves unexplained cannot be ruled out by it (stop 67: twins whose rig mismatch
+/// the fit absorbs).
+pub fn resolution(level: f64, gap: f64) -> f64 {
+    if gap.is_finite() {
+        level.max(gap)
+    } else {
+        level
+    }
+}
+
 /// Whether an effect whose signature has `reach` to another's subspace can be reproduced
-/// by it at the significance level `level`: within [`CONFOUND_DEG`], leaving less than
-/// `level` of the signature.
+/// by it at the resolution `level` ([`resolution`]): within [`CONFOUND_DEG`], leaving less
+/// than `level` of the signature.
 pub fn reproduces(reach: Reach, level: f64) -> bool {
     reach.angle_deg < CONFOUND_DEG && reach.residual < level
 }
 
 /// For each effect `i`, the effects `j ≠ i` that can reproduce it: both shrink the
 /// validation gap by at least `min_shrink` (`shrink[i]`, `shrink[j]`) and `sig[i]`'s
-/// signature [`reproduces`] by `sig[j]`'s subspace at `level`.
+/// signature [`reproduces`] by `sig[j]`'s subspace at `levels[i]`.
 pub fn reproducers(
     sig: &[&Signature],
     shrink: &[f64],
     min_shrink: f64,
-    level: f64,
+    levels: &[f64],
 ) -> Vec<Vec<usize>> {
     let strong = |i: usize| shrink.get(i).is_some_and(|s| *s >= min_shrink);
     (0..sig.len())
         .map(|i| {
+            let level = levels.get(i).copied().unwrap_or(0.0);
             (0..sig.len())
                 .filter(|&j| j != i && strong(i) && strong(j))
                 .filter(|&j| match (sig.get(i), sig.get(j)) {
@@ -169,11 +191,21 @@ mod tests {
             cols: vec![vec![1.0, 0.0, 0.0]],
             records: 1,
         };
-        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.05, 1.5);
+        let sets = reproducers(
+            &[&sensor, &harmonics, &weak],
+            &[0.5, 0.3, 0.01],
+            0.05,
+            &[1.5; 3],
+        );
         assert_eq!(sets, vec![Vec::<usize>::new(), vec![0], vec![]]);
         // The weak effect reproduces the sensor exactly but shrinks too little to count;
         // with a lower minimum it joins the sensor's set (and the sensor its).
-        let sets = reproducers(&[&sensor, &harmonics, &weak], &[0.5, 0.3, 0.01], 0.0, 1.5);
+        let sets = reproducers(
+            &[&sensor, &harmonics, &weak],
+            &[0.5, 0.3, 0.01],
+            0.0,
+            &[1.5; 3],
+        );
         assert_eq!(sets, vec![vec![2], vec![0], vec![0]]);
     }
 
@@ -199,7 +231,7 @@ mod tests {
         assert!((r.angle_deg - 20.0).abs() < 1e-9, "{r:?}");
         assert!((r.residual - 10.0 * s).abs() < 1e-9, "{r:?}");
         let shrink = [0.3, 0.3];
-        let pair = |a: &Signature| reproducers(&[a, &other], &shrink, 0.05, 1.5)[0].clone();
+        let pair = |a: &Signature| reproducers(&[a, &other], &shrink, 0.05, &[1.5; 2])[0].clone();
         assert_eq!(pair(&at(2.0, 1)), vec![1]);
         assert_eq!(pair(&at(10.0, 1)), Vec::<usize>::new());
         assert!((at(10.0, 4).against(&other).residual - 5.0 * s).abs() < 1e-9);
@@ -210,8 +242,23 @@ mod tests {
             records: 1,
         };
         assert_eq!(
-            reproducers(&[&wide, &other], &shrink, 0.05, 1.5)[0],
+            reproducers(&[&wide, &other], &shrink, 0.05, &[1.5; 2])[0],
             Vec::<usize>::new()
+        );
+        // An effect that leaves a validation gap of 4 cannot rule out what differs from it
+        // by 3.42: its resolution is its own misfit.
+        assert_eq!(resolution(1.5, 4.0), 4.0);
+        assert_eq!(resolution(1.5, 0.5), 1.5);
+        assert_eq!(resolution(1.5, f64::INFINITY), 1.5);
+        let strong = at(10.0, 1);
+        assert_eq!(
+            reproducers(
+                &[&strong, &other],
+                &shrink,
+                0.05,
+                &[resolution(1.5, 4.0), 1.5]
+            )[0],
+            vec![1]
         );
     }
 }

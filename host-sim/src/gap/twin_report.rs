@@ -77,7 +77,8 @@ pub struct Reproducer {
     pub shrink: f64,
     /// Norm of the part of the first-ranked effect's signature that this effect's
     /// subspace leaves (total-gap units, `|d| · sin angle`): this effect reproduces the
-    /// first only when it is under the significance level (`identify::reproduces`).
+    /// first only when it is under the first's resolution (`identify::resolution`: the
+    /// significance level, or the first's own validation gap when larger).
     pub residual: f64,
 }
 
@@ -123,13 +124,15 @@ pub struct AngleRow {
 pub const SET_ANGLES: [f64; 9] = [5.0, 10.0, 12.5, 15.0, 17.5, 20.0, 25.0, 35.0, 45.0];
 
 /// The set a trial would report with the angle `deg`: the first-ranked effect and every
-/// other effect within `deg` of reproducing it, leaving less of its signature than the
-/// significance level `level`, that shrinks the validation gap by at least `min_shrink`
-/// (the first one's shrink is at least that whenever it is named).
+/// other effect within `deg` of reproducing it, leaving less of its signature than its
+/// resolution from the significance level `level` (`identify::resolution`), that shrinks
+/// the validation gap by at least `min_shrink` (the first one's shrink is at least that
+/// whenever it is named).
 fn set_at(t: &Trial, deg: f64, min_shrink: f64, level: f64) -> Vec<&str> {
     let Some(first) = t.ranked_first.as_deref() else {
         return vec![];
     };
+    let level = super::identify::resolution(level, t.after);
     let mut v = vec![first];
     v.extend(
         t.first_angles
