@@ -13,13 +13,12 @@
 //! diagnosis's significance level `significant_gap`, the level below which a gap is within
 //! the measurement's own variability, or the validation gap `a` itself leaves when that is
 //! larger) — the gap that would be left if `b` stood in for `a` is one the record could not
-//! show. An effect whose fitted change is large
-//! is told apart from another at a smaller angle than a weak one (stop 67: on twins the
-//! angle alone put strong transfer-path and sensor fits in sets of two whose difference
-//! was several times the noise). Effect `a`'s ranking is evidence for `a`
-//! only if no other effect that also shrinks the gap by at least the minimum shrink can
-//! reproduce what `a` did; those that can are `a`'s **confounded set**: the report names
-//! it and does not rank inside it.
+//! show. An effect whose fitted change is large is told apart from another at a smaller
+//! angle than a weak one (stop 67: on twins the angle alone put strong transfer-path and
+//! sensor fits in sets of two whose difference was several times the noise). Effect `a`'s
+//! ranking is evidence for `a` only if no other effect that also shrinks the gap by at
+//! least the minimum shrink can reproduce what `a` did; those that can are `a`'s
+//! **confounded set**: the report names it and does not rank inside it.
 //!
 //! The relation is read in that one direction (stop 28; before, a pair counted when
 //! *either* effect reproduced the other). `b` reproducing `a` undermines the evidence for
@@ -48,9 +47,9 @@ pub const CONFOUND_DEG: f64 = 25.0;
 
 /// Fills `confounded_with` of every ranked effect `a`: the other effects, both shrinking
 /// the validation gap by at least `min_shrink`, that can reproduce `a`'s signature at its
-/// [`resolution`] from the significance level `level` (total gap). Adds a finding naming the confounded set of the
-/// first-ranked effect, and returns the reach of every pair (`a → b`: `a`'s signature
-/// against `b`'s subspace) for the report.
+/// [`resolution`] from the significance level `level` (total gap). Adds a finding naming
+/// the confounded set of the first-ranked effect, and returns the reach of every pair
+/// (`a → b`: `a`'s signature against `b`'s subspace) for the report.
 pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap<String, Reach> {
     let mut reach = BTreeMap::new();
     for a in &at.ranking {
