@@ -15,7 +15,8 @@ pub fn angle_to_span(d: &[f64], cols: &[Vec<f64>]) -> f64 {
 }
 
 /// `d` against the span of `cols`: the angle (degrees) between them, and the norm of the
-/// part of `d` the span leaves (`|d| · sin angle`; `|d|` when `d` or the span is empty).
+/// part of `d` the span leaves (`|d| · sin angle`; `(90, 0)` for a zero `d`, `(90, |d|)` for
+/// an empty span).
 fn project(d: &[f64], cols: &[Vec<f64>]) -> (f64, f64) {
     let nd = dot(d, d).sqrt();
     if !(nd.is_finite() && nd > 0.0) {
