@@ -51,21 +51,23 @@ pub const CONFOUND_DEG: f64 = 25.0;
 /// the confounded set of the first-ranked effect, and returns the reach of every pair
 /// (`a → b`: `a`'s signature against `b`'s subspace) for the report.
 pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap<String, Reach> {
+    let sigs: Vec<&Signature> = at.ranking.iter().map(|r| &r.signature).collect();
+    let pairs = reaches(&sigs);
     let mut reach = BTreeMap::new();
-    for a in &at.ranking {
-        for b in at.ranking.iter().filter(|b| b.effect != a.effect) {
-            let r = a.signature.against(&b.signature);
-            reach.insert(format!("{} -> {}", a.effect, b.effect), r);
+    for (a, row) in at.ranking.iter().zip(&pairs) {
+        for (b, r) in at.ranking.iter().zip(row) {
+            if let Some(r) = r {
+                reach.insert(format!("{} -> {}", a.effect, b.effect), *r);
+            }
         }
     }
-    let sigs: Vec<&Signature> = at.ranking.iter().map(|r| &r.signature).collect();
     let shrink: Vec<f64> = at.ranking.iter().map(|r| r.shrink).collect();
     let levels: Vec<f64> = at
         .ranking
         .iter()
         .map(|r| resolution(level, r.holdout_gap))
         .collect();
-    let sets = reproducers(&sigs, &shrink, min_shrink, &levels);
+    let sets = reproducers(&pairs, &shrink, min_shrink, &levels);
     let names: Vec<String> = at.ranking.iter().map(|r| r.effect.clone()).collect();
     for (r, set) in at.ranking.iter_mut().zip(sets) {
         r.confounded_with = set
@@ -141,25 +143,39 @@ pub fn reproduces(reach: Reach, level: f64) -> bool {
     reach.angle_deg < CONFOUND_DEG && reach.residual < level
 }
 
+/// Every ordered pair's [`Reach`]: `reach[i][j]` is `sig[i]`'s signature against
+/// `sig[j]`'s subspace ([`Signature::against`]); `None` on the diagonal.
+pub fn reaches(sig: &[&Signature]) -> Vec<Vec<Option<Reach>>> {
+    sig.iter()
+        .enumerate()
+        .map(|(i, a)| {
+            sig.iter()
+                .enumerate()
+                .map(|(j, b)| (i != j).then(|| a.against(b)))
+                .collect()
+        })
+        .collect()
+}
+
 /// For each effect `i`, the effects `j ≠ i` that can reproduce it: both shrink the
-/// validation gap by at least `min_shrink` (`shrink[i]`, `shrink[j]`) and `sig[i]`'s
-/// signature [`reproduces`] by `sig[j]`'s subspace at `levels[i]`.
+/// validation gap by at least `min_shrink` (`shrink[i]`, `shrink[j]`) and `i`'s signature
+/// [`reproduces`] by `j`'s subspace (`reach[i][j]`, [`reaches`]) at `levels[i]`.
 pub fn reproducers(
-    sig: &[&Signature],
+    reach: &[Vec<Option<Reach>>],
     shrink: &[f64],
     min_shrink: f64,
     levels: &[f64],
 ) -> Vec<Vec<usize>> {
     let strong = |i: usize| shrink.get(i).is_some_and(|s| *s >= min_shrink);
-    (0..sig.len())
-        .map(|i| {
+    reach
+        .iter()
+        .enumerate()
+        .map(|(i, row)| {
             let level = levels.get(i).copied().unwrap_or(0.0);
-            (0..sig.len())
-                .filter(|&j| j != i && strong(i) && strong(j))
-                .filter(|&j| match (sig.get(i), sig.get(j)) {
-                    (Some(a), Some(b)) => reproduces(a.against(b), level),
-                    _ => false,
-                })
+            row.iter()
+                .enumerate()
+                .filter(|&(j, r)| strong(i) && strong(j) && r.is_some_and(|r| reproduces(r, level)))
+                .map(|(j, _)| j)
                 .collect()
         })
         .collect()
@@ -191,7 +207,7 @@ mod tests {
             records: 1,
         };
         let sets = reproducers(
-            &[&sensor, &harmonics, &weak],
+            &reaches(&[&sensor, &harmonics, &weak]),
             &[0.5, 0.3, 0.01],
             0.05,
             &[1.5; 3],
@@ -200,7 +216,7 @@ mod tests {
         // The weak effect reproduces the sensor exactly but shrinks too little to count;
         // with a lower minimum it joins the sensor's set (and the sensor its).
         let sets = reproducers(
-            &[&sensor, &harmonics, &weak],
+            &reaches(&[&sensor, &harmonics, &weak]),
             &[0.5, 0.3, 0.01],
             0.0,
             &[1.5; 3],
@@ -230,7 +246,9 @@ mod tests {
         assert!((r.angle_deg - 20.0).abs() < 1e-9, "{r:?}");
         assert!((r.residual - 10.0 * s).abs() < 1e-9, "{r:?}");
         let shrink = [0.3, 0.3];
-        let pair = |a: &Signature| reproducers(&[a, &other], &shrink, 0.05, &[1.5; 2])[0].clone();
+        let pair = |a: &Signature| {
+            reproducers(&reaches(&[a, &other]), &shrink, 0.05, &[1.5; 2])[0].clone()
+        };
         assert_eq!(pair(&at(2.0, 1)), vec![1]);
         assert_eq!(pair(&at(10.0, 1)), Vec::<usize>::new());
         assert!((at(10.0, 4).against(&other).residual - 5.0 * s).abs() < 1e-9);
@@ -241,7 +259,7 @@ mod tests {
             records: 1,
         };
         assert_eq!(
-            reproducers(&[&wide, &other], &shrink, 0.05, &[1.5; 2])[0],
+            reproducers(&reaches(&[&wide, &other]), &shrink, 0.05, &[1.5; 2])[0],
             Vec::<usize>::new()
         );
         // An effect that leaves a validation gap of 4 cannot rule out what differs from it
@@ -252,7 +270,7 @@ mod tests {
         let strong = at(10.0, 1);
         assert_eq!(
             reproducers(
-                &[&strong, &other],
+                &reaches(&[&strong, &other]),
                 &shrink,
                 0.05,
                 &[resolution(1.5, 4.0), 1.5]
