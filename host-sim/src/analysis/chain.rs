@@ -36,8 +36,9 @@ pub struct Method {
     /// Narrowest admissible demodulation band, as a multiple of the highest fault harmonic
     /// searched (`top = harmonics × max(BPFI, 2×BSF)`), so that the envelope can hold every
     /// harmonic the detector looks for (default 1.2). Admissible bands also start at or
-    /// above `top` (the carrier lies above the fault-frequency zone it modulates), unless the
-    /// record's bandwidth leaves no room for that.
+    /// above `top` (the carrier lies above the fault-frequency zone it modulates); a record
+    /// whose content leaves no room for that gets no call
+    /// ([`KurtogramSummary::no_content`]).
     pub min_band_factor: f64,
     /// Envelope of the demodulated band: `false` (default) the envelope `|analytic signal|`,
     /// `true` the squared envelope (Randall & Antoni 2011, section 3.2).
@@ -127,7 +128,8 @@ pub struct KurtogramSummary {
     pub unrestricted_band_hz: (f64, f64),
     /// Its kurtosis.
     pub unrestricted_kurtosis: f64,
-    /// Why there is nothing to demodulate, when no candidate band above the fault zone
+    /// Why there is nothing to demodulate, when the record's content ends before a band of
+    /// the minimum width fits above the fault zone, when no candidate band above it
     /// holds more than rounding ([`analysis::kurtogram::ROUNDING_FLOOR`] of the record's
     /// power) or the chosen band's envelope is constant to rounding (its modulation below
     /// that floor): the call is then `None` (absent otherwise).
@@ -309,12 +311,25 @@ pub fn analyze_signal(
     }
     // No grid cell fits above the fault zone: the band (lowest, span), as without the kurtogram.
     let fallback = best.is_none();
-    let no_content = (fallback && !holds_content((lowest, span))).then(|| {
-        format!(
-            "no band above the fault zone ({lowest:.0}-{span:.0} Hz) holds more than rounding (power below {:e} of the record's): nothing to demodulate, so no call",
-            analysis::kurtogram::ROUNDING_FLOOR
-        )
-    });
+    // A record whose content ends before a band of the minimum width fits above the fault
+    // harmonics (a pure tone, a velocity or displacement probe, a record low-passed below
+    // the resonances) has no carrier to demodulate: a band reaching down into the fault
+    // zone would hold the lines themselves (or a tone's rounding), not their modulation of
+    // a resonance (stop 68: 16-bit tones at 50-1000 Hz and a 1x sine were called inner race
+    // or ball at confidence 1.00 from a 0-300 Hz band).
+    let no_content = if lowest + 1e-9 < top {
+        Some(format!(
+            "the record's content ends at {span:.0} Hz: no band of at least {:.0} Hz fits above the fault zone (up to {top:.0} Hz, the highest searched fault harmonic), so there is no resonance to demodulate and no call",
+            method.min_band_factor * top
+        ))
+    } else {
+        (fallback && !holds_content((lowest, span))).then(|| {
+            format!(
+                "no band above the fault zone ({lowest:.0}-{span:.0} Hz) holds more than rounding (power below {:e} of the record's): nothing to demodulate, so no call",
+                analysis::kurtogram::ROUNDING_FLOOR
+            )
+        })
+    };
     let fallback_kurtosis = if fallback {
         analysis::kurtogram::band_kurtosis(&spec, x.len(), fs, (lowest, span))
     } else {
@@ -558,9 +573,57 @@ mod tests {
                 assert_eq!(d.candidate, FaultFamily::None, "{name} {rule:?}");
                 assert!(d.confidence.is_finite() && d.margin_db.is_finite());
                 let why = a.kurtogram.no_content.as_deref().unwrap_or("");
-                assert!(why.contains("rounding"), "{name} {rule:?}: {why:?}");
+                // The tone's content ends at 200 Hz: no band fits above the fault zone.
+                let expect = if name == "tone" {
+                    "content ends"
+                } else {
+                    "rounding"
+                };
+                assert!(why.contains(expect), "{name} {rule:?}: {why:?}");
             }
         }
+        Ok(())
+    }
+
+    /// A calibrator tone or a shaft-rate sine, as a 16-bit converter stores it (rounded to
+    /// whole counts at 90 % of full scale) or in floating point: its content ends just above
+    /// the tone (the rounding is 90 dB or more down), so no band of the minimum width fits
+    /// above the fault zone. Stop 68 found such tones called inner race or ball with
+    /// confidence 1.00 from a band reaching into the fault zone (0-300 Hz, 227-1200 Hz),
+    /// where the detector read the tone's own rounding as fault lines. A tone with noise
+    /// spreading content over the whole spectrum gets a band above the fault zone instead.
+    #[test]
+    fn a_pure_tone_gets_no_call() -> Result<(), analysis::AnalysisError> {
+        let ff = cwru();
+        let fs = 25_600.0;
+        let tone = |f: f64, counts: Option<f64>| -> Vec<f64> {
+            (0..256_000)
+                .map(|i| {
+                    let v = 0.9 * (2.0 * PI * f * i as f64 / fs).sin();
+                    counts.map_or(v, |c| (v * c).round() / c)
+                })
+                .collect()
+        };
+        for f in [29.95, 50.0, 60.0, 120.0, 1000.0] {
+            for counts in [Some(32_767.0), None] {
+                let a = analyze_signal(&tone(f, counts), fs, &ff, &Method::default())?;
+                assert_eq!(a.diagnosis.family, FaultFamily::None, "{f} Hz {counts:?}");
+                let why = a.kurtogram.no_content.as_deref().unwrap_or("");
+                assert!(why.contains("content ends"), "{f} Hz {counts:?}: {why:?}");
+            }
+        }
+        let mut noisy = tone(60.0, None);
+        for (v, n) in noisy.iter_mut().zip(gaussian_noise(256_000, 0.01, 3)) {
+            *v += n;
+        }
+        let a = analyze_signal(&noisy, fs, &ff, &Method::default())?;
+        assert!(a.kurtogram.no_content.is_none(), "{:?}", a.kurtogram);
+        assert!(
+            a.kurtogram.band_hz.0 + 1e-9 >= 5.0 * ff.bpfi,
+            "{:?}",
+            a.kurtogram
+        );
+        assert_eq!(a.diagnosis.family, FaultFamily::None);
         Ok(())
     }
 
