@@ -110,32 +110,59 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
     let spec_path = dir.join(SPEC_FILE);
     let text = serde_json::to_string_pretty(spec).map_err(|e| SweepError::Run(e.to_string()))?;
     if spec_path.exists() {
-        let old = crate::config::read_config_text(&spec_path)
-            .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
-        let same = serde_json::from_str::<SweepSpec>(&old).is_ok_and(|o| &o == spec);
-        if !same {
+        return holds_this_spec(spec, dir).and_then(|()| check_writable(dir));
+    }
+    if dir.exists() {
+        // What a run starting at the same moment into the same new directory has made so
+        // far (an empty `shards`, the spec or its temporary file) does not make it busy: the
+        // spec is compared below.
+        let starting = |name: &str| {
+            name == "shards"
+                && dir
+                    .join(name)
+                    .read_dir()
+                    .is_ok_and(|mut d| d.next().is_none())
+                || name == SPEC_FILE
+                || name.starts_with(&format!(".{SPEC_FILE}.tmp-"))
+        };
+        let busy = std::fs::read_dir(dir)
+            .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?
+            .flatten()
+            .any(|e| !starting(&e.file_name().to_string_lossy()));
+        if busy {
             return Err(SweepError::Input(format!(
-                "--out {}: the directory holds another sweep (its sweep.json differs from this spec); choose another output directory",
+                "--out {}: the directory is not empty and holds no sweep; choose an empty or new directory",
                 dir.display()
             )));
         }
-    } else {
-        if dir.exists() {
-            let busy = std::fs::read_dir(dir)
-                .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?
-                .next()
-                .is_some();
-            if busy {
-                return Err(SweepError::Input(format!(
-                    "--out {}: the directory is not empty and holds no sweep; choose an empty or new directory",
-                    dir.display()
-                )));
-            }
-        }
-        std::fs::create_dir_all(dir.join("shards"))
-            .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
-        shard::write_atomic(&spec_path, text.as_bytes())?;
     }
+    std::fs::create_dir_all(dir.join("shards"))
+        .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
+    // Two runs started together into one new directory both find it empty: only one
+    // `sweep.json` is created, the other run then compares it with its own spec (stop 68:
+    // two different specs raced in were both accepted and left one data set of both).
+    if !shard::create_atomic(&spec_path, text.as_bytes())? {
+        holds_this_spec(spec, dir)?;
+    }
+    check_writable(dir)
+}
+
+/// Whether `dir`'s `sweep.json` is this spec; another sweep's is refused (exit 2).
+fn holds_this_spec(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
+    let old = crate::config::read_config_text(&dir.join(SPEC_FILE))
+        .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
+    if serde_json::from_str::<SweepSpec>(&old).is_ok_and(|o| &o == spec) {
+        Ok(())
+    } else {
+        Err(SweepError::Input(format!(
+            "--out {}: the directory holds another sweep (its sweep.json differs from this spec); choose another output directory",
+            dir.display()
+        )))
+    }
+}
+
+/// Creates `dir/shards` if missing and checks that this run can write there.
+fn check_writable(dir: &Path) -> Result<(), SweepError> {
     std::fs::create_dir_all(dir.join("shards"))
         .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?;
     // A data set being resumed may sit in a directory this run cannot write (read-only
@@ -334,6 +361,48 @@ mod tests {
     use super::*;
     use std::sync::atomic::AtomicBool;
     use std::sync::Arc;
+
+    /// Runs of two different specs started together into one new directory: whichever
+    /// creates `sweep.json` first owns it, every run of the other spec is refused, every run
+    /// of the same spec is accepted (stop 68: both were accepted in 6 of 20 races of two
+    /// processes, leaving shards of both under one spec marked complete).
+    #[test]
+    fn runs_of_two_specs_racing_into_a_new_directory_leave_one_spec() {
+        let a = test_spec("seed = 1\nrecords = 4\nduration = 0.02", "");
+        let b = test_spec("seed = 2\nrecords = 4\nduration = 0.02", "");
+        for round in 0..20 {
+            let root = tempfile::tempdir().expect("tmp");
+            let dir = root.path().join("set");
+            let barrier = std::sync::Barrier::new(8);
+            let results: Vec<(bool, bool)> = std::thread::scope(|sc| {
+                let handles: Vec<_> = (0..8)
+                    .map(|t| {
+                        let (spec, dir, barrier) =
+                            (if t % 2 == 0 { &a } else { &b }, &dir, &barrier);
+                        sc.spawn(move || {
+                            barrier.wait();
+                            (t % 2 == 0, prepare_dir(spec, dir).is_ok())
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("thread"))
+                    .collect()
+            });
+            let text = std::fs::read_to_string(dir.join(SPEC_FILE)).expect("sweep.json");
+            let owner: SweepSpec = serde_json::from_str(&text).expect("complete spec");
+            let owner_is_a = owner == a;
+            assert!(owner_is_a || owner == b, "round {round}");
+            for (is_a, ok) in results {
+                assert_eq!(
+                    ok,
+                    is_a == owner_is_a,
+                    "round {round}: spec a {is_a}, accepted {ok}"
+                );
+            }
+        }
+    }
 
     /// A cancelled run keeps the batch it was on (complete shards with their markers),
     /// takes no other, writes neither index nor manifest, and a later run resumes from the

@@ -116,6 +116,37 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
         .map_err(|e| SweepError::Run(format!("cannot write {}: {e}", path.display())))
 }
 
+/// Creates `path` holding `bytes` unless a file of that name exists, with the name
+/// appearing only once the content is complete: a temporary file in the same folder, then a
+/// hard link to the name, which fails if the name exists (on a file system without hard
+/// links, an exclusive create). Returns `false` when `path` already existed (nothing
+/// written).
+pub fn create_atomic(path: &Path, bytes: &[u8]) -> Result<bool, SweepError> {
+    use std::io::{ErrorKind, Write};
+    let err = |e: std::io::Error| SweepError::Run(format!("cannot write {}: {e}", path.display()));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let prefix = format!(".{}.tmp-", name.unwrap_or_default());
+    // A name of its own per call (two threads of one process may race too); removed on drop.
+    let mut tmp = crate::io::perms::output_builder()
+        .prefix(&prefix)
+        .tempfile_in(path.parent().unwrap_or(Path::new(".")))
+        .map_err(err)?;
+    tmp.write_all(bytes).map_err(err)?;
+    match std::fs::hard_link(tmp.path(), path) {
+        Ok(()) => Ok(true),
+        Err(e) if e.kind() == ErrorKind::AlreadyExists => Ok(false),
+        Err(_) => match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(path)
+        {
+            Ok(mut f) => f.write_all(bytes).map(|()| true).map_err(err),
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => Ok(false),
+            Err(e) => Err(err(e)),
+        },
+    }
+}
+
 /// Removes temporary files of shard `s` left by an interrupted run (only this shard's:
 /// the process generating a shard owns its temporaries).
 pub(super) fn remove_stale_temps(dir: &Path, s: u64) {
