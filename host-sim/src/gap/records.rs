@@ -201,6 +201,28 @@ pub fn unit_scale(unit: &str) -> Option<f64> {
     }
 }
 
+/// Standard deviations (m/s²) of the accelerations the gap compares with simulations:
+/// from 1e-9 m/s² (0.1 µg, below the resolution of seismic accelerometers, ~1e-8 m/s²) to
+/// 1e6 m/s² (about 100 000 g, the range of shock accelerometers). Outside it a record is
+/// in another unit or gain than it states; its cells would compare levels of no bearing
+/// (stop 68: noise of 1e-300 ended in a NaN sensor noise, 1e200 in gaps of -7000 dB).
+pub const LEVEL_RANGE: (f64, f64) = (1e-9, 1e6);
+
+/// Refuses a record (m/s²) that is constant, holds a sample beyond the analysable range,
+/// or whose standard deviation is outside [`LEVEL_RANGE`]; the message names the level.
+fn check_level(accel: &[f64]) -> Result<(), String> {
+    analysis::error::check_magnitude(accel).map_err(|e| e.to_string())?;
+    let st = analysis::stats(accel).map_err(|e| e.to_string())?;
+    let (lo, hi) = LEVEL_RANGE;
+    if !(lo..=hi).contains(&st.std) {
+        return Err(format!(
+            "the record's standard deviation is {:.3e} m/s^2, outside {lo:e} ..= {hi:e} m/s^2 (what accelerometers measure): is the unit or the gain right (--units, the file's unit)?",
+            st.std
+        ));
+    }
+    Ok(())
+}
+
 /// The error for a record whose samples are in no acceleration unit the gap can compare
 /// with simulated m/s², saying how to give one.
 fn no_acceleration_unit(rec: &Record) -> String {
@@ -250,6 +272,7 @@ pub fn load(path: &Path, o: &Overrides) -> Result<RealRecord, String> {
         (None, None) => return Err(no_acceleration_unit(&rec)),
     };
     let accel: Vec<f64> = rec.samples.iter().map(|v| v * scale).collect();
+    check_level(&accel).map_err(|e| format!("{p}: {e}"))?;
     let fs = rec.fs;
     let need = 2.0 * MIN_PART_S;
     // Counted in whole samples: at a rate that is no whole number of Hz (48 828.125) a
@@ -723,6 +746,27 @@ pub fn part(
 mod tests {
     use super::*;
     use crate::analysis::synth::{gaussian_noise, FaultSignal};
+
+    /// Levels no accelerometer measures, constants and samples past the analysable range are
+    /// refused with the level named; 1 m/s² and 1 g-scale noise pass.
+    #[test]
+    fn a_record_outside_what_accelerometers_measure_is_refused() {
+        let noise = gaussian_noise(12_000, 1.0, 7);
+        let scaled = |k: f64| noise.iter().map(|v| v * k).collect::<Vec<f64>>();
+        assert!(check_level(&noise).is_ok());
+        assert!(check_level(&scaled(G)).is_ok());
+        let e = check_level(&scaled(1e200)).expect_err("1e200");
+        assert!(e.contains("analysable range"), "{e}");
+        let e = check_level(&scaled(1e-300)).expect_err("1e-300");
+        assert!(
+            e.contains("standard deviation") && e.contains("1e-9"),
+            "{e}"
+        );
+        let e = check_level(&scaled(1e7)).expect_err("1e7");
+        assert!(e.contains("standard deviation") && e.contains("1e6"), "{e}");
+        let e = check_level(&[5.0; 100]).expect_err("constant");
+        assert!(e.contains("constant (value 5)"), "{e}");
+    }
 
     /// An unlabelled record whose envelope holds the 6205's BPFO comb (impulses ringing
     /// 3 kHz, 1 % slip; McFadden & Smith 1984) is named as outer race in the warning that
