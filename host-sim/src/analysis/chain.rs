@@ -253,7 +253,16 @@ pub fn analyze_signal(
     let (normalised, transients) = analysis::transients::excise(normalised, fs, kin.shaft_hz);
     let x = normalised.as_slice();
     analysis::error::check_signal(x, 128, "kurtogram")?;
-    analysis::kurtogram::check_not_constant(x)?;
+    // Constant once its transients are cut out (zeros and one knock): named in the record's
+    // own units, not the normalised ones.
+    analysis::kurtogram::check_not_constant(x).map_err(|_| analysis::AnalysisError::Constant {
+        value: x.first().map_or(stats.mean, |v| v * stats.std + stats.mean),
+        what: if transients.is_some() {
+            "once its knocks and bursts are cut out, the spectral kurtosis"
+        } else {
+            "spectral kurtosis"
+        },
+    })?;
     let top = method.detect.harmonics.max(1) as f64 * kin.bpfi.max(2.0 * kin.bsf);
     // The band is chosen on the record with its ends faded (50 ms): how a record's ends
     // meet is not evidence of a fault. The envelope spectrum needs no fade (its Hann window
@@ -583,6 +592,24 @@ mod tests {
             }
         }
         Ok(())
+    }
+
+    /// Zeros and one knock: constant once the knock is cut out, and said so in the record's
+    /// own units (stop 68: the error named the normalised value, -0.00707, not in the data).
+    #[test]
+    fn a_record_constant_but_for_a_knock_is_named_constant_in_its_units() {
+        let mut x = vec![0.0; 48_000];
+        x[20_000] = 5.0;
+        match analyze_signal(&x, FS, &cwru(), &Method::default()) {
+            Err(analysis::AnalysisError::Constant { value, what }) => {
+                assert!(value.abs() < 1e-9, "{value}");
+                assert!(what.contains("knocks"), "{what}");
+            }
+            other => panic!(
+                "expected a constant record, got {:?}",
+                other.map(|a| a.diagnosis)
+            ),
+        }
     }
 
     /// A calibrator tone or a shaft-rate sine, as a 16-bit converter stores it (rounded to
