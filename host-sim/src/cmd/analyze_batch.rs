@@ -61,8 +61,22 @@ pub struct Row {
     pub error: Option<String>,
 }
 
-fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), String> {
-    if depth > MAX_WALK_DEPTH {
+/// Directories and files already taken, by canonical path: a symbolic link back up the
+/// tree (`up -> ..`) or two names of one file are walked and analysed once (stop 68: two
+/// such links made the walk grow exponentially until the depth limit).
+#[derive(Default)]
+struct Seen(std::collections::HashSet<PathBuf>);
+
+impl Seen {
+    /// Whether `p` is new (and records it); a path that cannot be resolved counts as new.
+    fn first(&mut self, p: &Path) -> bool {
+        self.0
+            .insert(std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf()))
+    }
+}
+
+fn walk(dir: &Path, depth: usize, seen: &mut Seen, out: &mut Vec<PathBuf>) -> Result<(), String> {
+    if depth > MAX_WALK_DEPTH || !seen.first(dir) {
         return Ok(());
     }
     let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
@@ -79,7 +93,7 @@ fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), String> 
             continue;
         }
         if p.is_dir() {
-            walk(&p, depth + 1, out)?;
+            walk(&p, depth + 1, seen, out)?;
         } else {
             let ext = p
                 .extension()
@@ -88,7 +102,7 @@ fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), String> 
                 Some(e) => RECORD_EXTS.contains(&e),
                 None => true,
             };
-            if readable {
+            if readable && seen.first(&p) {
                 out.push(p);
             }
         }
@@ -101,12 +115,17 @@ fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), String> 
     Ok(())
 }
 
-/// The files of `inputs`: files as given, directories walked.
-pub fn collect_inputs(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, String> {
+/// The files of `inputs`: files as given, directories walked (each directory and file once,
+/// however many links lead to it), leaving out `skip` (the table being written).
+pub fn collect_inputs(inputs: &[PathBuf], skip: Option<&Path>) -> Result<Vec<PathBuf>, String> {
+    let mut seen = Seen::default();
+    if let Some(s) = skip {
+        seen.first(s);
+    }
     let mut out = Vec::new();
     for p in inputs {
         if p.is_dir() {
-            walk(p, 0, &mut out)?;
+            walk(p, 0, &mut seen, &mut out)?;
         } else {
             out.push(p.clone());
         }
@@ -300,7 +319,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
     let inputs: Vec<PathBuf> = std::iter::once(args.file.clone())
         .chain(args.more.iter().cloned())
         .collect();
-    let files = collect_inputs(&inputs).map_err(CliError::input)?;
+    let files = collect_inputs(&inputs, args.out.as_deref()).map_err(CliError::input)?;
     if files.is_empty() {
         return Err(CliError::input("inputs: no readable record found (allowed: .mat, .csv, .txt, .wav, .npy, extension-less IMS snapshots)"));
     }
@@ -333,4 +352,29 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Links back up the tree (two of them grew the walk exponentially) and a second name
+    /// of a file give each directory and file once; the table being written is not read
+    /// as an input (a second batch run read its own table and failed on it).
+    #[cfg(unix)]
+    #[test]
+    fn links_and_the_table_being_written_are_walked_once_or_not_at_all() {
+        let root = tempfile::tempdir().expect("tmp");
+        let d = root.path();
+        std::fs::create_dir_all(d.join("a/b")).expect("dirs");
+        std::fs::write(d.join("a/r.npy"), b"x").expect("file");
+        std::fs::write(d.join("table.csv"), b"x").expect("file");
+        std::os::unix::fs::symlink("..", d.join("a/b/up")).expect("link");
+        std::os::unix::fs::symlink("../..", d.join("a/b/up2")).expect("link");
+        std::os::unix::fs::symlink("r.npy", d.join("a/same.npy")).expect("link");
+        let files = collect_inputs(&[d.to_path_buf()], Some(&d.join("table.csv"))).expect("walk");
+        assert_eq!(files, vec![d.join("a/r.npy")]);
+        let files = collect_inputs(&[d.to_path_buf()], None).expect("walk");
+        assert_eq!(files, vec![d.join("a/r.npy"), d.join("table.csv")]);
+    }
 }
