@@ -198,18 +198,16 @@ impl GeometrySpec {
                 "a finite diameter in mm, 0.1 ..= 500",
             ));
         }
-        if !(self.pitch_mm.is_finite() && self.pitch_mm > self.ball_mm && self.pitch_mm <= 10_000.0)
-        {
+        // The core's rule (`BearingGeometry::new_checked`), stated here already because the
+        // section diameters below are derived from pitch and ball.
+        if !(self.pitch_mm.is_finite() && self.pitch_mm > 1.5 * self.ball_mm) {
             return Err(f(
                 "pitch",
                 self.pitch_mm,
-                &format!("ball diameter {} mm < pitch <= 10000 mm", self.ball_mm),
+                &format!("more than 1.5 × ball = {} mm", 1.5 * self.ball_mm),
             ));
         }
-        if !(self.angle_deg.is_finite() && (0.0..90.0).contains(&self.angle_deg)) {
-            return Err(f("angle", self.angle_deg, "0 <= angle < 90 degrees"));
-        }
-        // The core's limits follow in `checked`.
+        // The ranges of pitch and contact angle are the core's, named in `checked`.
         Ok(self)
     }
 
@@ -541,6 +539,21 @@ mod tests {
                 "30 balls of 8 mm do not fit on a pitch circle of 39 mm (at most 15 fit)",
             ),
             ("elements=9,ball=8,pitch=11", "more than 1.5 × ball = 12 mm"),
+            // Every refusal states the range that is applied (stop 68: angle 95 was told
+            // "0 <= angle < 90" and angle 60 then refused; pitch 5 with ball 10 was told
+            // "ball < pitch <= 10000 mm").
+            (
+                "elements=9,ball=7.94,pitch=39.04,angle=95",
+                "bearing-geometry.angle = 95 is impossible (allowed 0 ..= 45.8 degrees)",
+            ),
+            (
+                "elements=9,ball=10,pitch=5,angle=0",
+                "bearing-geometry.pitch = 5 is impossible (allowed more than 1.5 × ball = 15 mm)",
+            ),
+            (
+                "elements=9,ball=8,pitch=6000",
+                "bearing-geometry.pitch = 6000 is impossible (allowed 1 ..= 5000 mm)",
+            ),
             // A repeat (also through an alias) is named, not the last value kept.
             (
                 "elements=9,ball=7.94,pitch=39,ball_mm=8",
