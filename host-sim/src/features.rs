@@ -386,6 +386,7 @@ pub fn convert(
         _ => IMS_FS,
     };
     let mut samples_per = None;
+    let mut columns: Option<u64> = None;
     let mut unit = String::from("unknown");
     let mut channel = String::new();
     let mut clock = files::FemtoClock::default();
@@ -429,6 +430,23 @@ pub fn convert(
         fs = rec.fs;
         unit = rec.unit.clone();
         channel = rec.channel.clone();
+        // A channel number means one sensor only while every snapshot has the same columns
+        // (IMS test 1 has 8, tests 2 and 3 have 4): a file of another width is another
+        // recording (stop 68: one 8-column file among 4-column ones was read silently).
+        let width = rec
+            .meta
+            .get("n_channels")
+            .and_then(serde_json::Value::as_u64);
+        match (columns, width) {
+            (None, w) => columns = w,
+            (Some(n), Some(w)) if n != w => {
+                return Err(FeaturesError::Input(format!(
+                    "{}: {w} columns, the first snapshot has {n}; a channel number names one sensor only if every snapshot has the same columns",
+                    path.display()
+                )))
+            }
+            _ => {}
+        }
         match samples_per {
             None => samples_per = Some(rec.samples.len()),
             Some(n) if n != rec.samples.len() => {

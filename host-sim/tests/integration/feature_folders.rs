@@ -130,6 +130,46 @@ fn ims_names_of_the_pattern_that_are_no_date_are_refused() {
     }
 }
 
+/// One IMS snapshot of 8 columns among 4-column ones (test 1's layout among test 2's):
+/// channel 3 would be another sensor in it, so the folder is refused, naming the file.
+#[test]
+fn an_ims_snapshot_of_other_columns_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let raw = tmp.path().join("ims_mixed");
+    std::fs::create_dir_all(&raw).unwrap();
+    let rows = |cols: usize| -> String {
+        (0..64)
+            .map(|i| {
+                let row: Vec<String> = (0..cols)
+                    .map(|c| format!("{:.3}", ((i * 7 + c * 3) % 11) as f64 * 0.01 - 0.05))
+                    .collect();
+                row.join("\t") + "\n"
+            })
+            .collect()
+    };
+    for k in 0..12 {
+        let name = format!("2004.02.12.10.{:02}.39", 5 * k);
+        std::fs::write(raw.join(name), rows(if k == 7 { 8 } else { 4 })).unwrap();
+    }
+    let out = tmp.path().join("o/ims.csv");
+    std::fs::create_dir_all(out.parent().unwrap()).unwrap();
+    let o = wearsim(&[
+        "features",
+        s(&raw),
+        "--layout",
+        "ims",
+        "--channel",
+        "3",
+        "--out",
+        s(&out),
+    ]);
+    refused(
+        &o,
+        &["2004.02.12.10.35.39", "8 columns, the first snapshot has 4"],
+    );
+    nothing_written(&out);
+}
+
 #[test]
 fn missing_and_unread_files_keep_their_numbers_and_are_listed() {
     let tmp = tempfile::tempdir().unwrap();

@@ -381,6 +381,17 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     .into_iter()
     .flatten()
     .chain(cwru_rpm.iter().cloned())
+    // Every rate and speed the file states, to check they agree with the ones taken.
+    .chain(
+        all.iter()
+            .filter(|n| is_numeric(n) && n.numel() == 1)
+            .filter(|n| {
+                [FS_NAMES, RPM_NAMES, RATE_NAMES]
+                    .iter()
+                    .any(|names| names.iter().any(|k| n.name.eq_ignore_ascii_case(k)))
+            })
+            .map(|n| n.path.clone()),
+    )
     .collect();
     let tree = read_mat_tree(path, &|p: &str| wanted.iter().any(|w| w == p))?;
     let get = |p: &str| find(&tree, p);
@@ -429,6 +440,17 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             .and_then(MatNode::scalar)
             .map(|v| (v, format!("file:{p}")))
     });
+    if let (None, Some((v, src))) = (opts.fs, &stated) {
+        let stated_at = src.strip_prefix("file:").unwrap_or(src);
+        let others = [(FS_NAMES, 1.0)];
+        let fs_of = Stated {
+            what: "sample rate",
+            flag: "--fs",
+            unit: "Hz",
+            tolerance: FS_AGREEMENT,
+        };
+        fs_of.check(path, &all, &get, &chan_path, stated_at, *v, &others)?;
+    }
     let implied = match (&layout, &label) {
         (MatLayout::Paderborn(_), _) => Some((PADERBORN_FS, "layout:paderborn".to_string())),
         (MatLayout::Cwru, Some(l)) => Some((l.fs_hz, "file name".to_string())),
@@ -508,6 +530,18 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
             }
             _ => None,
         });
+    if let (None, Some((v, src))) = (opts.rpm, &file_rpm) {
+        if let Some(stated_at) = src.strip_prefix("file:") {
+            let others = [(RPM_NAMES, 1.0), (RATE_NAMES, 60.0)];
+            let rpm_of = Stated {
+                what: "shaft speed",
+                flag: "--rpm",
+                unit: "rpm",
+                tolerance: SPEED_AGREEMENT,
+            };
+            rpm_of.check(path, &all, &get, &chan_path, stated_at, *v, &others)?;
+        }
+    }
     let (rpm, rpm_source) = match (opts.rpm, file_rpm) {
         (Some(r), _) => (Some(check_rpm(path, r)?), Some("argument".to_string())),
         (None, Some((r, s))) => (Some(check_rpm(path, r)?), Some(s)),
@@ -574,6 +608,83 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         source: PathBuf::from(path),
         meta,
     })
+}
+
+/// Two speeds a file states for one channel that differ by more than this fraction (rpm
+/// against a shaft rate in Hz × 60 rounded to a few digits agree far better) are two answers.
+const SPEED_AGREEMENT: f64 = 0.01;
+
+/// A quantity a file may state more than once (sample rate, shaft speed), for
+/// [`Stated::check`].
+struct Stated {
+    what: &'static str,
+    flag: &'static str,
+    unit: &'static str,
+    tolerance: f64,
+}
+
+impl Stated {
+    /// Checks the value `v` taken from `stated_at` against every other numeric scalar of
+    /// the file named as in `others` (each with its factor to `v`'s unit). One beside the
+    /// channel (same struct) that disagrees makes the file ambiguous: refused, both named,
+    /// with the flag that settles it (stop 68: `fs` = 12000 and `sample_rate` = 24000, `rpm`
+    /// = 900 and `rate` = 29.95 Hz were resolved silently). One elsewhere that disagrees is
+    /// warned about: the value beside the channel is taken.
+    #[allow(clippy::too_many_arguments)]
+    fn check<'t>(
+        &self,
+        path: &Path,
+        all: &[&MatNode],
+        get: &dyn Fn(&str) -> Option<&'t MatNode>,
+        chan_path: &str,
+        stated_at: &str,
+        v: f64,
+        others: &[(&[&str], f64)],
+    ) -> Result<(), IoError> {
+        let parent = |p: &str| p.rsplit_once('.').map_or("", |(a, _)| a).to_string();
+        let Stated {
+            what,
+            flag,
+            unit,
+            tolerance,
+        } = self;
+        for n in all
+            .iter()
+            .filter(|n| n.path != stated_at && is_numeric(n) && n.numel() == 1)
+        {
+            let Some(scale) = others
+                .iter()
+                .find(|(names, _)| names.iter().any(|k| n.name.eq_ignore_ascii_case(k)))
+                .map(|(_, f)| *f)
+            else {
+                continue;
+            };
+            let Some(w) = get(&n.path).and_then(MatNode::scalar).map(|x| x * scale) else {
+                continue;
+            };
+            if (w - v).abs() <= tolerance * v.abs().max(w.abs()) {
+                continue;
+            }
+            let other = if scale == 1.0 {
+                format!("`{}` = {w} {unit}", n.path)
+            } else {
+                format!("`{}` = {} ({w} {unit})", n.path, w / scale)
+            };
+            if parent(&n.path) == parent(chan_path) {
+                return Err(IoError::malformed(
+                    path,
+                    format!(
+                        "the file states two {what}s for `{chan_path}`: `{stated_at}` = {v} {unit} and {other}; give {flag} to say which is right"
+                    ),
+                ));
+            }
+            eprintln!(
+                "wearsim: warning: {}: {other} states another {what} than `{stated_at}` = {v} {unit}, which is beside `{chan_path}` and is taken",
+                path.display()
+            );
+        }
+        Ok(())
+    }
 }
 
 /// Where in a MAT file a value is stored, as `fs_detail`/`rpm_detail` say it: `MAT
