@@ -260,3 +260,77 @@ fn real_cwru_files_match_inventory() -> Result<(), IoError> {
     assert!(seen > 0);
     Ok(())
 }
+
+/// Two rates or two speeds beside the channel that disagree make the file ambiguous: refused,
+/// both named, with the flag that settles it (which then reads the file); agreeing ones (rpm
+/// and the same speed in Hz) and a disagreeing one elsewhere in the file (warned about) do not.
+#[test]
+fn a_file_stating_two_rates_or_speeds_for_its_channel_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let x: Vec<f64> = (0..600).map(|i| (i as f64 * 0.7).sin()).collect();
+    let read = |name: &str, vars: &[(&str, &[f64])], fs: Option<f64>, rpm: Option<f64>| {
+        let p = tmp_file(dir.path(), name, &mat5_bytes(vars));
+        let opts = crate::io::ReadOptions {
+            fs,
+            rpm,
+            ..Default::default()
+        };
+        read_mat_record(&p, &opts)
+    };
+    let two_rates: &[(&str, &[f64])] =
+        &[("acc", &x), ("fs", &[12000.0]), ("sample_rate", &[24000.0])];
+    let e = read("rates.mat", two_rates, None, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("two sample rates") && e.contains("`sample_rate` = 24000") && e.contains("--fs"),
+        "{e}"
+    );
+    assert_eq!(
+        read("rates.mat", two_rates, Some(12000.0), None)
+            .unwrap()
+            .fs,
+        12000.0
+    );
+    let two_speeds: &[(&str, &[f64])] = &[
+        ("acc", &x),
+        ("fs", &[12000.0]),
+        ("rpm", &[900.0]),
+        ("rate", &[29.95]),
+    ];
+    let e = read("speeds.mat", two_speeds, None, None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("two shaft speeds")
+            && e.contains("`rate` = 29.95 (1797 rpm)")
+            && e.contains("--rpm"),
+        "{e}"
+    );
+    assert_eq!(
+        read("speeds.mat", two_speeds, None, Some(1797.0))
+            .unwrap()
+            .rpm,
+        Some(1797.0)
+    );
+    let agreeing: &[(&str, &[f64])] = &[
+        ("acc", &x),
+        ("fs", &[12000.0]),
+        ("rpm", &[1797.0]),
+        ("rate", &[29.95]),
+    ];
+    assert_eq!(
+        read("agree.mat", agreeing, None, None).unwrap().rpm,
+        Some(1797.0)
+    );
+    // The MFPT struct's own rate beside `gs` is taken over a root-level `fs` of another value.
+    let p = tmp_file(dir.path(), "mfpt.mat", &{
+        let mut b = super::fixture::mfpt_fixture(&x, 48_828.0, 25.0, 270.0);
+        b.extend_from_slice(&mat5_bytes(&[("fs", &[12000.0])])[128..]);
+        b
+    });
+    assert_eq!(
+        read_mat_record(&p, &Default::default()).unwrap().fs,
+        48_828.0
+    );
+}
