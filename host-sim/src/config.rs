@@ -36,7 +36,7 @@ pub enum ConfigFileError {
         message: String,
     },
     /// A required key is absent.
-    #[error("missing key `{0}` (required when no preset is given)")]
+    #[error("missing key `{0}`: neither the configuration nor its preset gives it")]
     Missing(&'static str),
     /// A key with a value outside its vocabulary.
     #[error("`{key}` = \"{value}\" is not allowed; use one of: {allowed}")]
@@ -569,6 +569,11 @@ impl ScenarioFile {
             settle: self.settle.unwrap_or(DEFAULT_SETTLE),
         };
         check_run(&run)?;
+        // The rate's own range first: a rate out of it is the error, not the memory its
+        // samples would need (stop 68: `--fs 1e9` and `--fs inf` were told the memory limit).
+        let (lo, hi) = wearsim_core::model::OUTPUT_RATE_RANGE;
+        wearsim_core::error::check_range("fs", cfg.output_rate, lo, hi)
+            .map_err(ConfigFileError::Core)?;
         let samples = (run.settle + run.duration) * cfg.output_rate;
         if samples > MAX_SIMULATE_SAMPLES {
             return Err(ConfigFileError::Limit(format!(

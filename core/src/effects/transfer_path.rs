@@ -112,6 +112,14 @@ impl Params {
     pub fn check_rate(&self, fs: Real) -> Result<(), ConfigError> {
         for (m, f) in self.modes.iter().zip(Self::SPEC.params.iter().step_by(3)) {
             if m.gain > 0.0 {
+                // An empty range (fs below 2.5 × the lowest mode frequency) is the rate's
+                // fault, not the mode's: said so rather than `allowed 100 ..= 40`.
+                if fs / 2.5 < f.min as Real {
+                    return Err(ConfigError::Inconsistent {
+                        field: f.field,
+                        reason: "the output rate fs is too low for a transfer-path mode: a mode lies between 100 Hz and fs / 2.5, so fs must be at least 250 Hz",
+                    });
+                }
                 check_range(f.field, m.freq_hz, f.min as Real, fs / 2.5)?;
             }
         }

@@ -306,7 +306,13 @@ fn check_effect(i: usize, e: &EffectDraw) -> Result<(), SpecError> {
                 uniform: Some([lo, hi]),
                 choice: None,
             }) => {
-                if lo.is_nan() || hi.is_nan() || lo > hi {
+                if lo.is_nan() || hi.is_nan() {
+                    return err(format!(
+                        "`{key}.uniform` = [{lo}, {hi}]: both ends must be numbers within the parameter's bounds [{}, {}] {}",
+                        p.min, p.max, p.unit
+                    ));
+                }
+                if lo > hi {
                     return err(format!("`{key}.uniform` = [{lo}, {hi}]: lo must not exceed hi"));
                 }
                 vec![*lo, *hi]

@@ -256,6 +256,36 @@ fn settings_that_cannot_run_are_refused() {
     ]);
     refused(&o, &["in-memory limit", "33554432"]);
     assert!(!out.exists(), "work started before the refusal");
+    // A rate out of its own range is told that range, not the memory it would need; a rate
+    // too low for a transfer-path mode is told the rate it needs (stop 68: `allowed 100 ..=
+    // 40`).
+    for fs in ["1e9", "inf"] {
+        let o = wearsim(&[
+            "simulate",
+            "--fs",
+            fs,
+            "--duration",
+            "0.01",
+            "--out",
+            s(&out),
+        ]);
+        refused(&o, &["fs = ", "100 ..= 1000000"]);
+    }
+    let o = wearsim(&[
+        "simulate",
+        "--preset",
+        "cwru-6205-de",
+        "--duration",
+        "0.05",
+        "--fs",
+        "100",
+        "--effect",
+        "transfer-path:f1=100",
+        "--out",
+        s(&out),
+    ]);
+    refused(&o, &["transfer-path.f1", "fs must be at least 250 Hz"]);
+    assert!(!out.exists(), "work started before the refusal");
 
     for (i, (toml, field)) in [
         ("[bearing]\nroller_length = nan\n", "roller_length"),

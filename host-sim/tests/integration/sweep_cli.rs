@@ -196,6 +196,15 @@ fn bad_specs_exit_2_naming_the_field() {
         &format!("{SPEC}\n[[effect]]\nname = \"sensor\"\nparams = {{ noise = 5.0 }}\n"),
         &["effect[1].name", "repeats `effect[0]`"],
     );
+    // A NaN end is named as such, not as an order (it was told "lo must not exceed hi").
+    bad(
+        &SPEC.replace("[0.01, 0.2]", "[nan, 0.2]"),
+        &[
+            "effect[0].params.noise.uniform",
+            "both ends must be numbers",
+            "[0, 100]",
+        ],
+    );
     bad(
         &SPEC.replace("[0.01, 0.2]", "[0.01, 0.1, 0.2]"),
         &["noise", "{ uniform = [lo, hi] } (two numbers)"],
