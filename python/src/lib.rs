@@ -270,6 +270,17 @@ fn simulate<'py>(
     Ok((out.accel.into_pyarray(py), meta.to_string()))
 }
 
+/// scenario_toml(source) -> the scenario `source` (a dict, TOML text or a preset name, as
+/// `simulate` takes it) as TOML text, checked as `simulate` checks it; for the file-level
+/// commands' `--config` (`life(config={...})`).
+#[pyfunction]
+fn scenario_toml(source: &Bound<'_, PyAny>) -> PyResult<String> {
+    let none = pyo3::types::PyDict::new(source.py());
+    let file = scenario_file(source, none.as_any())?;
+    file.resolve().map_err(cfg_err)?;
+    toml::to_string(&file).map_err(|e| cfg_err(format!("config: {e}")))
+}
+
 /// effects() -> JSON of the effect registry.
 #[pyfunction]
 fn effects() -> String {
@@ -505,6 +516,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;
     m.add("__version__", wearsim_host::VERSION)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario_toml, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(bearings, m)?)?;

@@ -301,3 +301,19 @@ def test_messages_name_the_keyword_arguments_not_command_line_options(call, expe
     for part in expected:
         assert part in msg, msg
     assert "--" not in msg and "Usage" not in msg and "\n" not in msg, msg
+
+
+def test_life_takes_a_dash_directory_a_dict_config_and_effect_dicts(tmp_path, monkeypatch):
+    # Each was passed through to the command line as is: "-runs" read as options, the
+    # dict's repr "not found" as a file, an effect dict as "unknown effect `{'name'`".
+    monkeypatch.chdir(tmp_path)
+    r = wearsim.life(out="-runs", seed=2)
+    assert r["complete"] and (tmp_path / "-runs" / "life-summary.json").is_file()
+    r = wearsim.life(out=tmp_path / "c", config={"preset": "thesis-61810", "seed": 2},
+                     effect=[{"name": "sensor", "noise": 0.05}])
+    assert r["complete"], r.keys()
+    assert not list(tmp_path.glob("wearsim-config-*"))
+    with pytest.raises(wearsim.ConfigError, match="speeed"):
+        wearsim.life(out=tmp_path / "e", config={"preset": "thesis-61810", "speeed": 3})
+    with pytest.raises(wearsim.ConfigError, match="name"):
+        wearsim.life(out=tmp_path / "f", effect=[{"noise": 0.05}])

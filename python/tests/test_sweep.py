@@ -98,3 +98,13 @@ def test_bad_spec_raises_config_error(tmp_path):
     with pytest.raises(wearsim.ConfigError, match="fraction"):
         wearsim.sweep(SPEC.replace("[0.0, 0.02]", "[0.0, 0.9]"), tmp_path / "a")
     assert not (tmp_path / "a").exists()
+
+
+def test_a_directory_of_another_sweep_is_named_as_the_out_argument(tmp_path):
+    # The native message says `--out DIR`, as the command line does; the call has `out`.
+    (tmp_path / "d").mkdir()
+    wearsim.sweep(SPEC.replace("records = 24", "records = 6"), tmp_path / "d", threads=1)
+    with pytest.raises(wearsim.ConfigError) as e:
+        wearsim.sweep(SPEC.replace("seed = 11", "seed = 12"), tmp_path / "d", threads=1)
+    msg = str(e.value)
+    assert "holds another sweep" in msg and "out = " in msg and "--" not in msg, msg

@@ -218,7 +218,21 @@ _CLI_NAMES = {
 }
 
 
+def _flag_value(key: str, v: Any) -> str:
+    """One option's value as the command line takes it: an effect given as a dict
+    (``{"name": "sensor", "noise": 0.1}``, as in :func:`simulate`'s ``effect`` list) in the
+    ``NAME:KEY=VALUE,...`` form of ``--effect``; anything else as ``str``."""
+    if key == "effect" and isinstance(v, dict):
+        if not isinstance(v.get("name"), str):
+            raise ConfigError(f"effect = {v!r}: an effect given as a dict needs its \"name\"")
+        params = ",".join(f"{k}={p}" for k, p in v.items() if k != "name")
+        return f"{v['name']}:{params}" if params else v["name"]
+    return str(v)
+
+
 def _argv(command: str, kwargs: Dict[str, Any]) -> List[str]:
+    # `--flag=value`, so that a value beginning with "-" (an output directory "-runs", a
+    # negative number) is not read as another option.
     argv = [command]
     for k, v in kwargs.items():
         flag = "--" + k.replace("_", "-")
@@ -227,10 +241,9 @@ def _argv(command: str, kwargs: Dict[str, Any]) -> List[str]:
         if v is True:
             argv.append(flag)
         elif isinstance(v, (list, tuple)):
-            for item in v:
-                argv += [flag, str(item)]
+            argv += [f"{flag}={_flag_value(k, item)}" for item in v]
         else:
-            argv += [flag, str(v)]
+            argv.append(f"{flag}={_flag_value(k, v)}")
     return argv
 
 
@@ -266,13 +279,23 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) ->
         tmp = tempfile.TemporaryDirectory(prefix=f"wearsim-{command}-")
         out = os.path.join(tmp.name, "out")
     out = _out_dir(out)
-    argv = _argv(command, kwargs) + list(args) + ["--out", out]
+    kwargs = dict(kwargs)
+    config_file = None
+    conf = kwargs.get("config")
+    if isinstance(conf, dict) or (isinstance(conf, str) and "=" in conf and not os.path.exists(conf)):
+        # A scenario as a dict or TOML text, as `simulate` takes it: checked and written as
+        # a file for the command's --config (a dict was passed as its repr, "not found").
+        config_file = tempfile.NamedTemporaryFile("w", suffix=".toml", prefix="wearsim-config-", delete=False)
+        with config_file:
+            config_file.write(_wearsim.scenario_toml(kwargs["config"]))
+        kwargs["config"] = config_file.name
+    argv = _argv(command, kwargs) + list(args) + [f"--out={out}"]
     # Only what this run wrote is returned: files from an earlier run (another seed's
     # features), or the user's own (notes.csv, an unrelated config.json), are not. The
     # commands write every file anew (a new file, or renamed over the old one).
     before = _stats(out)
-    code, message = _wearsim.cli(argv)
     try:
+        code, message = _wearsim.cli(argv)
         if code == 2:
             raise ConfigError(_pythonic(message, _CLI_NAMES))
         if code != 0:
@@ -290,6 +313,8 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) ->
     finally:
         if tmp is not None:
             tmp.cleanup()
+        if config_file is not None:
+            os.unlink(config_file.name)
 
 
 def life(out: Union[str, os.PathLike, None] = None, **kwargs: Any) -> Dict[str, Any]:
@@ -317,7 +342,7 @@ def gap(records: Union[str, List[str]], out: Union[str, os.PathLike, None] = Non
         raise ConfigError(f"records: expected a path or a list of paths, got {type(records).__name__}")
     if not files:
         raise ConfigError("records: at least one record is needed")
-    real = [a for f in files for a in ("--real", str(f))]
+    real = [f"--real={os.fspath(f)}" for f in files]
     return _run_cli("gap", real, kwargs, out)
 
 

@@ -54,6 +54,15 @@ def _part(part: Any) -> Optional[Tuple[int, int]]:
     return _count("part[0]", part[0]), _count("part[1]", part[1])  # 0 <= I < N: checked natively
 
 
+def _native(fn: Any, *args: Any) -> Any:
+    """``fn(*args)`` of the native module, its errors naming ``out`` as this API does (the
+    native messages say ``--out DIR`` as the command line does)."""
+    try:
+        return fn(*args)
+    except ConfigError as e:
+        raise ConfigError(str(e).replace("--out ", "out = ")) from None
+
+
 def _shard_task(spec_text: str, out: str, shard: int) -> int:
     # Runs on a Dask worker: imports the package there.
     from wearsim import _wearsim as native
@@ -88,7 +97,7 @@ def sweep(
             raise ConfigError("threads = 0: use 1 or more")
         if n > 2**64 - 1:  # was an OverflowError on the way to the native usize
             raise ConfigError(f"threads = {n} is out of range: allowed 1 ..= {2**64 - 1}")
-        return json.loads(_wearsim.sweep_run(text, out, n, part))
+        return json.loads(_native(_wearsim.sweep_run, text, out, n, part))
     from dask.distributed import Client
 
     plan = json.loads(_wearsim.sweep_plan(text, part))
@@ -105,11 +114,11 @@ def sweep(
             ) from None
     try:
         t0 = time.perf_counter()
-        _wearsim.sweep_prepare(text, out)
+        _native(_wearsim.sweep_prepare, text, out)
         shards = [s for s in range(plan["shards"]) if part is None or s % part[1] == part[0]]
         futures = client.map(_shard_task, [text] * len(shards), [out] * len(shards), shards, pure=False)
         per_shard = client.gather(futures)
-        complete, nbytes = _wearsim.sweep_finalize(text, out)
+        complete, nbytes = _native(_wearsim.sweep_finalize, text, out)
         generated = sum(per_shard)
         written = sum(1 for n in per_shard if n > 0)
         # The local report's keys (`shards` kept for earlier callers), `workers` for `threads`.
