@@ -264,7 +264,30 @@ pub fn events(
             |r| draw_event(r, w, fs, bpfo, fnat, &label),
         )?);
     }
+    remove_stale_events(dir, &out);
     Ok(out)
+}
+
+/// Removes the event plots (`event-<n>-<stage>.png/svg`, names only this command writes) of
+/// an earlier life in `dir` that this life did not redraw: a seed without a dent left the
+/// previous seed's `event-4-dent.png` beside its own set, indistinguishable from it (stop 68).
+fn remove_stale_events(dir: &Path, kept: &[PathBuf]) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for p in rd.flatten().map(|e| e.path()) {
+        let name = p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let ours = name
+            .strip_prefix("event-")
+            .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit()))
+            && (name.ends_with(".png") || name.ends_with(".svg"));
+        if ours && p.is_file() && !kept.iter().any(|k| k.file_name() == p.file_name()) {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
 }
 
 fn draw_ims<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, c: &ImsComparison) -> R {

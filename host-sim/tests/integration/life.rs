@@ -643,3 +643,32 @@ fn lives_reject_bad_values() {
         assert!(!out.join("lives.json").exists());
     }
 }
+
+/// A life into a directory that holds another seed's life: the event plots it does not
+/// redraw are removed (seed 2 has a dent, seed 1 none: seed 2's `event-4-dent.png` stayed
+/// beside seed 1's set, indistinguishable from it), and files not of the life's naming stay.
+#[test]
+fn a_life_over_another_removes_the_event_plots_it_does_not_redraw() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("life");
+    let run = |seed: &str| {
+        let o = wearsim(&["life", "--seed", seed, "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    run("2");
+    assert!(out.join("event-4-dent.png").is_file(), "seed 2 has a dent");
+    std::fs::write(out.join("event-notes.txt"), "mine").unwrap();
+    run("1");
+    for f in [
+        "event-4-dent.png",
+        "event-4-dent.svg",
+        "event-5-dent-smoothing.png",
+    ] {
+        assert!(
+            !out.join(f).exists(),
+            "{f} of seed 2 left beside seed 1's plots"
+        );
+    }
+    assert!(out.join("event-1-steady-state.png").is_file());
+    assert!(out.join("event-notes.txt").is_file());
+}
