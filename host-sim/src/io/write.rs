@@ -141,6 +141,7 @@ pub fn write_outputs(
 
     // Exclusive use of `dir` while the set is replaced (a no-op if the caller holds it).
     let _lock = super::lock::DirLock::try_acquire(dir)?;
+    remove_stale_temps(dir, stem);
 
     let sidecar = build_sidecar(stem, columns, fs, n, meta);
 
@@ -294,6 +295,26 @@ pub(crate) fn wav_rate(fs: f64) -> u32 {
     fs.round().clamp(1.0, u32::MAX as f64) as u32
 }
 
+/// Removes the temporaries of `stem`'s set ([`temp_in`]'s names) that a run killed before it
+/// could drop them left in `dir` (a `kill -9` left a hidden 129 MB CSV that later runs
+/// kept). Called with the directory's lock held: no other run is writing them.
+fn remove_stale_temps(dir: &Path, stem: &str) {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let prefix = format!(".{stem}.");
+    for e in rd.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let ours = name.starts_with(&prefix)
+            && [".csv.tmp", ".wav.tmp", ".json.tmp"]
+                .iter()
+                .any(|s| name.ends_with(s));
+        if ours && e.path().is_file() {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
 fn temp_in(dir: &Path, stem: &str, suffix: &str) -> Result<tempfile::NamedTempFile, IoError> {
     super::perms::output_builder()
         .prefix(&format!(".{stem}."))
@@ -430,6 +451,39 @@ mod tests {
         assert_eq!(r.spec().sample_format, hound::SampleFormat::Float);
         let w: Vec<f32> = r.samples::<f32>().map(|s| s.unwrap()).collect();
         assert_eq!(w, a.iter().map(|&x| x as f32).collect::<Vec<_>>());
+    }
+
+    /// Temporaries of this stem left by a killed run are removed by the next run into the
+    /// directory; another stem's, and the user's files, are not.
+    #[test]
+    fn a_killed_runs_temporaries_are_removed_by_the_next() {
+        let tmp = tempfile::tempdir().unwrap();
+        for f in [
+            ".run.Ab12Cd.csv.tmp",
+            ".run.Xy34Zw.wav.tmp",
+            ".other.Ab12Cd.csv.tmp",
+            "notes.tmp",
+        ] {
+            std::fs::write(tmp.path().join(f), b"x").unwrap();
+        }
+        write_outputs(
+            tmp.path(),
+            "run",
+            &[("accel_m_s2", &[0.0, 1.0])],
+            12000.0,
+            &Value::Null,
+        )
+        .unwrap();
+        assert_eq!(
+            dir_entries(tmp.path()),
+            vec![
+                ".other.Ab12Cd.csv.tmp",
+                "notes.tmp",
+                "run.csv",
+                "run.json",
+                "run.wav"
+            ]
+        );
     }
 
     #[test]
