@@ -125,6 +125,24 @@ pub fn check_unique<'a>(
     Ok(())
 }
 
+/// Checks a flag's list of effect names (`--effects a,b`): each a known effect
+/// ([`wearsim_core::effects::info`]) and none listed twice; the message names the flag.
+pub fn check_listed(names: &[String], flag: &str) -> Result<(), String> {
+    for (i, e) in names.iter().enumerate() {
+        if wearsim_core::effects::info(e).is_none() {
+            return Err(format!(
+                "{flag}: unknown effect `{e}` (see `wearsim effects`)"
+            ));
+        }
+        if names[..i].contains(e) {
+            return Err(format!(
+                "{flag}: `{e}` is listed twice; list each effect once"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Builds the effects of a list of sections (a later section of the same effect wins:
 /// the command line's `--effect` replaces the scenario file's; within one source a
 /// repeat is refused by [`check_unique`]).
@@ -175,6 +193,18 @@ pub fn catalogue_text() -> String {
 #[cfg(test)]
 mod tests {
     use crate::config::ScenarioFile;
+
+    /// `--effects sensor,sensor` was accepted (and fitted twice); an unknown name and a
+    /// repeat are named with the flag.
+    #[test]
+    fn a_flags_effect_list_names_an_unknown_or_repeated_effect() {
+        let list = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert!(super::check_listed(&list(&["sensor", "slip"]), "--effects").is_ok());
+        let e = super::check_listed(&list(&["sensor", "slip", "sensor"]), "--effects").unwrap_err();
+        assert!(e.contains("--effects: `sensor` is listed twice"), "{e}");
+        let e = super::check_listed(&list(&["sensr"]), "--effects").unwrap_err();
+        assert!(e.contains("unknown effect `sensr`"), "{e}");
+    }
 
     #[test]
     fn a_repeated_effect_is_refused_and_the_command_line_replaces_the_file() {

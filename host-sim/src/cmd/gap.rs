@@ -334,12 +334,8 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
         (validation.into_iter().chain(holdout).collect(), test)
     };
     let known = ["running-in", "roughness", "sensor", "edge-shape"];
+    crate::effects::check_listed(&a.effects, "--effects").map_err(CliError::input)?;
     for e in &a.effects {
-        if wearsim_core::effects::info(e).is_none() {
-            return Err(CliError::input(format!(
-                "--effects: unknown effect `{e}` (see `wearsim effects`)"
-            )));
-        }
         if !known.contains(&e.as_str()) {
             return Err(CliError::input(format!(
                 "--effects: `{e}` acts within a snapshot and changes no statistic along a life; the lifetime candidates are {}",

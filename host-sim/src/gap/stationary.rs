@@ -316,14 +316,7 @@ impl GapArgs {
                 )));
             }
         }
-        for e in &self.effects {
-            if wearsim_core::effects::info(e).is_none() {
-                return Err(GapError::input(format!(
-                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
-                )));
-            }
-        }
-        Ok(())
+        crate::effects::check_listed(&self.effects, "--effects").map_err(GapError::input)
     }
 }
 

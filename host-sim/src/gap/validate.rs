@@ -291,6 +291,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let chosen: Vec<FitSpace> = if opt.effects.is_empty() {
         all.clone()
     } else {
+        crate::effects::check_listed(&opt.effects, "--effects")?;
         let mut v = vec![];
         for name in &opt.effects {
             match all.iter().find(|s| s.effect == name) {
