@@ -442,14 +442,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
     });
     if let (None, Some((v, src))) = (opts.fs, &stated) {
         let stated_at = src.strip_prefix("file:").unwrap_or(src);
-        let others = [(FS_NAMES, 1.0)];
-        let fs_of = Stated {
-            what: "sample rate",
-            flag: "--fs",
-            unit: "Hz",
-            tolerance: FS_AGREEMENT,
-        };
-        fs_of.check(path, &all, &get, &chan_path, stated_at, *v, &others)?;
+        STATED_RATE.check(path, &all, &get, &chan_path, stated_at, *v)?;
     }
     let implied = match (&layout, &label) {
         (MatLayout::Paderborn(_), _) => Some((PADERBORN_FS, "layout:paderborn".to_string())),
@@ -532,14 +525,7 @@ pub fn read_mat_record(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Rec
         });
     if let (None, Some((v, src))) = (opts.rpm, &file_rpm) {
         if let Some(stated_at) = src.strip_prefix("file:") {
-            let others = [(RPM_NAMES, 1.0), (RATE_NAMES, 60.0)];
-            let rpm_of = Stated {
-                what: "shaft speed",
-                flag: "--rpm",
-                unit: "rpm",
-                tolerance: SPEED_AGREEMENT,
-            };
-            rpm_of.check(path, &all, &get, &chan_path, stated_at, *v, &others)?;
+            STATED_SPEED.check(path, &all, &get, &chan_path, stated_at, *v)?;
         }
     }
     let (rpm, rpm_source) = match (opts.rpm, file_rpm) {
@@ -621,16 +607,35 @@ struct Stated {
     flag: &'static str,
     unit: &'static str,
     tolerance: f64,
+    /// The scalars' names that state it, each with its factor to `unit`.
+    names: &'static [(&'static [&'static str], f64)],
 }
+
+/// The sample rate, Hz.
+const STATED_RATE: Stated = Stated {
+    what: "sample rate",
+    flag: "--fs",
+    unit: "Hz",
+    tolerance: FS_AGREEMENT,
+    names: &[(FS_NAMES, 1.0)],
+};
+
+/// The shaft speed, rpm: in rpm, or as a shaft rate in Hz.
+const STATED_SPEED: Stated = Stated {
+    what: "shaft speed",
+    flag: "--rpm",
+    unit: "rpm",
+    tolerance: SPEED_AGREEMENT,
+    names: &[(RPM_NAMES, 1.0), (RATE_NAMES, 60.0)],
+};
 
 impl Stated {
     /// Checks the value `v` taken from `stated_at` against every other numeric scalar of
-    /// the file named as in `others` (each with its factor to `v`'s unit). One beside the
+    /// the file that states it (`names`). One beside the
     /// channel (same struct) that disagrees makes the file ambiguous: refused, both named,
     /// with the flag that settles it (stop 68: `fs` = 12000 and `sample_rate` = 24000, `rpm`
     /// = 900 and `rate` = 29.95 Hz were resolved silently). One elsewhere that disagrees is
     /// warned about: the value beside the channel is taken.
-    #[allow(clippy::too_many_arguments)]
     fn check<'t>(
         &self,
         path: &Path,
@@ -639,7 +644,6 @@ impl Stated {
         chan_path: &str,
         stated_at: &str,
         v: f64,
-        others: &[(&[&str], f64)],
     ) -> Result<(), IoError> {
         let parent = |p: &str| p.rsplit_once('.').map_or("", |(a, _)| a).to_string();
         let Stated {
@@ -647,6 +651,7 @@ impl Stated {
             flag,
             unit,
             tolerance,
+            names: others,
         } = self;
         for n in all
             .iter()
