@@ -129,7 +129,9 @@ pub fn prepare_dir(spec: &SweepSpec, dir: &Path) -> Result<(), SweepError> {
             .map_err(|e| SweepError::Input(format!("--out {}: {e}", dir.display())))?
             .flatten()
             .any(|e| !starting(&e.file_name().to_string_lossy()));
-        if busy {
+        // A spec that appeared meanwhile is compared below: what made the directory busy
+        // may be its run's first files (its write check in `shards`).
+        if busy && !spec_path.exists() {
             return Err(SweepError::Input(format!(
                 "--out {}: the directory is not empty and holds no sweep; choose an empty or new directory",
                 dir.display()
