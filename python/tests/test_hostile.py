@@ -3,6 +3,8 @@ ConfigError naming the field (never a crash, a silent default or another excepti
 
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -307,13 +309,15 @@ def test_life_takes_a_dash_directory_a_dict_config_and_effect_dicts(tmp_path, mo
     # Each was passed through to the command line as is: "-runs" read as options, the
     # dict's repr "not found" as a file, an effect dict as "unknown effect `{'name'`".
     monkeypatch.chdir(tmp_path)
+    configs = lambda: set(Path(tempfile.gettempdir()).glob("wearsim-config-*"))  # noqa: E731
+    before = configs()
     r = wearsim.life(out="-runs", seed=2)
     assert r["complete"] and (tmp_path / "-runs" / "life-summary.json").is_file()
     r = wearsim.life(out=tmp_path / "c", config={"preset": "thesis-61810", "seed": 2},
                      effect=[{"name": "sensor", "noise": 0.05}])
     assert r["complete"], r.keys()
-    assert not list(tmp_path.glob("wearsim-config-*"))
     with pytest.raises(wearsim.ConfigError, match="speeed"):
         wearsim.life(out=tmp_path / "e", config={"preset": "thesis-61810", "speeed": 3})
     with pytest.raises(wearsim.ConfigError, match="name"):
-        wearsim.life(out=tmp_path / "f", effect=[{"noise": 0.05}])
+        wearsim.life(out=tmp_path / "f", config={"preset": "thesis-61810"}, effect=[{"noise": 0.05}])
+    assert configs() == before, "a temporary --config file was left behind"

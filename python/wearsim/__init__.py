@@ -281,20 +281,21 @@ def _run_cli(command: str, args: List[str], kwargs: Dict[str, Any], out: Any) ->
     out = _out_dir(out)
     kwargs = dict(kwargs)
     config_file = None
-    conf = kwargs.get("config")
-    if isinstance(conf, dict) or (isinstance(conf, str) and "=" in conf and not os.path.exists(conf)):
-        # A scenario as a dict or TOML text, as `simulate` takes it: checked and written as
-        # a file for the command's --config (a dict was passed as its repr, "not found").
-        config_file = tempfile.NamedTemporaryFile("w", suffix=".toml", prefix="wearsim-config-", delete=False)
-        with config_file:
-            config_file.write(_wearsim.scenario_toml(kwargs["config"]))
-        kwargs["config"] = config_file.name
-    argv = _argv(command, kwargs) + list(args) + [f"--out={out}"]
-    # Only what this run wrote is returned: files from an earlier run (another seed's
-    # features), or the user's own (notes.csv, an unrelated config.json), are not. The
-    # commands write every file anew (a new file, or renamed over the old one).
-    before = _stats(out)
     try:
+        conf = kwargs.get("config")
+        if isinstance(conf, dict) or (isinstance(conf, str) and "=" in conf and not os.path.exists(conf)):
+            # A scenario as a dict or TOML text, as `simulate` takes it: checked and written
+            # as a file for the command's --config (a dict was passed as its repr, "not found").
+            text = _wearsim.scenario_toml(conf)
+            config_file = tempfile.NamedTemporaryFile("w", suffix=".toml", prefix="wearsim-config-", delete=False)
+            with config_file:
+                config_file.write(text)
+            kwargs["config"] = config_file.name
+        argv = _argv(command, kwargs) + list(args) + [f"--out={out}"]
+        # Only what this run wrote is returned: files from an earlier run (another seed's
+        # features), or the user's own (notes.csv, an unrelated config.json), are not. The
+        # commands write every file anew (a new file, or renamed over the old one).
+        before = _stats(out)
         code, message = _wearsim.cli(argv)
         if code == 2:
             raise ConfigError(_pythonic(message, _CLI_NAMES))
