@@ -218,6 +218,14 @@ pub(crate) fn check_sidecar(path: &Path, s: &FeatureSidecar) -> Result<(), Featu
             format!("{:?} is not one of {}", s.unit, UNITS.join(", ")),
         ));
     }
+    if s.bearing.id.trim().is_empty() {
+        // The life's label in every report (`MeasuredLife::label`): a blank one names nothing.
+        return Err(sidecar_err(
+            path,
+            "bearing.id",
+            "empty (free text naming the bearing, e.g. \"test 2 bearing 1\")",
+        ));
+    }
     if s.bearing.preset.is_none() && s.bearing.geometry.is_none() {
         return Err(sidecar_err(
             path,
@@ -348,6 +356,19 @@ mod tests {
         let (f, d) = refused_field("top", &v);
         assert_eq!(f, "sample_rate");
         assert!(d.contains("in the sidecar; allowed keys: format,"), "{d}");
+    }
+
+    /// Probe find (stop 68): a blank `bearing.id` was read, and every report then labelled
+    /// the life by nothing.
+    #[test]
+    fn a_blank_bearing_id_is_refused() {
+        for id in ["", "  \t"] {
+            let mut v = good();
+            v["bearing"]["id"] = json!(id);
+            let (f, d) = refused_field("blank-id", &v);
+            assert_eq!(f, "bearing.id");
+            assert!(d.starts_with("empty"), "{d}");
+        }
     }
 
     /// Every key the serde structs know is in [`SIDECAR_KEYS`] and no other: a key added to

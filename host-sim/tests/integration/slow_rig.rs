@@ -101,7 +101,9 @@ fn a_slow_rig_calibrates_on_its_wear_stages() {
 /// A slow life shorter than the crack stages (100 snapshots 30 s apart at 60 rpm:
 /// 2970 revolutions, under the rig's floor of 3.59·10⁴) is refused as not converged,
 /// naming the reason (the floor and the hours a table must span) and the bracket of
-/// scales and lives tried; nothing is written.
+/// scales and lives tried; nothing is written. It is refused after two lives (the first
+/// and the floor), not after the whole search (17 lives and 29 s in the outside probe of
+/// stop 68).
 #[test]
 fn a_slow_life_the_model_cannot_reach_is_refused_as_not_converged() {
     let tmp = tempfile::tempdir().unwrap();
@@ -111,7 +113,7 @@ fn a_slow_life_the_model_cannot_reach_is_refused_as_not_converged() {
         &[
             "calibration: not converged",
             "must span at least",
-            "bracket tried over",
+            "bracket tried over 2 lives",
             "life factor 1.000e-9",
         ],
     );

@@ -429,6 +429,44 @@ pub fn calibrate(
     };
     let hours = |revs: f64| revs / (3600.0 * rig.shaft_hz);
     let first = run(steel)?;
+    // The shortest life the scales can give: the smallest life factor and, with an onset,
+    // the smallest propagation limit (the crack stages, which neither scale shortens, are
+    // left). A training life shorter than the first life is checked against it at once, so
+    // that one the model cannot reach is refused after two lives, not after the search.
+    let floor_scales = Scales {
+        life_factor: wearsim_core::wear::material::MIN_LIFE_FACTOR,
+        propagation_passes: if onset.is_some() {
+            crate::life::calibrate::PROPAGATION_BOUNDS.0
+        } else {
+            steel.propagation_passes
+        },
+    };
+    let floor_life = std::cell::OnceCell::new();
+    let floor = || -> Result<f64, String> {
+        if let Some(&f) = floor_life.get() {
+            return Ok(f);
+        }
+        let f = run(floor_scales)?.0.life;
+        Ok(*floor_life.get_or_init(|| f))
+    };
+    let must_span = |floor: f64| {
+        format!(
+            "a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table)",
+            hours(floor)
+        )
+    };
+    if target < first.0.life && floor()? > target * 1.05 {
+        let f = floor()?;
+        return Err(format!(
+            "calibration: not converged: the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {f:.3e} revolutions (life factor {:.3e}, propagation limit {:.3e} passes: its crack stages, which neither scale shortens, at this bearing's load); {}; {}",
+            hours(target),
+            60.0 * rig.shaft_hz,
+            floor_scales.life_factor,
+            floor_scales.propagation_passes,
+            must_span(f),
+            bracket(&tried.borrow())
+        ));
+    }
     if let Some(u) = onset {
         let c = calibrate_shape(target, u, steel, first, SHAPE_STEPS, |a, n_p| {
             run(Scales {
@@ -441,16 +479,11 @@ pub fn calibrate(
             let with_onset = tried.borrow().iter().any(|t| t.onset.is_some());
             // Most likely too short for the crack stages, which neither scale shortens:
             // say how long the training life must be.
-            let floor = run(Scales {
-                life_factor: wearsim_core::wear::material::MIN_LIFE_FACTOR,
-                propagation_passes: crate::life::calibrate::PROPAGATION_BOUNDS.0,
-            })?
-            .0
-            .life;
+            let floor = floor()?;
             let why = if target < floor {
                 format!(
-                    "the simulated life of this bearing lasts at least {floor:.3e} revolutions at the smallest life factor and propagation limit (its crack stages, which neither scale shortens, at this bearing's load): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table)",
-                    hours(floor)
+                    "the simulated life of this bearing lasts at least {floor:.3e} revolutions at the smallest life factor and propagation limit (its crack stages, which neither scale shortens, at this bearing's load): {}",
+                    must_span(floor)
                 )
             } else if !with_onset {
                 format!(
@@ -478,7 +511,7 @@ pub fn calibrate(
             revs: c.shape.life,
             onset: c.shape.onset,
             onset_basis: c.last,
-            runs: c.steps + 1,
+            runs: c.steps + 1 + usize::from(floor_life.get().is_some()),
         });
     }
     let run = |a: f64| -> Result<(f64, (Option<f64>, OnsetBasis)), String> {
@@ -502,12 +535,12 @@ pub fn calibrate(
     };
     let short = |e: String| {
         // Below the crack-to-failure part: say how long the training life must be.
-        match run(wearsim_core::wear::material::MIN_LIFE_FACTOR) {
-            Ok((floor, _)) if target < floor => format!(
-                "the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {floor:.3e} revolutions at any life factor (its crack-to-failure part does not scale with the factor): a training life must span at least {:.3} h at this speed (the first to the last snapshot of its table); {}",
+        match floor() {
+            Ok(floor) if target < floor => format!(
+                "the training life lasts {target:.3e} revolutions ({:.3} h at {:.0} rpm), but the simulated life of this bearing lasts at least {floor:.3e} revolutions at any life factor (its crack-to-failure part does not scale with the factor): {}; {}",
                 hours(target),
                 60.0 * rig.shaft_hz,
-                hours(floor),
+                must_span(floor),
                 context(e)
             ),
             _ => context(e),
@@ -530,6 +563,6 @@ pub fn calibrate(
         revs: c.life,
         onset: c.last.0,
         onset_basis: c.last.1,
-        runs: c.steps + 1,
+        runs: c.steps + 1 + usize::from(floor_life.get().is_some()),
     })
 }
