@@ -215,6 +215,10 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
     let mut next_seq: Option<u32> = None;
     let mut next_sample: u64 = 0;
     let mut format: Option<Format> = None;
+    // The stream's scale (fixed per stream: 1 for f32, g₀·FS/32768 for counts) and the
+    // cumulative overrun counter so far.
+    let mut stream_scale: Option<f32> = None;
+    let mut overruns_so_far: u32 = 0;
     for ev in frame::Decoder::new(bytes) {
         match ev {
             Event::Corrupt {
@@ -280,6 +284,13 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                             r.problem(format!("frame seq {} before any start frame", header.seq));
                         }
                         next_seq = Some(header.seq.wrapping_add(1));
+                        if header.overruns < overruns_so_far {
+                            r.problem(format!(
+                                "frame seq {}: the cumulative overrun counter goes back from {overruns_so_far} to {}",
+                                header.seq, header.overruns
+                            ));
+                        }
+                        overruns_so_far = overruns_so_far.max(header.overruns);
                         r.overruns = r.overruns.max(header.overruns);
                         if header.kind == Kind::End {
                             end = frame::EndInfo::from_bytes(payload).map(|e| (e, header.seq));
@@ -306,6 +317,19 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                                 header.seq
                             ));
                         }
+                        if !(header.scale.is_finite() && header.scale > 0.0) {
+                            r.problem(format!(
+                                "frame seq {} has scale {} (m/s² per payload unit: finite and > 0)",
+                                header.seq, header.scale
+                            ));
+                        } else if *stream_scale.get_or_insert(header.scale) != header.scale {
+                            r.problem(format!(
+                                "frame seq {} changes the scale from {} to {} m/s² per payload unit (fixed for a stream)",
+                                header.seq,
+                                stream_scale.unwrap_or(header.scale),
+                                header.scale
+                            ));
+                        }
                         let scale = header.scale as f64;
                         let bad_from = accel.len();
                         match header.format {
@@ -319,9 +343,11 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                             ),
                             Format::None => {}
                         }
-                        if let Some(i) = accel[bad_from..].iter().position(|v| !v.is_finite()) {
+                        // Beyond f32: the outputs (WAV, CSV as f32) could not hold it.
+                        let bad = |v: &f64| !(v.is_finite() && v.abs() <= f32::MAX as f64);
+                        if let Some(i) = accel[bad_from..].iter().position(bad) {
                             r.problem(format!(
-                                "frame seq {} carries a non-finite sample ({}) at sample index {}: the stream is corrupt",
+                                "frame seq {} carries a sample of {:e} m/s² at sample index {} (non-finite or beyond the f32 range of the outputs): the stream is corrupt",
                                 header.seq,
                                 accel[bad_from + i],
                                 first + i as u64
@@ -344,6 +370,20 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
         Some(s) => {
             r.rate_hz = Some(s.rate_hz as f64);
             r.preset = Some(s.preset_name().to_string());
+            if s.preset_name().is_empty() {
+                r.problem("start frame names no preset (empty, or not ASCII text)".into());
+            }
+            if s.oversample == 0 {
+                r.problem(
+                    "start frame has oversample 0 (internal steps per output sample, ≥ 1)".into(),
+                );
+            }
+            if s.flavour > 2 {
+                r.problem(format!(
+                    "start frame has an unknown firmware flavour {} (0 other, 1 m4f-hardfloat, 2 m3-softfloat)",
+                    s.flavour
+                ));
+            }
             r.seed = Some(s.seed);
             r.flavour = Some(
                 match s.flavour {
@@ -379,6 +419,12 @@ pub fn decode(input: &str, bytes: &[u8]) -> Decoded {
                 r.problem(format!(
                     "end frame counts {} data frames, {} received",
                     e.data_frames, r.data_frames
+                ));
+            }
+            if e.overruns != r.overruns {
+                r.problem(format!(
+                    "end frame counts {} overruns, the frame headers {}",
+                    e.overruns, r.overruns
                 ));
             }
             if e.reserved != 0 {

@@ -116,7 +116,19 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
     // Exclusive, writable output directory before any work (docs/reliability.md).
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out)
         .map_err(|e| CaptureError::Input(e.to_string()))?;
-    let bytes = read_input(&a.input)?;
+    let bytes = match read_input(&a.input) {
+        Ok(b) => b,
+        Err(e) => {
+            // A report on stdout with `--json`, as for every other failure of the stream.
+            if a.json {
+                println!(
+                    "{}",
+                    json!({"input": a.input.display().to_string(), "complete": false, "problems": [e.to_string()]})
+                );
+            }
+            return Err(e);
+        }
+    };
     let Decoded { mut report, accel } = decode(&a.input.display().to_string(), &bytes);
     let mut mismatch = false;
     if let (Some(seed), Some(preset)) = (a.expect_seed, a.preset.as_deref()) {
@@ -124,8 +136,9 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
             let c = compare(&accel, preset, seed, a.tolerance)?;
             if report.preset.as_deref() != Some(preset) || report.seed != Some(seed) {
                 report.problems.push(format!(
-                    "stream is preset {:?} seed {:?}, expected {preset:?} seed {seed}",
-                    report.preset, report.seed
+                    "the stream is of preset {} seed {}, expected {preset} seed {seed}",
+                    report.preset.as_deref().unwrap_or("(none)"),
+                    report.seed.map_or("(none)".to_string(), |s| s.to_string())
                 ));
                 mismatch = true;
             }
@@ -144,8 +157,13 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
         print_report(&report, None, a.json)?;
         let first = report.problems.first().cloned().unwrap_or_default();
         let message = format!(
-            "{}: stream not complete, nothing written ({} problem(s); first: {first})",
+            "{}: {}, nothing written ({} problem(s); first: {first})",
             a.input.display(),
+            if mismatch {
+                "the stream does not match the host run"
+            } else {
+                "stream not complete"
+            },
             report.problems.len()
         );
         return Err(if mismatch {
@@ -160,7 +178,7 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
         .map(|x| x / wearsim_core::real::STANDARD_GRAVITY)
         .collect();
     let columns: Vec<(&str, &[f64])> = vec![("accel_m_s2", &accel), ("accel_g", &g)];
-    let meta = json!({
+    let mut meta = json!({
         "generator": "wearsim capture",
         "version": crate::VERSION,
         "source": a.input.display().to_string(),
@@ -173,6 +191,24 @@ pub fn run(a: CaptureArgs) -> Result<(), CaptureError> {
         "instructions_per_sample": report.instructions_per_sample,
         "comparison": report.comparison,
     });
+    // The preset's model at the stream's rate, as `simulate` describes its runs: `analyze`
+    // then finds the bearing and the shaft speed of a capture in its sidecar.
+    let model = report
+        .preset
+        .as_deref()
+        .and_then(|p| wearsim_core::presets::by_name(p).map(|c| (p, c)));
+    if let (Some((name, mut cfg)), Some(m)) = (model, meta.as_object_mut()) {
+        cfg.output_rate = fs as wearsim_core::Real;
+        let speed = cfg
+            .speed
+            .over(0.0, (accel.len() as f64 / fs) as wearsim_core::Real);
+        m.insert("rpm".into(), json!(60.0 * speed.mean_hz));
+        m.insert(
+            "rpm_range".into(),
+            json!([60.0 * speed.min_hz, 60.0 * speed.max_hz]),
+        );
+        m.extend(crate::io::sidecar::model_metadata(Some(name), &cfg));
+    }
     let files = crate::io::write::write_outputs(&a.out, "capture", &columns, fs, &meta)
         .map_err(|e| CaptureError::Write(e.to_string()))?;
     print_report(&report, Some(&files), a.json)?;

@@ -62,7 +62,10 @@ pub fn run(a: &FeaturesArgs) -> Result<(), CliError> {
             )));
         }
     }
-    if a.bearing_id.as_deref().is_some_and(|id| id.trim().is_empty()) {
+    if a.bearing_id
+        .as_deref()
+        .is_some_and(|id| id.trim().is_empty())
+    {
         return Err(CliError::input(
             "--bearing-id: empty (free text naming the bearing; leave it out for the folder name)",
         ));

@@ -14,6 +14,18 @@ const SEED: u64 = 7;
 
 /// A firmware-like stream of `samples` (f32 m/s²), `per` samples per frame.
 fn stream(samples: &[f32], per: usize) -> Vec<u8> {
+    forged(samples, per, |_| {}, |_, _| {}, |_| {})
+}
+
+/// [`stream`] with its start frame, each data frame's header (by frame index) and its end
+/// frame changed by the given functions, as a forged or damaged stream with valid CRCs.
+fn forged(
+    samples: &[f32],
+    per: usize,
+    start_with: impl Fn(&mut frame::StartInfo),
+    data_with: impl Fn(usize, &mut frame::Header),
+    end_with: impl Fn(&mut frame::EndInfo),
+) -> Vec<u8> {
     let mut out = vec![];
     let mut buf = [0u8; frame::MAX_FRAME];
     let mut preset = [0u8; 24];
@@ -26,6 +38,8 @@ fn stream(samples: &[f32], per: usize) -> Vec<u8> {
         total_samples: samples.len() as u32,
         flavour: 1,
     };
+    let mut start = start;
+    start_with(&mut start);
     let ctl = |kind, seq| frame::Header {
         kind,
         format: frame::Format::None,
@@ -40,7 +54,7 @@ fn stream(samples: &[f32], per: usize) -> Vec<u8> {
     let mut seq = 1;
     for (i, chunk) in samples.chunks(per).enumerate() {
         let payload: Vec<u8> = chunk.iter().flat_map(|x| x.to_le_bytes()).collect();
-        let h = frame::Header {
+        let mut h = frame::Header {
             kind: frame::Kind::Data,
             format: frame::Format::F32,
             flags: 0,
@@ -49,6 +63,7 @@ fn stream(samples: &[f32], per: usize) -> Vec<u8> {
             overruns: 0,
             scale: 1.0,
         };
+        data_with(i, &mut h);
         let n = frame::encode(&h, &payload, &mut buf).unwrap();
         out.extend_from_slice(&buf[..n]);
         seq += 1;
@@ -62,6 +77,8 @@ fn stream(samples: &[f32], per: usize) -> Vec<u8> {
         measured_samples: 10,
         reserved: 0,
     };
+    let mut end = end;
+    end_with(&mut end);
     let n = frame::encode(&ctl(frame::Kind::End, seq), &end.to_bytes(), &mut buf).unwrap();
     out.extend_from_slice(&buf[..n]);
     out
@@ -138,6 +155,119 @@ fn valid_stream_is_written_like_simulate() {
     let csv = std::fs::read_to_string(dir.path().join("out/capture.csv")).unwrap();
     let second: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();
     assert_eq!(second[1].parse::<f64>().unwrap(), samples[1] as f64);
+    // The preset's model and speed, as `simulate` writes them: `analyze` reads a capture
+    // with no further arguments (the probe of stop 69 found "no bearing geometry").
+    let cfg = presets::by_name(PRESET).unwrap();
+    let rpm = 60.0 * cfg.speed.shaft_hz(0.0) as f64;
+    assert!(
+        (side["rpm"].as_f64().unwrap() / rpm - 1.0).abs() < 1e-9,
+        "{side}"
+    );
+    assert_eq!(side["bearing"], PRESET);
+    assert_eq!(side["model"]["output_rate"].as_f64(), Some(20_000.0));
+    // Long enough for the analysis (10 periods of the slowest defect frequency).
+    let long = tempfile::tempdir().unwrap();
+    let (code, r) = capture(long.path(), &stream(&host_samples(4000), 64), &[]);
+    assert_eq!(code, 0, "{r}");
+    let a = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(["analyze", "--json"])
+        .arg(long.path().join("out/capture.csv"))
+        .output()
+        .unwrap();
+    assert_eq!(
+        a.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&a.stderr)
+    );
+}
+
+/// Frames with valid CRCs whose fields no firmware sends (probe of stop 69: each was
+/// written as a complete capture): every one is a problem, exit 2, nothing written.
+#[test]
+fn forged_frame_fields_are_problems_and_nothing_is_written() {
+    let samples = host_samples(320);
+    let preset_bytes = |s: &mut frame::StartInfo| s.preset = [0xFF; 24];
+    let cases: Vec<(&str, Vec<u8>)> = vec![
+        (
+            "scale 0",
+            forged(&samples, 64, |_| {}, |_, h| h.scale = 0.0, |_| {}),
+        ),
+        (
+            "scale -1",
+            forged(&samples, 64, |_| {}, |_, h| h.scale = -1.0, |_| {}),
+        ),
+        (
+            "changes the scale from 1 to 100",
+            forged(
+                &samples,
+                64,
+                |_| {},
+                |i, h| {
+                    if i == 2 {
+                        h.scale = 100.0
+                    }
+                },
+                |_| {},
+            ),
+        ),
+        (
+            "beyond the f32 range",
+            forged(&samples, 64, |_| {}, |_, h| h.scale = 3.4e38, |_| {}),
+        ),
+        (
+            "overrun counter goes back from 5 to 0",
+            forged(
+                &samples,
+                64,
+                |_| {},
+                |i, h| {
+                    if i == 1 {
+                        h.overruns = 5
+                    }
+                },
+                |e| e.overruns = 5,
+            ),
+        ),
+        (
+            "end frame counts 0 overruns, the frame headers 1",
+            forged(
+                &samples,
+                64,
+                |_| {},
+                |i, h| {
+                    if i == 4 {
+                        h.overruns = 1
+                    }
+                },
+                |_| {},
+            ),
+        ),
+        (
+            "oversample 0",
+            forged(&samples, 64, |s| s.oversample = 0, |_, _| {}, |_| {}),
+        ),
+        (
+            "unknown firmware flavour 99",
+            forged(&samples, 64, |s| s.flavour = 99, |_, _| {}, |_| {}),
+        ),
+        (
+            "names no preset",
+            forged(&samples, 64, preset_bytes, |_, _| {}, |_| {}),
+        ),
+    ];
+    for (want, bytes) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let (code, r) = capture(dir.path(), &bytes, &[]);
+        assert_eq!(code, 2, "{want}: {r}");
+        assert_eq!(r["complete"], false, "{want}");
+        assert!(
+            r["problems"].to_string().contains(want),
+            "{want}: {}",
+            r["problems"]
+        );
+        nothing_written(dir.path());
+    }
 }
 
 #[test]
@@ -214,6 +344,13 @@ fn samples_that_differ_from_the_host_run_fail_the_comparison() {
         &["--expect-seed", "8", "--preset", PRESET],
     );
     assert_eq!(code, 1, "{r}");
+    assert!(
+        r["problems"]
+            .to_string()
+            .contains("of preset thesis-61810 seed 7, expected thesis-61810 seed 8"),
+        "{}",
+        r["problems"]
+    );
     nothing_written(dir.path());
 }
 
@@ -226,4 +363,18 @@ fn missing_input_is_a_clear_error() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("/nonexistent/serial.bin"), "{err}");
+    // With --json, a report on stdout as for every other failure.
+    let out = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args(["capture", "--json", "--input", "/nonexistent/serial.bin"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["complete"], false);
+    assert!(
+        r["problems"][0]
+            .to_string()
+            .contains("/nonexistent/serial.bin"),
+        "{r}"
+    );
 }
