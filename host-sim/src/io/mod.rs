@@ -31,6 +31,7 @@ pub mod selector;
 pub mod sidecar;
 pub mod space_runs;
 pub mod time_column;
+pub mod unique_json;
 pub mod wav;
 pub mod wav_decode;
 pub mod write;

@@ -147,7 +147,8 @@ fn report_kind(raw: &Value) -> Option<&'static str> {
 }
 
 /// The JSON value of a sidecar file (a record's or a feature table's), at most
-/// [`MAX_SIDECAR_BYTES`], a UTF-8 byte order mark skipped.
+/// [`MAX_SIDECAR_BYTES`], a UTF-8 byte order mark skipped, every object's keys unique
+/// ([`super::unique_json`]).
 pub fn read_json(path: &Path) -> Result<Value, IoError> {
     let bytes = super::record::read_capped(
         path,
@@ -157,7 +158,8 @@ pub fn read_json(path: &Path) -> Result<Value, IoError> {
     )?;
     // A UTF-8 byte order mark (Windows editors) is no part of the JSON.
     let body = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
-    serde_json::from_slice(body).map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))
+    super::unique_json::from_slice(body)
+        .map_err(|e| IoError::malformed(path, format!("sidecar JSON: {e}")))
 }
 
 /// Read and validate one sidecar file.
@@ -266,6 +268,19 @@ pub fn parse_sidecar(path: &Path, raw: Value) -> Result<Sidecar, IoError> {
             path,
             "sidecar says \"complete\": false (the output set was not finished)",
         ));
+    }
+    // A wearsim sidecar of another format version may mean its keys otherwise.
+    if raw.get("format").and_then(Value::as_str) == Some(super::write::SIDECAR_FORMAT) {
+        let known = super::write::SIDECAR_FORMAT_VERSION;
+        if let Some(v) = raw
+            .get("format_version")
+            .filter(|v| v.as_u64() != Some(known))
+        {
+            return Err(IoError::malformed(
+                path,
+                format!("sidecar format_version {v} (this reader knows {known})"),
+            ));
+        }
     }
     let fs = match num(path, &raw, "fs")? {
         Some(f) => Some(check_fs(path, f)?),
@@ -633,6 +648,12 @@ mod tests {
                 "\"sample_rate\" (did you mean fs (Hz)?)".to_string(),
             ]
         );
+        // A wearsim sidecar of a later format version is refused (probe of stop 69).
+        let newer = json!({"format": crate::io::write::SIDECAR_FORMAT, "format_version": 99});
+        let e = parse_sidecar(Path::new("r.json"), newer)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("format_version 99 (this reader knows 1)"), "{e}");
         // wearsim's own sidecars carry the scenario's metadata: no warning.
         let own = json!({"format": crate::io::write::SIDECAR_FORMAT, "scenario": "x"});
         assert!(unread_keys(own.as_object().unwrap()).is_empty());

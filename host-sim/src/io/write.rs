@@ -48,6 +48,9 @@ use super::record::check_fs;
 /// Any other keys of the caller's `meta` object are kept as they are (the keys above win).
 pub const SIDECAR_FORMAT: &str = "wearsim-output";
 
+/// The `format_version` of [`SIDECAR_FORMAT`] sidecars this build writes and reads.
+pub const SIDECAR_FORMAT_VERSION: u64 = 1;
+
 /// Name of the time column of the CSV written by [`write_outputs`] (seconds).
 pub const TIME_COLUMN: &str = "time_s";
 
@@ -262,7 +265,7 @@ fn build_sidecar(stem: &str, columns: &[(&str, &[f64])], fs: f64, n: usize, meta
     let first = columns[0].0;
     let wav_unit = units.get(first).cloned().unwrap_or(Value::Null);
     obj.insert("format".into(), json!(SIDECAR_FORMAT));
-    obj.insert("format_version".into(), json!(1));
+    obj.insert("format_version".into(), json!(SIDECAR_FORMAT_VERSION));
     obj.insert("fs".into(), json!(fs));
     obj.insert("n_samples".into(), json!(n));
     obj.insert(
