@@ -549,7 +549,7 @@ pub fn convert(
     }
     check_rows(dir, &rows)
         .and_then(|()| check_sidecar(dir, &sidecar))
-        .and_then(|()| check_against_table(dir, &sidecar, &rows))
+        .and_then(|()| check_against_table(dir, dir, &sidecar, &rows))
         .map_err(|e| about_input(dir, e))?;
     // A sidecar that names a model preset must describe the preset's operating point
     // (the one check `gap --life` makes): refuse it here rather than write it.

@@ -256,7 +256,7 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
             min: MIN_SNAPSHOTS,
         });
     }
-    check_against_table(&side, &sidecar, &rows)?;
+    check_against_table(path, &side, &sidecar, &rows)?;
     Ok(FeatureTable {
         path: path.to_path_buf(),
         sidecar,
@@ -363,7 +363,11 @@ pub fn median_step(rows: &[FeatureRow]) -> f64 {
     crate::analysis::stats::upper_median(steps).unwrap_or(0.0)
 }
 
+/// Checks the sidecar `s` (read from `side`) against the rows of `table`: the snapshot
+/// count, the interval, moments that `snapshot_samples` samples can give, and snapshots
+/// that do not overlap.
 pub(crate) fn check_against_table(
+    table: &Path,
     side: &Path,
     s: &FeatureSidecar,
     rows: &[FeatureRow],
@@ -388,6 +392,30 @@ pub(crate) fn check_against_table(
                 100.0 * INTERVAL_TOL
             ),
         ));
+    }
+    // A standardised moment of n samples is bounded by n: kurtosis m4/m2² ≤ n and
+    // |skewness| ≤ √n (equality for one sample apart from the rest; bias-corrected
+    // estimators a little above, hence the margin). Past that the column is not of these
+    // snapshots (a conversion error, a sum instead of a mean), however finite.
+    let n = s.snapshot_samples as f64;
+    for (i, r) in rows.iter().enumerate() {
+        for (column, v, most) in [
+            ("kurtosis", r.kurtosis, 1.01 * n + 3.0),
+            ("skewness", r.skewness.abs(), 1.01 * n.sqrt() + 1.0),
+        ] {
+            if v > most {
+                return Err(FeatureTableError::BadValue {
+                    path: table.to_path_buf(),
+                    column: column.into(),
+                    row: i + 1,
+                    detail: format!(
+                        "{} is beyond what {} samples per snapshot (the sidecar's snapshot_samples) can give: at most {most:.4e}",
+                        if column == "skewness" { r.skewness } else { v },
+                        s.snapshot_samples
+                    ),
+                });
+            }
+        }
     }
     let length = s.snapshot_samples as f64 / s.sample_rate_hz;
     let min_gap = rows

@@ -34,7 +34,7 @@ pub fn write_feature_table(
     }
     check_sidecar(&side, sidecar)?;
     check_rows(csv, rows)?;
-    check_against_table(&side, sidecar, rows)?;
+    check_against_table(csv, &side, sidecar, rows)?;
     for (name, v) in bands {
         if parse_band(name).is_none() || v.len() != rows.len() {
             return Err(IoError::unsupported(

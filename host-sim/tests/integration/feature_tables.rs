@@ -386,6 +386,24 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
     edit(&csv, |t| set_cell(&t, 1, 3, "-1.5"));
     assert!(field(read_feature_table(&csv).unwrap_err()).contains("not the excess kurtosis"));
     reset();
+    // Moments no snapshot of `snapshot_samples` samples can have (probe of stop 69:
+    // 1e308 was read): kurtosis past n, |skewness| past √n.
+    for (col, v) in [(3, "1e308"), (5, "-1e308")] {
+        edit(&csv, |t| set_cell(&t, 2, col, v));
+        let e = read_feature_table(&csv).unwrap_err();
+        assert!(
+            matches!(e, FeatureTableError::BadValue { row: 2, ref detail, .. } if detail.contains("snapshot_samples")),
+            "{e}"
+        );
+        reset();
+    }
+    // A sidecar key given twice (probe of stop 69: the last one was taken silently).
+    edit(&side, |t| {
+        t.replacen("\"rpm\": 2000.0", "\"rpm\": 2000.0, \"rpm\": 900.0", 1)
+    });
+    let e = field(read_feature_table(&csv).unwrap_err());
+    assert!(e.contains("\"rpm\" appears twice"), "{e}");
+    reset();
     // Sidecar contradicts the table: snapshot count, interval.
     edit(&side, |t| {
         t.replace("\"n_snapshots\": 12", "\"n_snapshots\": 13")

@@ -230,15 +230,30 @@ fn span_findings(g: &LifeGap) -> Vec<String> {
         }
     }
     for sp in std::iter::once(t).chain(&g.holdout_spans) {
-        if !sp.ignored_columns.is_empty() {
+        // A well-named band is ignored only for reaching above the table's Nyquist
+        // frequency; anything else is no column of the format.
+        let (bands, other): (Vec<&String>, Vec<&String>) = sp
+            .ignored_columns
+            .iter()
+            .partition(|c| crate::io::feature_table::parse_band(c).is_some());
+        let list = |v: &[&String]| {
+            v.iter()
+                .map(|c| format!("`{c}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if !other.is_empty() {
             f.push(format!(
                 "{}: columns not part of the feature-table format were ignored: {} (a band level must be named `band_<lo>_<hi>_hz` with lo < hi in Hz; docs/feature-tables.md)",
                 sp.life,
-                sp.ignored_columns
-                    .iter()
-                    .map(|c| format!("`{c}`"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                list(&other)
+            ));
+        }
+        if !bands.is_empty() {
+            f.push(format!(
+                "{}: band levels reaching above the Nyquist frequency (half the sidecar's sample_rate_hz) were ignored: {}",
+                sp.life,
+                list(&bands)
             ));
         }
     }
