@@ -93,6 +93,10 @@ pub struct Material {
 /// machine can run.
 pub const MIN_LIFE_FACTOR: Real = 1e-9;
 
+/// Largest life factor a material accepts (a fatigue life 1000× ISO 281's: past any
+/// measured life-modification factor).
+pub const MAX_LIFE_FACTOR: Real = 1e3;
+
 impl Material {
     /// Defaults for AISI 52100 (see each field).
     pub const BEARING_STEEL: Material = Material {
@@ -142,7 +146,12 @@ impl Material {
         check_range("material.crack_c0", m.crack_c0, 1e-12, 1e6)?;
         check_range("material.crack_m0", m.crack_m0, 0.5, 4.0)?;
         check_range("material.life_exponent", m.life_exponent, 1.0, 6.0)?;
-        check_range("material.life_factor", m.life_factor, MIN_LIFE_FACTOR, 1e3)?;
+        check_range(
+            "material.life_factor",
+            m.life_factor,
+            MIN_LIFE_FACTOR,
+            MAX_LIFE_FACTOR,
+        )?;
         check_range("material.dent_fraction", m.dent_fraction, 0.01, 0.99)?;
         check_range("material.asperity_beta", m.asperity_beta, 0.0, 10.0)?;
         check_range("material.initiation_passes", m.initiation_passes, 1.0, 1e12)?;

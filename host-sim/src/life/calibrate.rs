@@ -14,6 +14,8 @@
 //! **The life factor and the propagation limit** ([`calibrate_shape`]; `gap --life` on a
 //! training life with an onset of instability): the length and the onset together.
 
+use wearsim_core::wear::material::{MAX_LIFE_FACTOR, MIN_LIFE_FACTOR};
+
 /// Most revolutions a calibrated life may run (far beyond any rating life: the cap only
 /// stops a life that would never fail).
 pub const CALIBRATED_CAP: f64 = 1e13;
@@ -108,7 +110,14 @@ pub fn calibrate<T, E>(
         if i >= s.min_steps && (life / target - 1.0).abs() < TOLERANCE {
             break;
         }
-        a *= ((target - s.fixed) / (life - s.fixed)).clamp(1e-9, 1e6);
+        // Inside the factors a material accepts; pinned at a bound, another life at the
+        // same factor would only repeat the last (the caller reports the miss).
+        let next = (a * ((target - s.fixed) / (life - s.fixed)).clamp(1e-9, 1e6))
+            .clamp(MIN_LIFE_FACTOR, MAX_LIFE_FACTOR);
+        if next == a {
+            break;
+        }
+        a = next;
         (life, last) = run(a)?;
         steps += 1;
     }
@@ -210,7 +219,7 @@ pub fn calibrate_shape<T, E>(
     let (mut shape, mut last) = first;
     let (mut a, mut n_p) = (start.life_factor, start.propagation_passes);
     let mut steps = 0;
-    let min_factor = wearsim_core::wear::material::MIN_LIFE_FACTOR;
+    let min_factor = MIN_LIFE_FACTOR;
     let split = |s: &Shape| {
         let u_s = s.onset.unwrap_or(1.0).min(1.0 - MIN_POST);
         (u_s * s.life, (1.0 - u_s) * s.life)
@@ -219,7 +228,8 @@ pub fn calibrate_shape<T, E>(
     while steps < max_steps && !within(&shape) {
         let (pre_s, post_s) = split(&shape);
         let (a_new, n_new) = (
-            next_scale(a, pre_s, prev.map(|p| (p.0, p.2)), onset * target).max(min_factor),
+            next_scale(a, pre_s, prev.map(|p| (p.0, p.2)), onset * target)
+                .clamp(min_factor, MAX_LIFE_FACTOR),
             next_scale(
                 n_p,
                 post_s,
@@ -241,7 +251,11 @@ pub fn calibrate_shape<T, E>(
     while extra < LENGTH_STEPS && (shape.life / target - 1.0).abs() >= TOLERANCE {
         let (pre_s, post_s) = split(&shape);
         let want = (target - post_s).max(1e-3 * target);
-        a = (a * (want / pre_s).clamp(1e-9, 1e6)).max(min_factor);
+        let next = (a * (want / pre_s).clamp(1e-9, 1e6)).clamp(min_factor, MAX_LIFE_FACTOR);
+        if next == a {
+            break;
+        }
+        a = next;
         (shape, last) = run(a, n_p)?;
         steps += 1;
         extra += 1;
@@ -258,6 +272,30 @@ pub fn calibrate_shape<T, E>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A target past the largest life factor (probe of stop 69: a table 10⁹ s per snapshot
+    /// ended in "material.life_factor = 507513 is out of range"): the factor stops at the
+    /// bound, one life there, and the miss is returned for the caller to report.
+    #[test]
+    fn a_target_beyond_the_largest_factor_stops_at_it() {
+        let run = |a: f64| -> Result<(f64, ()), String> {
+            if (MIN_LIFE_FACTOR..=MAX_LIFE_FACTOR).contains(&a) {
+                Ok((1e7 * a, ()))
+            } else {
+                Err(format!("factor {a} outside the material's range"))
+            }
+        };
+        let s = Secant {
+            fixed: 0.0,
+            min_steps: 0,
+            max_steps: 8,
+        };
+        let c = calibrate(1e13, (1e7, ()), &s, run).unwrap();
+        assert_eq!(c.factor, MAX_LIFE_FACTOR);
+        assert_eq!(c.steps, 1);
+        let c = calibrate(1e-6, (1e7, ()), &s, run).unwrap();
+        assert_eq!(c.factor, MIN_LIFE_FACTOR);
+    }
 
     /// A life whose fatigue part is proportional to the factor: one secant step lands on
     /// the target exactly, a proportional step does not (it also scales the fixed part).

@@ -467,6 +467,15 @@ pub fn calibrate(
             bracket(&tried.borrow())
         ));
     }
+    // A training life past the largest life factor (a time column in other units, a
+    // wrong speed or load): said in the table's terms, not as a material's range.
+    let max_factor = wearsim_core::wear::material::MAX_LIFE_FACTOR;
+    let too_long = |factor: f64| {
+        (factor >= max_factor).then(|| format!(
+            "the training life ({:.3} h at this speed) is longer than the simulated life at the largest life factor, {max_factor:.0e} (a fatigue life that many times ISO 281's): check the table's time_s and the sidecar's rpm and radial_load_n",
+            hours(target)
+        ))
+    };
     if let Some(u) = onset {
         let c = calibrate_shape(target, u, steel, first, SHAPE_STEPS, |a, n_p| {
             run(Scales {
@@ -480,7 +489,9 @@ pub fn calibrate(
             // Most likely too short for the crack stages, which neither scale shortens:
             // say how long the training life must be.
             let floor = floor()?;
-            let why = if target < floor {
+            let why = if let Some(t) = too_long(c.factor) {
+                t
+            } else if target < floor {
                 format!(
                     "the simulated life of this bearing lasts at least {floor:.3e} revolutions at the smallest life factor and propagation limit (its crack stages, which neither scale shortens, at this bearing's load): {}",
                     must_span(floor)
@@ -549,8 +560,9 @@ pub fn calibrate(
     let c = calibrate_life(target, first, &step, run)
         .map_err(|e| format!("calibration: not converged: {}", short(e)))?;
     if (c.life / target - 1.0).abs() > 0.05 {
+        let why = too_long(c.factor).map_or(String::new(), |t| t + "; ");
         return Err(format!("calibration: not converged: {}", context(format!(
-            "the life factor did not converge: {:.3e} revolutions against the measured {target:.3e}; {}",
+            "{why}the life factor did not converge: {:.3e} revolutions against the measured {target:.3e}; {}",
             c.life,
             bracket(&tried.borrow())
         ))));
