@@ -53,7 +53,14 @@ pub struct LabelledPeak {
     pub nearest: String,
     /// Its frequency (Hz).
     pub nearest_hz: f64,
+    /// Whether the peak is that line: within [`LINE_TOLERANCE`] of it or three spectral
+    /// bins, whichever is wider (slip moves rolling-element lines by 1–2 %); otherwise the
+    /// peak is no characteristic line and `nearest` only says what is closest.
+    pub matched: bool,
 }
+
+/// Relative distance within which a peak is labelled as a characteristic line.
+pub const LINE_TOLERANCE: f64 = 0.03;
 
 /// The printed summary.
 #[derive(Debug, Clone, Serialize)]
@@ -79,31 +86,33 @@ pub fn summarize(x: &[f64], fs: f64, model: &Model) -> Result<Summary, analysis:
     let shaft_hz = model.config().speed.shaft_hz(0.0);
     let kin = model.frequencies_at(shaft_hz);
     let waviness_hz = waviness_hz(model, shaft_hz);
-    let label = |peaks: Vec<analysis::Peak>| -> Vec<LabelledPeak> {
+    let label = |peaks: Vec<analysis::Peak>, df: f64| -> Vec<LabelledPeak> {
         peaks
             .into_iter()
             .map(|p| {
                 let (nearest, nearest_hz) = nearest_line(&kin, waviness_hz, p.freq);
+                let tol = (LINE_TOLERANCE * nearest_hz).max(3.0 * df);
                 LabelledPeak {
                     freq: p.freq,
                     amplitude: p.value,
                     nearest,
                     nearest_hz,
+                    matched: (p.freq - nearest_hz).abs() <= tol,
                 }
             })
             .collect()
     };
     let spec = analysis::amplitude_spectrum(x, fs, Window::Hann)?;
     let sep = 3.0 * spec.df;
-    let peaks = label(analysis::top_peaks(&spec, PEAKS, spec.df, 0.4 * fs, sep));
+    let peaks = label(
+        analysis::top_peaks(&spec, PEAKS, spec.df, 0.4 * fs, sep),
+        spec.df,
+    );
     let env = analysis::envelope_spectrum(x, fs, None)?;
-    let envelope_peaks = label(analysis::top_peaks(
-        &env,
-        PEAKS,
+    let envelope_peaks = label(
+        analysis::top_peaks(&env, PEAKS, env.df, 0.4 * fs, 3.0 * env.df),
         env.df,
-        0.4 * fs,
-        3.0 * env.df,
-    ));
+    );
     Ok(Summary {
         stats,
         peaks,

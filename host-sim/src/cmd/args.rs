@@ -355,19 +355,22 @@ pub fn print_summary(sc: &Scenario, s: &Summary, rtf: f64, files: &crate::io::wr
         st.kurtosis,
         st.skewness
     );
-    println!("spectrum peaks (Hz, m/s^2, nearest):");
+    // A peak within the tolerance of a line is named by it; another says only what is
+    // nearest (`summary::LabelledPeak::matched`).
+    let line = |p: &crate::summary::LabelledPeak| {
+        if p.matched {
+            format!("{} ({:.2})", p.nearest, p.nearest_hz)
+        } else {
+            format!("- (nearest: {} at {:.2})", p.nearest, p.nearest_hz)
+        }
+    };
+    println!("spectrum peaks (Hz, m/s^2, line):");
     for p in &s.peaks {
-        println!(
-            "  {:>9.2} {:>10.4}  {} ({:.2})",
-            p.freq, p.amplitude, p.nearest, p.nearest_hz
-        );
+        println!("  {:>9.2} {:>10.4}  {}", p.freq, p.amplitude, line(p));
     }
     println!("envelope-spectrum peaks:");
     for p in s.envelope_peaks.iter().take(5) {
-        println!(
-            "  {:>9.2} {:>10.4}  {} ({:.2})",
-            p.freq, p.amplitude, p.nearest, p.nearest_hz
-        );
+        println!("  {:>9.2} {:>10.4}  {}", p.freq, p.amplitude, line(p));
     }
     println!(
         "wrote {} , {} , {}",

@@ -388,6 +388,7 @@ angle_deg = 90.0
         .as_array()
         .unwrap()
         .iter()
+        .filter(|p| p["matched"] == true)
         .map(|p| p["nearest"].as_str().unwrap())
         .collect();
     println!("envelope peaks: {labels:?}");
