@@ -239,6 +239,9 @@ pub fn analyze(args: &AnalyzeArgs) -> Result<(Analysis, Spectra), AnalyzeError> 
     if let Some(r) = args.rpm {
         io::record::check_rpm_argument(r).map_err(AnalyzeError::input)?;
     }
+    if let Some(f) = args.fs {
+        io::record::check_fs_flag(f).map_err(AnalyzeError::input)?;
+    }
     let opts = ReadOptions {
         channel: args.channel.clone(),
         fs: args.fs,

@@ -282,6 +282,9 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
     if let Some(r) = args.rpm {
         crate::io::record::check_rpm_argument(r).map_err(CliError::input)?;
     }
+    if let Some(f) = args.fs {
+        crate::io::record::check_fs_flag(f).map_err(CliError::input)?;
+    }
     let format = match (&args.format, &args.out) {
         (Some(f), _) => f.to_ascii_lowercase(),
         (None, Some(o)) => match o

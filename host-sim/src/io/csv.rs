@@ -198,6 +198,19 @@ pub fn read_csv(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Record, Io
                 rec.iter().map(str::to_string).collect()
             };
             col = choose_column(path, &names, !all_numeric, opts, sidecar.as_ref(), &ramp)?;
+            // A requested column that its header names a time axis is no signal (probe of
+            // stop 69: `--channel 0` on simulate.csv analysed `time_s`).
+            if let (Some(req), false) = (opts.channel.as_deref(), all_numeric) {
+                if time_column(path, &names[col]).ok().flatten().is_some() {
+                    return Err(IoError::malformed(
+                        path,
+                        format!(
+                            "--channel {req}: column {:?} is the time axis (by its header), not a signal; choose a signal column",
+                            names[col]
+                        ),
+                    ));
+                }
+            }
             if !all_numeric {
                 for (i, n) in names.iter().enumerate().filter(|&(i, _)| i != col) {
                     if let (Some(u), None) = (time_column(path, n)?, time_col) {
@@ -492,6 +505,22 @@ fn choose_column(
 mod tests {
     use super::*;
     use crate::io::write_outputs;
+
+    /// A requested channel that is the file's time axis is refused, by name or index.
+    #[test]
+    fn the_time_axis_is_no_channel() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("t.csv");
+        std::fs::write(&p, "time_s,accel\n0.0,1\n0.5,-1\n1.0,2\n1.5,0\n").unwrap();
+        for c in ["0", "time_s"] {
+            let e = read_csv(&p, &opts(Some(c), None)).unwrap_err().to_string();
+            assert!(e.contains("is the time axis"), "{e}");
+        }
+        assert_eq!(
+            read_csv(&p, &opts(Some("1"), None)).unwrap().channel,
+            "accel"
+        );
+    }
 
     fn opts(channel: Option<&str>, fs: Option<f64>) -> ReadOptions {
         ReadOptions {

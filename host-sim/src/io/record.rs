@@ -126,6 +126,18 @@ pub fn check_fs(path: &std::path::Path, fs: f64) -> Result<f64, IoError> {
     }
 }
 
+/// Check a sample rate given as `--fs` (the readers' range, [`MIN_FS`]..=[`MAX_FS`]),
+/// naming the flag rather than a file: a NaN was blamed on the record's sidecar.
+pub fn check_fs_flag(fs: f64) -> Result<f64, String> {
+    if fs.is_finite() && (MIN_FS..=MAX_FS).contains(&fs) {
+        Ok(fs)
+    } else {
+        Err(format!(
+            "--fs {fs} is out of range: allowed {MIN_FS} ..= {MAX_FS} Hz (samples per second)"
+        ))
+    }
+}
+
 /// Relative difference above which a sample rate stored in a file (or its sidecar) and `--fs`
 /// contradict each other.
 pub const FS_AGREEMENT: f64 = 1e-3;
@@ -183,5 +195,25 @@ pub fn check_rpm(path: &std::path::Path, rpm: f64) -> Result<f64, IoError> {
             path,
             format!("implausible shaft speed {rpm} rpm (allowed 0 < rpm < 1e6)"),
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Flags are checked as flags: the message names `--fs`/`--rpm` and the range, not a
+    /// file (probe of stop 69: `--fs nan` was reported as the sidecar's absurd rate).
+    #[test]
+    fn flag_values_out_of_range_name_the_flag() {
+        for bad in [f64::NAN, f64::INFINITY, 0.0, -1.0, 2.0e7] {
+            let e = check_fs_flag(bad).unwrap_err();
+            assert!(
+                e.starts_with("--fs ") && e.contains("allowed 1 ..= 10000000 Hz"),
+                "{e}"
+            );
+            assert!(check_rpm_argument(bad * 1e3).is_err());
+        }
+        assert_eq!(check_fs_flag(12_000.0), Ok(12_000.0));
     }
 }
