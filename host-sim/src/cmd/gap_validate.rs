@@ -260,6 +260,12 @@ pub fn print(r: &TwinReport) {
             );
         }
     }
+    if let Some((n, in_sets, size)) = r.pairs_in_sets_detectable {
+        println!(
+            "two effects withheld, each detectable on its own ({n} trials): both inside the two additions' reported sets {in_sets} ({:.0} %), mean set size {size:.2}",
+            100.0 * in_sets as f64 / n.max(1) as f64
+        );
+    }
     println!();
     println!("confounded sets at other angles (detectable single-effect trials):");
     for a in &r.set_angles {

@@ -8,6 +8,7 @@
 use super::fit::{fit_many, Budget, Fit, FittedParam, Job};
 use super::matched::{without, Evaluator, Gaps, Target};
 use super::space::FitSpace;
+pub use super::steps::{Dropped, Refitted, Step};
 use super::total_gap;
 use serde::Serialize;
 use std::time::Instant;
@@ -163,47 +164,6 @@ pub struct Ranked {
     pub evaluations: usize,
 }
 
-/// One greedy step.
-#[derive(Debug, Clone, Serialize)]
-pub struct Step {
-    /// Effect added.
-    pub effect: String,
-    /// Its parameters, fitted on top of the effects added before.
-    pub params: Vec<FittedParam>,
-    /// Held-out total gap before the step.
-    pub before: f64,
-    /// Held-out total gap after the step.
-    pub after: f64,
-    /// `1 − after/before`.
-    pub shrink: f64,
-    /// The effects kept before, refitted with this one on ([`Options::backfit`], or an
-    /// exchange, [`Options::exchange`]): their parameters in the model from this step on
-    /// (empty otherwise).
-    pub refitted: Vec<Refitted>,
-}
-
-/// An earlier effect's parameters refitted at a greedy step.
-#[derive(Debug, Clone, Serialize)]
-pub struct Refitted {
-    /// Effect name.
-    pub effect: String,
-    /// Its parameters refitted with the step's effect on.
-    pub params: Vec<FittedParam>,
-}
-
-/// An effect taken out again after a later one made it redundant (stepwise selection).
-#[derive(Debug, Clone, Serialize)]
-pub struct Dropped {
-    /// Effect removed.
-    pub effect: String,
-    /// The addition after which it stopped mattering.
-    pub after: String,
-    /// Held-out total gap with it.
-    pub with: f64,
-    /// Held-out total gap without it.
-    pub without: f64,
-}
-
 /// The answer to "which" and "how far".
 #[derive(Debug, Clone, Serialize)]
 pub struct Attribution {
@@ -308,6 +268,7 @@ impl Chosen {
                     params: fit.params,
                 })
                 .collect(),
+            confounded_with: vec![],
         }
     }
 }
@@ -576,6 +537,11 @@ pub fn attribute_with<T: Target>(
             vec![vec![]; fxs.len()]
         };
         let held = ev.residuals_many(holdout, &fxs);
+        // Every candidate's signature on top of the current model, for the step's
+        // confounded set (`identify::step_set`).
+        let train_cur = ev.residuals(train, &current)?;
+        let mut step_sigs = vec![];
+        let mut best_i = 0;
         for ((((f, s), fx), r), back) in refits
             .into_iter()
             .zip(cands)
@@ -587,13 +553,34 @@ pub fn attribute_with<T: Target>(
                 continue;
             };
             let g = r.total();
+            step_sigs.push((
+                s.effect,
+                super::signature::Signature::new(&f.train_gaps, &f.jacobian, &train_cur),
+                1.0 - g / cur,
+            ));
             if best_step.as_ref().is_none_or(|b| g < b.2) {
+                best_i = step_sigs.len() - 1;
                 best_step = Some((f, s, g, fx, r, back));
             }
         }
         match best_step {
             Some((f, s, g, fx, r, back)) if 1.0 - g / cur >= opt.min_shrink => {
-                greedy.push(chosen.take(s.effect, &f, back, cur, g));
+                let sigs: Vec<_> = step_sigs.iter().map(|c| &c.1).collect();
+                let shrinks: Vec<f64> = step_sigs.iter().map(|c| c.2).collect();
+                let set = super::identify::step_set(
+                    &sigs,
+                    &shrinks,
+                    best_i,
+                    g,
+                    opt.min_shrink,
+                    opt.significant_gap,
+                );
+                let mut step = chosen.take(s.effect, &f, back, cur, g);
+                step.confounded_with = set
+                    .into_iter()
+                    .filter_map(|j| step_sigs.get(j).map(|c| c.0.to_string()))
+                    .collect();
+                greedy.push(step);
                 current = fx;
                 cur = g;
                 cur_r = r;

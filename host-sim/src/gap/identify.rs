@@ -89,6 +89,40 @@ pub fn confounded(at: &mut Attribution, min_shrink: f64, level: f64) -> BTreeMap
     reach
 }
 
+/// The confounded set of one greedy step (stop 69): the step added candidate `chosen` of
+/// `sigs` (every candidate's signature at its fit on top of the effects kept so far, against
+/// that model's training gaps) with validation gap `gap`; the other candidates that also
+/// shrink the validation gap by at least `min_shrink` (`shrink`, relative to the model
+/// before the step) and can reproduce the chosen one's signature at its [`resolution`]
+/// from `level` ([`reproduces`]). The relation [`confounded`] applies to effects alone,
+/// applied where the step is: a second effect is judged beside the first it joins, not on
+/// the baseline the first effect's gap dominates.
+pub fn step_set(
+    sigs: &[&Signature],
+    shrink: &[f64],
+    chosen: usize,
+    gap: f64,
+    min_shrink: f64,
+    level: f64,
+) -> Vec<usize> {
+    let Some(a) = sigs.get(chosen) else {
+        return vec![];
+    };
+    if shrink.get(chosen).is_none_or(|s| *s < min_shrink) {
+        return vec![];
+    }
+    let level = resolution(level, gap);
+    sigs.iter()
+        .enumerate()
+        .filter(|&(j, b)| {
+            j != chosen
+                && shrink.get(j).is_some_and(|s| *s >= min_shrink)
+                && reproduces(a.against(b), level)
+        })
+        .map(|(j, _)| j)
+        .collect()
+}
+
 /// Shrink of the validation gap of every ranked effect per cell group: `1 − rms(gaps with
 /// the effect) / rms(baseline gaps)` over the cells of each group; `group[i]` names the
 /// group of cell `i` of one record (cells repeat per record).
@@ -277,5 +311,36 @@ mod tests {
             )[0],
             vec![1]
         );
+    }
+
+    /// A greedy step's set: the chosen candidate's signature is reproduced by a second
+    /// candidate on top of the same model (10° away, its residual under the level), not by
+    /// a third that shrinks the gap too little, nor by a fourth 60° away; a step whose own
+    /// shrink is under the minimum has no set.
+    #[test]
+    fn a_greedy_step_names_the_candidates_that_reproduce_it_on_the_same_model() {
+        let sig = |deg: f64| {
+            let r = deg.to_radians();
+            Signature {
+                d: vec![r.cos(), r.sin(), 0.0],
+                cols: vec![vec![r.cos(), r.sin(), 0.0]],
+                records: 1,
+            }
+        };
+        let (a, b, c, d) = (sig(0.0), sig(10.0), sig(5.0), sig(60.0));
+        let sigs = [&a, &b, &c, &d];
+        let shrink = [0.3, 0.25, 0.01, 0.2];
+        assert_eq!(step_set(&sigs, &shrink, 0, 0.5, 0.05, 1.0), vec![1]);
+        // The level is the larger of the significance level and the step's own gap: a
+        // signature 10 times larger leaves 1.7 outside b's span, resolved at level 1.
+        let big = Signature {
+            d: vec![10.0, 0.0, 0.0],
+            cols: vec![vec![1.0, 0.0, 0.0]],
+            records: 1,
+        };
+        let sigs = [&big, &b, &c, &d];
+        assert!(step_set(&sigs, &shrink, 0, 0.5, 0.05, 1.0).is_empty());
+        assert_eq!(step_set(&sigs, &shrink, 0, 2.0, 0.05, 1.0), vec![1]);
+        assert!(step_set(&sigs, &[0.01, 0.25, 0.01, 0.2], 0, 0.5, 0.05, 1.0).is_empty());
     }
 }

@@ -26,6 +26,7 @@ pub mod significance;
 pub mod space;
 pub mod stability;
 pub mod stationary;
+pub mod steps;
 pub mod twin;
 pub mod twin_report;
 pub mod validate;

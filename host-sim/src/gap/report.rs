@@ -250,11 +250,21 @@ pub(crate) fn greedy_section(
         );
         let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
         for (i, g) in greedy.iter().enumerate() {
+            // A later step's confounded set (identify::step_set) beside its effect.
+            let effect = if g.confounded_with.is_empty() {
+                g.effect.clone()
+            } else {
+                format!(
+                    "{} (confounded with {})",
+                    g.effect,
+                    g.confounded_with.join(", ")
+                )
+            };
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {:.2} | {:.2} | {:.0} % |",
                 i + 1,
-                g.effect,
+                effect,
                 fmt_params(&g.params),
                 g.before,
                 g.after,

@@ -53,6 +53,10 @@ pub struct Trial {
     pub first_angles: Vec<Reproducer>,
     /// Effects the greedy addition kept.
     pub kept: Vec<String>,
+    /// Each kept effect's reported set: the effect and the candidates confounded with it
+    /// where it was added (the first: its ranking entry's `confounded_with`; a later one:
+    /// its greedy step's, [`super::identify::step_set`]), in the order of [`Self::kept`].
+    pub kept_sets: Vec<Vec<String>>,
     /// Exchanges made after the greedy additions (`--exchange`; empty without it).
     pub exchanged: Vec<super::exchange::Exchanged>,
     /// Held-out total gap of the final (greedy) model.
@@ -262,6 +266,11 @@ pub struct TwinReport {
     /// name exactly: the pair figure on the footing of the single-effect
     /// `in_set_detectable`.
     pub pairs_detectable: Option<(usize, usize)>,
+    /// The detectable pairs of [`Self::pairs_detectable`] whose two greedy additions hold
+    /// both withheld effects in their reported sets ([`Trial::kept_sets`]), as the
+    /// single-effect `in_set_detectable` reads one, with the mean size of those sets per
+    /// named effect over the detectable pairs.
+    pub pairs_in_sets_detectable: Option<(usize, usize, f64)>,
     /// No-effect twins: trials, and how many the diagnosis attributed to an effect
     /// (the false-attribution rate is their ratio).
     pub null: Option<(usize, usize)>,

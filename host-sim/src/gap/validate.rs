@@ -461,6 +461,23 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                         .collect()
                 })
                 .unwrap_or_default(),
+            kept_sets: a
+                .kept
+                .iter()
+                .map(|k| {
+                    let at_step = a.greedy.iter().rposition(|g| &g.effect == k);
+                    let others = match at_step {
+                        Some(0) | None => a
+                            .ranking
+                            .iter()
+                            .find(|r| &r.effect == k)
+                            .map(|r| r.confounded_with.clone())
+                            .unwrap_or_default(),
+                        Some(i) => a.greedy[i].confounded_with.clone(),
+                    };
+                    std::iter::once(k.clone()).chain(others).collect()
+                })
+                .collect(),
             kept: a.kept.clone(),
             exchanged: a.exchanged.clone(),
             final_gap: a.final_holdout,
@@ -514,6 +531,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
     let mut pairs = None;
     let mut triples = None;
     let (mut pairs_detectable, mut triples_detectable) = (None, None);
+    let mut pairs_in_sets_detectable = None;
     for (k, n, seed0) in [
         (2, opt.pair_trials, 7_000_003),
         (3, opt.triple_trials, 8_000_009),
@@ -522,6 +540,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             continue;
         }
         let (mut any, mut all_named, mut seen, mut seen_named) = (0, 0, 0, 0);
+        let (mut seen_in_sets, mut set_sizes) = (0, 0.0);
         for t in 0..n {
             let picked: Vec<&FitSpace> = distinct(t, k, chosen.len())
                 .into_iter()
@@ -541,6 +560,19 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
                     .iter()
                     .all(|w| tr.kept.iter().any(|x| same_class(w, x)));
             let detectable = tr.strengths.iter().all(|s| *s >= DETECTABLE);
+            // Both in the reported sets of the two additions, as a single effect is
+            // counted in its first-ranked effect's set.
+            let in_sets = tr.kept.len() == k
+                && tr.withheld.iter().all(|w| {
+                    tr.kept_sets
+                        .iter()
+                        .any(|set| set.iter().any(|x| same_class(w, x)))
+                });
+            if detectable {
+                seen_in_sets += usize::from(in_sets);
+                set_sizes += tr.kept_sets.iter().map(Vec::len).sum::<usize>() as f64
+                    / tr.kept_sets.len().max(1) as f64;
+            }
             all_named += usize::from(named);
             seen += usize::from(detectable);
             seen_named += usize::from(detectable && named);
@@ -552,6 +584,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
         if k == 2 {
             pairs = Some((n, any as f64 / nf, all_named as f64 / nf));
             pairs_detectable = Some((seen, seen_named));
+            pairs_in_sets_detectable = Some((seen, seen_in_sets, set_sizes / seen.max(1) as f64));
         } else {
             triples = Some((n, all_named as f64 / nf));
             triples_detectable = Some((seen, seen_named));
@@ -635,6 +668,7 @@ pub fn validate(opt: &TwinOptions, progress: &dyn Fn(usize, usize)) -> Result<Tw
             .collect(),
         pairs,
         pairs_detectable,
+        pairs_in_sets_detectable,
         null,
         triples,
         triples_detectable,
