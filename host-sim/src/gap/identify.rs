@@ -32,7 +32,7 @@
 //! subspace; the linearisation is the local sensitivity analysis of nonlinear least
 //! squares (the same Jacobian as the parameters' uncertainty).
 
-use super::attribute::Attribution;
+use super::attribution::Attribution;
 use super::signature::{Reach, Signature};
 use std::collections::BTreeMap;
 

@@ -5,6 +5,7 @@
 //! candidate effects ("which", "how far") builds on it.
 
 pub mod attribute;
+pub mod attribution;
 pub mod cells;
 pub mod error;
 pub mod exchange;
