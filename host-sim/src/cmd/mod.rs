@@ -49,26 +49,34 @@ pub enum Command {
     #[command(allow_negative_numbers = true)]
     Life(life::LifeArgs),
     /// Hold a simulated life against the IMS run-to-failure test 2, bearing 1.
+    #[command(allow_negative_numbers = true)]
     ImsCompare(ims::ImsCompareArgs),
     /// Hold simulated lives against every failed IMS bearing: calibrate on one life, judge
     /// on the others, leave-one-life-out.
+    #[command(allow_negative_numbers = true)]
     ImsValidate(ims::ImsValidateArgs),
     /// Measure the real-time factor of the reference scenario on one core.
+    #[command(allow_negative_numbers = true)]
     Bench(crate::cmd::args::BenchArgs),
     /// Read a firmware sample stream (QEMU serial capture or device), check it, write outputs.
+    #[command(allow_negative_numbers = true)]
     Capture(capture::CaptureArgs),
     /// Analyse a measurement: statistics, kurtogram band, envelope-spectrum fault family, zones.
     Analyze(crate::analyze::AnalyzeArgs),
     /// Turn a folder of raw run-to-failure snapshots (IMS, FEMTO, XJTU-SY) into the documented feature table + sidecar.
+    #[command(allow_negative_numbers = true)]
     Features(features::FeaturesArgs),
     /// Diagnose every CWRU 12 kHz drive-end record and print the confusion matrix.
+    #[command(allow_negative_numbers = true)]
     CwruBenchmark(crate::cwru_benchmark::CwruBenchmarkArgs),
     /// Diagnose the sim-to-real gap of measured records: where it lies, which candidate effect closes it, how far.
     #[command(allow_negative_numbers = true)]
     Gap(crate::gap::stationary::GapArgs),
     /// Twin experiments: withhold candidate effects from simulated "measurements" and check that the gap diagnosis names them.
+    #[command(allow_negative_numbers = true)]
     GapValidate(gap_validate::GapValidateArgs),
     /// Generate a labelled data set from a sweep spec: float32 .npy shards and a Parquet index.
+    #[command(allow_negative_numbers = true)]
     Sweep(sweep::SweepArgs),
     /// List the candidate effects (sim-to-real) with their parameters, units, defaults and bounds.
     Effects {

@@ -616,3 +616,19 @@ fn mat_v73_hdf5_is_refused_with_the_way_out() {
         &["MATLAB 7.3 (HDF5)", "-v7"],
     );
 }
+
+/// A negative number after a flag reaches that flag's range check (exit 2, naming the flag)
+/// in every subcommand that takes numbers; before, clap read `-1` as an unknown argument and
+/// the message named no field (`unexpected argument '-1'`).
+#[test]
+fn negative_values_are_told_their_flags_range() {
+    let o = wearsim(&["bench", "--seconds", "-1"]);
+    refused(&o, &["seconds = -1", "1 ..= 600"]);
+    let o = wearsim(&["gap-validate", "--noise", "-0.1"]);
+    refused(&o, &["--noise -0.1", "0..=0.5"]);
+    let o = wearsim(&["gap-validate", "--half", "-1"]);
+    refused(&o, &["--half -1", "0.5..=10"]);
+    // An unsigned count is told by clap that its value is invalid, naming the flag.
+    let o = wearsim(&["gap-validate", "--trials", "-1"]);
+    refused(&o, &["'-1'", "--trials"]);
+}
