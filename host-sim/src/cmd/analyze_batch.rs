@@ -309,7 +309,8 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
             "--plot: plots are written for one file at a time, not in a batch run",
         ));
     }
-    // The table's directory must exist before any file is analysed (a batch can take hours).
+    // The table's directory must exist and take a file before any record is analysed (a
+    // batch can take hours; the table is written last).
     if let Some(o) = &args.out {
         let parent = o.parent().filter(|p| !p.as_os_str().is_empty());
         if parent.is_some_and(|p| !p.is_dir()) {
@@ -318,6 +319,23 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
                 o.display()
             )));
         }
+        if o.is_dir() {
+            return Err(CliError::input(format!(
+                "--out {}: is a directory (the table is one file: name it, e.g. {}/calls.csv)",
+                o.display(),
+                o.display()
+            )));
+        }
+        let dir = parent.unwrap_or(Path::new("."));
+        crate::io::perms::output_builder()
+            .tempfile_in(dir)
+            .map_err(|e| {
+                CliError::input(format!(
+                    "--out {}: its directory {} cannot take a file ({e})",
+                    o.display(),
+                    dir.display()
+                ))
+            })?;
     }
     let inputs: Vec<PathBuf> = std::iter::once(args.file.clone())
         .chain(args.more.iter().cloned())

@@ -578,11 +578,8 @@ fn unwritable_output_directory_is_refused_first() {
         .map(|i| format!("{}\n", (i as f64 * 0.3).sin()))
         .collect();
     std::fs::write(&rec, format!("a\n{text}")).unwrap();
-    for args in [
-        vec!["simulate", "--out", s(&sub)],
-        vec!["life", "--dense", "--cycles", "1e6", "--out", s(&sub)],
-        vec!["life", "--cycles", "1e6", "--out", s(&sub)],
-        vec![
+    let analyze = |flag: &'static str, to: &Path| -> Output {
+        let args = [
             "analyze",
             s(&rec),
             "--fs",
@@ -591,13 +588,28 @@ fn unwritable_output_directory_is_refused_first() {
             "600",
             "--bearing",
             "thesis-61810",
-            "--plot",
-            s(&sub),
-        ],
+            flag,
+            s(to),
+        ];
+        wearsim(&args)
+    };
+    for args in [
+        vec!["simulate", "--out", s(&sub)],
+        vec!["life", "--dense", "--cycles", "1e6", "--out", s(&sub)],
+        vec!["life", "--cycles", "1e6", "--out", s(&sub)],
     ] {
         let o = wearsim(&args);
         refused(&o, &["blocker"]);
     }
+    refused(&analyze("--plot", &sub), &["blocker"]);
+    // A batch table named as an existing directory is refused before any record is read
+    // (it was exit 1 after the analysis, when the table could not replace the directory).
+    let o = analyze("--out", dir.path());
+    refused(&o, &["is a directory"]);
+    assert!(
+        !String::from_utf8_lossy(&o.stderr).contains("1 files"),
+        "a record was analysed before the refusal"
+    );
 }
 
 /// A MATLAB 7.3 file (an HDF5 container behind a 512-byte MAT header) is refused as such,
