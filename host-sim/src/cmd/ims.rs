@@ -358,7 +358,10 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
                 "--measured-floor {u}: record units per m/s² must be finite and > 0"
             )))
         }
-        (_, Some(units_per_ms2)) => ims_validate::FloorMode::Measured { units_per_ms2 },
+        (_, Some(units_per_ms2)) => {
+            check_measured_floor(&recs, units_per_ms2)?;
+            ims_validate::FloorMode::Measured { units_per_ms2 }
+        }
         (true, None) => ims_validate::FloorMode::Calibrated,
         (false, None) => ims_validate::FloorMode::None,
     };
@@ -403,4 +406,26 @@ pub fn ims_validate_cmd(a: &ImsValidateArgs) -> Result<(), CliError> {
         &v,
         a.json,
     )
+}
+
+/// Refuses a `--measured-floor` that reads some life's steady level as more background than
+/// the `sensor` effect can add (its `noise` bound): the records are then in larger units
+/// than stated. Checked before any life is simulated (it was exit 1 naming `sensor.noise`).
+fn check_measured_floor(
+    recs: &[crate::life::ims_validate::MeasuredRecord],
+    units_per_ms2: f64,
+) -> Result<(), CliError> {
+    let max = wearsim_core::effects::info("sensor")
+        .and_then(|e| e.param("noise"))
+        .map_or(f64::INFINITY, |p| p.max);
+    for m in recs {
+        let level = crate::life::ims_validate::steady_rms(m, units_per_ms2);
+        if level.is_nan() || level > max {
+            return Err(CliError::input(format!(
+                "--measured-floor {units_per_ms2}: {}'s steady level reads as {level:.4e} m/s² RMS, more than the sensor's noise floor can be (0 ..= {max} m/s²); give the record units per m/s² (0.1019716 if g, 0.01019716 if volts of a 100 mV/g sensor)",
+                m.record.id
+            )));
+        }
+    }
+    Ok(())
 }

@@ -434,6 +434,33 @@ fn a_bad_seed_count_is_refused_before_anything_is_read() {
     }
 }
 
+/// A `--measured-floor` that reads a life's steady level as more background than the
+/// sensor can add (1e-4 units per m/s² puts test 2 bearing 1 at about 770 m/s²) is refused
+/// naming the flag before any life is simulated (it was exit 1 naming `sensor.noise`).
+#[test]
+fn a_measured_floor_beyond_the_sensor_is_refused_naming_the_flag() {
+    let Some(data) = data_dir().expect("data folder required when CI=true") else {
+        eprintln!("skipping: measured data folder not found (set WEARSIM_DATA)");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for u in ["1e-4", "1e-300"] {
+        let o = wearsim(&[
+            "ims-validate",
+            "--data",
+            s(&data),
+            "--measured-floor",
+            u,
+            "--primary-only",
+            "--out",
+            s(&out),
+        ]);
+        refused(&o, &["--measured-floor", "t2b1", "0 ..= 100 m/s²"]);
+        assert!(!out.exists(), "nothing may be written");
+    }
+}
+
 /// Over seeds, each figure's median is taken on its own (the end factor through its
 /// logarithm, so ×3 and ×1/3 weigh alike), and acceptance is judged on those medians.
 #[test]

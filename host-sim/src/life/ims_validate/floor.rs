@@ -42,16 +42,22 @@ pub enum FloorMode {
     },
 }
 
+/// A life's measured steady level as an RMS in m/s², read with `units_per_ms2` record units
+/// per m/s² (a mean-|x| record's level times √(π/2), the Gaussian ratio).
+pub fn steady_rms(m: &MeasuredRecord, units_per_ms2: f64) -> f64 {
+    m.steady / units_per_ms2
+        * match m.record.feature {
+            Feature::Rms => 1.0,
+            Feature::MeanAbs => (std::f64::consts::PI / 2.0).sqrt(),
+        }
+}
+
 /// The background (m/s² RMS) a life's sensor reads besides the bearing: the measured
 /// steady level in m/s² (RMS; a mean-|x| record's level times √(π/2), the Gaussian ratio)
 /// minus, in power, the simulated bearing's own steady RMS `bare`; 0 when the bearing alone
 /// is already as loud.
 pub fn measured_floor(m: &MeasuredRecord, bare: &SimLife, units_per_ms2: f64) -> f64 {
-    let level = m.steady / units_per_ms2
-        * match m.record.feature {
-            Feature::Rms => 1.0,
-            Feature::MeanAbs => (std::f64::consts::PI / 2.0).sqrt(),
-        };
+    let level = steady_rms(m, units_per_ms2);
     let c = bare.curve(Feature::Rms);
     let own = bare.rms.last().copied().unwrap_or(0.0) / c.rms.last().copied().unwrap_or(1.0);
     (level * level - own * own).max(0.0).sqrt()
