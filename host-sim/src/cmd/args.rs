@@ -128,8 +128,14 @@ pub struct BenchArgs {
     /// (simulated s per core-second; K in 1, 2, 4, 8, 16).
     #[arg(long, value_name = "K")]
     pub lanes: Option<usize>,
-    /// Scenario file for `--lanes` (instead of `--preset`).
-    #[arg(long, value_name = "FILE")]
+    /// Scenario file for `--lanes` (instead of `--preset`); the scalar bench times the
+    /// preset only, so without `--lanes` it is refused rather than ignored.
+    #[arg(
+        long,
+        value_name = "FILE",
+        requires = "lanes",
+        conflicts_with = "preset"
+    )]
     pub config: Option<std::path::PathBuf>,
     /// With `--lanes`: lane `i` at its own constant speed, `1 + 0.01 i` times the
     /// scenario's (the lanes' own-kinematics path that sweeps over speeds take).
