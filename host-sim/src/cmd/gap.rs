@@ -280,9 +280,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
             )));
         }
     }
-    if a.jobs == Some(0) {
-        return Err(CliError::input("--jobs 0: give at least 1"));
-    }
+    let jobs = crate::lanes::workers("--jobs", a.jobs).map_err(CliError::input)?;
     let train = match &a.train {
         Some(s) => bearings(s, "--train")?,
         None => vec![1],
@@ -348,9 +346,7 @@ fn life_options(a: &GapArgs) -> Result<LifeOptions, CliError> {
         holdout,
         test,
         seed: a.seed,
-        jobs: a
-            .jobs
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        jobs,
         effects: a.effects.clone(),
         leave_one_out: a.leave_one_out,
         max_search: a.life_search.map(usize::from),

@@ -65,7 +65,7 @@ pub struct GapValidateArgs {
     /// White measurement noise added to the twins, fraction of their RMS, 0..=0.5.
     #[arg(long, default_value_t = 0.01)]
     pub noise: f64,
-    /// Worker threads (default: all cores).
+    /// Worker threads, 1 ..= 256 (default: all cores).
     #[arg(long)]
     pub jobs: Option<usize>,
     /// Machine-readable report on stdout.
@@ -111,17 +111,18 @@ impl GapValidateArgs {
                 self.noise
             )));
         }
-        if self.jobs == Some(0) {
-            return Err(CliError::input("--jobs 0: give at least 1"));
-        }
-        for e in &self.effects {
-            if wearsim_core::effects::info(e).is_none() {
+        let jobs = crate::lanes::workers("--jobs", self.jobs).map_err(CliError::input)?;
+        crate::effects::check_listed(&self.effects, "--effects").map_err(CliError::input)?;
+        // Trials of k withheld effects need k effects to draw from: with fewer listed they
+        // would be skipped without a word (`"pairs": null`).
+        for (name, v, k) in [("--pairs", self.pairs, 2), ("--triples", self.triples, 3)] {
+            let listed = self.effects.len();
+            if v > 0 && listed > 0 && listed < k {
                 return Err(CliError::input(format!(
-                    "--effects: unknown effect `{e}` (see `wearsim effects`)"
+                    "{name} {v} withholds {k} effects at once: --effects lists {listed} (give at least {k}, or none for all)"
                 )));
             }
         }
-        let d = TwinOptions::default();
         Ok(TwinOptions {
             trials: self.trials,
             effects: self.effects.clone(),
@@ -142,7 +143,7 @@ impl GapValidateArgs {
             seed: self.seed,
             half_s: self.half,
             noise: self.noise,
-            jobs: self.jobs.unwrap_or(d.jobs),
+            jobs,
             backfit: self.backfit,
             fixed_calibration: self.fixed_calibration,
             exchange: self.exchange,

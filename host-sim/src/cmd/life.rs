@@ -69,7 +69,7 @@ pub struct LifeArgs {
     /// the life–load exponent. Default: --load-scale.
     #[arg(long, value_delimiter = ',', requires = "lives")]
     pub loads: Vec<f64>,
-    /// With --lives: worker threads (default: the machine's available parallelism).
+    /// With --lives: worker threads, 1 ..= 256 (default: the machine's available parallelism).
     #[arg(long, requires = "lives")]
     pub threads: Option<usize>,
 }
@@ -289,15 +289,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
             )));
         }
     }
-    let threads = match a.threads {
-        Some(t) if (1..=256).contains(&t) => t,
-        Some(t) => {
-            return Err(CliError::input(format!(
-                "threads: {t} is out of range; allowed 1..=256"
-            )))
-        }
-        None => std::thread::available_parallelism().map_or(1, |p| p.get()),
-    };
+    let threads = crate::lanes::workers("--threads", a.threads).map_err(CliError::input)?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
     let t0 = std::time::Instant::now();
     let bar = Progress::new(

@@ -18,7 +18,7 @@ pub struct SweepArgs {
     /// array task: `--shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT`.
     #[arg(long, value_name = "I/N")]
     pub shard: Option<String>,
-    /// Worker threads; default every local core.
+    /// Worker threads, 1 ..= 256; default every local core.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Print the report as JSON on stdout (no progress bar).
@@ -62,12 +62,7 @@ pub fn run(a: &SweepArgs) -> Result<(), CliError> {
     })?;
     let spec = SweepSpec::parse(&text, &a.spec.display().to_string()).map_err(CliError::input)?;
     let part = a.shard.as_deref().map(parse_part).transpose()?;
-    if a.threads == Some(0) {
-        return Err(CliError::input("--threads 0: use 1 or more"));
-    }
-    let threads = a
-        .threads
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let threads = crate::lanes::workers("--threads", a.threads).map_err(CliError::input)?;
     let shards = sweep::shard_set(&spec, part);
     let show = !a.json && std::io::stderr().is_terminal();
     let bar = crate::cmd::args::Progress::new(show, "sweep (shards)");

@@ -100,7 +100,7 @@ pub struct GapArgs {
     /// Seed of the matched simulations.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Worker threads (default: all cores; 1 for the one-core benchmark).
+    /// Worker threads, 1 ..= 256 (default: all cores; 1 for the one-core benchmark).
     #[arg(long)]
     pub jobs: Option<usize>,
     /// Output directory.
@@ -302,9 +302,7 @@ impl GapArgs {
             records::unit_scale(u)
                 .ok_or_else(|| GapError::input(format!("--units `{u}`: allowed g or m/s^2")))?;
         }
-        if self.jobs == Some(0) {
-            return Err(GapError::input("--jobs 0: give at least 1"));
-        }
+        crate::lanes::workers("--jobs", self.jobs).map_err(GapError::input)?;
         if let Some(r) = self.rpm {
             // Every record is simulated at this speed.
             crate::config::check_sim_rpm("--rpm", r).map_err(GapError::input)?;
@@ -513,10 +511,7 @@ pub fn diagnose(
             "--effects: none of the chosen effects acts on these records (slip, load-zone and edge-shape need a defect)",
         ));
     }
-    let ev = Evaluator::new(
-        a.jobs
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
-    );
+    let ev = Evaluator::new(crate::lanes::workers("--jobs", a.jobs).map_err(GapError::input)?);
     let names: Vec<String> = first.reference.names.iter().map(|n| n.0.clone()).collect();
     let envelope = super::envelope_note(first.samples, first.spec());
     // The parts on the nominal rig, kept for the calibrations with effects on.
