@@ -312,30 +312,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<(), CliError> {
     // The table's directory must exist and take a file before any record is analysed (a
     // batch can take hours; the table is written last).
     if let Some(o) = &args.out {
-        let parent = o.parent().filter(|p| !p.as_os_str().is_empty());
-        if parent.is_some_and(|p| !p.is_dir()) {
-            return Err(CliError::input(format!(
-                "--out {}: its directory does not exist (create it first, or choose another --out)",
-                o.display()
-            )));
-        }
-        if o.is_dir() {
-            return Err(CliError::input(format!(
-                "--out {}: is a directory (the table is one file: name it, e.g. {}/calls.csv)",
-                o.display(),
-                o.display()
-            )));
-        }
-        let dir = parent.unwrap_or(Path::new("."));
-        crate::io::perms::output_builder()
-            .tempfile_in(dir)
-            .map_err(|e| {
-                CliError::input(format!(
-                    "--out {}: its directory {} cannot take a file ({e})",
-                    o.display(),
-                    dir.display()
-                ))
-            })?;
+        crate::io::perms::check_output_file("--out", o).map_err(CliError::input)?;
     }
     let inputs: Vec<PathBuf> = std::iter::once(args.file.clone())
         .chain(args.more.iter().cloned())

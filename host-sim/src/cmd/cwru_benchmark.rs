@@ -1,5 +1,6 @@
 //! `wearsim cwru-benchmark`: diagnose every CWRU 12 kHz drive-end record, print the
-//! confusion matrix (or `--json`), write Markdown.
+//! confusion matrix (or `--json`), write Markdown; exit 2 when a record could not be read
+//! or analysed (the report is still whole).
 
 use crate::analysis::chain::{BandRule, Method};
 use crate::cmd::args::CliError;
@@ -23,6 +24,18 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
             }
         },
     };
+    if let Some(r) = args
+        .resample
+        .filter(|r| !(r.is_finite() && (1e3..=1e6).contains(r)))
+    {
+        return Err(CliError::input(format!(
+            "--resample {r} Hz is out of range 1000..=1e6"
+        )));
+    }
+    // The table is written after every record is analysed: its place is checked first.
+    if let Some(md) = &args.markdown {
+        crate::io::perms::check_output_file("--markdown", md).map_err(CliError::input)?;
+    }
     let mut method = Method::default();
     method.squared_envelope |= args.squared_envelope;
     if args.evidence_band {
@@ -44,6 +57,15 @@ pub fn run(args: &CwruBenchmarkArgs) -> Result<(), CliError> {
         if let Some(md) = &args.markdown {
             println!("wrote {}", md.display());
         }
+    }
+    // The report is complete (an unreadable record is a row with its error, counted as
+    // not correct); the exit code says that its figures are not the data's.
+    let failed = report.files.iter().filter(|f| f.error.is_some()).count();
+    if failed > 0 {
+        return Err(CliError::input(format!(
+            "{failed} of {} records could not be read or analysed (their rows hold the errors; the accuracy counts them as wrong)",
+            report.files.len()
+        )));
     }
     Ok(())
 }

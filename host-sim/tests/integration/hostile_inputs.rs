@@ -644,3 +644,71 @@ fn negative_values_are_told_their_flags_range() {
     let o = wearsim(&["gap-validate", "--trials", "-1"]);
     refused(&o, &["'-1'", "--trials"]);
 }
+
+/// `cwru-benchmark` on a folder whose record cannot be read reports it as a row with its
+/// error and exits 2 (it was exit 0 with every such record counted as a wrong call); a bad
+/// `--resample` and an unwritable `--markdown` are refused before any record is read.
+#[test]
+fn cwru_benchmark_says_when_a_record_could_not_be_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("cwru");
+    std::fs::create_dir(&data).unwrap();
+    std::fs::write(data.join("12k_Drive_End_IR007_0_105.mat"), "garbage\n").unwrap();
+    let d = s(dir.path());
+    let o = wearsim(&["cwru-benchmark", "--data", d, "--no-variants", "--json"]);
+    refused(&o, &["1 of 1 records could not be read"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("the report is whole");
+    assert!(v["files"][0]["error"].is_string(), "{v}");
+    for r in ["999", "nan"] {
+        let o = wearsim(&["cwru-benchmark", "--data", d, "--resample", r]);
+        refused(&o, &["--resample", "1000..=1e6"]);
+        assert!(o.stdout.is_empty(), "work started before the refusal");
+    }
+    let o = wearsim(&["cwru-benchmark", "--data", d, "--markdown", d]);
+    refused(&o, &["--markdown", "is a directory"]);
+    assert!(o.stdout.is_empty(), "work started before the refusal");
+}
+
+/// `gap-validate` refuses up front what it would otherwise run wrongly or skip without a
+/// word: an effect listed twice (was exit 1), `--pairs`/`--triples` with fewer effects than
+/// they withhold (were skipped, `"pairs": null`), `--jobs` beyond 256 (as `life --threads`).
+#[test]
+fn gap_validate_refuses_requests_it_would_skip() {
+    for (args, needles) in [
+        (
+            vec!["--effects", "slip,slip"],
+            vec!["`slip` is listed twice"],
+        ),
+        (
+            vec!["--effects", "slip", "--pairs", "1"],
+            vec!["--pairs 1", "lists 1"],
+        ),
+        (
+            vec!["--effects", "slip,sensor", "--triples", "1"],
+            vec!["--triples 1", "at least 3"],
+        ),
+        (vec!["--jobs", "100000"], vec!["--jobs 100000", "1 ..= 256"]),
+    ] {
+        let mut a = vec!["gap-validate", "--trials", "1", "--half", "0.5"];
+        a.extend(args);
+        refused(&wearsim(&a), &needles);
+    }
+}
+
+/// `bench --config` is the lanes' scenario: without `--lanes`, or beside `--preset`, it is
+/// refused (it was ignored, and the preset timed instead of the file).
+#[test]
+fn bench_refuses_a_config_it_would_ignore() {
+    let o = wearsim(&["bench", "--config", "missing.toml", "--seconds", "1"]);
+    refused(&o, &["--lanes"]);
+    let o = wearsim(&[
+        "bench",
+        "--config",
+        "x.toml",
+        "--preset",
+        "cwru-6205-de",
+        "--lanes",
+        "2",
+    ]);
+    refused(&o, &["--config", "--preset"]);
+}
