@@ -55,8 +55,7 @@ pub fn ims_compare_cmd(a: &ImsCompareArgs) -> Result<(), CliError> {
 | life | {mh:.1} h = {mr:.3e} rev | {sr:.3e} rev |\n\n\
 Onset error: {oe}. Distance between the normalised RMS curves over 201 points of the common time line: \
 {drms:.2} dB RMS, {dmean:.2} dB mean absolute.\n\n\
-Calibrated: `material.life_factor` = {lf:.3e} (one parameter, on this bearing's measured time to failure; \
-the uncalibrated ISO 281 life would be {ul:.3e} revolutions). Everything else is the wear model's physics.\n\n\
+{calibration} Everything else is the wear model's physics.\n\n\
 Simulated stage onsets (fraction of life): {stages}\n",
         seed = a.seed,
         om = fmt(c.onset_measured),
@@ -69,10 +68,15 @@ Simulated stage onsets (fraction of life): {stages}\n",
         oe = fmt(c.onset_error),
         drms = c.distance_db_rms,
         dmean = c.distance_db_mean_abs,
-        lf = c.life_factor,
-        ul = c.uncalibrated_life_revs,
+        calibration = calibration_line(&c),
         stages = c.stages.iter().map(|(s, t)| format!("{s} {t:.3}")).collect::<Vec<_>>().join(", "),
     );
+    if !c.calibrated {
+        eprintln!(
+            "wearsim: warning: the calibration did not reach the measured life (simulated {:.3e} against {:.3e} revolutions at life_factor {:.3e}); the figures compare lives of different lengths",
+            c.simulated_life_revs, c.measured_life_revs, c.life_factor
+        );
+    }
     let mdp = a.out.join("ims-comparison.md");
     crate::life::output::write_atomic(&mdp, md.as_bytes())
         .map_err(|e| CliError::run(format!("{}: {e}", mdp.display())))?;
@@ -84,7 +88,7 @@ Simulated stage onsets (fraction of life): {stages}\n",
     if a.json {
         let v = json!({ "onset_measured": c.onset_measured, "onset_simulated": c.onset_simulated, "onset_error": c.onset_error,
             "distance_db_rms": c.distance_db_rms, "distance_db_mean_abs": c.distance_db_mean_abs, "end_ratio": c.end_ratio,
-            "life_factor": c.life_factor, "measured_life_revs": c.measured_life_revs, "simulated_life_revs": c.simulated_life_revs,
+            "life_factor": c.life_factor, "calibrated": c.calibrated, "measured_life_revs": c.measured_life_revs, "simulated_life_revs": c.simulated_life_revs,
             "uncalibrated_life_revs": c.uncalibrated_life_revs, "stages": c.stages, "files": files });
         crate::cmd::report::print_json(&v)?;
     } else {
@@ -428,4 +432,24 @@ fn check_measured_floor(
         }
     }
     Ok(())
+}
+
+/// The comparison's calibration sentence: the factor found, or that none reached the
+/// measured life (the factor at which it stopped, and the two lives).
+fn calibration_line(c: &crate::life::ims_compare::ImsComparison) -> String {
+    if c.calibrated {
+        format!(
+            "Calibrated: `material.life_factor` = {:.3e} (one parameter, on this bearing's measured time to failure; \
+the uncalibrated ISO 281 life would be {:.3e} revolutions).",
+            c.life_factor, c.uncalibrated_life_revs
+        )
+    } else {
+        format!(
+            "**Not calibrated**: the calibration of `material.life_factor` stopped at {:.3e} with a simulated life of \
+{:.3e} revolutions against the measured {:.3e} (the uncalibrated ISO 281 life would be {:.3e}); the part of this \
+seed's life that the factor does not scale, crack opening to failure, does not fit the measured life. The figures \
+below compare lives of different lengths on their own fractions of life.",
+            c.life_factor, c.simulated_life_revs, c.measured_life_revs, c.uncalibrated_life_revs
+        )
+    }
 }

@@ -44,6 +44,12 @@ pub struct ImsComparison {
     pub uncalibrated_life_revs: f64,
     /// Calibrated life factor.
     pub life_factor: f64,
+    /// The calibration reached the measured life (within
+    /// [`crate::life::calibrate::TOLERANCE`]); `false` when it stopped at a bound of the
+    /// factor's range or after its steps with the life elsewhere (for some seeds the part
+    /// of the life the factor does not scale, crack opening to failure, is already longer
+    /// than the measured life).
+    pub calibrated: bool,
     /// Simulated life after calibration, revolutions.
     pub simulated_life_revs: f64,
     /// Simulated stage timeline (fractions of life at each transition).
@@ -75,6 +81,7 @@ pub fn compare(data: &Path, seed: u64) -> Result<ImsComparison, String> {
         measured_life_revs: m.running_h * revs_per_hour(),
         uncalibrated_life_revs: c.uncalibrated_life,
         life_factor: c.scales.life_factor,
+        calibrated: c.converged,
         simulated_life_revs: c.life.life,
         stages: c.life.stages,
         measured,
