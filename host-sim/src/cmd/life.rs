@@ -291,6 +291,12 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
     }
     let threads = crate::lanes::workers("--threads", a.threads).map_err(CliError::input)?;
     let _lock = crate::io::lock::DirLock::try_acquire(&a.out).map_err(CliError::input)?;
+    // A set left by an earlier run stops being presented as complete: its marker is written
+    // again only when this run's files are all in place (a killed rerun left the old
+    // lives.json beside this run's lives.csv, or beside nothing of this run).
+    use crate::life::output::{remove_marker, LIVES_SUMMARY};
+    remove_marker(&a.out, LIVES_SUMMARY)
+        .map_err(|e| CliError::input(format!("{}: {e}", a.out.display())))?;
     let t0 = std::time::Instant::now();
     let bar = Progress::new(
         !a.json && std::io::IsTerminal::is_terminal(&std::io::stderr()),
@@ -395,7 +401,7 @@ pub fn lives_cmd(a: &LifeArgs, n: usize) -> Result<(), CliError> {
         .map_err(|e| CliError::run(format!("{}: {e}", cp.display())))?;
     let plots = crate::life::weibull_plot::lives_weibull(&a.out, &groups)?;
     // The summary is written last: its presence means the set is complete.
-    let jp = a.out.join("lives.json");
+    let jp = a.out.join(LIVES_SUMMARY);
     crate::life::output::write_atomic(
         &jp,
         &serde_json::to_vec_pretty(&summary).map_err(CliError::run)?,

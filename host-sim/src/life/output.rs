@@ -26,11 +26,20 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 /// Name of the completion marker of a life set (written last by [`write_life`]).
 pub const SUMMARY: &str = "life-summary.json";
 
+/// Name of the completion marker of a life-statistics set (`life --lives`, written last).
+pub const LIVES_SUMMARY: &str = "lives.json";
+
 /// Removes the completion marker of a life set in `dir` (if any) and syncs the directory,
 /// before anything of a new run is written: a set is never presented as complete while
 /// its files are being replaced.
 pub fn invalidate(dir: &Path) -> std::io::Result<()> {
-    match std::fs::remove_file(dir.join(SUMMARY)) {
+    remove_marker(dir, SUMMARY)
+}
+
+/// Removes the completion marker `name` in `dir` (if any) and syncs the directory (see
+/// [`invalidate`]).
+pub fn remove_marker(dir: &Path, name: &str) -> std::io::Result<()> {
+    match std::fs::remove_file(dir.join(name)) {
         Ok(()) => {
             if let Ok(d) = std::fs::File::open(dir) {
                 let _ = d.sync_all();

@@ -672,3 +672,51 @@ fn a_life_over_another_removes_the_event_plots_it_does_not_redraw() {
     assert!(out.join("event-1-steady-state.png").is_file());
     assert!(out.join("event-notes.txt").is_file());
 }
+
+/// A `life --lives` run into a folder holding an earlier run's set removes that set's
+/// completion marker (`lives.json`) before its first life: while it runs, or after it is
+/// killed, the folder is not presented as a complete set (an outside user's probe found a
+/// killed rerun's folder still holding the old `lives.json`).
+#[test]
+fn a_rerun_of_lives_takes_the_old_sets_marker_away_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("set");
+    std::fs::create_dir(&out).unwrap();
+    let marker = out.join("lives.json");
+    std::fs::write(&marker, "stale").unwrap();
+    // Long enough that it is still running when the marker is looked at (killed below).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_wearsim"))
+        .args([
+            "life",
+            "--lives",
+            "1000",
+            "--threads",
+            "1",
+            "--json",
+            "--out",
+        ])
+        .arg(&out)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = std::time::Instant::now();
+    let gone = loop {
+        if std::fs::read(&marker).map_or(true, |b| b != b"stale") {
+            break true;
+        }
+        if t0.elapsed() > std::time::Duration::from_secs(60) {
+            break false;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    };
+    let running = child.try_wait().unwrap().is_none();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(gone, "the old lives.json stayed while the rerun ran");
+    assert!(
+        running,
+        "1000 lives finished before the marker was looked at"
+    );
+    assert!(!marker.exists(), "a killed rerun left a lives.json");
+}
