@@ -190,7 +190,30 @@ pub struct SpeedSection {
     pub from_hz: Option<f64>,
     pub to_hz: Option<f64>,
     pub ramp_duration: Option<f64>,
+    #[serde(default, deserialize_with = "time_speed_rows")]
     pub table: Option<Vec<[f64; 2]>>,
+}
+
+/// `speed.table` rows, each exactly `[time_s, shaft_hz]`: a fixed-size array reads the first
+/// two values of a longer row and drops the rest without a word.
+fn time_speed_rows<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> Result<Option<Vec<[f64; 2]>>, D::Error> {
+    let rows: Option<Vec<Vec<f64>>> = Deserialize::deserialize(d)?;
+    rows.map(|rows| {
+        rows.iter()
+            .enumerate()
+            .map(|(i, r)| {
+                <[f64; 2]>::try_from(r.as_slice()).map_err(|_| {
+                    serde::de::Error::custom(format!(
+                        "row {i} has {} values; each row is [time_s, shaft_hz]",
+                        r.len()
+                    ))
+                })
+            })
+            .collect()
+    })
+    .transpose()
 }
 
 /// `[imbalance]`.
@@ -318,9 +341,11 @@ pub const DEFECT_MODELS: [(&str, DefectModel); 4] = [
     ("impulse", DefectModel::Impulse),
 ];
 
-/// Largest configuration file (scenario TOML or sweep spec) read, bytes (16 MiB: the
-/// longest real one is a sweep grid of a few thousand values, tens of kB).
-pub const MAX_CONFIG_BYTES: u64 = 1 << 24;
+/// Largest configuration file (scenario TOML or sweep spec) read, bytes (1 MiB: the
+/// longest real one is a sweep grid of a few thousand values, tens of kB; the TOML parser
+/// holds about 60 bytes per byte of a long array, so a 14 MB speed table took 894 MB before
+/// its 17th row was refused).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// The text of the configuration file `path` (a scenario or a sweep spec), read only up to
 /// [`MAX_CONFIG_BYTES`]: a larger, endless (`/dev/zero`) or non-UTF-8 file is refused

@@ -294,6 +294,11 @@ fn settings_that_cannot_run_are_refused() {
         ("[material]\nyield_strength = -1.0\n", "yield_strength"),
         ("[life]\nrunning_in = 0.5\n", "running_in"),
         ("[life]\nslip = 7.0\n", "slip"),
+        // A speed-table row longer than [time_s, shaft_hz] (its extra values were dropped).
+        (
+            "[speed]\ntable = [[0.0, 10.0, 5.0], [1.0, 20.0]]\n",
+            "row 0 has 3 values",
+        ),
     ]
     .iter()
     .enumerate()

@@ -117,7 +117,7 @@ fn endless_configuration_files_are_refused_within_a_bound() {
         vec!["life", "--config", "/dev/zero", "--out", s(&out)],
     ] {
         let o = wearsim_limited(2048, &args);
-        refused(&o, &["/dev/zero", "too large", "16777216 bytes"]);
+        refused(&o, &["/dev/zero", "too large", "1048576 bytes"]);
     }
     assert!(!out.exists());
     // Not UTF-8: refused as such, exit 2.
