@@ -35,10 +35,12 @@ impl Topography {
         check_range("topography.depth", t.depth, 0.0, 5e-3)?;
         check_range("topography.debris", t.debris, 0.0, 1.0)?;
         if t.count == 0 || t.count > MAX_DEFECTS {
-            return Err(ConfigError::TooMany {
+            // A range, not `TooMany`: 0 was told "0 entries; at most 8", not the minimum.
+            return Err(ConfigError::OutOfRange {
                 field: "topography.count",
-                count: t.count as usize,
-                max: MAX_DEFECTS as usize,
+                value: f64::from(t.count),
+                min: 1.0,
+                max: f64::from(MAX_DEFECTS),
             });
         }
         Ok(t)

@@ -17,9 +17,9 @@ impl From<wearsim_core::ConfigError> for ConfigFileError {
             } => match file_field(field) {
                 (key, true) => E::OutOfRange {
                     field: key,
-                    value: value.to_degrees(),
-                    min: min.to_degrees(),
-                    max: max.to_degrees(),
+                    value: degrees(value),
+                    min: degrees(min),
+                    max: degrees(max),
                 },
                 (key, false) => E::OutOfRange {
                     field: key,
@@ -42,6 +42,23 @@ impl From<wearsim_core::ConfigError> for ConfigFileError {
     }
 }
 
+/// `rad` in degrees to 12 significant digits: the file's degrees went to radians and back,
+/// and a message echoed `angle_deg = 1e9` as `1000000000.0000001`.
+fn degrees(rad: f64) -> f64 {
+    let d = rad.to_degrees();
+    if d == 0.0 || !d.is_finite() {
+        return d;
+    }
+    // |d| is at most 1.8e310 / π, so the exponent stays far inside i32.
+    let scale = 10f64.powi(11 - d.abs().log10().floor() as i32);
+    let r = (d * scale).round() / scale;
+    if r.is_finite() && scale.is_finite() && scale > 0.0 {
+        r
+    } else {
+        d
+    }
+}
+
 /// The scenario-file key of a field the core names in its own terms, and whether the core
 /// checks it in radians where the file gives degrees: the core's `bearing.contact_angle`
 /// and `defect.angle` (radians) are the file's `bearing.contact_angle_deg` and
@@ -59,5 +76,21 @@ fn file_field(core: &'static str) -> (&'static str, bool) {
         "topography.count" => ("defect.count", false),
         "topography.debris" => ("defect.debris", false),
         other => (other, false),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::degrees;
+
+    #[test]
+    fn degrees_come_back_as_written() {
+        for d in [1e9, 95.3, -572.9577951308232, 45.0, 1e-300, 1e300] {
+            let back = degrees(f64::to_radians(d));
+            assert!((back - d).abs() <= 1e-11 * d.abs(), "{d} -> {back}");
+        }
+        assert_eq!(degrees(f64::to_radians(1e9)), 1e9);
+        assert_eq!(degrees(0.0), 0.0);
+        assert!(degrees(f64::INFINITY).is_infinite() && degrees(f64::NAN).is_nan());
     }
 }

@@ -135,10 +135,18 @@ fn endless_configuration_files_are_refused_within_a_bound() {
 #[test]
 fn core_range_errors_name_the_files_keys() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: [(&str, &[&str]); 5] = [
+    let cases: [(&str, &[&str]); 7] = [
         (
             "[defect]\nlocation = \"outer\"\nangle_deg = 1000.0",
             &["defect.angle_deg = 1000", "572.9"],
+        ),
+        (
+            // Degrees went to radians and back: 1e9 was echoed as 1000000000.0000001.
+            "[defect]\nlocation = \"outer\"\nangle_deg = 1e9",
+            &[
+                "defect.angle_deg = 1000000000 is out of range",
+                "572.957795131 (finite)",
+            ],
         ),
         (
             "[speed]\nfrom_hz = 5.0\nto_hz = 30.0\nramp_duration = 0.0",
@@ -154,7 +162,12 @@ fn core_range_errors_name_the_files_keys() {
         ),
         (
             "[defect]\nlocation = \"outer\"\ncount = 9",
-            &["defect.count", "at most 8"],
+            &["defect.count = 9", "allowed 1 ..= 8"],
+        ),
+        (
+            // Was "0 entries; at most 8 are supported": the minimum went unsaid.
+            "[defect]\nlocation = \"outer\"\ncount = 0",
+            &["defect.count = 0", "allowed 1 ..= 8"],
         ),
     ];
     for (i, (body, needles)) in cases.iter().enumerate() {
