@@ -60,6 +60,7 @@ pub enum ConfigFileError {
 }
 
 mod terms;
+pub mod toml_error;
 
 /// The whole file. Every field is optional at this level; see the module docs.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
@@ -380,7 +381,7 @@ impl ScenarioFile {
     pub fn parse(text: &str, origin: &str) -> Result<Self, ConfigFileError> {
         let file: Self = toml::from_str(text).map_err(|e| ConfigFileError::Parse {
             path: origin.to_string(),
-            message: e.to_string().trim().replace('\n', " "),
+            message: toml_error::describe(text, &e),
         })?;
         crate::effects::check_unique(
             file.effect.iter().map(|e| e.name.as_str()),

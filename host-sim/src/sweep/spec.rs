@@ -137,7 +137,7 @@ impl SweepSpec {
     pub fn parse(text: &str, origin: &str) -> Result<Self, SpecError> {
         let spec: SweepSpec = toml::from_str(text).map_err(|e| {
             // serde's message for a value no form of `Dist` takes names the Rust type.
-            let m = e.to_string().replace(
+            let m = crate::config::toml_error::describe(text, &e).replace(
                 "data did not match any variant of untagged enum Dist",
                 "a parameter's distribution is a number, { uniform = [lo, hi] } (two numbers) or { choice = [a, b, …] } (numbers)",
             );
