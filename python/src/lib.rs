@@ -160,7 +160,10 @@ fn scenario_file(
                 toml::Value::String(text.trim().to_string()),
             )]))
         } else if text.contains('=') || text.contains('[') {
-            toml::from_str(&text).map_err(|e| cfg_err(format!("configuration TOML: {e}")))?
+            toml::from_str(&text).map_err(|e| {
+                let m = wearsim_host::config::toml_error::describe(&text, &e);
+                cfg_err(format!("configuration TOML: {m}"))
+            })?
         } else {
             return Err(cfg_err(format!(
                 "`preset` = \"{text}\" is not a preset; use one of: {} (or pass TOML text or a dict)",
@@ -456,7 +459,8 @@ fn sweep_finalize(py: Python<'_>, spec: &str, out: PathBuf) -> PyResult<(bool, u
     py.detach(|| sweep::finalize(&s, &out)).map_err(sweep_err)
 }
 
-/// sweep_run(spec_toml, out, threads, part) -> JSON report (local threads).
+/// sweep_run(spec_toml, out, threads, part) -> JSON report (local threads; `threads` in
+/// 1 ..= [`wearsim_host::lanes::MAX_WORKERS`], the command line's rule).
 #[pyfunction]
 #[pyo3(signature = (spec, out, threads, part=None))]
 fn sweep_run(
@@ -467,12 +471,11 @@ fn sweep_run(
     part: Option<(u64, u64)>,
 ) -> PyResult<String> {
     check_part(part)?;
+    let threads = wearsim_host::lanes::workers("threads =", Some(threads)).map_err(cfg_err)?;
     let s = SweepSpec::parse(spec, "spec").map_err(cfg_err)?;
     let shards = sweep::shard_set(&s, part);
-    let r = interrupt::run(py, || {
-        sweep::run(&s, &out, &shards, threads.max(1), &|_, _| {})
-    })?
-    .map_err(sweep_err)?;
+    let r = interrupt::run(py, || sweep::run(&s, &out, &shards, threads, &|_, _| {}))?
+        .map_err(sweep_err)?;
     serde_json::to_string(&r).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
@@ -515,6 +518,7 @@ fn _wearsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }
     m.add("ConfigError", m.py().get_type::<ConfigError>())?;
     m.add("__version__", wearsim_host::VERSION)?;
+    m.add("MAX_WORKERS", wearsim_host::lanes::MAX_WORKERS)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(scenario_toml, m)?)?;
     m.add_function(wrap_pyfunction!(effects, m)?)?;

@@ -245,8 +245,10 @@ def test_sweep_spec_path_with_an_equals_sign_is_read_as_a_path(tmp_path):
 
 def test_sweep_threads_zero_is_refused_like_the_command_line(tmp_path):
     # `wearsim sweep --threads 0` exits 2; threads=0 ran on one thread without a word.
-    with pytest.raises(wearsim.ConfigError, match="threads = 0"):
-        wearsim.sweep(ONE_CELL, str(tmp_path / "set"), threads=0)
+    # threads=2**64-1 was taken: one stack per thread, past the cores only memory.
+    for n in (0, wearsim.MAX_WORKERS + 1, 2**64 - 1, 2**70):
+        with pytest.raises(wearsim.ConfigError, match=f"threads = {n} is out of range: allowed 1 ..= 256"):
+            wearsim.sweep(ONE_CELL, str(tmp_path / "set"), threads=n)
     assert not (tmp_path / "set").exists()
 
 

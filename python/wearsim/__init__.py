@@ -25,8 +25,13 @@ from ._wearsim import ConfigError
 #: ``wearsim_version``).
 __version__: str = _wearsim.__version__
 
+#: Most worker threads one call takes (``sweep(threads=...)``, ``life(threads=...)``): the
+#: command line's ``--threads``/``--jobs`` bound; past the cores more threads add only memory.
+MAX_WORKERS: int = _wearsim.MAX_WORKERS
+
 __all__ = [
     "__version__",
+    "MAX_WORKERS",
     "ConfigError",
     "simulate",
     "life",

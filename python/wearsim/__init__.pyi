@@ -6,6 +6,9 @@ import numpy as np
 __version__: str
 """Version of the wearsim library inside this package (a sweep's ``wearsim_version``)."""
 
+MAX_WORKERS: int
+"""Most worker threads one call takes (``sweep(threads=...)``, ``life(threads=...)``)."""
+
 class ConfigError(ValueError):
     """Bad input: the message names the field and its allowed range."""
 

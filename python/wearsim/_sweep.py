@@ -92,11 +92,13 @@ def sweep(
     out = _out_dir(out)
     part = _part(part)
     if cluster is None:
-        n = _count("threads", threads) if threads is not None else (os.cpu_count() or 1)
-        if n == 0:  # as `wearsim sweep --threads 0` (was run on 1 thread, silently)
-            raise ConfigError("threads = 0: use 1 or more")
-        if n > 2**64 - 1:  # was an OverflowError on the way to the native usize
-            raise ConfigError(f"threads = {n} is out of range: allowed 1 ..= {2**64 - 1}")
+        most = _wearsim.MAX_WORKERS  # `wearsim sweep --threads`'s rule (lanes::workers)
+        if threads is None:
+            n = min(os.cpu_count() or 1, most)
+        else:
+            n = _count("threads", threads)
+            if not 1 <= n <= most:  # 0 ran on one thread; 10**6 started a million threads
+                raise ConfigError(f"threads = {n} is out of range: allowed 1 ..= {most}")
         return json.loads(_native(_wearsim.sweep_run, text, out, n, part))
     from dask.distributed import Client
 
