@@ -622,10 +622,27 @@ fn lives_give_weibull_and_load_exponent() {
 /// Bad `--lives`/`--loads` values: exit 2, the field named, nothing written.
 #[test]
 fn lives_reject_bad_values() {
+    let many_loads = (0..17)
+        .map(|i| format!("{}", 1.1f64.powi(i)))
+        .collect::<Vec<_>>()
+        .join(",");
     for (args, field) in [
         (vec!["--lives", "2"], "lives"),
         (vec!["--lives", "5", "--loads", "1,0"], "loads"),
         (vec!["--lives", "5", "--loads", "1,1"], "given twice"),
+        // 1 % apart gave an exponent interval of ±3·10⁵; 1000 loads started 1000 × 5 lives.
+        (
+            vec!["--lives", "5", "--loads", "1,1.000001"],
+            "differ by less than 5 %",
+        ),
+        (
+            vec!["--lives", "5", "--loads", "2,1,0.98"],
+            "0.98 and 1 differ",
+        ),
+        (
+            vec!["--lives", "5", "--loads", &many_loads],
+            "17 load scales given; at most 16",
+        ),
         (vec!["--lives", "5", "--threads", "0"], "threads"),
     ] {
         let dir = tempfile::tempdir().unwrap();
