@@ -205,7 +205,16 @@ pub fn read_feature_table(path: &Path) -> Result<FeatureTable, FeatureTableError
         let num = |i: usize| -> Result<f64, FeatureTableError> {
             let c = cells.get(i).unwrap_or("");
             match c.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
+                Ok(v) if v.is_finite() && (v == 0.0 || v.is_normal()) => Ok(v),
+                Ok(v) if v.is_finite() => Err(FeatureTableError::BadValue {
+                    path: path.to_path_buf(),
+                    column: header[i].clone(),
+                    row,
+                    detail: format!(
+                        "{v:e} is below the smallest normal number ({:e}), where its digits are lost; give the table in a unit that keeps it above that",
+                        f64::MIN_POSITIVE
+                    ),
+                }),
                 _ => Err(FeatureTableError::BadValue {
                     path: path.to_path_buf(),
                     column: header[i].clone(),

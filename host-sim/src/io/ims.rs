@@ -349,6 +349,19 @@ pub fn read_ims_features(path: impl AsRef<Path>) -> Result<ImsFeatures, IoError>
                 value: v,
             });
         }
+        if v != 0.0 && !v.is_normal() {
+            // A table scaled by 1e-310 gave an end ratio of 4.8e-11 (232 dB): the digits
+            // of a subnormal number are gone.
+            return Err(IoError::malformed(
+                path,
+                format!(
+                    "row {}, column {:?}: {v:e} is below the smallest normal number ({:e}), where its digits are lost; give the table in a unit that keeps it above that",
+                    row + 2,
+                    h.get(c).unwrap_or(&"?"),
+                    f64::MIN_POSITIVE
+                ),
+            ));
+        }
         Ok(v)
     };
 

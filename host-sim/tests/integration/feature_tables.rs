@@ -370,6 +370,14 @@ fn bad_tables_are_refused_naming_the_field_and_gap_writes_nothing() {
         "{e}"
     );
     reset();
+    // A subnormal value has lost its digits (an IMS table scaled by 1e-310 gave 232 dB).
+    edit(&csv, |t| set_cell(&t, 4, 2, "1e-310"));
+    let e = read_feature_table(&csv).unwrap_err();
+    assert!(
+        matches!(e, FeatureTableError::BadValue { ref column, row: 4, ref detail, .. } if column == "rms" && detail.contains("smallest normal")),
+        "{e}"
+    );
+    reset();
     // Non-monotonic time: swap the time of rows 5 and 6.
     edit(&csv, |t| {
         t.replace(",3000.0,", ",X,")
