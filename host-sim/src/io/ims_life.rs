@@ -3,7 +3,7 @@
 //! normalised time line of its test, with dead snapshots (machine stopped) dropped by the
 //! one rule of [`live_snapshots`].
 
-use super::ims::{read_ims_features, ImsFeatures};
+use super::ims::{parse_feature_timestamp, read_ims_features, ImsFeatures};
 use crate::analysis::stats::upper_median;
 use serde::Serialize;
 use std::path::Path;
@@ -115,6 +115,10 @@ pub struct ImsFailure {
     pub test: u8,
     /// Date and time of the test's first snapshot (`YYYY-MM-DD HH:MM:SS`, rig clock).
     pub start: &'static str,
+    /// Date and time of the test's last snapshot as the IMS readme states it (test 3's
+    /// distributed files run on to 2004-04-18; a table that stops at the readme's end is
+    /// whole too).
+    pub end: &'static str,
     /// The failed bearing (1-based).
     pub bearing: usize,
     /// Its failure in the feature-table vocabulary ([`super::feature_table::FAILURE_MODES`]).
@@ -128,24 +132,28 @@ pub const IMS_FAILURES: [ImsFailure; 4] = [
     ImsFailure {
         test: 1,
         start: "2003-10-22 12:06:24",
+        end: "2003-11-25 23:39:56",
         bearing: 3,
         mode: "inner-race",
     },
     ImsFailure {
         test: 1,
         start: "2003-10-22 12:06:24",
+        end: "2003-11-25 23:39:56",
         bearing: 4,
         mode: "rolling-element",
     },
     ImsFailure {
         test: 2,
         start: "2004-02-12 10:32:39",
+        end: "2004-02-19 06:22:39",
         bearing: 1,
         mode: "outer-race",
     },
     ImsFailure {
         test: 3,
         start: "2004-03-04 09:27:46",
+        end: "2004-04-04 19:01:57",
         bearing: 3,
         mode: "outer-race",
     },
@@ -164,6 +172,33 @@ pub fn ims_failures(first: Option<&str>) -> Vec<ImsFailure> {
         .collect()
 }
 
+/// Most a table of a known IMS test may stop before the test's stated end (hours): its
+/// dead final snapshots may be left out (test 2's last two, 20 minutes), not its last day.
+pub const MAX_SHORT_H: f64 = 1.0;
+
+/// Why the IMS feature table `f` cannot stand for its test's life: it is recognised as
+/// an IMS test by its first snapshot, yet its last snapshot is more than [`MAX_SHORT_H`]
+/// before the test's end ([`ImsFailure::end`]), so its last snapshot is not the failure
+/// the test is known for. A probe's test 2 table cut to 29 rows was validated and
+/// calibrated on as a life to failure. `None` for a whole table or one of no known test.
+pub fn cut_short(f: &ImsFeatures) -> Option<String> {
+    let known = ims_failures(f.timestamps.first().map(String::as_str));
+    let k = known.first()?;
+    let end = parse_feature_timestamp(k.end)?;
+    let last = *f.unix_s.last()?;
+    let short_h = (end - last) as f64 / 3600.0;
+    (short_h > MAX_SHORT_H).then(|| {
+        format!(
+            "{}: this is IMS test {}'s table (by its first snapshot, {}), but it ends at {}, {short_h:.1} h before the test did ({}, IMS readme): it is cut short, and its last snapshot is not the failure the test is known for; give the whole table",
+            f.source.display(),
+            k.test,
+            k.start,
+            f.timestamps.last().map(String::as_str).unwrap_or("?"),
+            k.end
+        )
+    })
+}
+
 /// [`ims_failures`] of the IMS feature table `path` (empty when it cannot be read).
 pub fn failures_of(path: &Path) -> Vec<ImsFailure> {
     read_ims_features(path)
@@ -178,6 +213,9 @@ pub fn failures_of(path: &Path) -> Vec<ImsFailure> {
 /// README quirk); time is normalised by the last live snapshot.
 pub fn read_life(path: &Path, bearing: usize) -> Result<MeasuredLife, String> {
     let f = read_ims_features(path).map_err(|e| e.to_string())?;
+    if let Some(e) = cut_short(&f) {
+        return Err(e);
+    }
     let col = |b: usize, name: &str| -> Result<&[f64], String> {
         f.column(&format!("B{b}_{name}")).ok_or_else(|| {
             format!(
@@ -271,7 +309,8 @@ mod tests {
     use super::*;
 
     /// A one-channel-per-bearing IMS table of four bearings whose first snapshot is
-    /// 2004-02-12 `start_hour`:32:39 (then every 10 minutes), 40 rows.
+    /// 2004-02-12 `start_hour`:32:39 (then every 10 minutes), 40 rows, the last at test
+    /// 2's end (2004-02-19 06:22:39).
     fn table(dir: &Path, start_hour: usize) -> std::path::PathBuf {
         let mut s = String::new();
         for b in 1..=4 {
@@ -282,11 +321,15 @@ mod tests {
         s.push('\n');
         for r in 0..40 {
             let minutes = 32 + 10 * r;
-            s.push_str(&format!(
-                "2004-02-12 {:02}:{:02}:39",
-                start_hour + minutes / 60,
-                minutes % 60
-            ));
+            if r == 39 {
+                s.push_str("2004-02-19 06:22:39"); // test 2's end
+            } else {
+                s.push_str(&format!(
+                    "2004-02-12 {:02}:{:02}:39",
+                    start_hour + minutes / 60,
+                    minutes % 60
+                ));
+            }
             for _ in 1..=4 {
                 s.push_str(",0.06,0.075,0.0,0.4,0.075,0.4,5.3");
             }
@@ -320,6 +363,35 @@ mod tests {
             (b1.failure_mode.as_str(), b1.shared_shaft),
             ("unknown", true)
         );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Probe defect (stop 70): a test 2 table cut at a row boundary (29 rows) was read as
+    /// a life to failure. Cut a day short it is refused naming both ends; without its two
+    /// dead final snapshots (20 minutes) it is whole.
+    #[test]
+    fn a_known_tests_table_cut_short_is_refused() {
+        let dir = std::env::temp_dir().join(format!("wearsim-ims-cut-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let t2 = table(&dir, 10);
+        let text = std::fs::read_to_string(&t2).expect("read");
+        let cut = dir.join("cut.csv");
+        let keep = |last: &str| {
+            let mut rows: Vec<&str> = text.lines().take(40).collect();
+            rows.push(last);
+            std::fs::write(&cut, rows.join("\n") + "\n").expect("write");
+        };
+        let row = |ts: &str| format!("{ts}{}", ",0.06,0.075,0.0,0.4,0.075,0.4,5.3".repeat(4));
+        keep(&row("2004-02-18 06:22:39"));
+        let e = read_life(&cut, 1).expect_err("a day short");
+        assert!(
+            e.contains("2004-02-18 06:22:39")
+                && e.contains("24.0 h before")
+                && e.contains("2004-02-19 06:22:39"),
+            "{e}"
+        );
+        keep(&row("2004-02-19 06:02:39"));
+        assert!(read_life(&cut, 1).is_ok(), "20 minutes short is whole");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

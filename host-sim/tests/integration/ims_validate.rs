@@ -189,6 +189,30 @@ fn a_table_without_the_column_or_with_time_going_back_is_refused() {
     table(dir.path(), &back);
     let e = read_record(dir.path(), t3).unwrap_err();
     assert!(e.contains("row 6") && e.contains("time"), "{e}");
+    // A value whose digits are gone (subnormal) is refused: a table scaled by 1e-310 was
+    // read, and its end ratio came out as 4.8e-11 (232 dB).
+    let mut tiny = rows.clone();
+    tiny[7] = "2004-03-04 09:14:00,0.1,0.1,1e-310,0.1";
+    table(dir.path(), &tiny);
+    let e = read_record(dir.path(), t3).unwrap_err();
+    assert!(e.contains("row 9") && e.contains("smallest normal"), "{e}");
+    // IMS test 3's own table (known by its first snapshot) cut to 20 rows is not a life
+    // to failure: a probe's cut tables were validated and calibrated on without a word.
+    let cut: Vec<String> = std::iter::once("2004-03-04 09:27:46,0.1,0.1,0.1,0.1".to_string())
+        .chain((1..20).map(|i| {
+            format!(
+                "2004-03-04 1{}:{:02}:00,0.1,0.1,0.1,0.1",
+                i / 10,
+                (i % 10) * 5
+            )
+        }))
+        .collect();
+    table(
+        dir.path(),
+        &cut.iter().map(String::as_str).collect::<Vec<_>>(),
+    );
+    let e = read_record(dir.path(), t3).unwrap_err();
+    assert!(e.contains("IMS test 3") && e.contains("cut short"), "{e}");
     // No bearing 3 column.
     let d = dir
         .path()

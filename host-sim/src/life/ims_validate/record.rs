@@ -98,6 +98,9 @@ pub struct MeasuredRecord {
 pub fn read_record(data: &Path, r: &LifeRecord) -> Result<MeasuredRecord, String> {
     let path = data.join(r.file);
     let f = read_ims_features(&path).map_err(|e| e.to_string())?;
+    if let Some(e) = crate::io::ims_life::cut_short(&f) {
+        return Err(e);
+    }
     let v = f.column(r.column).ok_or_else(|| {
         format!(
             "{}: no column {} (the {} life needs it; columns: {})",
